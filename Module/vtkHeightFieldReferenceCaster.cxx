@@ -1,0 +1,246 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkHeightFieldReferenceCaster.h"
+
+#include "vtkHeightFieldStack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+vtkHeightFieldReferenceCaster::vtkHeightFieldReferenceCaster(const vtkHeightFieldStack& stack)
+  : Stack(stack)
+{
+}
+
+namespace
+{
+// Smallest root of a s^2 + b s + c in [0, len], or -1. Stable form of the quadratic formula;
+// tolerance 1e-12 of the segment so that a root exactly on a cell boundary is not lost.
+double SmallestRoot(double a, double b, double c, double len)
+{
+  const double tol = 1e-12 * std::max(len, 1e-300);
+  double roots[2];
+  int n = 0;
+  const double scale = std::max({ std::abs(a) * len * len, std::abs(b) * len, std::abs(c) });
+  if (scale == 0.0)
+  {
+    return 0.0; // the ray lies in the surface
+  }
+  if (std::abs(a) * len * len <= 1e-14 * scale)
+  {
+    if (b != 0.0)
+    {
+      roots[n++] = -c / b;
+    }
+  }
+  else
+  {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0)
+    {
+      return -1.0;
+    }
+    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+    roots[n++] = q / a;
+    if (q != 0.0)
+    {
+      roots[n++] = c / q;
+    }
+  }
+  double best = -1.0;
+  for (int k = 0; k < n; ++k)
+  {
+    if (roots[k] >= -tol && roots[k] <= len + tol && (best < 0.0 || roots[k] < best))
+    {
+      best = std::min(std::max(roots[k], 0.0), len);
+    }
+  }
+  return best;
+}
+}
+
+vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(
+  const double o[3], const double d[3], double tMin, double tMax) const
+{
+  Hit hit;
+  const vtkHeightFieldStack& s = this->Stack;
+  const int nx = s.GetNX();
+  const int ny = s.GetNY();
+  const int layers = s.GetNumberOfLayers();
+  double zr[2];
+  s.GetZRange(zr);
+  if (layers == 0 || zr[0] > zr[1])
+  {
+    return hit;
+  }
+  // Clip to the stack's box.
+  const double lo[3] = { 0.0, 0.0, zr[0] };
+  const double hi[3] = { double(nx - 1), double(ny - 1), zr[1] };
+  double t0 = tMin, t1 = tMax;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < lo[a] || o[a] > hi[a])
+      {
+        return hit;
+      }
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a];
+    double tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb)
+    {
+      std::swap(ta, tb);
+    }
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1)
+  {
+    return hit;
+  }
+
+  // 2-D DDA over cells from t0 to t1.
+  const double px = o[0] + t0 * d[0];
+  const double py = o[1] + t0 * d[1];
+  int i = std::min(std::max(static_cast<int>(std::floor(px)), 0), nx - 2);
+  int j = std::min(std::max(static_cast<int>(std::floor(py)), 0), ny - 2);
+  // On an exact boundary, start in the cell the ray moves into.
+  if (d[0] < 0.0 && px == std::floor(px) && i > 0 && px <= i)
+  {
+    i = std::max(i - 1, 0);
+  }
+  if (d[1] < 0.0 && py == std::floor(py) && j > 0 && py <= j)
+  {
+    j = std::max(j - 1, 0);
+  }
+  const int stepX = d[0] > 0.0 ? 1 : -1;
+  const int stepY = d[1] > 0.0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  auto nextT = [&](double p0, double dir, int cell) {
+    if (dir > 0.0)
+      return (cell + 1 - p0) / dir;
+    if (dir < 0.0)
+      return (cell - p0) / dir;
+    return inf;
+  };
+  double tx = nextT(o[0], d[0], i);
+  double ty = nextT(o[1], d[1], j);
+  double t = t0;
+  while (t <= t1)
+  {
+    const double tEnd = std::min({ tx, ty, t1 });
+    const double len = tEnd - t;
+    // Local cell coordinates at the segment start.
+    const double u0 = o[0] + t * d[0] - i;
+    const double v0 = o[1] + t * d[1] - j;
+    const double z0 = o[2] + t * d[2];
+    double bestS = inf;
+    int bestLayer = -1;
+    for (int k = 0; k < layers; ++k)
+    {
+      const double h00 = s.GetHeight(k, i, j);
+      const double h10 = s.GetHeight(k, i + 1, j);
+      const double h01 = s.GetHeight(k, i, j + 1);
+      const double h11 = s.GetHeight(k, i + 1, j + 1);
+      if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11))
+      {
+        continue;
+      }
+      const double ea = h10 - h00;
+      const double eb = h01 - h00;
+      const double ec = h00 - h10 - h01 + h11;
+      // f(s) = z0 + s dz - h(u0 + s du, v0 + s dv)
+      const double qa = -ec * d[0] * d[1];
+      const double qb = d[2] - ea * d[0] - eb * d[1] - ec * (u0 * d[1] + v0 * d[0]);
+      const double qc = z0 - h00 - ea * u0 - eb * v0 - ec * u0 * v0;
+      const double root = SmallestRoot(qa, qb, qc, len);
+      if (root >= 0.0 && root < bestS)
+      {
+        bestS = root;
+        bestLayer = k;
+      }
+    }
+    if (bestLayer >= 0)
+    {
+      hit.Layer = bestLayer;
+      hit.T = t + bestS;
+      for (int a = 0; a < 3; ++a)
+      {
+        hit.Point[a] = o[a] + hit.T * d[a];
+      }
+      return hit;
+    }
+    if (tEnd >= t1)
+    {
+      break;
+    }
+    if (tx < ty)
+    {
+      i += stepX;
+      t = tx;
+      tx += std::abs(1.0 / d[0]);
+    }
+    else
+    {
+      j += stepY;
+      t = ty;
+      ty += std::abs(1.0 / d[1]);
+    }
+    if (i < 0 || i > nx - 2 || j < 0 || j > ny - 2)
+    {
+      break;
+    }
+  }
+  return hit;
+}
+
+void vtkHeightFieldReferenceCaster::CastImage(const double m[16], int width, int height,
+  std::vector<int>& layers, std::vector<double>& points) const
+{
+  layers.assign(static_cast<size_t>(width) * height, -1);
+  points.assign(static_cast<size_t>(width) * height * 3, std::nan(""));
+  auto transform = [m](double x, double y, double z, double out[3]) {
+    double w = m[12] * x + m[13] * y + m[14] * z + m[15];
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
+    }
+  };
+  auto work = [&](int rowBegin, int rowStep) {
+    for (int py = rowBegin; py < height; py += rowStep)
+    {
+      for (int px = 0; px < width; ++px)
+      {
+        const double nx = (px + 0.5) / width * 2.0 - 1.0;
+        const double ny = (py + 0.5) / height * 2.0 - 1.0;
+        double nearP[3], farP[3], dir[3];
+        transform(nx, ny, -1.0, nearP);
+        transform(nx, ny, 1.0, farP);
+        for (int a = 0; a < 3; ++a)
+        {
+          dir[a] = farP[a] - nearP[a];
+        }
+        const Hit hit = this->Cast(nearP, dir, 0.0, 1.0);
+        const size_t idx = static_cast<size_t>(py) * width + px;
+        if (hit.Layer >= 0)
+        {
+          layers[idx] = hit.Layer;
+          std::copy(hit.Point, hit.Point + 3, points.begin() + 3 * idx);
+        }
+      }
+    }
+  };
+  const int threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k)
+  {
+    pool.emplace_back(work, k, threads);
+  }
+  work(0, threads);
+  for (auto& th : pool)
+  {
+    th.join();
+  }
+}
