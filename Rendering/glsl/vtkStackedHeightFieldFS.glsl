@@ -1,0 +1,274 @@
+//VTK::System::Dec
+// Strata stacked height-field ray caster (Lux & Froehlich, section 4): one pass, global
+// min-max quadtree traversed top-down, per-leaf sorted depth intervals evaluated in ray order,
+// linear search per layer with binary refinement. Tags are filled per scene by
+// vtkStackedHeightFieldMapper: what the scene does not use leaves no code here.
+
+out vec4 fragOutput0;
+
+uniform mat4 uClipToGrid;  // NDC -> grid (homogeneous), composed in double on the CPU
+uniform mat4 uGridToClip;
+uniform vec4 uViewport;    // window x, y, width, height of the renderer
+uniform vec2 uGridMax;     // nx - 1, ny - 1: the lateral box in cells
+uniform vec2 uZRange;      // lowest and highest valid height of the stack
+uniform float uZEps;       // slack of the height slabs, covers float rounding of the bilinear
+uniform float uStep;       // linear-search step, in cells along the ground
+uniform float uTieEps;     // ray-parameter tolerance under which two hits are a tie
+uniform int uTileSize;
+uniform int uNumLevels;
+uniform int uLevelOffset[16];
+uniform ivec2 uLevelDims[16];
+uniform samplerBuffer uNodes;      // min, max, interval offset, interval count
+uniform samplerBuffer uIntervals;  // zmin, zmax, layer offset, layer count
+uniform samplerBuffer uLayerLists; // layer ids
+
+//STRATA::HeightLookup::Dec
+
+//STRATA::Color::Dec
+
+//STRATA::Shading::Dec
+
+const float BIG = 3.0e38;
+
+// f(t) = ray height - surface height, in the cell `c` whose corners are h (00, 10, 01, 11).
+float strataF(vec3 o, vec3 d, float t, ivec2 c, vec4 h)
+{
+  vec3 p = o + t * d;
+  vec2 uv = clamp(p.xy - vec2(c), 0.0, 1.0);
+  float s = mix(mix(h.x, h.y, uv.x), mix(h.z, h.w, uv.x), uv.y);
+  return p.z - s;
+}
+
+vec4 strataCorners(int layer, ivec2 c)
+{
+  return vec4(strataHeight(layer, c), strataHeight(layer, c + ivec2(1, 0)),
+    strataHeight(layer, c + ivec2(0, 1)), strataHeight(layer, c + ivec2(1, 1)));
+}
+
+// First crossing of `layer` for t in [ta, tb]: a walk over the cells the ray crosses, samples
+// no further apart than uStep cells inside each, a sign change between consecutive samples
+// (also across a cell boundary) refined by bisection and a final secant step. Returns BIG when
+// there is none.
+float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, float nudge, out ivec2 hitCell)
+{
+  hitCell = ivec2(0);
+  ivec2 cmax = ivec2(uGridMax) - 1;
+  vec2 pm = (o + (ta + nudge) * d).xy;
+  ivec2 c = clamp(ivec2(floor(pm)), ivec2(0), cmax);
+  ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
+  float lateral = length(d.xy);
+  float t = ta;
+  float tPrev = ta;
+  float fPrev = 0.0;
+  bool havePrev = false;
+  for (int it = 0; it < 16384; ++it)
+  {
+    float tx = d.x > 0.0 ? (float(c.x + 1) - o.x) / d.x : (d.x < 0.0 ? (float(c.x) - o.x) / d.x : BIG);
+    float ty = d.y > 0.0 ? (float(c.y + 1) - o.y) / d.y : (d.y < 0.0 ? (float(c.y) - o.y) / d.y : BIG);
+    float tEnd = min(min(tx, ty), tb);
+    vec4 h = strataCorners(layer, c);
+    bool valid = true;
+    //STRATA::Hole::Impl
+    if (valid && tEnd >= t)
+    {
+      int n = max(1, int(ceil(lateral * (tEnd - t) / uStep)));
+      float dt = (tEnd - t) / float(n);
+      for (int k = 0; k <= n; ++k)
+      {
+        float tc = (k == n) ? tEnd : t + float(k) * dt;
+        float fc = strataF(o, d, tc, c, h);
+        if (fc == 0.0)
+        {
+          hitCell = c;
+          return tc;
+        }
+        if (havePrev && (fc > 0.0) != (fPrev > 0.0))
+        {
+          float a = tPrev, b = tc, fa = fPrev, fb = fc;
+          for (int r = 0; r < 12; ++r)
+          {
+            float m = 0.5 * (a + b);
+            float fm = strataF(o, d, m, c, h);
+            if ((fm > 0.0) == (fa > 0.0) && fm != 0.0)
+            {
+              a = m;
+              fa = fm;
+            }
+            else
+            {
+              b = m;
+              fb = fm;
+            }
+          }
+          hitCell = c;
+          return fa != fb ? a + (b - a) * fa / (fa - fb) : b;
+        }
+        tPrev = tc;
+        fPrev = fc;
+        havePrev = true;
+      }
+    }
+    else
+    {
+      havePrev = false;
+    }
+    if (tEnd >= tb)
+    {
+      break;
+    }
+    if (tx < ty)
+    {
+      c.x += stepDir.x;
+    }
+    else
+    {
+      c.y += stepDir.y;
+    }
+    if (any(lessThan(c, ivec2(0))) || any(greaterThan(c, cmax)))
+    {
+      break;
+    }
+    t = tEnd;
+  }
+  return BIG;
+}
+
+// The t range in which the ray's height lies in [z0, z1], intersected with [ta, tb].
+vec2 strataSlab(vec3 o, vec3 d, float z0, float z1, float ta, float tb)
+{
+  if (d.z != 0.0)
+  {
+    float s0 = (z0 - uZEps - o.z) / d.z;
+    float s1 = (z1 + uZEps - o.z) / d.z;
+    return vec2(max(ta, min(s0, s1)), min(tb, max(s0, s1)));
+  }
+  bool inside = o.z >= z0 - uZEps && o.z <= z1 + uZEps;
+  return inside ? vec2(ta, tb) : vec2(1.0, 0.0);
+}
+
+float strataExitT(vec3 o, vec3 d, vec2 lo, vec2 hi)
+{
+  float tx = d.x > 0.0 ? (hi.x - o.x) / d.x : (d.x < 0.0 ? (lo.x - o.x) / d.x : BIG);
+  float ty = d.y > 0.0 ? (hi.y - o.y) / d.y : (d.y < 0.0 ? (lo.y - o.y) / d.y : BIG);
+  return min(tx, ty);
+}
+
+void main()
+{
+  vec2 ndc = (gl_FragCoord.xy - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
+  vec4 n4 = uClipToGrid * vec4(ndc, -1.0, 1.0);
+  vec4 f4 = uClipToGrid * vec4(ndc, 1.0, 1.0);
+  vec3 o = n4.xyz / n4.w;
+  vec3 d = f4.xyz / f4.w - o;
+
+  // Clip the near-to-far segment (t in [0, 1]) to the stack's box.
+  vec3 lo = vec3(0.0, 0.0, uZRange.x - uZEps);
+  vec3 hi = vec3(uGridMax, uZRange.y + uZEps);
+  float tEnter = 0.0, tExit = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] != 0.0)
+    {
+      float s0 = (lo[a] - o[a]) / d[a];
+      float s1 = (hi[a] - o[a]) / d[a];
+      tEnter = max(tEnter, min(s0, s1));
+      tExit = min(tExit, max(s0, s1));
+    }
+    else if (o[a] < lo[a] || o[a] > hi[a])
+    {
+      discard;
+    }
+  }
+  if (tEnter > tExit)
+  {
+    discard;
+  }
+  // A step far below a cell: decides which node or cell the ray is in just after a boundary.
+  float latSpeed = max(abs(d.x), abs(d.y));
+  float nudge = min(1.0e-4 / max(latSpeed, 1.0e-30), 1.0e-5 * (tExit - tEnter));
+
+  float tHit = BIG;
+  int hitLayer = -1;
+  ivec2 hitCell = ivec2(0);
+  float t = tEnter;
+  int level = uNumLevels - 1;
+  for (int it = 0; it < 8192 && t <= tExit && hitLayer < 0; ++it)
+  {
+    int S = uTileSize << level;
+    vec2 pm = (o + (t + nudge) * d).xy;
+    ivec2 node = clamp(ivec2(floor(pm / float(S))), ivec2(0), uLevelDims[level] - 1);
+    vec4 nd = texelFetch(uNodes, uLevelOffset[level] + node.y * uLevelDims[level].x + node.x);
+    vec2 nlo = vec2(node * S);
+    vec2 nhi = min(vec2((node + 1) * S), uGridMax);
+    float tNodeExit = min(strataExitT(o, d, nlo, nhi), tExit);
+    vec2 slab = nd.x <= nd.y ? strataSlab(o, d, nd.x, nd.y, t, tNodeExit) : vec2(1.0, 0.0);
+    if (slab.x <= slab.y)
+    {
+      if (level > 0)
+      {
+        level -= 1;
+        t = slab.x;
+        continue;
+      }
+      // Leaf: its depth intervals in ray order; the first one with a hit holds the nearest.
+      int first = int(nd.z);
+      int count = int(nd.w);
+      bool up = d.z >= 0.0;
+      for (int q = 0; q < count && hitLayer < 0; ++q)
+      {
+        vec4 iv = texelFetch(uIntervals, first + (up ? q : count - 1 - q));
+        vec2 s = strataSlab(o, d, iv.x, iv.y, slab.x, slab.y);
+        if (s.x > s.y)
+        {
+          continue;
+        }
+        float best = BIG;
+        for (int r = 0; r < int(iv.w); ++r)
+        {
+          int layer = int(texelFetch(uLayerLists, int(iv.z) + r).x);
+          ivec2 cell;
+          float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), nudge, cell);
+          // Coincident horizons: a later one wins only when clearly nearer, so that float
+          // noise cannot flip ids where two horizons are equal (the lower index wins ties).
+          if (th < best - uTieEps)
+          {
+            best = th;
+            hitLayer = layer;
+            hitCell = cell;
+          }
+        }
+        tHit = best;
+      }
+      if (hitLayer >= 0)
+      {
+        break;
+      }
+    }
+    // Past this node; climb while the next position lies in another parent.
+    float tNext = max(tNodeExit, t + nudge);
+    vec2 pn = (o + (tNext + nudge) * d).xy;
+    ivec2 nextNode = ivec2(floor(pn / float(S)));
+    while (level < uNumLevels - 1 && any(notEqual(nextNode >> 1, node >> 1)))
+    {
+      level += 1;
+      node = node >> 1;
+      nextNode = nextNode >> 1;
+    }
+    t = tNext;
+  }
+  if (hitLayer < 0)
+  {
+    discard;
+  }
+
+  vec3 pGrid = o + tHit * d;
+  vec4 clip = uGridToClip * vec4(pGrid, 1.0);
+  float ndcDepth = clip.z / clip.w;
+  gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+
+  //STRATA::Color::Impl
+
+  //STRATA::Shading::Impl
+
+  //STRATA::Output::Impl
+}

@@ -1,0 +1,792 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkStackedHeightFieldMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkHeightFieldStack.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMinMaxQuadtree.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkScalarsToColors.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
+#include "vtk_glew.h"
+
+#include "vtkStackedHeightFieldFS.h"
+#include "vtkStackedHeightFieldVS.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkStackedHeightFieldMapper);
+
+namespace
+{
+// Distinct colours for horizons without one of their own (after Paul Tol's "bright" scheme).
+const double DefaultPalette[8][3] = { { 0.93, 0.40, 0.47 }, { 0.27, 0.47, 0.67 },
+  { 0.13, 0.53, 0.20 }, { 0.80, 0.73, 0.27 }, { 0.40, 0.80, 0.93 }, { 0.67, 0.20, 0.47 },
+  { 0.73, 0.73, 0.73 }, { 0.90, 0.55, 0.20 } };
+
+// The paper's default depth colour map: deep blue through cyan, green and yellow to red.
+void DefaultDepthColor(double s, double rgb[3])
+{
+  static const double stops[5][3] = { { 0.15, 0.20, 0.75 }, { 0.10, 0.70, 0.90 },
+    { 0.20, 0.80, 0.30 }, { 0.95, 0.85, 0.20 }, { 0.85, 0.20, 0.15 } };
+  s = std::min(std::max(s, 0.0), 1.0) * 4.0;
+  const int k = std::min(static_cast<int>(s), 3);
+  const double f = s - k;
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = stops[k][c] * (1.0 - f) + stops[k + 1][c] * f;
+  }
+}
+
+void Replace(std::string& source, const std::string& tag, const std::string& code)
+{
+  vtkShaderProgram::Substitute(source, tag, code, true);
+}
+
+void ToFloat(vtkMatrix4x4* m, float out[16], bool transpose)
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[transpose ? c * 4 + r : r * 4 + c] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+}
+
+class vtkStackedHeightFieldMapper::vtkInternals
+{
+public:
+  // CPU side
+  vtkHeightFieldStack Stack;
+  vtkMinMaxQuadtree Tree;
+  std::vector<vtkSmartPointer<vtkDataArray>> Arrays; // keep borrowed layers alive
+  vtkNew<vtkMatrix4x4> GridToWorld;
+  vtkMTimeType BuildTime = 0;
+  bool Valid = false;
+  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
+  std::map<int, std::array<double, 3>> HorizonColors;
+  vtkSmartPointer<vtkScalarsToColors> Lut;
+
+  // GPU side
+  unsigned int HeightTexture = 0;
+  vtkNew<vtkOpenGLBufferObject> NodeBuffer, IntervalBuffer, LayerListBuffer, ColorBuffer;
+  vtkNew<vtkTextureObject> NodeTexture, IntervalTexture, LayerListTexture, ColorTexture;
+  vtkNew<vtkOpenGLBufferObject> BoxVertices, BoxIndices;
+  unsigned int VAO = 0;
+  vtkShaderProgram* LastProgram = nullptr;
+  vtkMTimeType UploadTime = 0;
+  vtkMTimeType ColorTime = 0;
+  std::string FragmentSource;
+  std::string VertexSource;
+  vtkTimeStamp ColorsModified;
+};
+
+vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
+  : Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(1);
+  this->Static = 0;
+  this->Internals->ColorsModified.Modified();
+  for (auto* bo : { this->Internals->NodeBuffer.Get(), this->Internals->IntervalBuffer.Get(),
+         this->Internals->LayerListBuffer.Get(), this->Internals->ColorBuffer.Get() })
+  {
+    bo->SetType(vtkOpenGLBufferObject::TextureBuffer);
+  }
+  this->Internals->BoxIndices->SetType(vtkOpenGLBufferObject::ElementArrayBuffer);
+}
+
+vtkStackedHeightFieldMapper::~vtkStackedHeightFieldMapper() = default;
+
+int vtkStackedHeightFieldMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  return 1;
+}
+
+void vtkStackedHeightFieldMapper::SetColorMode(ColorModes mode)
+{
+  if (this->ColorMode != mode)
+  {
+    this->ColorMode = mode;
+    this->Modified();
+  }
+}
+
+void vtkStackedHeightFieldMapper::SetOutputMode(OutputModes mode)
+{
+  if (this->OutputMode != mode)
+  {
+    this->OutputMode = mode;
+    this->Modified();
+  }
+}
+
+void vtkStackedHeightFieldMapper::SetHorizonColor(int index, double r, double g, double b)
+{
+  this->Internals->HorizonColors[index] = { r, g, b };
+  this->Internals->ColorsModified.Modified();
+  this->Modified();
+}
+
+void vtkStackedHeightFieldMapper::SetHeightLookupTable(vtkScalarsToColors* lut)
+{
+  this->Internals->Lut = lut;
+  this->Internals->ColorsModified.Modified();
+  this->Modified();
+}
+
+std::string vtkStackedHeightFieldMapper::GetFragmentShaderSource() const
+{
+  return this->Internals->FragmentSource;
+}
+
+void vtkStackedHeightFieldMapper::GetGridToWorld(double m[16])
+{
+  this->UpdateStack();
+  vtkMatrix4x4::DeepCopy(m, this->Internals->GridToWorld);
+}
+
+const vtkHeightFieldStack* vtkStackedHeightFieldMapper::GetStack()
+{
+  return this->UpdateStack() ? &this->Internals->Stack : nullptr;
+}
+
+bool vtkStackedHeightFieldMapper::UpdateStack()
+{
+  vtkInternals& in = *this->Internals;
+  const int n = this->GetNumberOfInputConnections(0);
+  if (n == 0)
+  {
+    in.Valid = false;
+    return false;
+  }
+  this->GetExecutive()->Update();
+  vtkMTimeType newest = this->GetMTime();
+  std::vector<vtkImageData*> images;
+  for (int i = 0; i < n; ++i)
+  {
+    auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, i));
+    if (!image)
+    {
+      vtkErrorMacro("Input " << i << " is not vtkImageData.");
+      in.Valid = false;
+      return false;
+    }
+    newest = std::max(newest, image->GetMTime());
+    images.push_back(image);
+  }
+  if (in.BuildTime >= newest && in.BuildTime != 0)
+  {
+    return in.Valid;
+  }
+  in.BuildTime = newest;
+  in.Valid = false;
+  in.Arrays.clear();
+
+  int dims[3];
+  images[0]->GetDimensions(dims);
+  if (dims[2] != 1 || dims[0] < 1 || dims[1] < 1)
+  {
+    vtkErrorMacro("Height fields must be nx x ny x 1 images; input 0 is " << dims[0] << " x "
+                                                                           << dims[1] << " x " << dims[2] << ".");
+    return false;
+  }
+  if (!in.Stack.Initialize(dims[0], dims[1]))
+  {
+    vtkErrorMacro("Cannot use the height-field grid: " << in.Stack.GetErrorMessage() << ".");
+    return false;
+  }
+  const double* origin = images[0]->GetOrigin();
+  const double* spacing = images[0]->GetSpacing();
+  for (int i = 0; i < n; ++i)
+  {
+    int d[3];
+    images[i]->GetDimensions(d);
+    if (d[0] != dims[0] || d[1] != dims[1] || d[2] != 1)
+    {
+      vtkErrorMacro("Input " << i << " has " << d[0] << " x " << d[1] << " x " << d[2]
+                             << " points; every horizon of a stack must share input 0's grid of "
+                             << dims[0] << " x " << dims[1] << ".");
+      return false;
+    }
+    const double* o = images[i]->GetOrigin();
+    const double* s = images[i]->GetSpacing();
+    for (int a = 0; a < 2; ++a)
+    {
+      if (std::abs(o[a] - origin[a]) > 1e-6 * std::max(1.0, std::abs(spacing[a])) * std::max(1.0, std::abs(origin[a]) / std::max(1e-300, std::abs(spacing[a])) * 1e-3) ||
+        std::abs(s[a] - spacing[a]) > 1e-9 * std::abs(spacing[a]))
+      {
+        vtkErrorMacro("Input " << i << " lies on another lateral grid (origin or spacing differ "
+                                       "from input 0).");
+        return false;
+      }
+    }
+    vtkDataArray* array = this->HeightArrayName.empty()
+      ? images[i]->GetPointData()->GetScalars()
+      : images[i]->GetPointData()->GetArray(this->HeightArrayName.c_str());
+    if (!array || array->GetNumberOfComponents() != 1 ||
+      array->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+    {
+      vtkErrorMacro("Input " << i << " has no single-component height array"
+                             << (this->HeightArrayName.empty() ? "" : " named " + this->HeightArrayName)
+                             << " with one value per point.");
+      return false;
+    }
+    bool ok;
+    if (auto* f = vtkFloatArray::FastDownCast(array))
+    {
+      ok = in.Stack.AddLayer(f->GetPointer(0), this->UseNullValue, this->NullValue);
+      in.Arrays.emplace_back(f);
+    }
+    else if (auto* dbl = vtkDoubleArray::FastDownCast(array))
+    {
+      ok = in.Stack.AddLayer(dbl->GetPointer(0), this->UseNullValue, this->NullValue);
+    }
+    else
+    {
+      vtkNew<vtkDoubleArray> copy;
+      copy->DeepCopy(array);
+      ok = in.Stack.AddLayer(copy->GetPointer(0), this->UseNullValue, this->NullValue);
+    }
+    if (!ok)
+    {
+      vtkErrorMacro("Cannot add horizon " << i << ": " << in.Stack.GetErrorMessage());
+      return false;
+    }
+  }
+  in.Tree.Build(in.Stack, this->TileSize);
+
+  // Grid space (x, y in cells of the effective grid, z = value) to world: image index
+  // i = x + offset, then origin + D diag(sx, sy, HeightScale) (i, j, z).
+  const double* dir = images[0]->GetDirectionMatrix()->GetData();
+  const double scale[3] = { spacing[0], spacing[1], this->HeightScale };
+  const double offset[2] = { in.Stack.GetIndexOffset(0), in.Stack.GetIndexOffset(1) };
+  in.GridToWorld->Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      in.GridToWorld->SetElement(r, c, dir[3 * r + c] * scale[c]);
+    }
+    in.GridToWorld->SetElement(r, 3,
+      origin[r] + dir[3 * r] * scale[0] * offset[0] + dir[3 * r + 1] * scale[1] * offset[1]);
+  }
+  double zr[2];
+  in.Stack.GetZRange(zr);
+  if (zr[0] > zr[1])
+  {
+    zr[0] = zr[1] = 0.0;
+  }
+  vtkMath::UninitializeBounds(in.Bounds);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double p[4] = { (corner & 1) ? in.Stack.GetNX() - 1.0 : 0.0,
+      (corner & 2) ? in.Stack.GetNY() - 1.0 : 0.0, (corner & 4) ? zr[1] : zr[0], 1.0 };
+    double w[4];
+    in.GridToWorld->MultiplyPoint(p, w);
+    for (int a = 0; a < 3; ++a)
+    {
+      if (corner == 0 || w[a] < in.Bounds[2 * a])
+        in.Bounds[2 * a] = w[a];
+      if (corner == 0 || w[a] > in.Bounds[2 * a + 1])
+        in.Bounds[2 * a + 1] = w[a];
+    }
+  }
+  in.Valid = true;
+  return true;
+}
+
+double* vtkStackedHeightFieldMapper::GetBounds()
+{
+  if (!this->UpdateStack())
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+    return this->Bounds;
+  }
+  std::copy(this->Internals->Bounds, this->Internals->Bounds + 6, this->Bounds);
+  return this->Bounds;
+}
+
+void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
+{
+  vtkInternals& in = *this->Internals;
+  if (in.HeightTexture)
+  {
+    glDeleteTextures(1, &in.HeightTexture);
+    in.HeightTexture = 0;
+  }
+  for (auto* t : { in.NodeTexture.Get(), in.IntervalTexture.Get(), in.LayerListTexture.Get(),
+         in.ColorTexture.Get() })
+  {
+    t->ReleaseGraphicsResources(win);
+  }
+  for (auto* b : { in.NodeBuffer.Get(), in.IntervalBuffer.Get(), in.LayerListBuffer.Get(),
+         in.ColorBuffer.Get(), in.BoxVertices.Get(), in.BoxIndices.Get() })
+  {
+    b->ReleaseGraphicsResources();
+  }
+  if (in.VAO)
+  {
+    glDeleteVertexArrays(1, &in.VAO);
+    in.VAO = 0;
+  }
+  in.LastProgram = nullptr;
+  in.UploadTime = 0;
+  in.ColorTime = 0;
+  this->Modified();
+}
+
+void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
+{
+  vtkInternals& in = *this->Internals;
+  if (!this->UpdateStack() || in.Stack.GetNumberOfLayers() == 0)
+  {
+    return;
+  }
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  auto* oglRen = vtkOpenGLRenderer::SafeDownCast(ren);
+  if (!renWin || !oglRen)
+  {
+    vtkErrorMacro("vtkStackedHeightFieldMapper needs an OpenGL render window.");
+    return;
+  }
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLClearErrorMacro();
+  const int nx = in.Stack.GetNX();
+  const int ny = in.Stack.GetNY();
+  const int layers = in.Stack.GetNumberOfLayers();
+
+  // --- Upload the stack and the tree when they changed.
+  if (in.UploadTime < in.BuildTime || !in.HeightTexture)
+  {
+    GLint maxSize = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    if (nx > maxSize || ny > maxSize || layers > maxLayers)
+    {
+      vtkErrorMacro("A grid of " << nx << " x " << ny << " x " << layers
+                                 << " horizons exceeds this GPU's texture limits (" << maxSize
+                                 << " per side, " << maxLayers
+                                 << " layers); page it from a tile pool instead.");
+      return;
+    }
+    if (!in.HeightTexture)
+    {
+      glGenTextures(1, &in.HeightTexture);
+    }
+    state->vtkglActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, nx, ny, layers, 0, GL_RED, GL_FLOAT, nullptr);
+    for (int k = 0; k < layers; ++k)
+    {
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT,
+        in.Stack.GetLayer(k));
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    if (glGetError() != GL_NO_ERROR)
+    {
+      vtkErrorMacro("Could not upload " << layers << " horizons of " << nx << " x " << ny
+                                        << " heights (out of GPU memory?).");
+      return;
+    }
+
+    // Tree: ints stored as floats are exact below 2^24, far above any tree built here.
+    std::vector<float> nodes, intervals, lists;
+    for (const auto& node : in.Tree.GetNodes())
+    {
+      nodes.insert(nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
+    }
+    for (const auto& iv : in.Tree.GetIntervals())
+    {
+      intervals.insert(intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
+    }
+    for (int id : in.Tree.GetLayerLists())
+    {
+      lists.push_back(float(id));
+    }
+    if (intervals.empty())
+    {
+      intervals.assign(4, 0.0f);
+    }
+    if (lists.empty())
+    {
+      lists.assign(1, 0.0f);
+    }
+    auto uploadBuffer = [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex,
+                          const std::vector<float>& data, int comps) {
+      tex->SetContext(renWin);
+      bo->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
+      tex->CreateTextureBuffer(static_cast<unsigned int>(data.size() / comps), comps, VTK_FLOAT, bo);
+    };
+    uploadBuffer(in.NodeBuffer, in.NodeTexture, nodes, 4);
+    uploadBuffer(in.IntervalBuffer, in.IntervalTexture, intervals, 4);
+    uploadBuffer(in.LayerListBuffer, in.LayerListTexture, lists, 1);
+
+    // Proxy box, slightly taller than the data so that flat stacks still have back faces.
+    double zr[2];
+    in.Stack.GetZRange(zr);
+    const double pad = std::max(1e-3, 1e-3 * (zr[1] - zr[0]));
+    const float x1 = float(nx - 1), y1 = float(ny - 1);
+    const float z0 = float(zr[0] - pad), z1 = float(zr[1] + pad);
+    const std::vector<float> verts = { 0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1,
+      0, z1, 0, y1, z1, x1, y1, z1 };
+    const std::vector<unsigned int> faces = { 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5,
+      4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5 };
+    in.BoxVertices->Upload(verts, vtkOpenGLBufferObject::ArrayBuffer);
+    in.BoxIndices->Upload(faces, vtkOpenGLBufferObject::ElementArrayBuffer);
+    in.LastProgram = nullptr; // attribute bindings must be redone
+    in.UploadTime = in.BuildTime;
+  }
+
+  // --- Colours: per-horizon table or lookup table over height.
+  const bool shaded = this->OutputMode == OutputModes::Shaded;
+  const bool useLut = shaded && this->ColorMode == ColorModes::LookupTable;
+  double lutRange[2];
+  in.Stack.GetZRange(lutRange);
+  if (in.Lut && useLut)
+  {
+    const double* r = in.Lut->GetRange();
+    if (r[0] < r[1])
+    {
+      lutRange[0] = r[0];
+      lutRange[1] = r[1];
+    }
+  }
+  if (lutRange[1] <= lutRange[0])
+  {
+    lutRange[1] = lutRange[0] + 1.0;
+  }
+  if (shaded && (in.ColorTime < in.ColorsModified.GetMTime() || in.ColorTime < in.BuildTime ||
+                  (in.Lut && in.ColorTime < in.Lut->GetMTime())))
+  {
+    std::vector<float> colors;
+    if (useLut)
+    {
+      const int entries = 1024;
+      for (int e = 0; e < entries; ++e)
+      {
+        const double s = (e + 0.5) / entries;
+        double rgb[3];
+        if (in.Lut)
+        {
+          in.Lut->GetColor(lutRange[0] + s * (lutRange[1] - lutRange[0]), rgb);
+        }
+        else
+        {
+          DefaultDepthColor(s, rgb);
+        }
+        colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+      }
+    }
+    else
+    {
+      for (int k = 0; k < layers; ++k)
+      {
+        auto it = in.HorizonColors.find(k);
+        const double* rgb = it != in.HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
+        colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+      }
+    }
+    in.ColorTexture->SetContext(renWin);
+    in.ColorBuffer->Upload(colors, vtkOpenGLBufferObject::TextureBuffer);
+    in.ColorTexture->CreateTextureBuffer(static_cast<unsigned int>(colors.size() / 4), 4, VTK_FLOAT, in.ColorBuffer);
+    in.ColorTime = std::max(in.ColorsModified.GetMTime(), in.BuildTime);
+    if (in.Lut)
+    {
+      in.ColorTime = std::max(in.ColorTime, in.Lut->GetMTime());
+    }
+  }
+
+  // --- Shader for exactly this scene's features.
+  vtkProperty* prop = actor->GetProperty();
+  const int complexity = oglRen->GetLightingComplexity();
+  const bool lit = shaded && prop->GetLighting() && complexity > 0;
+  const bool holes = in.Stack.HasHoles();
+  std::string vs = vtkStackedHeightFieldVS;
+  std::string fs = vtkStackedHeightFieldFS;
+  // Data lookup: one function, so that paging can swap in a virtual-texture lookup.
+  Replace(fs, "//STRATA::HeightLookup::Dec",
+    "uniform sampler2DArray uHeights;\n"
+    "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; }");
+  Replace(fs, "//STRATA::Hole::Impl", holes ? "valid = !any(isnan(h));" : "");
+  if (!shaded)
+  {
+    Replace(fs, "//STRATA::Color::Dec", "");
+    Replace(fs, "//STRATA::Color::Impl", "");
+    Replace(fs, "//STRATA::Shading::Dec", "");
+    Replace(fs, "//STRATA::Shading::Impl", "");
+    Replace(fs, "//STRATA::Output::Impl",
+      "int id = hitLayer + 1;\n"
+      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), 255.0) / 255.0;");
+  }
+  else
+  {
+    if (useLut)
+    {
+      Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
+      Replace(fs, "//STRATA::Color::Impl",
+        "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
+        "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
+    }
+    else
+    {
+      Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // one per horizon");
+      Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = texelFetch(uColors, hitLayer).rgb;");
+    }
+    if (lit)
+    {
+      std::ostringstream dec, impl;
+      dec << "uniform mat3 uNormalMatrix; // grid -> view, inverse transpose\n"
+             "uniform mat4 uGridToView;\n"
+             "uniform int uParallel;\n"
+             "uniform float uAmbient, uDiffuse, uSpecular, uSpecularPower;\n"
+             "uniform vec3 uSpecularColor;\n"
+          << oglRen->GetLightingUniforms();
+      impl << "vec4 hc = strataCorners(hitLayer, hitCell);\n"
+              "  vec2 huv = clamp(pGrid.xy - vec2(hitCell), 0.0, 1.0);\n"
+              "  vec3 nGrid = vec3(-mix(hc.y - hc.x, hc.w - hc.z, huv.y), -mix(hc.z - hc.x, hc.w - hc.y, huv.x), 1.0);\n"
+              "  vec3 normalVC = normalize(uNormalMatrix * nGrid);\n"
+              "  vec3 posVC = (uGridToView * vec4(pGrid, 1.0)).xyz;\n"
+              "  vec3 viewDirectionVC = uParallel != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-posVC);\n"
+              "  if (dot(normalVC, viewDirectionVC) < 0.0) normalVC = -normalVC; // two-sided\n"
+              "  vec3 diffuse = vec3(0.0), specular = vec3(0.0);\n";
+      if (complexity == 1)
+      {
+        impl << "  float df = max(0.0, normalVC.z);\n"
+                "  diffuse = df * lightColor0;\n"
+                "  specular = pow(df, uSpecularPower) * lightColor0;\n";
+      }
+      else
+      {
+        for (int l = 0; l < oglRen->GetLightingCount(); ++l)
+        {
+          impl << "  {\n    vec3 L = lightDirectionVC" << l << ";\n    float att = 1.0;\n";
+          if (complexity == 3)
+          {
+            impl << "    if (lightPositional" << l << " != 0)\n    {\n"
+                 << "      vec3 toP = posVC - lightPositionVC" << l << ";\n"
+                 << "      float dist = length(toP);\n"
+                 << "      float coneDot = dot(normalize(toP), lightDirectionVC" << l << ");\n"
+                 << "      L = normalize(toP);\n"
+                 << "      att = 1.0 / (lightAttenuation" << l << ".x + lightAttenuation" << l
+                 << ".y * dist + lightAttenuation" << l << ".z * dist * dist);\n"
+                 << "      if (lightConeAngle" << l << " < 90.0)\n"
+                 << "        att *= coneDot >= cos(radians(lightConeAngle" << l << ")) ? pow(coneDot, lightExponent" << l << ") : 0.0;\n"
+                 << "    }\n";
+          }
+          impl << "    float df = max(0.0, dot(normalVC, -L));\n"
+               << "    diffuse += att * df * lightColor" << l << ";\n"
+               << "    if (df > 0.0)\n"
+               << "      specular += att * pow(max(0.0, dot(reflect(L, normalVC), viewDirectionVC)), uSpecularPower) * lightColor"
+               << l << ";\n  }\n";
+        }
+      }
+      impl << "  vec3 shadedColor = uAmbient * baseColor + uDiffuse * diffuse * baseColor + uSpecular * specular * uSpecularColor;";
+      Replace(fs, "//STRATA::Shading::Dec", dec.str());
+      Replace(fs, "//STRATA::Shading::Impl", impl.str());
+      Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
+    }
+    else
+    {
+      Replace(fs, "//STRATA::Shading::Dec", "");
+      Replace(fs, "//STRATA::Shading::Impl", "");
+      Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, 1.0);");
+    }
+  }
+  vtkShaderProgram* program =
+    renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), "");
+  if (!program)
+  {
+    vtkErrorMacro("The height-field ray casting shader did not compile or link.");
+    return;
+  }
+  in.VertexSource = vs;
+  in.FragmentSource = fs;
+  if (program != in.LastProgram || !in.VAO)
+  {
+    // A plain VAO: the box has one attribute, and its element buffer is part of its state.
+    if (!in.VAO)
+    {
+      glGenVertexArrays(1, &in.VAO);
+    }
+    glBindVertexArray(in.VAO);
+    in.BoxVertices->Bind();
+    const GLint location = glGetAttribLocation(program->GetHandle(), "vertexGrid");
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    in.BoxIndices->Bind();
+    glBindVertexArray(0);
+    in.LastProgram = program;
+  }
+
+  // --- Matrices, composed in double so UTM-scale coordinates lose nothing: the GPU only sees
+  // grid space (cells and heights) and clip space.
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double aspect = ren->GetTiledAspectRatio();
+  vtkNew<vtkMatrix4x4> worldToClip, gridToClip, clipToGrid, gridToView, modelGrid;
+  worldToClip->DeepCopy(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1));
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
+  vtkMatrix4x4::Multiply4x4(worldToClip, modelGrid, gridToClip);
+  vtkMatrix4x4::Invert(gridToClip, clipToGrid);
+  vtkMatrix4x4::Multiply4x4(camera->GetViewTransformMatrix(), modelGrid, gridToView);
+  float m[16];
+  ToFloat(gridToClip, m, true);
+  program->SetUniformMatrix4x4("uGridToClip", m);
+  ToFloat(clipToGrid, m, true);
+  program->SetUniformMatrix4x4("uClipToGrid", m);
+
+  int vp[4];
+  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
+  const float viewport[4] = { float(vp[0]), float(vp[1]), float(vp[2]), float(vp[3]) };
+  program->SetUniform4f("uViewport", viewport);
+  const float gridMax[2] = { float(nx - 1), float(ny - 1) };
+  program->SetUniform2f("uGridMax", gridMax);
+  double zr[2];
+  in.Stack.GetZRange(zr);
+  const float zRange[2] = { float(zr[0]), float(zr[1]) };
+  program->SetUniform2f("uZRange", zRange);
+  // Bilinear interpolation in float is within a few ulps of the corner range; 1e-5 relative
+  // of the largest magnitude is far above that and far below anything visible.
+  program->SetUniformf("uZEps", float(1e-5 * std::max({ 1.0, std::abs(zr[0]), std::abs(zr[1]) })));
+  program->SetUniformf("uStep", float(this->LinearSearchStep));
+  // Ties: hits closer than 1e-6 of the near-to-far segment (t spans [0, 1]) are one hit.
+  program->SetUniformf("uTieEps", 1e-6f);
+  program->SetUniformi("uTileSize", in.Tree.GetTileSize());
+  const int levels = in.Tree.GetNumberOfLevels();
+  if (levels > 16)
+  {
+    vtkErrorMacro("Quadtree of " << levels << " levels: raise TileSize.");
+    return;
+  }
+  program->SetUniformi("uNumLevels", levels);
+  int offsets[16] = { 0 };
+  int levelDims[32] = { 0 };
+  for (int l = 0; l < levels; ++l)
+  {
+    offsets[l] = in.Tree.GetLevelOffset(l);
+    levelDims[2 * l] = in.Tree.GetLevelNX(l);
+    levelDims[2 * l + 1] = in.Tree.GetLevelNY(l);
+  }
+  program->SetUniform1iv("uLevelOffset", 16, offsets);
+  glUniform2iv(program->FindUniform("uLevelDims"), 16, levelDims);
+
+  if (lit)
+  {
+    vtkNew<vtkMatrix3x3> normal;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        normal->SetElement(r, c, gridToView->GetElement(r, c));
+    normal->Invert();
+    normal->Transpose();
+    float n9[9];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        n9[c * 3 + r] = static_cast<float>(normal->GetElement(r, c));
+    program->SetUniformMatrix3x3("uNormalMatrix", n9);
+    ToFloat(gridToView, m, true);
+    program->SetUniformMatrix4x4("uGridToView", m);
+    program->SetUniformi("uParallel", camera->GetParallelProjection() ? 1 : 0);
+    program->SetUniformf("uAmbient", float(prop->GetAmbient()));
+    program->SetUniformf("uDiffuse", float(prop->GetDiffuse()));
+    program->SetUniformf("uSpecular", float(prop->GetSpecular()));
+    program->SetUniformf("uSpecularPower", float(prop->GetSpecularPower()));
+    const double* sc = prop->GetSpecularColor();
+    const float specColor[3] = { float(sc[0]), float(sc[1]), float(sc[2]) };
+    program->SetUniform3f("uSpecularColor", specColor);
+    oglRen->UpdateLightingUniforms(program);
+  }
+
+  // --- Textures.
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  const int heightUnit = units->Allocate();
+  state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
+  program->SetUniformi("uHeights", heightUnit);
+  in.NodeTexture->Activate();
+  program->SetUniformi("uNodes", in.NodeTexture->GetTextureUnit());
+  in.IntervalTexture->Activate();
+  program->SetUniformi("uIntervals", in.IntervalTexture->GetTextureUnit());
+  in.LayerListTexture->Activate();
+  program->SetUniformi("uLayerLists", in.LayerListTexture->GetTextureUnit());
+  if (shaded)
+  {
+    in.ColorTexture->Activate();
+    program->SetUniformi("uColors", in.ColorTexture->GetTextureUnit());
+    if (useLut)
+    {
+      const float lr[2] = { float(lutRange[0]), float(lutRange[1]) };
+      program->SetUniform2f("uLutRange", lr);
+    }
+  }
+
+  // --- Draw the box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  state->vtkglEnable(GL_CULL_FACE);
+  state->vtkglCullFace(GL_FRONT);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_CLAMP);
+  glBindVertexArray(in.VAO);
+  glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+  glDisable(GL_DEPTH_CLAMP);
+  state->vtkglCullFace(GL_BACK);
+
+  in.NodeTexture->Deactivate();
+  in.IntervalTexture->Deactivate();
+  in.LayerListTexture->Deactivate();
+  if (shaded)
+  {
+    in.ColorTexture->Deactivate();
+  }
+  state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  units->Free(heightUnit);
+  vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
+}
+
+void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TileSize: " << this->TileSize << "\n";
+  os << indent << "LinearSearchStep: " << this->LinearSearchStep << "\n";
+  os << indent << "HeightScale: " << this->HeightScale << "\n";
+  os << indent << "NullValue: " << this->NullValue << "\n";
+  os << indent << "UseNullValue: " << this->UseNullValue << "\n";
+  os << indent << "HeightArrayName: " << this->HeightArrayName << "\n";
+  os << indent << "ColorMode: " << static_cast<int>(this->ColorMode) << "\n";
+  os << indent << "OutputMode: " << static_cast<int>(this->OutputMode) << "\n";
+  os << indent << "Horizons: " << this->Internals->Stack.GetNumberOfLayers() << "\n";
+}

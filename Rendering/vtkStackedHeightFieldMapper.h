@@ -1,0 +1,184 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkStackedHeightFieldMapper
+ * @brief   Draws a stack of N height fields (horizons) in one ray-casting pass.
+ *
+ * The single-pass stacked height-field ray caster of Lux and Froehlich: a global min-max
+ * quadtree over tiles of the lateral grid (empty-space skipping) whose nodes carry sorted lists
+ * of disjoint depth intervals naming the horizons inside them (vtkMinMaxQuadtree). A ray walks
+ * the tree top-down, evaluates a leaf's intervals front-to-back or back-to-front by its vertical
+ * direction, and stops at the first hit; inside a tile it searches each candidate horizon
+ * linearly (step LinearSearchStep cells) and refines the crossing by bisection.
+ *
+ * Inputs are vtkImageData of nx x ny x 1 points on one lateral grid, one per horizon, as
+ * repeatable connections on port 0; the height is the active point scalar (or ArrayName) times
+ * HeightScale along the image's third axis, so origin, spacing and the direction matrix (grid
+ * rotation) are honoured. NaN, |v| >= 1e30 and NullValue (when UseNullValue) are holes.
+ * Horizons may cross, touch and overlap. It writes a correct gl_FragDepth, so horizons and
+ * ordinary VTK geometry occlude each other in one scene, and lights like any VTK surface using
+ * the actor's vtkProperty (ambient, diffuse, specular) and the renderer's lights.
+ *
+ * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
+ * table code with solid colours, no hole test when no horizon has holes. GetFragmentShaderSource
+ * returns the source last used.
+ *
+ * @code
+ * vtkNew<vtkStackedHeightFieldMapper> mapper;
+ * mapper->AddInputConnection(top->GetOutputPort());
+ * mapper->AddInputConnection(base->GetOutputPort());
+ * mapper->SetHeightScale(-1.0); // depths grow downwards
+ * vtkNew<vtkActor> actor;
+ * actor->SetMapper(mapper);
+ * renderer->AddActor(actor);
+ * @endcode
+ *
+ * @sa vtkMinMaxQuadtree vtkHeightFieldStack vtkHeightFieldReferenceCaster
+ */
+#ifndef vtkStackedHeightFieldMapper_h
+#define vtkStackedHeightFieldMapper_h
+
+#include "StrataModule.h" // For export macro
+#include "vtkMapper.h"
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class vtkHeightFieldStack;
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkScalarsToColors;
+class vtkWindow;
+
+class STRATA_EXPORT vtkStackedHeightFieldMapper : public vtkMapper
+{
+public:
+  static vtkStackedHeightFieldMapper* New();
+  vtkTypeMacro(vtkStackedHeightFieldMapper, vtkMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum class ColorModes
+  {
+    Solid,       ///< one colour per horizon (SetHorizonColor, or a built-in palette)
+    LookupTable, ///< the LookupTable (or a built-in depth colour map) over the height value
+  };
+  enum class OutputModes
+  {
+    Shaded,    ///< colour and lighting
+    HorizonId, ///< flat colour id + 1 packed in 24-bit RGB, for tests and picking
+  };
+
+  ///@{
+  /**
+   * Tile size of the quadtree's leaves, in cells (default 64). Smaller tiles skip more empty
+   * space at the cost of a deeper tree.
+   */
+  vtkSetClampMacro(TileSize, int, 2, 4096);
+  vtkGetMacro(TileSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest distance between two samples of the linear search, in cells along the ground
+   * (default 0.5). Every cell boundary is also a sample. Smaller is more exact on grazing rays
+   * and slower: see `scripts/bench heightfield`.
+   */
+  vtkSetClampMacro(LinearSearchStep, double, 1e-3, 1.0);
+  vtkGetMacro(LinearSearchStep, double);
+  ///@}
+
+  ///@{
+  /**
+   * Scale from the scalar value to the image's third axis (default 1). -1 draws depths as
+   * growing downwards; a larger magnitude exaggerates relief.
+   */
+  vtkSetMacro(HeightScale, double);
+  vtkGetMacro(HeightScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * A value that marks no data (e.g. -999.25), used when UseNullValue is on (default off).
+   */
+  vtkSetMacro(NullValue, double);
+  vtkGetMacro(NullValue, double);
+  vtkSetMacro(UseNullValue, bool);
+  vtkGetMacro(UseNullValue, bool);
+  vtkBooleanMacro(UseNullValue, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Name of the point array holding the heights; empty (default) uses the active scalars.
+   */
+  vtkSetStdStringFromCharMacro(HeightArrayName);
+  vtkGetCharFromStdStringMacro(HeightArrayName);
+  ///@}
+
+  ///@{
+  /// How horizons are coloured (default Solid).
+  void SetColorMode(ColorModes mode);
+  ColorModes GetColorMode() const { return this->ColorMode; }
+  ///@}
+
+  ///@{
+  /// What the fragments carry (default Shaded).
+  void SetOutputMode(OutputModes mode);
+  OutputModes GetOutputMode() const { return this->OutputMode; }
+  ///@}
+
+  /**
+   * Colour of horizon `index` in Solid mode; horizons without one use a built-in palette.
+   */
+  void SetHorizonColor(int index, double r, double g, double b);
+
+  /**
+   * Lookup table over the height value for LookupTable mode (separate from vtkMapper's own); null (default) uses a built-in
+   * depth colour map over the stack's range. Its own range is used when it has one.
+   */
+  void SetHeightLookupTable(vtkScalarsToColors* lut);
+
+  /// The fragment shader source of the last render (empty before).
+  std::string GetFragmentShaderSource() const;
+
+  /**
+   * The 4x4 matrix (row-major) from grid space (x, y in cells, z = scalar) to world space,
+   * before the actor's matrix; valid after the inputs were read (a render or GetBounds).
+   */
+  void GetGridToWorld(double m[16]);
+
+  /// The stack as the renderer sees it (after a render or GetBounds); null before.
+  const vtkHeightFieldStack* GetStack();
+
+  void Render(vtkRenderer* ren, vtkActor* actor) override;
+  void ReleaseGraphicsResources(vtkWindow* win) override;
+  double* GetBounds() override;
+  void GetBounds(double bounds[6]) override { this->vtkMapper::GetBounds(bounds); }
+  bool HasOpaqueGeometry() override { return 1; }
+  bool HasTranslucentPolygonalGeometry() override { return 0; }
+
+protected:
+  vtkStackedHeightFieldMapper();
+  ~vtkStackedHeightFieldMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+private:
+  vtkStackedHeightFieldMapper(const vtkStackedHeightFieldMapper&) = delete;
+  void operator=(const vtkStackedHeightFieldMapper&) = delete;
+
+  bool UpdateStack();
+
+  int TileSize = 64;
+  double LinearSearchStep = 0.5;
+  double HeightScale = 1.0;
+  double NullValue = -999.25;
+  bool UseNullValue = false;
+  std::string HeightArrayName;
+  ColorModes ColorMode = ColorModes::Solid;
+  OutputModes OutputMode = OutputModes::Shaded;
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
