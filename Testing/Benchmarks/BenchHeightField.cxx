@@ -1,0 +1,182 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// Benchmark of the stacked height-field ray caster against what a VTK user does today (each
+// grid as a triangle mesh through vtkPolyDataMapper). One process per (case, method), so that
+// peak RSS belongs to that method alone; scripts/bench heightfield runs them all and collects
+// the CSV. Usage:
+//   BenchHeightField frame <points-per-horizon> <raycast|mesh>  -> one CSV line
+//   BenchHeightField accuracy <points-per-horizon>             -> step vs error vs ms lines
+#include "StrataHeightFieldScenes.h"
+#include "StrataTestHelpers.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkStackedHeightFieldMapper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+namespace
+{
+double PeakRssMB()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return std::stod(line.substr(6)) / 1024.0;
+    }
+  }
+  return 0.0;
+}
+
+// The user's mesh: points (x, y, z) and two triangles per valid cell, as vtkPolyData.
+vtkSmartPointer<vtkPolyData> MeshOf(vtkImageData* image)
+{
+  int d[3];
+  image->GetDimensions(d);
+  auto* h = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();
+  pts->SetNumberOfPoints(vtkIdType(d[0]) * d[1]);
+  const double* o = image->GetOrigin();
+  const double* s = image->GetSpacing();
+  for (int j = 0; j < d[1]; ++j)
+    for (int i = 0; i < d[0]; ++i)
+    {
+      const vtkIdType id = vtkIdType(j) * d[0] + i;
+      pts->SetPoint(id, o[0] + i * s[0], o[1] + j * s[1], h->GetValue(id));
+    }
+  vtkNew<vtkCellArray> tris;
+  tris->AllocateEstimate(2 * vtkIdType(d[0] - 1) * (d[1] - 1), 3);
+  for (int j = 0; j + 1 < d[1]; ++j)
+    for (int i = 0; i + 1 < d[0]; ++i)
+    {
+      const vtkIdType a = vtkIdType(j) * d[0] + i, b = a + 1, c = a + d[0], e = c + 1;
+      if (std::isnan(h->GetValue(a)) || std::isnan(h->GetValue(b)) || std::isnan(h->GetValue(c)) ||
+        std::isnan(h->GetValue(e)))
+        continue;
+      const vtkIdType t1[3] = { a, b, e }, t2[3] = { a, e, c };
+      tris->InsertNextCell(3, t1);
+      tris->InsertNextCell(3, t2);
+    }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetPolys(tris);
+  return poly;
+}
+
+void PlaceCamera(vtkRenderer* ren, double extent, int view)
+{
+  vtkCamera* c = ren->GetActiveCamera();
+  const double cx = 0.5 * extent, cy = 0.375 * extent;
+  const double a = 0.6 + 1.1 * view;
+  c->SetFocalPoint(cx, cy, -420);
+  c->SetPosition(cx - 1.1 * extent * std::cos(a), cy - 1.1 * extent * std::sin(a), 0.6 * extent);
+  c->SetViewUp(0, 0, 1);
+  ren->ResetCameraClippingRange();
+}
+
+double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views)
+{
+  std::vector<double> ms;
+  for (int v = 0; v < views; ++v)
+  {
+    PlaceCamera(ren, extent, v);
+    win->Render(); // first frame of a view: uploads, shader compile
+    for (int r = 0; r < 2; ++r)
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      win->Render();
+      win->WaitForCompletion();
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> | accuracy <points>\n";
+    return 2;
+  }
+  const std::string mode = argv[1];
+  const long points = std::atol(argv[2]);
+  const int nx = static_cast<int>(std::lround(std::sqrt(points * 4.0 / 3.0)));
+  const int ny = static_cast<int>(points / nx);
+  const double spacing = 2000.0 / nx; // a 2 km x 1.5 km survey whatever the resolution
+  auto horizons = strata_test::MakeDemoHorizons(nx, ny, 0, 0, spacing, 0);
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, 512, 512);
+  const std::string label = "3x" + std::to_string((points + 500000) / 1000000) + "M";
+
+  if (mode == "frame")
+  {
+    const std::string method = argc > 3 ? argv[3] : "raycast";
+    if (method == "mesh")
+    {
+      for (auto& h : horizons)
+      {
+        vtkNew<vtkPolyDataMapper> m;
+        m->SetInputData(MeshOf(h));
+        m->ScalarVisibilityOff();
+        vtkNew<vtkActor> a;
+        a->SetMapper(m);
+        ren->AddActor(a);
+      }
+      horizons.clear(); // the user keeps only the meshes
+    }
+    else
+    {
+      vtkNew<vtkStackedHeightFieldMapper> m;
+      for (auto& h : horizons)
+        m->AddInputDataObject(h);
+      vtkNew<vtkActor> a;
+      a->SetMapper(m);
+      ren->AddActor(a);
+    }
+    const double ms = MedianMs(win, ren, 2000.0, 3);
+    std::printf("%s,%s,%.1f,%.0f\n", label.c_str(), method.c_str(), ms, PeakRssMB());
+    return 0;
+  }
+  // Accuracy: linear-search step against the fraction of pixels that differ from the exact
+  // reference, with the time per frame.
+  vtkNew<vtkStackedHeightFieldMapper> m;
+  for (auto& h : horizons)
+    m->AddInputDataObject(h);
+  vtkNew<vtkActor> a;
+  a->SetMapper(m);
+  ren->AddActor(a);
+  for (double step : { 1.0, 0.5, 0.25, 0.125, 0.0625 })
+  {
+    m->SetLinearSearchStep(step);
+    const double ms = MedianMs(win, ren, 2000.0, 2);
+    PlaceCamera(ren, 2000.0, 0);
+    auto r = strata_test::CompareWithReference(win, ren, a, m, horizons, "bench-step");
+    std::printf("%s,%g,%.1f,%.5f,%ld\n", label.c_str(), step, ms, r.MismatchFraction(), r.Covered);
+    std::fflush(stdout);
+  }
+  return 0;
+}
