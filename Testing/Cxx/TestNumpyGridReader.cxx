@@ -46,7 +46,15 @@ public:
   void Execute(vtkObject*, unsigned long event, void* data) override
   {
     (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
-    this->Last = data ? static_cast<const char*>(data) : "";
+    // Keep the first message (the reader's own; the executive's "returned failure" follows it),
+    // without VTK's "ERROR: In file, line" prefix line.
+    if (this->First.empty() && data)
+    {
+      this->First = static_cast<const char*>(data);
+      const size_t body = this->First.find("): ");
+      this->First = body == std::string::npos ? this->First : this->First.substr(body + 3);
+      this->First = this->First.substr(0, this->First.find_last_not_of("\n") + 1);
+    }
   }
   void Watch(vtkAlgorithm* algorithm)
   {
@@ -59,7 +67,7 @@ public:
   }
   int Errors = 0;
   int Warnings = 0;
-  std::string Last;
+  std::string First;
 };
 
 int Failures = 0;
@@ -223,8 +231,7 @@ void CheckBadInput(const std::string& path, const std::string& what)
   reader->Update();
   Check(errors->Errors > 0, what + ": an error is reported");
   Check(reader->GetOutput()->GetNumberOfPoints() == 0, what + ": output has no points");
-  std::cout << what << ": " << errors->Errors << " error(s), first line of the last: "
-            << errors->Last.substr(0, errors->Last.find('\n')) << "\n";
+  std::cout << what << ": " << errors->Errors << " error(s): " << errors->First << "\n";
 }
 }
 
