@@ -106,9 +106,11 @@ void Tokenize(const std::string& line, std::vector<std::pair<size_t, size_t>>& t
 
 std::string Lower(std::string s)
 {
-  s.erase(std::remove_if(s.begin(), s.end(), [](char c) { return c == '"' || c == '\''; }),
-    s.end());
-  std::transform(s.begin(), s.end(), s.begin(),
+  s.erase(
+    std::remove_if(s.begin(), s.end(), [](char c) { return c == '"' || c == '\''; }), s.end());
+  std::transform(s.begin(),
+    s.end(),
+    s.begin(),
     [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); });
   return s;
 }
@@ -122,16 +124,15 @@ ColumnMode ModeFromHeader(const std::vector<std::string>& names)
   }
   const std::string a = Lower(names[0]);
   const std::string b = Lower(names[1]);
-  auto in = [](const std::string& s, std::initializer_list<const char*> list) {
-    return std::any_of(list.begin(), list.end(), [&](const char* w) { return s == w; });
-  };
+  auto in = [](const std::string& s, std::initializer_list<const char*> list)
+  { return std::any_of(list.begin(), list.end(), [&](const char* w) { return s == w; }); };
   if (in(a, { "inline", "iline", "il", "in-line", "inl", "line" }) &&
-    in(b, { "crossline", "xline", "xl", "cross-line", "crl", "trace", "cdp" }))
+      in(b, { "crossline", "xline", "xl", "cross-line", "crl", "trace", "cdp" }))
   {
     return ColumnMode::InlineCrossline;
   }
   if (in(a, { "x", "easting", "east", "utmx", "utm_x", "x_utm", "cdp_x" }) &&
-    in(b, { "y", "northing", "north", "utmy", "utm_y", "y_utm", "cdp_y" }))
+      in(b, { "y", "northing", "north", "utmy", "utm_y", "y_utm", "cdp_y" }))
   {
     return ColumnMode::XYZ;
   }
@@ -202,7 +203,10 @@ bool CheckGridSize(long long nx, long long ny, size_t records, std::string& erro
 }
 
 /// Distinct values of an index column, their smallest value, gcd step and count.
-bool IndexAxis(const std::vector<Record>& records, bool first, long long& start, long long& step,
+bool IndexAxis(const std::vector<Record>& records,
+  bool first,
+  long long& start,
+  long long& step,
   long long& count)
 {
   std::vector<long long> values;
@@ -233,14 +237,17 @@ bool IndexAxis(const std::vector<Record>& records, bool first, long long& start,
 /// `coordinate` are the points' projections on the axis; `gap` separates rows (half the smallest
 /// point distance: points of one row differ by at most twice the tolerance, far less). Returns
 /// per-point row index, spacing (0 when there is only one row) and the number of lattice rows.
-bool AxisRows(const std::vector<double>& coordinate, double gap, std::vector<long long>& row,
-  double& spacing, long long& count)
+bool AxisRows(const std::vector<double>& coordinate,
+  double gap,
+  std::vector<long long>& row,
+  double& spacing,
+  long long& count)
 {
   const size_t n = coordinate.size();
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), size_t(0));
-  std::sort(order.begin(), order.end(),
-    [&](size_t a, size_t b) { return coordinate[a] < coordinate[b]; });
+  std::sort(
+    order.begin(), order.end(), [&](size_t a, size_t b) { return coordinate[a] < coordinate[b]; });
 
   std::vector<double> centre;
   std::vector<size_t> cluster(n);
@@ -314,8 +321,10 @@ struct Lattice
 };
 
 /// Finds the lattice of the x y points of `records`; see the class documentation for the method.
-bool FitLattice(
-  const std::vector<Record>& records, double tolerance, Lattice& lattice, std::string& error)
+bool FitLattice(const std::vector<Record>& records,
+  double tolerance,
+  Lattice& lattice,
+  std::string& error)
 {
   const size_t n = records.size();
   // Coordinates relative to the first point: UTM-scale values lose digits in the products below.
@@ -348,6 +357,11 @@ bool FitLattice(
   }
   const double w = xmax - xmin;
   const double h = ymax - ymin;
+  if (!std::isfinite(w) || !std::isfinite(h))
+  {
+    error = "x y coordinates span more than a double can hold";
+    return false;
+  }
   if (w == 0.0 && h == 0.0)
   {
     error = "all " + std::to_string(n) + " points are at the same x y position";
@@ -358,15 +372,16 @@ bool FitLattice(
   // the true nearest one, since anything closer lies in the 3 x 3 cells around the point. The
   // first cell size holds a few points per cell on a full grid; it doubles until some point finds
   // its neighbour (sparse or strongly anisotropic data).
-  double cell =
-    1.5 * std::max(std::sqrt(w * h / static_cast<double>(n)), std::max(w, h) / static_cast<double>(n));
+  double cell = 1.5 * std::max(std::sqrt(w * h / static_cast<double>(n)),
+                        std::max(w, h) / static_cast<double>(n));
   std::vector<std::array<double, 2>> neighbourVectors;
   double nearest = std::numeric_limits<double>::max();
   for (int attempt = 0; attempt < 64 && neighbourVectors.empty(); ++attempt, cell *= 2.0)
   {
     const long long cellsY = static_cast<long long>(h / cell) + 1;
     std::vector<std::pair<long long, size_t>> keyed(n);
-    auto cellOf = [&](size_t k, long long& cx, long long& cy) {
+    auto cellOf = [&](size_t k, long long& cx, long long& cy)
+    {
       cx = static_cast<long long>((px[k] - xmin) / cell);
       cy = static_cast<long long>((py[k] - ymin) / cell);
     };
@@ -392,8 +407,7 @@ bool FitLattice(
             continue;
           }
           const long long key = ix * cellsY + iy;
-          auto it = std::lower_bound(keyed.begin(), keyed.end(),
-            std::make_pair(key, size_t(0)));
+          auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(key, size_t(0)));
           for (; it != keyed.end() && it->first == key; ++it)
           {
             const double dx = px[it->second] - px[k];
@@ -460,9 +474,10 @@ bool FitLattice(
   long long nx = 1;
   long long ny = 1;
   if (!AxisRows(along, 0.5 * nearest, lattice.I, du, nx) ||
-    !AxisRows(across, 0.5 * nearest, lattice.J, dv, ny))
+      !AxisRows(across, 0.5 * nearest, lattice.J, dv, ny))
   {
-    error = "the x y points are not on a regular grid: the rows along an axis are not evenly spaced";
+    error =
+      "the x y points are not on a regular grid: the rows along an axis are not evenly spaced";
     return false;
   }
   if (!CheckGridSize(nx, ny, n, error))
@@ -709,8 +724,10 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
         // Quote the line for the message, binary bytes and all made printable.
         std::string shown = line.substr(0, 80);
         std::replace_if(
-          shown.begin(), shown.end(),
-          [](char c) { return !std::isprint(static_cast<unsigned char>(c)); }, '?');
+          shown.begin(),
+          shown.end(),
+          [](char c) { return !std::isprint(static_cast<unsigned char>(c)); },
+          '?');
         std::ostringstream msg;
         msg << "line " << lineNumber << ": expected at least three numbers, found \"" << shown
             << (line.size() > 80 ? "..." : "") << "\"";
@@ -748,7 +765,8 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   {
     mode = ModeFromHeader(header);
   }
-  const bool integerColumns = std::all_of(records.begin(), records.end(),
+  const bool integerColumns = std::all_of(records.begin(),
+    records.end(),
     [](const Record& r) { return IsIndexValue(r.A) && IsIndexValue(r.B); });
   if (mode == ColumnMode::Auto)
   {
@@ -756,10 +774,11 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   }
   if (mode == ColumnMode::InlineCrossline && !integerColumns)
   {
-    const auto bad = std::find_if(records.begin(), records.end(),
+    const auto bad = std::find_if(records.begin(),
+      records.end(),
       [](const Record& r) { return !(IsIndexValue(r.A) && IsIndexValue(r.B)); });
     error = "line " + std::to_string(bad->Line) +
-      ": inline and crossline must be integers (use the XYZ mode for world coordinates)";
+            ": inline and crossline must be integers (use the XYZ mode for world coordinates)";
     return false;
   }
 
@@ -798,7 +817,7 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
     else
     {
       if (!(this->InlineSpacing > 0.0) || !(this->CrosslineSpacing > 0.0) ||
-        !std::isfinite(this->InlineSpacing) || !std::isfinite(this->CrosslineSpacing))
+          !std::isfinite(this->InlineSpacing) || !std::isfinite(this->CrosslineSpacing))
       {
         error = "InlineSpacing and CrosslineSpacing must be positive";
         return false;
@@ -895,8 +914,9 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
 }
 
 //------------------------------------------------------------------------------
-int vtkHorizonColumnReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkHorizonColumnReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   std::string error;
@@ -922,8 +942,9 @@ int vtkHorizonColumnReader::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-int vtkHorizonColumnReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkHorizonColumnReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);

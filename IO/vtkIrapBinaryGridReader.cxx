@@ -298,7 +298,7 @@ bool vtkIrapBinaryGridReader::CanReadFile(const char* fileName)
   }
   unsigned char b[12];
   return file.Read(b, 12) && BigEndianInt(b) == HeaderRecordLength[0] &&
-    BigEndianInt(b + 4) == -996;
+         BigEndianInt(b + 4) == -996;
 }
 
 //------------------------------------------------------------------------------
@@ -313,8 +313,9 @@ void vtkIrapBinaryGridReader::ResetHeader()
 }
 
 //------------------------------------------------------------------------------
-int vtkIrapBinaryGridReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkIrapBinaryGridReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   RecordFile file;
@@ -323,9 +324,10 @@ int vtkIrapBinaryGridReader::RequestInformation(
   if (!file.Open(this->FileName, error) || !ReadHeader(file, h, error))
   {
     this->ResetHeader();
+    this->NumberOfNoDataValues = 0;
     ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read Irap binary grid \""
-      << (this->FileName ? this->FileName : "") << "\": " << error);
+    vtkErrorMacro("Cannot read Irap binary grid \"" << (this->FileName ? this->FileName : "")
+                                                    << "\": " << error);
     return 0;
   }
   this->NX = h.NX;
@@ -354,8 +356,9 @@ int vtkIrapBinaryGridReader::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-int vtkIrapBinaryGridReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkIrapBinaryGridReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -368,7 +371,8 @@ int vtkIrapBinaryGridReader::RequestData(
   output->Initialize();
 
   const char* name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error) {
+  auto fail = [&](const std::string& error)
+  {
     ClearOutput(outInfo);
     vtkErrorMacro("Cannot read Irap binary grid \"" << name << "\": " << error);
     return 0;

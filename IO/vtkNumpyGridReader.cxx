@@ -193,7 +193,7 @@ private:
     {
       const size_t end = this->Pos + n;
       if (end < this->Text.size() &&
-        (std::isalnum(static_cast<unsigned char>(this->Text[end])) || this->Text[end] == '_'))
+          (std::isalnum(static_cast<unsigned char>(this->Text[end])) || this->Text[end] == '_'))
       {
         return false;
       }
@@ -206,7 +206,7 @@ private:
   void SkipSpace()
   {
     while (this->Pos < this->Text.size() &&
-      std::isspace(static_cast<unsigned char>(this->Text[this->Pos])))
+           std::isspace(static_cast<unsigned char>(this->Text[this->Pos])))
     {
       ++this->Pos;
     }
@@ -313,8 +313,8 @@ private:
       return false;
     }
     const size_t start = this->Pos;
-    while (this->Pos < this->Text.size() && this->Text[this->Pos] != ',' &&
-      this->Text[this->Pos] != '}')
+    while (
+      this->Pos < this->Text.size() && this->Text[this->Pos] != ',' && this->Text[this->Pos] != '}')
     {
       ++this->Pos;
     }
@@ -336,8 +336,9 @@ bool ParseDescr(NpyHeader& h, std::string& error)
   }
   const std::string sizeText = d.substr(2);
   if (sizeText.empty() || sizeText.size() > 2 ||
-    !std::all_of(sizeText.begin(), sizeText.end(),
-      [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
+      !std::all_of(sizeText.begin(),
+        sizeText.end(),
+        [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
   {
     error = "unsupported dtype '" + d + "'";
     return false;
@@ -357,8 +358,7 @@ bool ParseDescr(NpyHeader& h, std::string& error)
   }
   if (!ok)
   {
-    error = "unsupported dtype '" + d +
-      "' (supported: float32/64, int8/16/32/64, uint8/16/32/64)";
+    error = "unsupported dtype '" + d + "' (supported: float32/64, int8/16/32/64, uint8/16/32/64)";
     return false;
   }
   const bool fileLittle = d[0] == '<' || (d[0] == '=' && HostIsLittleEndian()) || d[0] == '|';
@@ -396,7 +396,8 @@ bool ReadHeader(std::istream& in, long long fileSize, NpyHeader& h, std::string&
       return false;
     }
     headerLength = static_cast<long long>(pre[8]) | (static_cast<long long>(pre[9]) << 8) |
-      (static_cast<long long>(pre[10]) << 16) | (static_cast<long long>(pre[11]) << 24);
+                   (static_cast<long long>(pre[10]) << 16) |
+                   (static_cast<long long>(pre[11]) << 24);
     preamble = 12;
   }
   else
@@ -407,12 +408,10 @@ bool ReadHeader(std::istream& in, long long fileSize, NpyHeader& h, std::string&
     error = msg.str();
     return false;
   }
-  if (headerLength <= 0 || headerLength > MaxHeaderLength ||
-    preamble + headerLength > fileSize)
+  if (headerLength <= 0 || headerLength > MaxHeaderLength || preamble + headerLength > fileSize)
   {
     std::ostringstream msg;
-    msg << "header length " << headerLength << " does not fit the file (" << fileSize
-        << " bytes)";
+    msg << "header length " << headerLength << " does not fit the file (" << fileSize << " bytes)";
     error = msg.str();
     return false;
   }
@@ -459,9 +458,8 @@ bool ReadHeader(std::istream& in, long long fileSize, NpyHeader& h, std::string&
   if (fileSize - h.DataOffset < dataBytes)
   {
     std::ostringstream msg;
-    msg << "file truncated: " << d0 << " x " << d1 << " values of " << h.ItemSize
-        << " bytes need " << dataBytes << " bytes after the header, only "
-        << (fileSize - h.DataOffset) << " remain";
+    msg << "file truncated: " << d0 << " x " << d1 << " values of " << h.ItemSize << " bytes need "
+        << dataBytes << " bytes after the header, only " << (fileSize - h.DataOffset) << " remain";
     error = msg.str();
     return false;
   }
@@ -498,7 +496,7 @@ bool OpenFile(const char* fileName, vtksys::ifstream& in, long long& size, std::
   return true;
 }
 
-template <typename TIn, typename TOut>
+template<typename TIn, typename TOut>
 TOut LoadElement(const unsigned char* src, bool swap)
 {
   unsigned char b[sizeof(TIn)];
@@ -517,9 +515,17 @@ TOut LoadElement(const unsigned char* src, bool swap)
 
 /// Converts `n` file elements starting at file index `first` into `dst`, placing file element k
 /// at output index k (identity) or, for a transposed layout of P x Q (k = p * Q + q), at p + q * P.
-template <typename TIn, typename TOut>
-vtkIdType ConvertChunk(const unsigned char* src, vtkIdType first, vtkIdType n, bool swap,
-  bool transpose, vtkIdType P, vtkIdType Q, bool hasNull, TOut nullValue, TOut* dst)
+template<typename TIn, typename TOut>
+vtkIdType ConvertChunk(const unsigned char* src,
+  vtkIdType first,
+  vtkIdType n,
+  bool swap,
+  bool transpose,
+  vtkIdType P,
+  vtkIdType Q,
+  bool hasNull,
+  TOut nullValue,
+  TOut* dst)
 {
   const TOut nan = std::numeric_limits<TOut>::quiet_NaN();
   vtkIdType noData = 0;
@@ -550,11 +556,19 @@ vtkIdType ConvertChunk(const unsigned char* src, vtkIdType first, vtkIdType n, b
   return noData;
 }
 
-template <typename TOut>
-vtkIdType ConvertAny(const NpyHeader& h, const unsigned char* src, vtkIdType first, vtkIdType n,
-  bool transpose, vtkIdType P, vtkIdType Q, bool hasNull, TOut nullValue, TOut* dst)
+template<typename TOut>
+vtkIdType ConvertAny(const NpyHeader& h,
+  const unsigned char* src,
+  vtkIdType first,
+  vtkIdType n,
+  bool transpose,
+  vtkIdType P,
+  vtkIdType Q,
+  bool hasNull,
+  TOut nullValue,
+  TOut* dst)
 {
-#define strataConvert(TIn)                                                                        \
+#define strataConvert(TIn)                                                                         \
   return ConvertChunk<TIn, TOut>(src, first, n, h.Swap, transpose, P, Q, hasNull, nullValue, dst)
   switch (h.ElementKind)
   {
@@ -668,7 +682,7 @@ bool vtkNumpyGridReader::CanReadFile(const char* fileName)
   std::string error;
   char magic[6];
   return OpenFile(fileName, in, size, error) && size >= 10 && in.read(magic, 6) &&
-    std::memcmp(magic, "\x93NUMPY", 6) == 0;
+         std::memcmp(magic, "\x93NUMPY", 6) == 0;
 }
 
 //------------------------------------------------------------------------------
@@ -701,8 +715,8 @@ vtkIdType vtkNumpyGridReader::GetShape(int axis) const
 {
   const auto& shape = this->Internals->Header.Shape;
   return this->Internals->Valid && axis >= 0 && axis < static_cast<int>(shape.size())
-    ? static_cast<vtkIdType>(shape[axis])
-    : 0;
+           ? static_cast<vtkIdType>(shape[axis])
+           : 0;
 }
 
 int vtkNumpyGridReader::GetNX() const
@@ -726,8 +740,9 @@ int vtkNumpyGridReader::GetOutputDataType() const
 }
 
 //------------------------------------------------------------------------------
-int vtkNumpyGridReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkNumpyGridReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInternals& internals = *this->Internals;
@@ -740,9 +755,10 @@ int vtkNumpyGridReader::RequestInformation(
   if (!OpenFile(this->FileName, in, size, error) || !ReadHeader(in, size, internals.Header, error))
   {
     internals.Header = NpyHeader();
+    this->NumberOfNoDataValues = 0;
     ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read NumPy grid \"" << (this->FileName ? this->FileName : "")
-                                              << "\": " << error);
+    vtkErrorMacro(
+      "Cannot read NumPy grid \"" << (this->FileName ? this->FileName : "") << "\": " << error);
     return 0;
   }
   internals.Valid = true;
@@ -762,8 +778,9 @@ int vtkNumpyGridReader::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-int vtkNumpyGridReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkNumpyGridReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -776,7 +793,8 @@ int vtkNumpyGridReader::RequestData(
   output->Initialize();
 
   const char* name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error) {
+  auto fail = [&](const std::string& error)
+  {
     ClearOutput(outInfo);
     vtkErrorMacro("Cannot read NumPy grid \"" << name << "\": " << error);
     return 0;
@@ -794,7 +812,7 @@ int vtkNumpyGridReader::RequestData(
   }
   const NpyHeader& known = this->Internals->Header;
   if (!this->Internals->Valid || h.Dims[0] != known.Dims[0] || h.Dims[1] != known.Dims[1] ||
-    h.Descr != known.Descr || this->SwapAxes != this->Internals->Swapped)
+      h.Descr != known.Descr || this->SwapAxes != this->Internals->Swapped)
   {
     return fail("the file or the axis setting changed since the information pass");
   }
@@ -835,8 +853,8 @@ int vtkNumpyGridReader::RequestData(
   for (vtkIdType first = 0; first < total; first += ChunkElements)
   {
     const vtkIdType n = std::min(ChunkElements, total - first);
-    if (!in.read(reinterpret_cast<char*>(buffer.data()),
-          static_cast<std::streamsize>(n * h.ItemSize)))
+    if (!in.read(
+          reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n * h.ItemSize)))
     {
       std::ostringstream msg;
       msg << "read error after " << first << " of " << total << " values";
@@ -844,12 +862,27 @@ int vtkNumpyGridReader::RequestData(
     }
     if (isDouble)
     {
-      noData += ConvertAny<double>(h, buffer.data(), first, n, transpose, P, Q, hasNull,
-        this->NullValue, static_cast<vtkDoubleArray*>(values.Get())->GetPointer(0));
+      noData += ConvertAny<double>(h,
+        buffer.data(),
+        first,
+        n,
+        transpose,
+        P,
+        Q,
+        hasNull,
+        this->NullValue,
+        static_cast<vtkDoubleArray*>(values.Get())->GetPointer(0));
     }
     else
     {
-      noData += ConvertAny<float>(h, buffer.data(), first, n, transpose, P, Q, hasNull,
+      noData += ConvertAny<float>(h,
+        buffer.data(),
+        first,
+        n,
+        transpose,
+        P,
+        Q,
+        hasNull,
         static_cast<float>(this->NullValue),
         static_cast<vtkFloatArray*>(values.Get())->GetPointer(0));
     }

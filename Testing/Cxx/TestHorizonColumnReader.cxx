@@ -57,8 +57,8 @@ public:
   }
   void Watch(vtkAlgorithm* algorithm)
   {
-    for (vtkObject* o : { static_cast<vtkObject*>(algorithm),
-           static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    for (vtkObject* o :
+      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
     {
       o->AddObserver(vtkCommand::ErrorEvent, this);
       o->AddObserver(vtkCommand::WarningEvent, this);
@@ -119,7 +119,8 @@ bool DirectionIs(vtkImageData* image, double degrees, double tol)
 }
 
 /// Expects an error and an empty output from reading `path`.
-void CheckBadInput(const std::string& path, const std::string& what,
+void CheckBadInput(const std::string& path,
+  const std::string& what,
   vtkHorizonColumnReader::ColumnMode mode = vtkHorizonColumnReader::ColumnMode::Auto)
 {
   vtkNew<vtkHorizonColumnReader> reader;
@@ -135,8 +136,16 @@ void CheckBadInput(const std::string& path, const std::string& what,
 
 /// Writes the nodes of a rotated nx x ny grid as "x y z" lines in a scrambled order, leaving out
 /// `missing` (an index i + j * nx, or -1). z = 1500 + 3 i + 0.5 j.
-std::string RotatedGridText(int nx, int ny, double ox, double oy, double du, double dv,
-  double degrees, int missing, const char* format, const char* header)
+std::string RotatedGridText(int nx,
+  int ny,
+  double ox,
+  double oy,
+  double du,
+  double dv,
+  double degrees,
+  int missing,
+  const char* format,
+  const char* header)
 {
   const double a = vtkMath::RadiansFromDegrees(degrees);
   const int n = nx * ny;
@@ -186,7 +195,7 @@ bool EveryPointOnItsNode(vtkImageData* image, const std::string& text, double to
     const int i = static_cast<int>(std::lround(ijk[0]));
     const int j = static_cast<int>(std::lround(ijk[1]));
     if (!Near(ijk[0], i, tol) || !Near(ijk[1], j, tol) || i < 0 || j < 0 || i >= dims[0] ||
-      j >= dims[1] || ValueAt(image, i, j) != static_cast<float>(z))
+        j >= dims[1] || ValueAt(image, i, j) != static_cast<float>(z))
     {
       std::cerr << "point " << p[0] << " " << p[1] << " -> index " << ijk[0] << " " << ijk[1]
                 << "\n";
@@ -231,8 +240,8 @@ int TestHorizonColumnReader(int, char*[])
       "heimdal: index coordinates (origin 1300, 1500; spacing 4, 2)");
     Check(image->GetDirectionMatrix()->IsIdentity(), "heimdal: no rotation");
     vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    Check(scalars && vtkFloatArray::SafeDownCast(scalars) &&
-        std::string(scalars->GetName()) == "depth",
+    Check(
+      scalars && vtkFloatArray::SafeDownCast(scalars) && std::string(scalars->GetName()) == "depth",
       "heimdal: float array named depth");
     if (scalars && dims[0] == 51 && dims[1] == 251)
     {
@@ -304,7 +313,8 @@ int TestHorizonColumnReader(int, char*[])
     Check(reader->GetHasHeaderLine() && reader->GetDetectedMode() == Mode::InlineCrossline,
       "indices: header line, inline/crossline");
     Check(reader->GetNumberOfRecords() == 8, "indices: 8 data lines");
-    Check(dims[0] == 3 && dims[1] == 3, "indices: 3 x 3 (inlines 100..104 step 2, xl 7..13 step 3)");
+    Check(
+      dims[0] == 3 && dims[1] == 3, "indices: 3 x 3 (inlines 100..104 step 2, xl 7..13 step 3)");
     Check(reader->GetInlineStep() == 2 && reader->GetCrosslineStep() == 3, "indices: steps 2, 3");
     Check(reader->GetNumberOfNoDataValues() == 2, "indices: missing 102/10 and null 102/13");
     if (image->GetNumberOfPoints() == 9)
@@ -312,8 +322,8 @@ int TestHorizonColumnReader(int, char*[])
       Check(std::isnan(ValueAt(image, 1, 1)) && std::isnan(ValueAt(image, 1, 2)),
         "indices: holes are NaN");
       Check(ValueAt(image, 0, 0) == 1000.5 && ValueAt(image, 0, 2) == 1002.5 &&
-          ValueAt(image, 1, 0) == 1010.5 && ValueAt(image, 2, 1) == 1021.5 &&
-          ValueAt(image, 2, 2) == 1022.5,
+              ValueAt(image, 1, 0) == 1010.5 && ValueAt(image, 2, 1) == 1021.5 &&
+              ValueAt(image, 2, 2) == 1022.5,
         "indices: values");
       Check(std::string(image->GetPointData()->GetScalars()->GetName()) == "twt",
         "indices: array name");
@@ -322,7 +332,7 @@ int TestHorizonColumnReader(int, char*[])
     reader->SetRotation(90.0);
     reader->Update();
     Check(reader->GetOutput()->GetDirectionMatrix()->GetElement(0, 1) == -1.0 &&
-        reader->GetOutput()->GetDirectionMatrix()->GetElement(1, 0) == 1.0,
+            reader->GetOutput()->GetDirectionMatrix()->GetElement(1, 0) == 1.0,
       "indices: a 90 degree rotation is exact");
 
     // A duplicate node: warned about, the last line wins.
@@ -373,8 +383,8 @@ int TestHorizonColumnReader(int, char*[])
 
   // ---- x y z on the Reek rotation (140 degrees), whitespace, no header ----
   {
-    const std::string text = RotatedGridText(
-      6, 4, 468895.125, 5932889.5, 20.0, 20.0, 140.0, -1, "%.2f %.2f %.2f\n", "");
+    const std::string text =
+      RotatedGridText(6, 4, 468895.125, 5932889.5, 20.0, 20.0, 140.0, -1, "%.2f %.2f %.2f\n", "");
     const std::string path = outDir + "TestHorizonColumnReader_xyz140.txt";
     Spit(path, text);
     vtkNew<vtkHorizonColumnReader> reader;
@@ -441,7 +451,8 @@ int TestHorizonColumnReader(int, char*[])
   }
   Spit(outDir + "TestHorizonColumnReader_fractional.txt", "1.5 2 3\n2.5 2 3\n");
   CheckBadInput(outDir + "TestHorizonColumnReader_fractional.txt",
-    "non-integer indices in InlineCrossline mode", Mode::InlineCrossline);
+    "non-integer indices in InlineCrossline mode",
+    Mode::InlineCrossline);
   Spit(outDir + "TestHorizonColumnReader_sparse.txt", "1 1 3\n2 1 3\n2000000000 1 3\n");
   CheckBadInput(outDir + "TestHorizonColumnReader_sparse.txt", "absurd index range");
   Spit(outDir + "TestHorizonColumnReader_same.txt", "5.5 6.5 1\n5.5 6.5 2\n");

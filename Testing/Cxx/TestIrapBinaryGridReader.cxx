@@ -54,8 +54,8 @@ public:
   }
   void Watch(vtkAlgorithm* algorithm)
   {
-    for (vtkObject* o : { static_cast<vtkObject*>(algorithm),
-           static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    for (vtkObject* o :
+      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
     {
       o->AddObserver(vtkCommand::ErrorEvent, this);
       o->AddObserver(vtkCommand::WarningEvent, this);
@@ -97,7 +97,7 @@ bool Same(double a, double b)
 uint32_t Word(const std::vector<unsigned char>& b, size_t at)
 {
   return (uint32_t(b[at]) << 24) | (uint32_t(b[at + 1]) << 16) | (uint32_t(b[at + 2]) << 8) |
-    uint32_t(b[at + 3]);
+         uint32_t(b[at + 3]);
 }
 int32_t Int(const std::vector<unsigned char>& b, size_t at)
 {
@@ -193,8 +193,8 @@ void PutRecord(std::vector<unsigned char>& b, const std::vector<unsigned char>& 
   PutInt(b, static_cast<int32_t>(payload.size()));
 }
 
-std::vector<unsigned char> IrapHeaderBytes(int nx, int ny, float xori, float yori, float xinc,
-  float yinc, float rotation)
+std::vector<unsigned char>
+IrapHeaderBytes(int nx, int ny, float xori, float yori, float xinc, float yinc, float rotation)
 {
   std::vector<unsigned char> b, r1, r2, r3;
   PutInt(r1, -996);
@@ -257,14 +257,30 @@ struct ReekExpectation
   double Max;
 };
 const ReekExpectation Reek[4] = {
-  { "reek_01_topreek_rota.gri", 1652.3929443359375, 1909.22509765625, 1723.978759765625,
-    1547.1962890625, 1933.3653564453125 },
-  { "reek_02_midreek_rota.gri", 1673.0201416015625, 1930.156494140625, 1745.8697509765625,
-    1568.9903564453125, 1953.7034912109375 },
-  { "reek_03_lowreek_rota.gri", 1687.65234375, 1945.1339111328125, 1761.7611083984375,
-    1584.72900390625, 1968.082275390625 },
-  { "reek_04_basereek_rota.gri", 1695.5601806640625, 1953.9912109375, 1770.6744384765625,
-    1593.5062255859375, 1976.0126953125 },
+  { "reek_01_topreek_rota.gri",
+    1652.3929443359375,
+    1909.22509765625,
+    1723.978759765625,
+    1547.1962890625,
+    1933.3653564453125 },
+  { "reek_02_midreek_rota.gri",
+    1673.0201416015625,
+    1930.156494140625,
+    1745.8697509765625,
+    1568.9903564453125,
+    1953.7034912109375 },
+  { "reek_03_lowreek_rota.gri",
+    1687.65234375,
+    1945.1339111328125,
+    1761.7611083984375,
+    1584.72900390625,
+    1968.082275390625 },
+  { "reek_04_basereek_rota.gri",
+    1695.5601806640625,
+    1953.9912109375,
+    1770.6744384765625,
+    1593.5062255859375,
+    1976.0126953125 },
 };
 }
 
@@ -289,8 +305,8 @@ int TestIrapBinaryGridReader(int, char*[])
     // 48 e4 f3 e4 (468895.125) 4a b5 0e b3 (5932889.5); python3 struct.unpack('>f', ...) gives
     // the decimal values below. All four files share the grid.
     Check(reader->GetNX() == 554 && reader->GetNY() == 451, tag + "nx, ny = 554, 451");
-    Check(reader->GetXOrigin() == 468895.125 && reader->GetYOrigin() == 5932889.5,
-      tag + "xori, yori");
+    Check(
+      reader->GetXOrigin() == 468895.125 && reader->GetYOrigin() == 5932889.5, tag + "xori, yori");
     Check(reader->GetXMin() == 468895.125 && reader->GetXMax() == 479955.125, tag + "xmin, xmax");
     Check(reader->GetYMin() == 5932889.5 && reader->GetYMax() == 5941889.5, tag + "ymin, ymax");
     Check(reader->GetXInc() == 20.0 && reader->GetYInc() == 20.0, tag + "xinc, yinc");
@@ -308,8 +324,9 @@ int TestIrapBinaryGridReader(int, char*[])
     Check(spacing[0] == 20.0 && spacing[1] == 20.0 && spacing[2] == 1.0, tag + "spacing");
     // Direction matrix: a rotation by 140.00001525878906 degrees counterclockwise about z.
     const double a = vtkMath::RadiansFromDegrees(140.00001525878906);
-    const double expected[9] = { std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0,
-      1 };
+    const double expected[9] = {
+      std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1
+    };
     vtkMatrix3x3* d = image->GetDirectionMatrix();
     bool directionOk = true;
     for (int k = 0; k < 9; ++k)
@@ -321,16 +338,16 @@ int TestIrapBinaryGridReader(int, char*[])
     double p[3];
     image->TransformIndexToPhysicalPoint(1, 0, 0, p);
     Check(Near(p[0], 468895.125 + 20 * std::cos(a), 1e-6) &&
-        Near(p[1], 5932889.5 + 20 * std::sin(a), 1e-6),
+            Near(p[1], 5932889.5 + 20 * std::sin(a), 1e-6),
       tag + "node (1, 0) in world coordinates");
     image->TransformIndexToPhysicalPoint(0, 1, 0, p);
     Check(Near(p[0], 468895.125 - 20 * std::sin(a), 1e-6) &&
-        Near(p[1], 5932889.5 + 20 * std::cos(a), 1e-6),
+            Near(p[1], 5932889.5 + 20 * std::cos(a), 1e-6),
       tag + "node (0, 1) in world coordinates");
 
     vtkDataArray* scalars = image->GetPointData()->GetScalars();
     Check(scalars && vtkFloatArray::SafeDownCast(scalars) &&
-        std::string(scalars->GetName() ? scalars->GetName() : "") == "depth",
+            std::string(scalars->GetName() ? scalars->GetName() : "") == "depth",
       tag + "a float array named depth");
     if (!scalars || scalars->GetNumberOfTuples() != 554 * 451)
     {
@@ -369,10 +386,10 @@ int TestIrapBinaryGridReader(int, char*[])
       continue;
     }
     Check(g.NX == reader->GetNX() && g.NY == reader->GetNY() && g.Rot == reader->GetRotation() &&
-        g.XOri == reader->GetXOrigin() && g.YOri == reader->GetYOrigin() &&
-        g.XInc == reader->GetXInc() && g.YInc == reader->GetYInc() &&
-        g.XMin == reader->GetXMin() && g.XMax == reader->GetXMax() &&
-        g.YMin == reader->GetYMin() && g.YMax == reader->GetYMax(),
+            g.XOri == reader->GetXOrigin() && g.YOri == reader->GetYOrigin() &&
+            g.XInc == reader->GetXInc() && g.YInc == reader->GetYInc() &&
+            g.XMin == reader->GetXMin() && g.XMax == reader->GetXMax() &&
+            g.YMin == reader->GetYMin() && g.YMax == reader->GetYMax(),
       tag + "header equals the test's own decoding");
     vtkIdType mismatches = 0;
     for (size_t k = 0; k < g.Values.size(); ++k)
@@ -396,10 +413,10 @@ int TestIrapBinaryGridReader(int, char*[])
         values[i + j * nx] = 1000.0f + 10.0f * j + i;
       }
     }
-    values[1] = 1e30f;           // RMS/xtgeo hole
-    values[7] = -3e31f;          // any magnitude >= 1e30
-    values[8] = 9999900.0f;      // Irap's nominal hole
-    values[12] = -999.25f;       // a NullValue set on the reader
+    values[1] = 1e30f;      // RMS/xtgeo hole
+    values[7] = -3e31f;     // any magnitude >= 1e30
+    values[8] = 9999900.0f; // Irap's nominal hole
+    values[12] = -999.25f;  // a NullValue set on the reader
     std::vector<unsigned char> b = IrapHeaderBytes(nx, ny, 100.0f, 200.0f, 12.5f, 25.0f, 30.0f);
     // Records of 4, 0, 7 and 4 values: nothing aligns with rows.
     size_t at = 0;
@@ -444,14 +461,14 @@ int TestIrapBinaryGridReader(int, char*[])
     image->TransformIndexToPhysicalPoint(4, 2, 0, p);
     const double a = vtkMath::RadiansFromDegrees(30.0);
     Check(Near(p[0], 100 + 4 * 12.5 * std::cos(a) - 2 * 25 * std::sin(a), 1e-9) &&
-        Near(p[1], 200 + 4 * 12.5 * std::sin(a) + 2 * 25 * std::cos(a), 1e-9),
+            Near(p[1], 200 + 4 * 12.5 * std::sin(a) + 2 * 25 * std::cos(a), 1e-9),
       "synthetic: node (4, 2) in world coordinates");
 
     // Without NullValue, -999.25 is a value.
     reader->SetNullValue(std::nan(""));
     reader->Update();
     Check(reader->GetNumberOfNoDataValues() == 3 &&
-        reader->GetOutput()->GetPointData()->GetScalars()->GetComponent(12, 0) == -999.25,
+            reader->GetOutput()->GetPointData()->GetScalars()->GetComponent(12, 0) == -999.25,
       "synthetic: NullValue NaN means none");
 
     // The same reader, now on a broken file, must end up empty.
@@ -466,6 +483,22 @@ int TestIrapBinaryGridReader(int, char*[])
     Check(reader->GetOutput()->GetNumberOfPoints() == 0,
       "mismatched trailing marker: previous output cleared");
     std::cout << "mismatched marker: " << errors->First << "\n";
+
+    // A failure in the information pass (truncated header), then a good file again: the reader
+    // recovers.
+    std::vector<unsigned char> stub(b.begin(), b.begin() + 60);
+    Spit(outDir + "TestIrapBinaryGridReader_stub.gri", stub);
+    reader->SetFileName((outDir + "TestIrapBinaryGridReader_stub.gri").c_str());
+    errors->Reset();
+    reader->Update();
+    Check(
+      errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0 && reader->GetNX() == 0,
+      "truncated header after a good read: error, empty output, header reset");
+    reader->SetFileName(path.c_str());
+    errors->Reset();
+    reader->Update();
+    Check(errors->Errors == 0 && reader->GetOutput()->GetNumberOfPoints() == nx * ny,
+      "a good file after a bad one reads again");
 
     // A record that claims more values than the grid has left.
     std::vector<unsigned char> tooLong = IrapHeaderBytes(2, 2, 0, 0, 1, 1, 0);

@@ -58,8 +58,8 @@ public:
   }
   void Watch(vtkAlgorithm* algorithm)
   {
-    for (vtkObject* o : { static_cast<vtkObject*>(algorithm),
-           static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    for (vtkObject* o :
+      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
     {
       o->AddObserver(vtkCommand::ErrorEvent, this);
       o->AddObserver(vtkCommand::WarningEvent, this);
@@ -146,9 +146,10 @@ std::string Encode(double v, const std::string& descr)
     const int8_t i1 = static_cast<int8_t>(i);
     const int16_t i2 = static_cast<int16_t>(i);
     const int32_t i4 = static_cast<int32_t>(i);
-    put(size == 1 ? static_cast<const void*>(&i1)
-                  : size == 2 ? static_cast<const void*>(&i2)
-                              : size == 4 ? static_cast<const void*>(&i4) : &i);
+    put(size == 1   ? static_cast<const void*>(&i1)
+        : size == 2 ? static_cast<const void*>(&i2)
+        : size == 4 ? static_cast<const void*>(&i4)
+                    : &i);
   }
   else
   {
@@ -156,9 +157,10 @@ std::string Encode(double v, const std::string& descr)
     const uint8_t u1 = static_cast<uint8_t>(u);
     const uint16_t u2 = static_cast<uint16_t>(u);
     const uint32_t u4 = static_cast<uint32_t>(u);
-    put(size == 1 ? static_cast<const void*>(&u1)
-                  : size == 2 ? static_cast<const void*>(&u2)
-                              : size == 4 ? static_cast<const void*>(&u4) : &u);
+    put(size == 1   ? static_cast<const void*>(&u1)
+        : size == 2 ? static_cast<const void*>(&u2)
+        : size == 4 ? static_cast<const void*>(&u4)
+                    : &u);
   }
   // The test machine is little-endian (x86-64, aarch64); '>' files get reversed bytes.
   const uint16_t probe = 1;
@@ -218,7 +220,7 @@ std::string Data(const std::string& descr, bool fortran)
 std::string Dict(const std::string& descr, bool fortran, const std::string& shape)
 {
   return "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") +
-    ", 'shape': " + shape + ", }";
+         ", 'shape': " + shape + ", }";
 }
 
 /// Expects an error and an empty output from reading `path`.
@@ -301,9 +303,9 @@ int TestNumpyGridReader(int, char*[])
     d = image->GetDirectionMatrix();
     const double a = vtkMath::RadiansFromDegrees(30.0);
     Check(std::fabs(d->GetElement(0, 0) - std::cos(a)) < 1e-15 &&
-        std::fabs(d->GetElement(0, 1) + std::sin(a)) < 1e-15 &&
-        std::fabs(d->GetElement(1, 0) - std::sin(a)) < 1e-15 &&
-        std::fabs(d->GetElement(1, 1) - std::cos(a)) < 1e-15 && d->GetElement(2, 2) == 1.0,
+            std::fabs(d->GetElement(0, 1) + std::sin(a)) < 1e-15 &&
+            std::fabs(d->GetElement(1, 0) - std::sin(a)) < 1e-15 &&
+            std::fabs(d->GetElement(1, 1) - std::cos(a)) < 1e-15 && d->GetElement(2, 2) == 1.0,
       "crop: direction = rotation by 30 degrees");
 
     // Swapped axes: arr[j][i] at (i, j), 48 x 64.
@@ -313,7 +315,7 @@ int TestNumpyGridReader(int, char*[])
     image->GetDimensions(dims);
     Check(dims[0] == 48 && dims[1] == 64, "crop swapped: dimensions 48 x 64");
     Check(ValueAt(image, 47, 63) == 42.4587428575 && ValueAt(image, 24, 32) == 42.278662325 &&
-        ValueAt(image, 0, 63) == 43.400004505,
+            ValueAt(image, 0, 63) == 43.400004505,
       "crop swapped: arr[j][i] at (i, j)");
     Check(reader->GetNumberOfNoDataValues() == 973, "crop swapped: 973 NaNs");
   }
@@ -358,16 +360,28 @@ int TestNumpyGridReader(int, char*[])
     int Major;
   };
   const Case cases[] = {
-    { "<f8", false, 1 }, { ">f4", true, 1 }, { ">f8", false, 2 }, { "<f4", true, 3 },
-    { ">f8", true, 1 }, { "<i2", false, 1 }, { ">i2", true, 2 }, { "<i4", true, 1 },
-    { ">i4", false, 3 }, { "<i8", false, 1 }, { "|i1", true, 1 }, { "|u1", false, 1 },
-    { "<u2", false, 1 }, { ">u2", true, 1 }, { "<u4", false, 2 }, { ">u8", true, 1 },
+    { "<f8", false, 1 },
+    { ">f4", true, 1 },
+    { ">f8", false, 2 },
+    { "<f4", true, 3 },
+    { ">f8", true, 1 },
+    { "<i2", false, 1 },
+    { ">i2", true, 2 },
+    { "<i4", true, 1 },
+    { ">i4", false, 3 },
+    { "<i8", false, 1 },
+    { "|i1", true, 1 },
+    { "|u1", false, 1 },
+    { "<u2", false, 1 },
+    { ">u2", true, 1 },
+    { "<u4", false, 2 },
+    { ">u8", true, 1 },
   };
   for (const Case& c : cases)
   {
     const std::string descr = c.Descr;
-    const std::string tag = descr + (c.Fortran ? " Fortran" : " C") + " v" +
-      std::to_string(c.Major) + ".0: ";
+    const std::string tag =
+      descr + (c.Fortran ? " Fortran" : " C") + " v" + std::to_string(c.Major) + ".0: ";
     const std::string path = outDir + "TestNumpyGridReader_synthetic.npy";
     Spit(path, Npy(c.Major, Dict(descr, c.Fortran, "(3, 4)"), Data(descr, c.Fortran)));
     vtkNew<vtkNumpyGridReader> reader;
@@ -382,13 +396,12 @@ int TestNumpyGridReader(int, char*[])
       const std::string t = tag + (swap ? "swapped: " : "");
       Check(errors->Errors == 0, t + "no errors");
       Check(reader->GetMajorVersion() == c.Major && reader->GetFortranOrder() == c.Fortran &&
-          std::string(reader->GetDescr()) == descr,
+              std::string(reader->GetDescr()) == descr,
         t + "header");
       vtkImageData* image = reader->GetOutput();
       int dims[3];
       image->GetDimensions(dims);
-      Check(dims[0] == (swap ? Cols : Rows) && dims[1] == (swap ? Rows : Cols),
-        t + "dimensions");
+      Check(dims[0] == (swap ? Cols : Rows) && dims[1] == (swap ? Rows : Cols), t + "dimensions");
       vtkDataArray* s = image->GetPointData()->GetScalars();
       const bool isDouble = descr == "<f8" || descr == ">f8";
       Check(s && s->GetDataType() == (isDouble ? VTK_DOUBLE : VTK_FLOAT), t + "array type");
@@ -422,8 +435,8 @@ int TestNumpyGridReader(int, char*[])
     reader->Update();
     int dims[3];
     reader->GetOutput()->GetDimensions(dims);
-    Check(dims[0] == 5 && dims[1] == 1 && ValueAt(reader->GetOutput(), 4, 0) == 6.0,
-      "1-D (5,): 5 x 1");
+    Check(
+      dims[0] == 5 && dims[1] == 1 && ValueAt(reader->GetOutput(), 4, 0) == 6.0, "1-D (5,): 5 x 1");
     reader->SwapAxesOn();
     reader->Update();
     reader->GetOutput()->GetDimensions(dims);
@@ -437,7 +450,7 @@ int TestNumpyGridReader(int, char*[])
     reader3->Update();
     reader3->GetOutput()->GetDimensions(dims);
     Check(dims[0] == 3 && dims[1] == 4 && ValueAt(reader3->GetOutput(), 2, 1) == 22.0 &&
-        ValueAt(reader3->GetOutput(), 0, 3) == 4.0,
+            ValueAt(reader3->GetOutput(), 0, 3) == 4.0,
       "(3, 4, 1): 3 x 4");
   }
 
@@ -467,11 +480,13 @@ int TestNumpyGridReader(int, char*[])
     std::string Name;
     std::string Bytes;
   } bad[] = {
-    { "version 4.0", [&] {
-       std::string b = Npy(1, Dict("<f4", false, "(3, 4)"), data);
-       b[6] = 4;
-       return b;
-     }() },
+    { "version 4.0",
+      [&]
+      {
+        std::string b = Npy(1, Dict("<f4", false, "(3, 4)"), data);
+        b[6] = 4;
+        return b;
+      }() },
     { "complex dtype", Npy(1, Dict("<c8", false, "(3, 4)"), data + data) },
     { "structured dtype",
       Npy(1, "{'descr': [('a', '<f4')], 'fortran_order': False, 'shape': (3, 4), }", data) },
@@ -481,14 +496,18 @@ int TestNumpyGridReader(int, char*[])
     { "nx * ny > 2^31", Npy(1, Dict("<f4", false, "(100000, 100000)"), data) },
     { "fortran_order neither True nor False",
       Npy(1, "{'descr': '<f4', 'fortran_order': Maybe, 'shape': (3, 4), }", data) },
-    { "unterminated dict", Npy(1, "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 4", data) },
-    { "no colon after a key", Npy(1, "{'descr' '<f4', 'fortran_order': False, 'shape': (3, 4), }", data) },
+    { "unterminated dict",
+      Npy(1, "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 4", data) },
+    { "no colon after a key",
+      Npy(1, "{'descr' '<f4', 'fortran_order': False, 'shape': (3, 4), }", data) },
     { "missing shape", Npy(1, "{'descr': '<f4', 'fortran_order': False, }", data) },
-    { "header longer than the file", [&] {
-       std::string b = Npy(1, Dict("<f4", false, "(3, 4)"), data);
-       b[9] = '\x7f';
-       return b;
-     }() },
+    { "header longer than the file",
+      [&]
+      {
+        std::string b = Npy(1, Dict("<f4", false, "(3, 4)"), data);
+        b[9] = '\x7f';
+        return b;
+      }() },
   };
   for (const auto& b : bad)
   {
