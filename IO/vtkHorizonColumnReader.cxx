@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonColumnReader.h"
+#include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -30,6 +31,8 @@ vtkStandardNewMacro(vtkHorizonColumnReader);
 
 namespace
 {
+using strata_io::ClearOutput;
+using strata_io::RotationToDirection;
 using ColumnMode = vtkHorizonColumnReader::ColumnMode;
 
 // Same bound as the other horizon readers: 2^31 nodes or more is not a horizon.
@@ -144,42 +147,7 @@ bool IsIndexValue(double v)
   return std::isfinite(v) && std::floor(v) == v && std::fabs(v) < MaxIndexMagnitude;
 }
 
-/// Counterclockwise rotation about z as a direction matrix; multiples of 90 degrees exact.
-void RotationToDirection(double degrees, double d[9])
-{
-  double c = 0.0;
-  double s = 0.0;
-  const double quarterTurns = degrees / 90.0;
-  if (quarterTurns == std::floor(quarterTurns) && std::fabs(quarterTurns) < 1e9)
-  {
-    const long long k = ((static_cast<long long>(quarterTurns) % 4) + 4) % 4;
-    const double cs[4][2] = { { 1, 0 }, { 0, 1 }, { -1, 0 }, { 0, -1 } };
-    c = cs[k][0];
-    s = cs[k][1];
-  }
-  else
-  {
-    const double a = vtkMath::RadiansFromDegrees(degrees);
-    c = std::cos(a);
-    s = std::sin(a);
-  }
-  const double m[9] = { c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0 };
-  std::copy(m, m + 9, d);
-}
 
-void ClearOutput(vtkInformation* outInfo)
-{
-  if (!outInfo)
-  {
-    return;
-  }
-  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-  if (vtkImageData* output = vtkImageData::GetData(outInfo))
-  {
-    output->Initialize();
-  }
-}
 
 /// Checks nx * ny against the absolute and the sparseness bounds.
 bool CheckGridSize(long long nx, long long ny, size_t records, std::string& error)

@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkIrapBinaryGridReader.h"
+#include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -27,6 +28,8 @@ vtkStandardNewMacro(vtkIrapBinaryGridReader);
 
 namespace
 {
+using strata_io::ClearOutput;
+using strata_io::RotationToDirection;
 // Irap's nominal undefined value. RMS and xtgeo write 1e30 instead; anything at least that large
 // in magnitude is a hole as well, since no depth, time or thickness comes anywhere near it.
 constexpr float IrapUndefined = 9999900.0f;
@@ -231,45 +234,7 @@ bool ReadHeader(RecordFile& file, IrapHeader& h, std::string& error)
   return true;
 }
 
-/// A rotation about z by `degrees` (counterclockwise), row-major, as vtkImageData's direction
-/// matrix: its columns are the world directions of the i and j axes. Multiples of 90 degrees are
-/// made exact so an unrotated grid gets an exact identity.
-void RotationToDirection(double degrees, double d[9])
-{
-  double c = 0.0;
-  double s = 0.0;
-  const double quarterTurns = degrees / 90.0;
-  if (quarterTurns == std::floor(quarterTurns) && std::fabs(quarterTurns) < 1e9)
-  {
-    const long long k = ((static_cast<long long>(quarterTurns) % 4) + 4) % 4;
-    const double cs[4][2] = { { 1, 0 }, { 0, 1 }, { -1, 0 }, { 0, -1 } };
-    c = cs[k][0];
-    s = cs[k][1];
-  }
-  else
-  {
-    const double a = vtkMath::RadiansFromDegrees(degrees);
-    c = std::cos(a);
-    s = std::sin(a);
-  }
-  const double m[9] = { c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0 };
-  std::copy(m, m + 9, d);
-}
 
-/// Leaves the output with no points and the pipeline with an empty extent.
-void ClearOutput(vtkInformation* outInfo)
-{
-  if (!outInfo)
-  {
-    return;
-  }
-  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-  if (vtkImageData* output = vtkImageData::GetData(outInfo))
-  {
-    output->Initialize();
-  }
-}
 }
 
 //------------------------------------------------------------------------------

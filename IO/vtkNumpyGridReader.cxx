@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkNumpyGridReader.h"
+#include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
@@ -30,6 +31,8 @@ vtkStandardNewMacro(vtkNumpyGridReader);
 
 namespace
 {
+using strata_io::ClearOutput;
+using strata_io::RotationToDirection;
 // Same bound as the other horizon readers: 2^31 nodes or more is a corrupt header, not a horizon.
 constexpr long long MaxNodes = 2147483647LL;
 // numpy itself writes headers of a few hundred bytes; anything beyond this is not a header.
@@ -607,42 +610,7 @@ vtkIdType ConvertAny(const NpyHeader& h,
   return 0;
 }
 
-/// Same as the Irap reader's: counterclockwise rotation about z, multiples of 90 degrees exact.
-void RotationToDirection(double degrees, double d[9])
-{
-  double c = 0.0;
-  double s = 0.0;
-  const double quarterTurns = degrees / 90.0;
-  if (quarterTurns == std::floor(quarterTurns) && std::fabs(quarterTurns) < 1e9)
-  {
-    const long long k = ((static_cast<long long>(quarterTurns) % 4) + 4) % 4;
-    const double cs[4][2] = { { 1, 0 }, { 0, 1 }, { -1, 0 }, { 0, -1 } };
-    c = cs[k][0];
-    s = cs[k][1];
-  }
-  else
-  {
-    const double a = vtkMath::RadiansFromDegrees(degrees);
-    c = std::cos(a);
-    s = std::sin(a);
-  }
-  const double m[9] = { c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0 };
-  std::copy(m, m + 9, d);
-}
 
-void ClearOutput(vtkInformation* outInfo)
-{
-  if (!outInfo)
-  {
-    return;
-  }
-  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-  if (vtkImageData* output = vtkImageData::GetData(outInfo))
-  {
-    output->Initialize();
-  }
-}
 }
 
 //------------------------------------------------------------------------------
