@@ -45,23 +45,22 @@ vec4 strataCorners(int layer, ivec2 c)
     strataHeight(layer, c + ivec2(0, 1)), strataHeight(layer, c + ivec2(1, 1)));
 }
 
-// First crossing of `layer` for t in [ta, tb]: a walk over the cells the ray crosses, samples
-// no further apart than uStep cells inside each, a sign change between consecutive samples
-// (also across a cell boundary) refined by bisection and a final secant step. Returns BIG when
-// there is none.
-float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, float nudge, out ivec2 hitCell)
+// First crossing of `layer` for t in [ta, tb], in the cells [cLo, cHi] of one leaf: a walk over
+// the cells the ray crosses, samples no further apart than uStep cells inside each, a sign change
+// between consecutive samples (also across a cell boundary) refined by bisection and a final
+// secant step. Cells are stepped as integers (no position is re-derived from t), so float
+// rounding far from the grid origin cannot stall or skip the walk. Returns BIG when there is none.
+float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, ivec2 cLo, ivec2 cHi, out ivec2 hitCell)
 {
   hitCell = ivec2(0);
-  ivec2 cmax = ivec2(uGridMax) - 1;
-  vec2 pm = (o + (ta + nudge) * d).xy;
-  ivec2 c = clamp(ivec2(floor(pm)), ivec2(0), cmax);
+  ivec2 c = clamp(ivec2(floor((o + ta * d).xy)), cLo, cHi);
   ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
   float lateral = length(d.xy);
   float t = ta;
   float tPrev = ta;
   float fPrev = 0.0;
   bool havePrev = false;
-  for (int it = 0; it < 16384; ++it)
+  for (int it = 0; it < 65536; ++it)
   {
     float tx = d.x > 0.0 ? (float(c.x + 1) - o.x) / d.x : (d.x < 0.0 ? (float(c.x) - o.x) / d.x : BIG);
     float ty = d.y > 0.0 ? (float(c.y + 1) - o.y) / d.y : (d.y < 0.0 ? (float(c.y) - o.y) / d.y : BIG);
@@ -73,7 +72,8 @@ float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, float nud
     {
       int n = max(1, int(ceil(lateral * (tEnd - t) / uStep)));
       float dt = (tEnd - t) / float(n);
-      for (int k = 0; k <= n; ++k)
+      // The cell's first sample is the previous cell's last one when the walk is continuous.
+      for (int k = havePrev && tPrev == t ? 1 : 0; k <= n; ++k)
       {
         float tc = (k == n) ? tEnd : t + float(k) * dt;
         float fc = strataF(o, d, tc, c, h);
@@ -124,11 +124,11 @@ float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, float nud
     {
       c.y += stepDir.y;
     }
-    if (any(lessThan(c, ivec2(0))) || any(greaterThan(c, cmax)))
+    if (any(lessThan(c, cLo)) || any(greaterThan(c, cHi)))
     {
       break;
     }
-    t = tEnd;
+    t = max(t, tEnd);
   }
   return BIG;
 }
@@ -144,13 +144,6 @@ vec2 strataSlab(vec3 o, vec3 d, float z0, float z1, float ta, float tb)
   }
   bool inside = o.z >= z0 - uZEps && o.z <= z1 + uZEps;
   return inside ? vec2(ta, tb) : vec2(1.0, 0.0);
-}
-
-float strataExitT(vec3 o, vec3 d, vec2 lo, vec2 hi)
-{
-  float tx = d.x > 0.0 ? (hi.x - o.x) / d.x : (d.x < 0.0 ? (lo.x - o.x) / d.x : BIG);
-  float ty = d.y > 0.0 ? (hi.y - o.y) / d.y : (d.y < 0.0 ? (lo.y - o.y) / d.y : BIG);
-  return min(tx, ty);
 }
 
 void main()
@@ -183,37 +176,43 @@ void main()
   {
     discard;
   }
-  // A step far below a cell: decides which node or cell the ray is in just after a boundary.
-  float latSpeed = max(abs(d.x), abs(d.y));
-  float nudge = min(1.0e-4 / max(latSpeed, 1.0e-30), 1.0e-5 * (tExit - tEnter));
-
+  // Top-down traversal. Nodes are stepped as integers across the face the ray leaves by and
+  // children are chosen by clamping into the parent, so that the walk always advances whatever
+  // the float rounding of positions far along the ray.
   float tHit = BIG;
   int hitLayer = -1;
   ivec2 hitCell = ivec2(0);
   float t = tEnter;
   int level = uNumLevels - 1;
-  for (int it = 0; it < 8192 && t <= tExit && hitLayer < 0; ++it)
+  int S = uTileSize << level;
+  ivec2 node = clamp(ivec2(floor((o + t * d).xy / float(S))), ivec2(0), uLevelDims[level] - 1);
+  ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
+  bool up = d.z >= 0.0;
+  for (int it = 0; it < 65536; ++it)
   {
-    int S = uTileSize << level;
-    vec2 pm = (o + (t + nudge) * d).xy;
-    ivec2 node = clamp(ivec2(floor(pm / float(S))), ivec2(0), uLevelDims[level] - 1);
     vec4 nd = texelFetch(uNodes, uLevelOffset[level] + node.y * uLevelDims[level].x + node.x);
     vec2 nlo = vec2(node * S);
     vec2 nhi = min(vec2((node + 1) * S), uGridMax);
-    float tNodeExit = min(strataExitT(o, d, nlo, nhi), tExit);
+    float tx = d.x > 0.0 ? (nhi.x - o.x) / d.x : (d.x < 0.0 ? (nlo.x - o.x) / d.x : BIG);
+    float ty = d.y > 0.0 ? (nhi.y - o.y) / d.y : (d.y < 0.0 ? (nlo.y - o.y) / d.y : BIG);
+    float tNodeExit = min(min(tx, ty), tExit);
     vec2 slab = nd.x <= nd.y ? strataSlab(o, d, nd.x, nd.y, t, tNodeExit) : vec2(1.0, 0.0);
     if (slab.x <= slab.y)
     {
       if (level > 0)
       {
         level -= 1;
-        t = slab.x;
+        S >>= 1;
+        t = max(t, slab.x);
+        ivec2 child = ivec2(floor((o + t * d).xy / float(S)));
+        node = clamp(child, node * 2, min(node * 2 + 1, uLevelDims[level] - 1));
         continue;
       }
       // Leaf: its depth intervals in ray order; the first one with a hit holds the nearest.
       int first = int(nd.z);
       int count = int(nd.w);
-      bool up = d.z >= 0.0;
+      ivec2 cLo = node * S;
+      ivec2 cHi = min((node + 1) * S, ivec2(uGridMax)) - 1;
       for (int q = 0; q < count && hitLayer < 0; ++q)
       {
         vec4 iv = texelFetch(uIntervals, first + (up ? q : count - 1 - q));
@@ -227,7 +226,7 @@ void main()
         {
           int layer = int(texelFetch(uLayerLists, int(iv.z) + r).x);
           ivec2 cell;
-          float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), nudge, cell);
+          float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), cLo, cHi, cell);
           // Coincident horizons: a later one wins only when clearly nearer, so that float
           // noise cannot flip ids where two horizons are equal (the lower index wins ties).
           if (th < best - uTieEps)
@@ -244,17 +243,25 @@ void main()
         break;
       }
     }
-    // Past this node; climb while the next position lies in another parent.
-    float tNext = max(tNodeExit, t + nudge);
-    vec2 pn = (o + (tNext + nudge) * d).xy;
-    ivec2 nextNode = ivec2(floor(pn / float(S)));
-    while (level < uNumLevels - 1 && any(notEqual(nextNode >> 1, node >> 1)))
+    // On to the neighbour across the exit face, climbing while it lies in another parent.
+    if (tNodeExit >= tExit)
+    {
+      break;
+    }
+    t = max(t, tNodeExit);
+    ivec2 next = tx < ty ? ivec2(node.x + stepDir.x, node.y) : ivec2(node.x, node.y + stepDir.y);
+    while (level < uNumLevels - 1 && any(notEqual(next >> 1, node >> 1)))
     {
       level += 1;
-      node = node >> 1;
-      nextNode = nextNode >> 1;
+      S <<= 1;
+      node >>= 1;
+      next >>= 1;
     }
-    t = tNext;
+    if (any(lessThan(next, ivec2(0))) || any(greaterThanEqual(next, uLevelDims[level])))
+    {
+      break;
+    }
+    node = next;
   }
   if (hitLayer < 0)
   {

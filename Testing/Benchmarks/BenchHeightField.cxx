@@ -6,6 +6,8 @@
 // the CSV. Usage:
 //   BenchHeightField frame <points-per-horizon> <raycast|mesh>  -> one CSV line
 //   BenchHeightField accuracy <points-per-horizon>             -> step vs error vs ms lines
+// STRATA_BENCH_TILE and STRATA_BENCH_STEP override the mapper's tile size and linear-search step
+// in `frame` runs with the ray caster.
 #include "StrataHeightFieldScenes.h"
 #include "StrataTestHelpers.h"
 
@@ -26,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -153,6 +156,10 @@ int main(int argc, char* argv[])
       vtkNew<vtkStackedHeightFieldMapper> m;
       for (auto& h : horizons)
         m->AddInputDataObject(h);
+      if (const char* tile = std::getenv("STRATA_BENCH_TILE"))
+        m->SetTileSize(std::atoi(tile));
+      if (const char* step = std::getenv("STRATA_BENCH_STEP"))
+        m->SetLinearSearchStep(std::atof(step));
       vtkNew<vtkActor> a;
       a->SetMapper(m);
       ren->AddActor(a);

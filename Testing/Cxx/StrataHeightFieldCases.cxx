@@ -248,6 +248,19 @@ int RunHeightFieldCase(const std::string& name)
     s.Camera(pos, c, up);
     ok = s.Check("Rotated", 15000);
   }
+  else if (name == "LargeGrid")
+  {
+    // A 2048 x 1536 grid (thousands of cells along each ray) seen from far away: the traversal
+    // must advance by whole nodes and cells however coarse the float rounding of t is there.
+    // A walk that re-derived its node from positions stalled here and left streaks of misses.
+    Scene s(MakeDemoHorizons(2048, 1536, 0, 0, 2000.0 / 2048, 0));
+    s.Mapper->SetTileSize(64);
+    const double a = 0.6 + 2.2, cx = 1000, cy = 750;
+    const double pos[3] = { cx - 2200 * std::cos(a), cy - 2200 * std::sin(a), 1200 };
+    const double foc[3] = { cx, cy, -420 }, up[3] = { 0, 0, 1 };
+    s.Camera(pos, foc, up);
+    ok = s.Check("LargeGrid", 15000);
+  }
   else
   {
     std::cerr << "unknown case " << name << "\n";
