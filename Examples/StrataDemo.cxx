@@ -1,27 +1,20 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
-// The main demo: renders (1) three crossing synthetic horizons with holes and a well path as a
-// VTK tube, and (2) the four Reek horizons (Irap binary grids on a rotated UTM-scale grid), and
+// The main demo: renders (1) three crossing synthetic horizons with holes, a well path as a VTK
+// tube and a target sphere, and (2) the four Reek horizons (Irap binary grids on a rotated UTM-scale grid), and
 // writes one PNG per scene. Usage: StrataDemo <output-dir> <data-dir>...; the first data dir
 // that holds horizons/reek_01_topreek_rota.gri is used. Prints each image's path, last.
-#include "StrataHeightFieldScenes.h"
+#include "StrataDemoScene.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkImageData.h"
 #include "vtkIrapBinaryGridReader.h"
-#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
-#include "vtkParametricFunctionSource.h"
-#include "vtkParametricSpline.h"
-#include "vtkPoints.h"
-#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkStackedHeightFieldMapper.h"
-#include "vtkTubeFilter.h"
 #include "vtkWindowToImageFilter.h"
 
 #include <fstream>
@@ -49,57 +42,14 @@ int main(int argc, char* argv[])
   const std::string out = argc > 1 ? argv[1] : ".";
   std::vector<std::string> written;
 
-  // --- Scene 1: synthetic stack + well.
+  // --- Scene 1: synthetic stack, well and target (shared with TestHeightFieldDemo).
   {
-    auto horizons = strata_test::MakeDemoHorizons(321, 241, 600000.0, 6700000.0, 6.25, 0.0);
-    vtkNew<vtkStackedHeightFieldMapper> mapper;
-    for (auto& h : horizons)
-    {
-      mapper->AddInputDataObject(h);
-    }
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetSpecular(0.25);
-    actor->GetProperty()->SetSpecularPower(30);
-    actor->SetScale(1, 1, 1.5);
-
-    // A deviated well through all three horizons.
-    vtkNew<vtkPoints> pts;
-    pts->InsertNextPoint(600600, 6700500, 150);
-    pts->InsertNextPoint(600700, 6700650, -250);
-    pts->InsertNextPoint(600950, 6700800, -600);
-    pts->InsertNextPoint(601300, 6700900, -1000);
-    vtkNew<vtkParametricSpline> spline;
-    spline->SetPoints(pts);
-    vtkNew<vtkParametricFunctionSource> path;
-    path->SetParametricFunction(spline);
-    path->SetUResolution(200);
-    vtkNew<vtkTubeFilter> tube;
-    tube->SetInputConnection(path->GetOutputPort());
-    tube->SetRadius(14);
-    tube->SetNumberOfSides(24);
-    vtkNew<vtkPolyDataMapper> wellMapper;
-    wellMapper->SetInputConnection(tube->GetOutputPort());
-    vtkNew<vtkActor> well;
-    well->SetMapper(wellMapper);
-    well->GetProperty()->SetColor(0.95, 0.95, 0.9);
-    well->SetScale(1, 1, 1.5);
-
     vtkNew<vtkRenderWindow> win;
     win->SetSize(800, 600);
     win->SetMultiSamples(0);
     vtkNew<vtkRenderer> ren;
-    ren->SetBackground(0.08, 0.09, 0.12);
-    ren->SetBackground2(0.3, 0.33, 0.4);
-    ren->GradientBackgroundOn();
     win->AddRenderer(ren);
-    ren->AddActor(actor);
-    ren->AddActor(well);
-    vtkCamera* cam = ren->GetActiveCamera();
-    cam->SetFocalPoint(601000, 6700750, -650);
-    cam->SetPosition(599300, 6698600, 900);
-    cam->SetViewUp(0, 0, 1);
-    ren->ResetCameraClippingRange();
+    auto scene = strata_test::AddDemoScene(ren);
     win->Render();
     written.push_back(Save(win, out + "/strata-horizons-synthetic.png"));
   }

@@ -168,6 +168,17 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtk
     const double zn = 2.0 * zw - 1.0;
     return parallel ? 0.5 * (zn + 1.0) * (f - n) + n : 2.0 * f * n / (f + n - zn * (f - n));
   };
+  r.RefDepth.assign(size_t(w) * h, 1.0);
+  for (int i = 0; i < w * h; ++i)
+  {
+    if (r.RefIds[i] >= 0)
+    {
+      const double p[4] = { points[3 * i], points[3 * i + 1], points[3 * i + 2], 1.0 };
+      double c[4];
+      gridToClip->MultiplyPoint(p, c);
+      r.RefDepth[i] = 0.5 * (c[2] / c[3]) + 0.5;
+    }
+  }
   for (int i = 0; i < w * h; ++i)
   {
     if (r.GpuIds[i] < 0 || r.GpuIds[i] != r.RefIds[i])

@@ -1,6 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataTestHelpers.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -139,6 +141,55 @@ void WriteIdPNG(const std::string& path, const std::vector<int>& ids, int width,
     }
   }
   WritePNG(path, rgb, width, height);
+}
+
+void ErrorCounter::Execute(vtkObject*, unsigned long event, void* data)
+{
+  (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
+  // Keep the first message (the algorithm's own; the executive's "returned failure" follows it),
+  // without VTK's "ERROR: In file, line" prefix line.
+  if (this->First.empty() && data)
+  {
+    this->First = static_cast<const char*>(data);
+    const size_t body = this->First.find("): ");
+    this->First = body == std::string::npos ? this->First : this->First.substr(body + 3);
+    this->First = this->First.substr(0, this->First.find_last_not_of("\n") + 1);
+  }
+}
+
+void ErrorCounter::Watch(vtkAlgorithm* algorithm)
+{
+  for (vtkObject* o :
+    { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
+  {
+    o->AddObserver(vtkCommand::ErrorEvent, this);
+    o->AddObserver(vtkCommand::WarningEvent, this);
+  }
+}
+
+void ErrorCounter::Reset()
+{
+  this->Errors = this->Warnings = 0;
+  this->First.clear();
+}
+
+namespace
+{
+int FailureCount = 0;
+}
+
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++FailureCount;
+  }
+}
+
+int Failures()
+{
+  return FailureCount;
 }
 
 std::string OutputDirectory()

@@ -5,12 +5,14 @@
 #ifndef StrataTestHelpers_h
 #define StrataTestHelpers_h
 
+#include "vtkCommand.h"
 #include "vtkOutputWindow.h"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkRenderWindow;
 
 namespace strata_test
@@ -32,6 +34,31 @@ public:
   /// Install as VTK's output window; returns the instance (owned by VTK).
   static CapturingOutputWindow* Install();
 };
+
+/// Counts ErrorEvent and WarningEvent of an algorithm and its executive, so that expected errors
+/// neither print nor go unnoticed; keeps the first message without VTK's file/line prefix.
+class ErrorCounter : public vtkCommand
+{
+public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long event, void* data) override;
+  void Watch(vtkAlgorithm* algorithm);
+  void Reset();
+  int Errors = 0;
+  int Warnings = 0;
+  std::string First;
+};
+
+/// Records a failed check (printed at once); Failures() counts them for the test's exit code.
+void Check(bool ok, const std::string& what);
+int Failures();
+
+/// VTK's regression image test (vtkTesting, vtkImageDifference) of the window against
+/// Testing/Data/Baseline/<name>.png. `threshold` is vtkTesting's: the smallest thresholded
+/// image-difference error over the baseline and its alternatives (<name>_1.png, ...) must not
+/// exceed it. Writes the test image (and the difference on failure) to OutputDirectory(); a
+/// missing baseline fails, leaving the image there to be reviewed and copied in.
+bool CompareWithBaseline(vtkRenderWindow* win, const std::string& name, double threshold);
 
 /// RGB bytes of the last rendered frame, bottom row first, width*height*3.
 std::vector<unsigned char> ReadRGB(vtkRenderWindow* win);

@@ -34,53 +34,8 @@
 
 namespace
 {
-/// Counts ErrorEvent and WarningEvent so that expected errors neither print nor go unnoticed.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long event, void* data) override
-  {
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
-    // Keep the first message (the reader's own; the executive's "returned failure" follows it),
-    // without VTK's "ERROR: In file, line" prefix line.
-    if (this->First.empty() && data)
-    {
-      this->First = static_cast<const char*>(data);
-      const size_t body = this->First.find("): ");
-      this->First = body == std::string::npos ? this->First : this->First.substr(body + 3);
-      this->First = this->First.substr(0, this->First.find_last_not_of("\n") + 1);
-    }
-  }
-  void Watch(vtkAlgorithm* algorithm)
-  {
-    for (vtkObject* o :
-      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
-    {
-      o->AddObserver(vtkCommand::ErrorEvent, this);
-      o->AddObserver(vtkCommand::WarningEvent, this);
-    }
-  }
-  void Reset()
-  {
-    this->Errors = this->Warnings = 0;
-    this->First.clear();
-  }
-  int Errors = 0;
-  int Warnings = 0;
-  std::string First;
-};
-
-int Failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
+using strata_test::Check;
+using strata_test::ErrorCounter;
 
 bool Near(double a, double b, double tol)
 {
@@ -554,9 +509,9 @@ int TestIrapBinaryGridReader(int, char*[])
   vtkNew<vtkIrapBinaryGridReader> printed;
   printed->Print(std::cout);
 
-  if (Failures)
+  if (strata_test::Failures())
   {
-    std::cerr << Failures << " check(s) failed\n";
+    std::cerr << strata_test::Failures() << " check(s) failed\n";
     return EXIT_FAILURE;
   }
   return EXIT_SUCCESS;

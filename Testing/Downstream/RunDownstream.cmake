@@ -1,0 +1,22 @@
+# Installs Strata from STRATA_BUILD into WORK/install, then configures, builds and runs the
+# downstream consumer in this folder against that install tree alone.
+foreach (v STRATA_BUILD WORK SOURCE)
+  if (NOT DEFINED ${v})
+    message(FATAL_ERROR "RunDownstream.cmake needs -D${v}=...")
+  endif ()
+endforeach ()
+file(REMOVE_RECURSE "${WORK}")
+function (step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif ()
+  message(STATUS "${what}: ok")
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction ()
+step("install" "${CMAKE_COMMAND}" --install "${STRATA_BUILD}" --prefix "${WORK}/install")
+step("configure" "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${WORK}/build" -G Ninja
+  -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${WORK}/install")
+step("build" "${CMAKE_COMMAND}" --build "${WORK}/build")
+step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 "${WORK}/build/StrataDownstream")
+message("${step_output}")
