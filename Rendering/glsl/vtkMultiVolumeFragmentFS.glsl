@@ -1,0 +1,93 @@
+//VTK::System::Dec
+// Strata multi-volume ray caster (Lux & Froehlich, multi-volume multi-resolution ray casting,
+// section 3.4): one pass per convex BSP fragment, for exactly the volumes that cover it. The
+// fragment's back faces are drawn; the ray's entry and exit come from the fragment's planes, so
+// no exit-position buffer is needed. Samples lie on one lattice along the whole ray (t = k dt), and
+// each lattice step is clipped to the fragment, so neighbouring fragments split the ray exactly.
+// Overlapping media mix physically: extinctions add, emission is weighted by extinction.
+// Tags are filled by vtkMultiVolumeRayCastMapper for the fragment's volume count and the scene's
+// options; what a fragment does not use leaves no code here.
+
+out vec4 fragOutput0;
+
+uniform mat4 uClipToLocal;
+uniform vec4 uViewport;      // window x, y, width, height of the renderer
+uniform int uNumPlanes;
+uniform vec4 uPlanes[64];    // inside: dot(n, p) + w <= 0, local frame
+uniform float uSampleDistance; // world units between samples
+uniform sampler2D uSceneDepth;
+
+//STRATA::Volumes::Dec
+
+//STRATA::Termination::Dec
+
+// Emission and extinction of the mixed media at local position p.
+void strataMedium(vec3 p, out vec3 emission, out float extinction)
+{
+  emission = vec3(0.0);
+  extinction = 0.0;
+  vec3 tc;
+  float s;
+  vec4 tf;
+  //STRATA::Volumes::Sample
+}
+
+// One lattice step of world length len: premultiplied colour and opacity.
+vec4 strataSegment(vec3 p, float len)
+{
+  vec3 e;
+  float tau;
+  strataMedium(p, e, tau);
+  float a = 1.0 - exp(-tau * len);
+  return tau > 0.0 ? vec4(e / tau * a, a) : vec4(0.0);
+}
+
+void main()
+{
+  vec2 ndc = (gl_FragCoord.xy - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
+  vec4 n4 = uClipToLocal * vec4(ndc, -1.0, 1.0);
+  vec4 f4 = uClipToLocal * vec4(ndc, 1.0, 1.0);
+  vec3 o = n4.xyz / n4.w;
+  vec3 d = f4.xyz / f4.w - o;
+
+  float tEnter = 0.0;
+  float tExit = 1.0;
+  for (int i = 0; i < uNumPlanes; ++i)
+  {
+    float denom = dot(uPlanes[i].xyz, d);
+    float dist = dot(uPlanes[i].xyz, o) + uPlanes[i].w;
+    if (denom < 0.0)
+    {
+      tEnter = max(tEnter, -dist / denom);
+    }
+    else if (denom > 0.0)
+    {
+      tExit = min(tExit, -dist / denom);
+    }
+    else if (dist > 0.0)
+    {
+      discard;
+    }
+  }
+  // Opaque geometry ends the ray: its depth, unprojected onto this ray.
+  float zw = texelFetch(uSceneDepth, ivec2(gl_FragCoord.xy - uViewport.xy), 0).r;
+  if (zw < 1.0)
+  {
+    vec4 s4 = uClipToLocal * vec4(ndc, 2.0 * zw - 1.0, 1.0);
+    tExit = min(tExit, dot(s4.xyz / s4.w - o, d) / dot(d, d));
+  }
+  if (tEnter >= tExit)
+  {
+    discard;
+  }
+
+  // t spans the near-to-far segment [0, 1]; the sample lattice is t = k dt from the near plane.
+  float segment = length(d);
+  float dt = uSampleDistance / segment;
+
+  //STRATA::Termination::Impl
+
+  vec4 acc = vec4(0.0);
+  //STRATA::Composite::Impl
+  fragOutput0 = acc;
+}

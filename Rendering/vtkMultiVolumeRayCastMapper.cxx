@@ -1,0 +1,710 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkMultiVolumeRayCastMapper.h"
+
+#include "vtkVolumeBSPTree.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiVolume.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "vtkMultiVolumeCompositeFS.h"
+#include "vtkMultiVolumeCompositeVS.h"
+#include "vtkMultiVolumeFragmentFS.h"
+#include "vtkMultiVolumeFragmentVS.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+// Entries of each volume's transfer-function table (colour and extinction over its range).
+constexpr int TransferTableSize = 1024;
+constexpr int MaxPlanes = 64;
+
+void Replace(std::string& source, const std::string& tag, const std::string& code)
+{
+  const size_t at = source.find(tag);
+  if (at != std::string::npos)
+  {
+    source.replace(at, tag.size(), code);
+  }
+}
+
+void ToFloat(vtkMatrix4x4* m, float out[16])
+{
+  // Column-major, as vtkShaderProgram::SetUniformMatrix4x4 hands it to glUniformMatrix4fv.
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      out[4 * c + r] = static_cast<float>(m->GetElement(r, c));
+}
+
+void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
+{
+  m->Identity();
+  for (int i = 0; i < 3; ++i)
+    m->SetElement(i, 3, t[i]);
+}
+}
+
+// One volume of the current frame.
+struct StrataVolumeEntry
+{
+  vtkImageData* Input = nullptr;
+  vtkVolumeProperty* Property = nullptr;
+  vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
+  int Dims[3] = { 0, 0, 0 };
+};
+
+// GPU resources of one input port.
+struct StrataVolumeTextures
+{
+  vtkSmartPointer<vtkTextureObject> Data;
+  vtkSmartPointer<vtkTextureObject> Transfer;
+  vtkMTimeType DataTime = 0;
+  vtkMTimeType TransferTime = 0;
+  vtkImageData* DataInput = nullptr;
+  bool Linear = true;
+  double Range[3] = { 0, 1, 0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
+};
+
+class vtkMultiVolumeRayCastMapper::vtkInternals
+{
+public:
+  vtkVolumeBSPTree Tree;
+  std::map<int, StrataVolumeTextures> Textures; // by input port
+  unsigned int FragmentVAO = 0;
+  unsigned int FragmentVBO = 0;
+  unsigned int EmptyVAO = 0;
+  std::vector<int> FragmentFirst, FragmentCount;
+  bool GeometryValid = false;
+  vtkSmartPointer<vtkTextureObject> Accumulation;
+  vtkSmartPointer<vtkTextureObject> SceneDepth;
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  std::map<int, std::string> Sources; // fragment shader per number of volumes, last frame
+  std::map<int, vtkShaderProgram*> ProgramOfVao;
+  int LastFragments = 0;
+
+  void Release(vtkWindow* window)
+  {
+    for (auto& t : this->Textures)
+    {
+      if (t.second.Data)
+        t.second.Data->ReleaseGraphicsResources(window);
+      if (t.second.Transfer)
+        t.second.Transfer->ReleaseGraphicsResources(window);
+    }
+    this->Textures.clear();
+    if (this->Accumulation)
+      this->Accumulation->ReleaseGraphicsResources(window);
+    if (this->SceneDepth)
+      this->SceneDepth->ReleaseGraphicsResources(window);
+    if (this->Framebuffer)
+      this->Framebuffer->ReleaseGraphicsResources(window);
+    this->Accumulation = nullptr;
+    this->SceneDepth = nullptr;
+    this->Framebuffer = nullptr;
+    if (this->FragmentVAO)
+      glDeleteVertexArrays(1, &this->FragmentVAO);
+    if (this->EmptyVAO)
+      glDeleteVertexArrays(1, &this->EmptyVAO);
+    if (this->FragmentVBO)
+      glDeleteBuffers(1, &this->FragmentVBO);
+    this->FragmentVAO = this->EmptyVAO = this->FragmentVBO = 0;
+    this->GeometryValid = false;
+    this->ProgramOfVao.clear();
+  }
+};
+
+vtkStandardNewMacro(vtkMultiVolumeRayCastMapper);
+
+vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
+  : Internals(new vtkInternals)
+{
+  // A fixed sample distance unless the user asks otherwise: accuracy is a setting, not a
+  // by-product of the frame rate.
+  this->AutoAdjustSampleDistances = 0;
+}
+
+vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
+
+void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
+{
+  if (order != this->CompositeOrder)
+  {
+    this->CompositeOrder = order;
+    this->Modified();
+  }
+}
+
+int vtkMultiVolumeRayCastMapper::GetNumberOfFragments() const
+{
+  return this->Internals->LastFragments;
+}
+
+std::string vtkMultiVolumeRayCastMapper::GetFragmentShaderSource(int numberOfVolumes) const
+{
+  auto it = this->Internals->Sources.find(numberOfVolumes);
+  return it == this->Internals->Sources.end() ? std::string() : it->second;
+}
+
+void vtkMultiVolumeRayCastMapper::GetReductionRatio(double ratio[3])
+{
+  ratio[0] = ratio[1] = ratio[2] = 1.0;
+}
+
+void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Release(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  this->Superclass::Render(ren, vol);
+}
+
+void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    vtkErrorMacro("vtkMultiVolumeRayCastMapper needs an OpenGL render window.");
+    return;
+  }
+  vtkOpenGLState* state = renWin->GetState();
+
+  // --- The volumes of this frame: a vtkMultiVolume's members on their ports, or one volume.
+  std::vector<StrataVolumeEntry> volumes;
+  std::vector<int> ports;
+  auto* multi = vtkMultiVolume::SafeDownCast(vol);
+  const int count = multi ? this->GetInputCount() : 1;
+  for (int port = 0; port < this->GetNumberOfInputPorts() && int(ports.size()) < count; ++port)
+  {
+    if (this->GetNumberOfInputConnections(port) == 0)
+    {
+      continue;
+    }
+    vtkVolume* member = multi ? multi->GetVolume(port) : vol;
+    auto* image = vtkImageData::SafeDownCast(this->GetTransformedInput(port));
+    if (!member || !image || !member->GetProperty())
+    {
+      continue;
+    }
+    StrataVolumeEntry e;
+    e.Input = image;
+    e.Property = member->GetProperty();
+    image->GetDimensions(e.Dims);
+    // index -> world: prop * [D diag(spacing) | origin].
+    vtkNew<vtkMatrix4x4> imageMatrix;
+    const double* o = image->GetOrigin();
+    const double* s = image->GetSpacing();
+    const double* d = image->GetDirectionMatrix()->GetData();
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+        imageMatrix->SetElement(r, c, d[3 * r + c] * s[c]);
+      imageMatrix->SetElement(r, 3, o[r]);
+    }
+    e.IndexToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
+    vtkMatrix4x4::Multiply4x4(member->GetMatrix(), imageMatrix, e.IndexToWorld);
+    volumes.push_back(e);
+    ports.push_back(port);
+  }
+  if (volumes.empty())
+  {
+    return;
+  }
+
+  // --- BSP over the boxes (index range [0, n-1], or one spacing thick for n == 1).
+  std::vector<vtkVolumeBSPTree::Box> boxes;
+  for (size_t v = 0; v < volumes.size(); ++v)
+  {
+    vtkNew<vtkMatrix4x4> unitToIndex;
+    for (int a = 0; a < 3; ++a)
+    {
+      const bool thin = volumes[v].Dims[a] == 1;
+      unitToIndex->SetElement(a, a, thin ? 1.0 : volumes[v].Dims[a] - 1.0);
+      unitToIndex->SetElement(a, 3, thin ? -0.5 : 0.0);
+    }
+    vtkNew<vtkMatrix4x4> unitToWorld;
+    vtkMatrix4x4::Multiply4x4(volumes[v].IndexToWorld, unitToIndex, unitToWorld);
+    vtkVolumeBSPTree::Box box;
+    std::copy(unitToWorld->GetData(), unitToWorld->GetData() + 16, box.Matrix.begin());
+    box.VolumeId = static_cast<int>(v);
+    boxes.push_back(box);
+  }
+  if (in.Tree.SetBoxes(boxes))
+  {
+    in.GeometryValid = false;
+  }
+  in.Tree.Update();
+  const auto& origin = in.Tree.GetOrigin();
+  const int numFragments = in.Tree.GetNumberOfFragments();
+
+  // --- Fragment faces in one vertex buffer, outward triangles in the local frame.
+  if (!in.GeometryValid)
+  {
+    std::vector<float> verts;
+    in.FragmentFirst.assign(numFragments, 0);
+    in.FragmentCount.assign(numFragments, 0);
+    for (int f = 0; f < numFragments; ++f)
+    {
+      const auto& frag = in.Tree.GetFragment(f);
+      in.FragmentFirst[f] = static_cast<int>(verts.size() / 3);
+      for (int idx : frag.Triangles)
+      {
+        for (int a = 0; a < 3; ++a)
+          verts.push_back(static_cast<float>(frag.Vertices[idx][a]));
+      }
+      in.FragmentCount[f] = static_cast<int>(frag.Triangles.size());
+    }
+    if (!in.FragmentVBO)
+    {
+      glGenBuffers(1, &in.FragmentVBO);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, in.FragmentVBO);
+    glBufferData(GL_ARRAY_BUFFER, verts.size() * sizeof(float), verts.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    in.ProgramOfVao.clear();
+    in.GeometryValid = true;
+  }
+
+  // --- Textures per volume: scalars as R32F (exact for every input type) and the transfer table.
+  for (size_t v = 0; v < volumes.size(); ++v)
+  {
+    StrataVolumeTextures& tex = in.Textures[ports[v]];
+    const StrataVolumeEntry& e = volumes[v];
+    const bool linear = e.Property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
+    if (!tex.Data || tex.DataInput != e.Input || tex.DataTime < e.Input->GetMTime())
+    {
+      int cellFlag = 0;
+      vtkDataArray* scalars = vtkAbstractMapper::GetScalars(e.Input, this->ScalarMode,
+        this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+      if (!scalars || cellFlag)
+      {
+        vtkErrorMacro("Volume on port " << ports[v] << " has no point scalars.");
+        return;
+      }
+      const vtkIdType n = vtkIdType(e.Dims[0]) * e.Dims[1] * e.Dims[2];
+      std::vector<float> values(n);
+      for (vtkIdType i = 0; i < n; ++i)
+        values[i] = static_cast<float>(scalars->GetComponent(i, 0));
+      if (!tex.Data)
+      {
+        tex.Data = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      tex.Data->SetContext(renWin);
+      tex.Data->ReleaseGraphicsResources(renWin);
+      tex.Data->SetContext(renWin);
+      tex.Data->Create3DFromRaw(e.Dims[0], e.Dims[1], e.Dims[2], 1, VTK_FLOAT, values.data());
+      tex.Data->SetWrapS(vtkTextureObject::ClampToEdge);
+      tex.Data->SetWrapT(vtkTextureObject::ClampToEdge);
+      tex.Data->SetWrapR(vtkTextureObject::ClampToEdge);
+      tex.DataTime = e.Input->GetMTime();
+      tex.DataInput = e.Input;
+      tex.Linear = !linear; // force the filter update below
+    }
+    if (tex.Linear != linear)
+    {
+      tex.Data->SetMinificationFilter(linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+      tex.Data->SetMagnificationFilter(linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+      tex.Linear = linear;
+    }
+    // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
+    const bool rgb = e.Property->GetColorChannels(0) == 3;
+    vtkColorTransferFunction* color = rgb ? e.Property->GetRGBTransferFunction(0) : nullptr;
+    vtkPiecewiseFunction* gray = rgb ? nullptr : e.Property->GetGrayTransferFunction(0);
+    vtkPiecewiseFunction* opacity = e.Property->GetScalarOpacity(0);
+    vtkMTimeType tfTime = std::max(e.Property->GetMTime(), opacity->GetMTime());
+    tfTime = std::max(tfTime, rgb ? color->GetMTime() : gray->GetMTime());
+    if (!tex.Transfer || tex.TransferTime < tfTime)
+    {
+      double range[2];
+      opacity->GetRange(range);
+      double cr[2];
+      if (rgb)
+        color->GetRange(cr);
+      else
+        gray->GetRange(cr);
+      range[0] = std::min(range[0], cr[0]);
+      range[1] = std::max(range[1], cr[1]);
+      if (!(range[1] > range[0]))
+      {
+        range[1] = range[0] + 1.0;
+      }
+      std::vector<float> rgbTable(3 * TransferTableSize), alpha(TransferTableSize), table(4 * TransferTableSize);
+      if (rgb)
+      {
+        color->GetTable(range[0], range[1], TransferTableSize, rgbTable.data());
+      }
+      else
+      {
+        std::vector<float> g(TransferTableSize);
+        gray->GetTable(range[0], range[1], TransferTableSize, g.data());
+        for (int i = 0; i < TransferTableSize; ++i)
+          rgbTable[3 * i] = rgbTable[3 * i + 1] = rgbTable[3 * i + 2] = g[i];
+      }
+      opacity->GetTable(range[0], range[1], TransferTableSize, alpha.data());
+      // Extinction per unit length from VTK's opacity per unit distance; opacity 1 would be
+      // infinite extinction: 1 - 1e-6 keeps it finite (a unit length then lets 1e-6 through).
+      const double unit = std::max(e.Property->GetScalarOpacityUnitDistance(0), 1e-30);
+      for (int i = 0; i < TransferTableSize; ++i)
+      {
+        const double a = std::min(std::max(double(alpha[i]), 0.0), 1.0 - 1e-6);
+        for (int c = 0; c < 3; ++c)
+          table[4 * i + c] = rgbTable[3 * i + c];
+        table[4 * i + 3] = static_cast<float>(-std::log(1.0 - a) / unit);
+      }
+      if (!tex.Transfer)
+      {
+        tex.Transfer = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      tex.Transfer->SetContext(renWin);
+      tex.Transfer->ReleaseGraphicsResources(renWin);
+      tex.Transfer->SetContext(renWin);
+      tex.Transfer->Create2DFromRaw(TransferTableSize, 1, 4, VTK_FLOAT, table.data());
+      tex.Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
+      tex.Transfer->SetWrapT(vtkTextureObject::ClampToEdge);
+      tex.Transfer->SetMinificationFilter(vtkTextureObject::Linear);
+      tex.Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
+      // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) / N.
+      tex.Range[0] = range[0];
+      tex.Range[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
+      tex.Range[2] = 0.5 / TransferTableSize;
+      tex.TransferTime = tfTime;
+    }
+  }
+
+  // --- Camera, composed in double relative to the tree's local origin.
+  int vp[4];
+  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
+  const int width = vp[2], height = vp[3];
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> worldToClip, toWorld, localToClip, clipToLocal;
+  worldToClip->DeepCopy(camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  Translation(toWorld, origin);
+  vtkMatrix4x4::Multiply4x4(worldToClip, toWorld, localToClip);
+  vtkMatrix4x4::Invert(localToClip, clipToLocal);
+
+  // --- Integration buffer and the scene's depth.
+  if (!in.Framebuffer)
+  {
+    in.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    in.Accumulation = vtkSmartPointer<vtkTextureObject>::New();
+    in.SceneDepth = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  in.Framebuffer->SetContext(renWin);
+  in.Accumulation->SetContext(renWin);
+  in.SceneDepth->SetContext(renWin);
+  if (int(in.Accumulation->GetWidth()) != width || int(in.Accumulation->GetHeight()) != height)
+  {
+    in.Accumulation->ReleaseGraphicsResources(renWin);
+    in.Accumulation->SetContext(renWin);
+    in.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
+    in.SceneDepth->ReleaseGraphicsResources(renWin);
+    in.SceneDepth->SetContext(renWin);
+    in.SceneDepth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  in.SceneDepth->Activate();
+  in.SceneDepth->CopyFromFrameBuffer(vp[0], vp[1], 0, 0, width, height);
+  in.SceneDepth->Deactivate();
+
+  const bool frontToBack = this->CompositeOrder == CompositeOrders::FrontToBack;
+  // Early termination across fragments reads the integration buffer's own pixel while drawing
+  // into it: defined under a texture barrier (each pixel is read and written once per fragment).
+  const bool barrier = frontToBack &&
+    (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier);
+
+  state->PushFramebufferBindings();
+  in.Framebuffer->Bind();
+  in.Framebuffer->AddColorAttachment(0, in.Accumulation);
+  in.Framebuffer->ActivateDrawBuffer(0);
+  vtkOpenGLState::ScopedglViewport viewportSaver(state);
+  vtkOpenGLState::ScopedglClearColor clearSaver(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
+  vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthEnable(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullEnable(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  if (frontToBack)
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  }
+  else
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
+  // Back faces: every ray through a convex fragment crosses exactly one, also when the camera is
+  // inside it; depth clamping keeps faces beyond the far plane.
+  state->vtkglEnable(GL_CULL_FACE);
+  state->vtkglCullFace(GL_FRONT);
+  glEnable(GL_DEPTH_CLAMP);
+
+  // --- Fragments in order, each with the shader for its number of volumes.
+  std::vector<int> order;
+  const double* eye = camera->GetPosition();
+  const double* dop = camera->GetDirectionOfProjection();
+  const vtkVolumeBSPTree::Vector3 eyeV = { eye[0], eye[1], eye[2] };
+  const vtkVolumeBSPTree::Vector3 dirV = { dop[0], dop[1], dop[2] };
+  if (frontToBack)
+    in.Tree.SortFrontToBack(eyeV, camera->GetParallelProjection() != 0, dirV, order);
+  else
+    in.Tree.SortBackToFront(eyeV, camera->GetParallelProjection() != 0, dirV, order);
+
+  double sampleDistance = this->SampleDistance;
+  if (this->AutoAdjustSampleDistances)
+  {
+    // Half the smallest voxel edge of any volume, in world units.
+    sampleDistance = VTK_DOUBLE_MAX;
+    for (const auto& e : volumes)
+      for (int c = 0; c < 3; ++c)
+      {
+        const double len = std::sqrt(std::pow(e.IndexToWorld->GetElement(0, c), 2) +
+          std::pow(e.IndexToWorld->GetElement(1, c), 2) + std::pow(e.IndexToWorld->GetElement(2, c), 2));
+        sampleDistance = std::min(sampleDistance, 0.5 * len);
+      }
+  }
+
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  (void)units;
+  in.Sources.clear();
+  in.LastFragments = 0;
+  for (int f : order)
+  {
+    const auto& frag = in.Tree.GetFragment(f);
+    const int k = static_cast<int>(frag.BoxIndices.size());
+    if (k == 0 || in.FragmentCount[f] == 0)
+    {
+      continue;
+    }
+    if (static_cast<int>(frag.Planes.size()) > MaxPlanes)
+    {
+      vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces; at most " << MaxPlanes << " are supported.");
+      continue;
+    }
+    // Shader for k volumes: one unrolled block per volume, nothing else.
+    std::string fs = vtkMultiVolumeFragmentFS;
+    std::ostringstream dec, sample;
+    for (int i = 0; i < k; ++i)
+    {
+      dec << "uniform sampler3D uVolume" << i << ";\n"
+          << "uniform sampler2D uTransfer" << i << ";\n"
+          << "uniform mat4 uLocalToTexture" << i << ";\n"
+          << "uniform vec3 uTableRange" << i << ";\n";
+      sample << "tc = (uLocalToTexture" << i << " * vec4(p, 1.0)).xyz;\n"
+             << "  s = texture(uVolume" << i << ", tc).r;\n"
+             << "  tf = texture(uTransfer" << i << ", vec2((s - uTableRange" << i << ".x) * uTableRange"
+             << i << ".y + uTableRange" << i << ".z, 0.5));\n"
+             << "  emission += tf.rgb * tf.a;\n"
+             << "  extinction += tf.a;\n  ";
+    }
+    Replace(fs, "//STRATA::Volumes::Dec", dec.str());
+    Replace(fs, "//STRATA::Volumes::Sample", sample.str());
+    if (barrier)
+    {
+      Replace(fs, "//STRATA::Termination::Dec",
+        "uniform sampler2D uAccumulation;\nuniform float uTerminationOpacity;");
+      Replace(fs, "//STRATA::Termination::Impl",
+        "float prior = texelFetch(uAccumulation, ivec2(gl_FragCoord.xy), 0).a;\n"
+        "  if (prior >= uTerminationOpacity)\n  {\n    discard;\n  }\n"
+        "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
+        "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
+    }
+    else if (frontToBack)
+    {
+      Replace(fs, "//STRATA::Termination::Dec", "uniform float uTerminationOpacity;");
+      Replace(fs, "//STRATA::Termination::Impl", "float localStop = uTerminationOpacity;");
+    }
+    else
+    {
+      Replace(fs, "//STRATA::Termination::Dec", "");
+      Replace(fs, "//STRATA::Termination::Impl", "");
+    }
+    if (frontToBack)
+    {
+      Replace(fs, "//STRATA::Composite::Impl",
+        "float k0 = floor(tEnter / dt);\n"
+        "  for (int it = 0; it < 1048576; ++it)\n  {\n"
+        "    float a = max((k0 + float(it)) * dt, tEnter);\n"
+        "    float b = min((k0 + float(it) + 1.0) * dt, tExit);\n"
+        "    if (a >= tExit)\n    {\n      break;\n    }\n"
+        "    if (b > a)\n    {\n"
+        "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n"
+        "      acc += (1.0 - acc.a) * c;\n"
+        "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n  }");
+    }
+    else
+    {
+      Replace(fs, "//STRATA::Composite::Impl",
+        "float k1 = ceil(tExit / dt);\n"
+        "  for (int it = 0; it < 1048576; ++it)\n  {\n"
+        "    float b = min((k1 - float(it)) * dt, tExit);\n"
+        "    float a = max((k1 - float(it) - 1.0) * dt, tEnter);\n"
+        "    if (b <= tEnter)\n    {\n      break;\n    }\n"
+        "    if (b > a)\n    {\n"
+        "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n"
+        "      acc = c + (1.0 - c.a) * acc;\n    }\n  }");
+    }
+    vtkShaderProgram* program =
+      renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
+    if (!program)
+    {
+      vtkErrorMacro("The multi-volume shader for " << k << " volumes did not compile or link.");
+      break;
+    }
+    in.Sources[k] = fs;
+    if (!in.FragmentVAO)
+    {
+      glGenVertexArrays(1, &in.FragmentVAO);
+    }
+    glBindVertexArray(in.FragmentVAO);
+    if (in.ProgramOfVao[0] != program)
+    {
+      glBindBuffer(GL_ARRAY_BUFFER, in.FragmentVBO);
+      const GLint location = glGetAttribLocation(program->GetHandle(), "vertexLocal");
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+      glBindBuffer(GL_ARRAY_BUFFER, 0);
+      in.ProgramOfVao[0] = program;
+    }
+
+    float m[16];
+    ToFloat(localToClip, m);
+    program->SetUniformMatrix4x4("uLocalToClip", m);
+    ToFloat(clipToLocal, m);
+    program->SetUniformMatrix4x4("uClipToLocal", m);
+    const float viewport[4] = { 0.f, 0.f, float(width), float(height) };
+    program->SetUniform4f("uViewport", viewport);
+    program->SetUniformf("uSampleDistance", static_cast<float>(sampleDistance));
+    std::vector<float> planes(4 * MaxPlanes, 0.f);
+    for (size_t p = 0; p < frag.Planes.size(); ++p)
+      for (int c = 0; c < 4; ++c)
+        planes[4 * p + c] = static_cast<float>(frag.Planes[p][c]);
+    program->SetUniformi("uNumPlanes", static_cast<int>(frag.Planes.size()));
+    program->SetUniform4fv("uPlanes", MaxPlanes, reinterpret_cast<const float(*)[4]>(planes.data()));
+    in.SceneDepth->Activate();
+    program->SetUniformi("uSceneDepth", in.SceneDepth->GetTextureUnit());
+    if (frontToBack)
+    {
+      program->SetUniformf("uTerminationOpacity", static_cast<float>(this->TerminationOpacity));
+    }
+    if (barrier)
+    {
+      in.Accumulation->Activate();
+      program->SetUniformi("uAccumulation", in.Accumulation->GetTextureUnit());
+    }
+    for (int i = 0; i < k; ++i)
+    {
+      const int v = frag.BoxIndices[i];
+      StrataVolumeTextures& tex = in.Textures[ports[v]];
+      const StrataVolumeEntry& e = volumes[v];
+      // local -> texture: (index + 0.5) / n of index = IndexToWorld^-1 (local + origin).
+      vtkNew<vtkMatrix4x4> worldToIndex, localToIndex, indexToTex, localToTex;
+      vtkMatrix4x4::Invert(e.IndexToWorld, worldToIndex);
+      vtkMatrix4x4::Multiply4x4(worldToIndex, toWorld, localToIndex);
+      for (int a = 0; a < 3; ++a)
+      {
+        indexToTex->SetElement(a, a, 1.0 / e.Dims[a]);
+        indexToTex->SetElement(a, 3, 0.5 / e.Dims[a]);
+      }
+      vtkMatrix4x4::Multiply4x4(indexToTex, localToIndex, localToTex);
+      ToFloat(localToTex, m);
+      const std::string n = std::to_string(i);
+      program->SetUniformMatrix4x4(("uLocalToTexture" + n).c_str(), m);
+      tex.Data->Activate();
+      program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
+      tex.Transfer->Activate();
+      program->SetUniformi(("uTransfer" + n).c_str(), tex.Transfer->GetTextureUnit());
+      const float range[3] = { float(tex.Range[0]), float(tex.Range[1]), float(tex.Range[2]) };
+      program->SetUniform3f(("uTableRange" + n).c_str(), range);
+    }
+    glDrawArrays(GL_TRIANGLES, in.FragmentFirst[f], in.FragmentCount[f]);
+    if (barrier)
+    {
+      if (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier)
+        glTextureBarrier();
+      else
+        glTextureBarrierNV();
+    }
+    for (int i = 0; i < k; ++i)
+    {
+      StrataVolumeTextures& tex = in.Textures[ports[frag.BoxIndices[i]]];
+      tex.Data->Deactivate();
+      tex.Transfer->Deactivate();
+    }
+    if (barrier)
+    {
+      in.Accumulation->Deactivate();
+    }
+    in.SceneDepth->Deactivate();
+    glBindVertexArray(0);
+    ++in.LastFragments;
+  }
+  glDisable(GL_DEPTH_CLAMP);
+  state->vtkglCullFace(GL_BACK);
+  state->PopFramebufferBindings();
+
+  // --- Blend the integration buffer over the scene.
+  vtkShaderProgram* composite = renWin->GetShaderCache()->ReadyShaderProgram(
+    vtkMultiVolumeCompositeVS, vtkMultiVolumeCompositeFS, "");
+  if (composite)
+  {
+    state->vtkglViewport(vp[0], vp[1], width, height);
+    state->vtkglDisable(GL_CULL_FACE);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    in.Accumulation->Activate();
+    composite->SetUniformi("uAccumulation", in.Accumulation->GetTextureUnit());
+    const float vpOrigin[2] = { float(vp[0]), float(vp[1]) };
+    composite->SetUniform2f("uViewportOrigin", vpOrigin);
+    if (!in.EmptyVAO)
+    {
+      glGenVertexArrays(1, &in.EmptyVAO);
+    }
+    glBindVertexArray(in.EmptyVAO);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    in.Accumulation->Deactivate();
+  }
+  vtkOpenGLCheckErrorMacro("failed after multi-volume ray casting");
+}
+
+void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CompositeOrder: "
+     << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront") << "\n";
+  os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
+  os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
+}
