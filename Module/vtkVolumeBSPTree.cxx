@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -17,12 +18,28 @@ using Fragment = vtkVolumeBSPTree::Fragment;
 
 constexpr double Inf = std::numeric_limits<double>::infinity();
 
-struct Face
+// Convex polyhedron with shared points: a cut edge yields one point for both its faces, so the
+// pieces stay watertight without merging by distance.
+struct Polyhedron
 {
-  dvec4 Plane;                 // unit outward normal and offset
-  std::vector<dvec3> Vertices; // counter-clockwise seen from outside
+  std::vector<dvec3> Points;
+  std::vector<dvec4> Planes;        // one per face: unit outward normal and offset
+  std::vector<int> Offsets = { 0 }; // face f is Loops[Offsets[f], Offsets[f + 1])
+  std::vector<int> Loops;           // point indices, counter-clockwise seen from outside
+
+  void Clear()
+  {
+    this->Points.clear();
+    this->Planes.clear();
+    this->Offsets.assign(1, 0);
+    this->Loops.clear();
+  }
+  void AddFace(const dvec4& plane)
+  {
+    this->Planes.push_back(plane);
+    this->Offsets.push_back(static_cast<int>(this->Loops.size()));
+  }
 };
-using Polyhedron = std::vector<Face>;
 
 enum class Side
 {
@@ -52,14 +69,11 @@ Side Classify(const Polyhedron& poly, const dvec4& plane, double tol)
 {
   double lo = Inf;
   double hi = -Inf;
-  for (const Face& f : poly)
+  for (const dvec3& v : poly.Points)
   {
-    for (const dvec3& v : f.Vertices)
-    {
-      const double d = Distance(plane, v);
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
+    const double d = Distance(plane, v);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
   }
   if (lo >= -tol)
   {
@@ -68,129 +82,146 @@ Side Classify(const Polyhedron& poly, const dvec4& plane, double tol)
   return hi <= tol ? Side::Inside : Side::Cut;
 }
 
-bool Less(const dvec3& a, const dvec3& b)
+struct ClipScratch
 {
-  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
-}
+  std::vector<double> Distances;
+  std::vector<int> Sides;
+  std::vector<int> Remap;
+  std::vector<int> Cap;
+  std::vector<std::array<int, 3>> Edges; // (lower point, higher point, new point)
+  std::vector<std::pair<double, int>> Ring;
+};
 
-// Keeps the part with n.x + d <= 0 and closes it with a cap on the plane. Vertices within tol of
-// the plane stay where they are and join the cap. An edge is cut from its end points taken in a
-// fixed order, so its two faces get the bit-identical point and the pieces stay watertight.
-void Clip(const Polyhedron& in, const dvec4& plane, double tol, Polyhedron& out)
+// Keeps the part with n.x + d <= 0 and closes it with a cap on the plane. Points within tol of
+// the plane stay where they are and join the cap, so nearly coplanar planes add no slivers.
+void Clip(const Polyhedron& in, const dvec4& plane, double tol, Polyhedron& out, ClipScratch& s)
 {
-  out.clear();
-  std::vector<dvec3> cap;
-  std::vector<double> dist;
-  std::vector<int> side;
-  for (const Face& f : in)
+  out.Clear();
+  const size_t nv = in.Points.size();
+  s.Distances.resize(nv);
+  s.Sides.resize(nv);
+  s.Remap.resize(nv);
+  s.Cap.clear();
+  s.Edges.clear();
+  for (size_t v = 0; v < nv; ++v)
   {
-    const size_t n = f.Vertices.size();
-    dist.resize(n);
-    side.resize(n);
-    for (size_t i = 0; i < n; ++i)
+    const double d = Distance(plane, in.Points[v]);
+    s.Distances[v] = d;
+    s.Sides[v] = d < -tol ? -1 : (d > tol ? 1 : 0);
+    s.Remap[v] = -1;
+    if (s.Sides[v] <= 0)
     {
-      dist[i] = Distance(plane, f.Vertices[i]);
-      side[i] = dist[i] < -tol ? -1 : (dist[i] > tol ? 1 : 0);
-    }
-    Face g;
-    g.Plane = f.Plane;
-    bool inside = false;
-    for (size_t i = 0; i < n; ++i)
-    {
-      const size_t j = (i + 1) % n;
-      const dvec3& a = f.Vertices[i];
-      const dvec3& b = f.Vertices[j];
-      if (side[i] <= 0)
+      s.Remap[v] = static_cast<int>(out.Points.size());
+      out.Points.push_back(in.Points[v]);
+      if (s.Sides[v] == 0)
       {
-        g.Vertices.push_back(a);
-        inside = inside || side[i] < 0;
-        if (side[i] == 0)
-        {
-          cap.push_back(a);
-        }
+        s.Cap.push_back(s.Remap[v]);
       }
-      if (side[i] * side[j] < 0)
+    }
+  }
+  auto edgePoint = [&](int a, int b)
+  {
+    const int lo = std::min(a, b);
+    const int hi = std::max(a, b);
+    for (const auto& e : s.Edges)
+    {
+      if (e[0] == lo && e[1] == hi)
       {
-        const dvec3 p = Less(a, b) ? a + (b - a) * (dist[i] / (dist[i] - dist[j]))
-                                   : b + (a - b) * (dist[j] / (dist[j] - dist[i]));
-        g.Vertices.push_back(p);
-        cap.push_back(p);
+        return e[2];
+      }
+    }
+    const int index = static_cast<int>(out.Points.size());
+    const double t = s.Distances[lo] / (s.Distances[lo] - s.Distances[hi]);
+    out.Points.push_back(in.Points[lo] + (in.Points[hi] - in.Points[lo]) * t);
+    s.Cap.push_back(index);
+    s.Edges.push_back({ { lo, hi, index } });
+    return index;
+  };
+  for (size_t f = 0; f < in.Planes.size(); ++f)
+  {
+    const int begin = in.Offsets[f];
+    const int n = in.Offsets[f + 1] - begin;
+    const size_t start = out.Loops.size();
+    bool inside = false;
+    for (int i = 0; i < n; ++i)
+    {
+      const int a = in.Loops[begin + i];
+      const int b = in.Loops[begin + (i + 1) % n];
+      if (s.Sides[a] <= 0)
+      {
+        out.Loops.push_back(s.Remap[a]);
+        inside = inside || s.Sides[a] < 0;
+      }
+      if (s.Sides[a] * s.Sides[b] < 0)
+      {
+        out.Loops.push_back(edgePoint(a, b));
       }
     }
     // A face only touching the plane from outside, or lying in it, is replaced by the cap.
-    if (inside && g.Vertices.size() >= 3)
+    if (inside && out.Loops.size() - start >= 3)
     {
-      out.push_back(std::move(g));
+      out.AddFace(in.Planes[f]);
+    }
+    else
+    {
+      out.Loops.resize(start);
     }
   }
-
-  // Points on the plane are shared by two or more faces: merge them, then order them
-  // counter-clockwise around their centroid as seen from outside (along +n).
-  std::vector<dvec3> unique;
-  for (const dvec3& p : cap)
+  if (s.Cap.size() < 3)
   {
-    bool found = false;
-    for (const dvec3& q : unique)
-    {
-      const dvec3 e = p - q;
-      if (glm::dot(e, e) <= tol * tol)
-      {
-        found = true;
-        break;
-      }
-    }
-    if (!found)
-    {
-      unique.push_back(p);
-    }
-  }
-  if (unique.size() < 3)
-  {
+    out.Clear(); // only when the plane does not really cut: the caller checks first
     return;
   }
+
+  // The cap is convex: order its points counter-clockwise around their centroid seen along +n.
   const dvec3 n(plane);
   dvec3 c(0.0);
-  for (const dvec3& p : unique)
+  for (int i : s.Cap)
   {
-    c += p;
+    c += out.Points[i];
   }
-  c /= static_cast<double>(unique.size());
+  c /= static_cast<double>(s.Cap.size());
   const dvec3 an = glm::abs(n);
-  const dvec3 axis = an.x <= an.y && an.x <= an.z ? dvec3(1, 0, 0)
-                                                  : (an.y <= an.z ? dvec3(0, 1, 0) : dvec3(0, 0, 1));
+  const dvec3 axis = an.x <= an.y && an.x <= an.z
+                       ? dvec3(1, 0, 0)
+                       : (an.y <= an.z ? dvec3(0, 1, 0) : dvec3(0, 0, 1));
   const dvec3 u = glm::normalize(glm::cross(n, axis));
   const dvec3 v = glm::cross(n, u); // u x v = n
-  std::vector<std::pair<double, dvec3>> ring;
-  ring.reserve(unique.size());
-  for (const dvec3& p : unique)
+  s.Ring.clear();
+  for (int i : s.Cap)
   {
-    ring.emplace_back(std::atan2(glm::dot(p - c, v), glm::dot(p - c, u)), p);
+    const dvec3 e = out.Points[i] - c;
+    s.Ring.emplace_back(std::atan2(glm::dot(e, v), glm::dot(e, u)), i);
   }
-  std::sort(ring.begin(), ring.end(),
-    [](const std::pair<double, dvec3>& a, const std::pair<double, dvec3>& b)
-    { return a.first < b.first; });
-  Face capFace;
-  capFace.Plane = plane;
-  for (const auto& r : ring)
+  std::sort(s.Ring.begin(), s.Ring.end());
+  for (const auto& r : s.Ring)
   {
-    capFace.Vertices.push_back(r.second);
+    out.Loops.push_back(r.second);
   }
-  out.push_back(std::move(capFace));
+  out.AddFace(plane);
 }
 
-Polyhedron MakeAxisBox(const dvec3& lo, const dvec3& hi)
+void MakeAxisBox(const dvec3& lo, const dvec3& hi, Polyhedron& box)
 {
-  const dvec3 p[8] = { { lo.x, lo.y, lo.z }, { hi.x, lo.y, lo.z }, { hi.x, hi.y, lo.z },
-    { lo.x, hi.y, lo.z }, { lo.x, lo.y, hi.z }, { hi.x, lo.y, hi.z }, { hi.x, hi.y, hi.z },
-    { lo.x, hi.y, hi.z } };
-  return {
-    { dvec4(-1, 0, 0, lo.x), { p[0], p[4], p[7], p[3] } },
-    { dvec4(1, 0, 0, -hi.x), { p[1], p[2], p[6], p[5] } },
-    { dvec4(0, -1, 0, lo.y), { p[0], p[1], p[5], p[4] } },
-    { dvec4(0, 1, 0, -hi.y), { p[3], p[7], p[6], p[2] } },
-    { dvec4(0, 0, -1, lo.z), { p[0], p[3], p[2], p[1] } },
-    { dvec4(0, 0, 1, -hi.z), { p[4], p[5], p[6], p[7] } },
+  box.Clear();
+  for (int k = 0; k < 8; ++k)
+  {
+    box.Points.emplace_back(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+  }
+  const int loops[6][4] = {
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 2, 3, 1 }, { 4, 5, 7, 6 }
   };
+  const dvec4 planes[6] = { dvec4(-1, 0, 0, lo.x),
+    dvec4(1, 0, 0, -hi.x),
+    dvec4(0, -1, 0, lo.y),
+    dvec4(0, 1, 0, -hi.y),
+    dvec4(0, 0, -1, lo.z),
+    dvec4(0, 0, 1, -hi.z) };
+  for (int f = 0; f < 6; ++f)
+  {
+    box.Loops.insert(box.Loops.end(), loops[f], loops[f] + 4);
+    box.AddFace(planes[f]);
+  }
 }
 
 struct BoxGeometry
@@ -200,16 +231,20 @@ struct BoxGeometry
   dvec4 Planes[6]; // -u0, +u0, -u1, +u1, -u2, +u2
 };
 
+// A box that covers part of a cell, with that part: the split cost is measured on it.
 struct Partial
 {
-  int Box;         // into the geometry list
-  Polyhedron Part; // the box clipped to the cell
+  int Box; // into the geometry list
+  Polyhedron Part;
+  int Cuts = 0; // bit f: plane f of the box cuts the cell
 };
 
 class Builder
 {
 public:
-  Builder(const std::vector<BoxGeometry>& geometry, double tol, std::vector<Node>& nodes,
+  Builder(const std::vector<BoxGeometry>& geometry,
+    double tol,
+    std::vector<Node>& nodes,
     std::vector<Fragment>& fragments)
     : Geometry(geometry)
     , Tol(tol)
@@ -218,88 +253,131 @@ public:
   {
   }
 
-  int Split(const Polyhedron& cell, std::vector<int> covering, const std::vector<int>& candidates,
-    int depth);
+  int Build(const dvec3& lo, const dvec3& hi);
 
   int Depth = 0;
 
 private:
+  int Split(Polyhedron cell, std::vector<int> covering, std::vector<Partial> partial, int depth);
   int MakeLeaf(const Polyhedron& cell, const std::vector<int>& covering);
+
+  // Polyhedra are recycled: a build makes thousands and their vectors keep their capacity.
+  Polyhedron Acquire()
+  {
+    if (this->Pool.empty())
+    {
+      return Polyhedron();
+    }
+    Polyhedron p = std::move(this->Pool.back());
+    this->Pool.pop_back();
+    return p;
+  }
+  void Release(Polyhedron& p) { this->Pool.push_back(std::move(p)); }
 
   const std::vector<BoxGeometry>& Geometry;
   double Tol;
   std::vector<Node>& Nodes;
   std::vector<Fragment>& Fragments;
+  std::vector<Polyhedron> Pool;
+  ClipScratch Scratch;
 };
 
-int Builder::Split(
-  const Polyhedron& cell, std::vector<int> covering, const std::vector<int>& candidates, int depth)
+int Builder::Build(const dvec3& lo, const dvec3& hi)
 {
-  this->Depth = std::max(this->Depth, depth);
-
-  // Each candidate box contains the cell, misses it, or covers part of it. Clipping plane by
-  // plane is exact where a corner test is not (a box can miss a cell that is inside none of its
-  // planes' outsides), and the part is what the split cost below is measured on.
+  Polyhedron root = this->Acquire();
+  MakeAxisBox(lo, hi, root);
+  // Each box's part of the root, clipped plane by plane: exact where a corner test is not.
   std::vector<Partial> partial;
-  Polyhedron scratch;
-  for (int b : candidates)
+  Polyhedron scratch = this->Acquire();
+  for (size_t b = 0; b < this->Geometry.size(); ++b)
   {
-    const BoxGeometry& g = this->Geometry[b];
-    Polyhedron part;
-    bool clipped = false;
+    Partial q{ static_cast<int>(b), this->Acquire() };
+    q.Part = root;
     bool missed = false;
-    for (const dvec4& plane : g.Planes)
+    for (const dvec4& plane : this->Geometry[b].Planes)
     {
-      const Side s = Classify(clipped ? part : cell, plane, this->Tol);
-      if (s == Side::Outside)
+      const Side s = Classify(q.Part, plane, this->Tol);
+      missed = s == Side::Outside;
+      if (missed)
       {
-        missed = true;
         break;
       }
       if (s == Side::Cut)
       {
-        Clip(clipped ? part : cell, plane, this->Tol, scratch);
-        part.swap(scratch);
-        clipped = true;
-        if (part.size() < 4)
-        {
-          missed = true;
-          break;
-        }
+        Clip(q.Part, plane, this->Tol, scratch, this->Scratch);
+        std::swap(q.Part, scratch);
       }
     }
     if (missed)
     {
-      continue;
-    }
-    if (clipped)
-    {
-      partial.push_back({ b, std::move(part) });
+      this->Release(q.Part);
     }
     else
     {
-      covering.push_back(b);
+      partial.push_back(std::move(q));
     }
   }
+  this->Release(scratch);
+  return this->Split(std::move(root), {}, std::move(partial), 0);
+}
+
+int Builder::Split(Polyhedron cell,
+  std::vector<int> covering,
+  std::vector<Partial> partial,
+  int depth)
+{
+  this->Depth = std::max(this->Depth, depth);
+
+  // Against the cell's own points each box misses it (outside one plane), covers it (inside all
+  // six) or has a plane cutting it, which is then a split candidate.
+  size_t kept = 0;
+  for (Partial& q : partial)
+  {
+    bool missed = false;
+    q.Cuts = 0;
+    for (int f = 0; f < 6 && !missed; ++f)
+    {
+      const Side s = Classify(cell, this->Geometry[q.Box].Planes[f], this->Tol);
+      missed = s == Side::Outside;
+      q.Cuts |= s == Side::Cut ? 1 << f : 0;
+    }
+    if (missed || q.Cuts == 0)
+    {
+      if (!missed)
+      {
+        covering.push_back(q.Box);
+      }
+      this->Release(q.Part);
+      continue;
+    }
+    if (&partial[kept] != &q)
+    {
+      partial[kept] = std::move(q);
+    }
+    ++kept;
+  }
+  partial.resize(kept);
   if (partial.empty())
   {
-    return this->MakeLeaf(cell, covering);
+    const int leaf = this->MakeLeaf(cell, covering);
+    this->Release(cell);
+    return leaf;
   }
 
-  // The first plane that clipped a partial box cut the cell itself, so a candidate exists. Cost:
-  // partial boxes the plane cuts inside the cell (each may add a fragment); covering boxes are
-  // cut by every candidate alike and do not count.
+  // Cost of a candidate: the other partial boxes it cuts inside the cell (each may add a
+  // fragment); covering boxes are cut by every candidate alike and do not count.
   int bestStraddles = std::numeric_limits<int>::max();
   bool bestTrims = false;
   dvec4 best(0.0);
   for (const Partial& p : partial)
   {
-    for (const dvec4& plane : this->Geometry[p.Box].Planes)
+    for (int f = 0; f < 6; ++f)
     {
-      if (Classify(cell, plane, this->Tol) != Side::Cut)
+      if (!(p.Cuts & (1 << f)))
       {
         continue;
       }
+      const dvec4& plane = this->Geometry[p.Box].Planes[f];
       int straddles = 0;
       bool trims = covering.empty(); // nothing outside the plane: a free cut
       for (const Partial& q : partial)
@@ -309,14 +387,8 @@ int Builder::Split(
           continue;
         }
         const Side s = Classify(q.Part, plane, this->Tol);
-        if (s == Side::Cut)
-        {
-          ++straddles;
-        }
-        if (s != Side::Inside)
-        {
-          trims = false;
-        }
+        straddles += s == Side::Cut ? 1 : 0;
+        trims = trims && s == Side::Inside;
         if (straddles > bestStraddles)
         {
           break;
@@ -330,43 +402,57 @@ int Builder::Split(
       }
     }
   }
-  // Each split removes a plane from the set cutting the cell, so depth is bounded by the plane
-  // count; this guard only catches rounding gone wrong and keeps the union covered.
-  if (bestStraddles == std::numeric_limits<int>::max() ||
-    depth > 6 * static_cast<int>(this->Geometry.size()) + 8)
+  // Every split takes a plane out of the set cutting the cell, so the depth is bounded by the
+  // plane count; this guard only stops rounding gone wrong, keeping the union covered.
+  if (depth > 6 * static_cast<int>(this->Geometry.size()) + 8)
   {
-    for (const Partial& p : partial)
+    for (Partial& q : partial)
     {
-      covering.push_back(p.Box);
+      covering.push_back(q.Box);
+      this->Release(q.Part);
     }
-    return this->MakeLeaf(cell, covering);
+    const int leaf = this->MakeLeaf(cell, covering);
+    this->Release(cell);
+    return leaf;
   }
 
-  std::vector<int> inside;
-  std::vector<int> outside;
-  for (const Partial& q : partial)
+  std::vector<Partial> inside;
+  std::vector<Partial> outside;
+  for (Partial& q : partial)
   {
     const Side s = Classify(q.Part, best, this->Tol);
-    if (s != Side::Outside)
+    if (s == Side::Inside)
     {
-      inside.push_back(q.Box);
+      inside.push_back(std::move(q));
     }
-    if (s != Side::Inside)
+    else if (s == Side::Outside)
     {
-      outside.push_back(q.Box);
+      outside.push_back(std::move(q));
+    }
+    else
+    {
+      Partial in{ q.Box, this->Acquire() };
+      Partial out{ q.Box, this->Acquire() };
+      Clip(q.Part, best, this->Tol, in.Part, this->Scratch);
+      Clip(q.Part, -best, this->Tol, out.Part, this->Scratch);
+      this->Release(q.Part);
+      inside.push_back(std::move(in));
+      outside.push_back(std::move(out));
     }
   }
   partial.clear();
-  Polyhedron in;
-  Polyhedron out;
-  Clip(cell, best, this->Tol, in);
-  Clip(cell, -best, this->Tol, out);
+  Polyhedron in = this->Acquire();
+  Polyhedron out = this->Acquire();
+  Clip(cell, best, this->Tol, in, this->Scratch);
+  Clip(cell, -best, this->Tol, out, this->Scratch);
+  this->Release(cell);
 
   const int node = static_cast<int>(this->Nodes.size());
   this->Nodes.emplace_back();
   this->Nodes[node].Split = ToPlane(best);
-  const int inChild = this->Split(in, covering, inside, depth + 1);
-  const int outChild = this->Split(out, std::move(covering), outside, depth + 1);
+  const int inChild = this->Split(std::move(in), covering, std::move(inside), depth + 1);
+  const int outChild =
+    this->Split(std::move(out), std::move(covering), std::move(outside), depth + 1);
   this->Nodes[node].Inside = inChild;
   this->Nodes[node].Outside = outChild;
   return node;
@@ -391,28 +477,30 @@ int Builder::MakeLeaf(const Polyhedron& cell, const std::vector<int>& covering)
     f.BoxIndices.push_back(id.second);
   }
 
-  // Share vertices between faces (the clipper keeps them within tol of each other).
+  // Points closer than tol (two cuts just either side of a corner) become one vertex.
+  std::vector<int> merged(cell.Points.size());
   std::vector<dvec3> vertices;
-  for (const Face& face : cell)
+  for (size_t i = 0; i < cell.Points.size(); ++i)
+  {
+    const dvec3& p = cell.Points[i];
+    merged[i] = -1;
+    for (size_t k = 0; k < vertices.size() && merged[i] < 0; ++k)
+    {
+      const dvec3 e = p - vertices[k];
+      merged[i] = glm::dot(e, e) <= this->Tol * this->Tol ? static_cast<int>(k) : -1;
+    }
+    if (merged[i] < 0)
+    {
+      merged[i] = static_cast<int>(vertices.size());
+      vertices.push_back(p);
+    }
+  }
+  for (size_t face = 0; face < cell.Planes.size(); ++face)
   {
     std::vector<int> loop;
-    for (const dvec3& p : face.Vertices)
+    for (int k = cell.Offsets[face]; k < cell.Offsets[face + 1]; ++k)
     {
-      int index = -1;
-      for (size_t k = 0; k < vertices.size(); ++k)
-      {
-        const dvec3 e = p - vertices[k];
-        if (glm::dot(e, e) <= this->Tol * this->Tol)
-        {
-          index = static_cast<int>(k);
-          break;
-        }
-      }
-      if (index < 0)
-      {
-        index = static_cast<int>(vertices.size());
-        vertices.push_back(p);
-      }
+      const int index = merged[cell.Loops[k]];
       if (loop.empty() || loop.back() != index)
       {
         loop.push_back(index);
@@ -426,7 +514,7 @@ int Builder::MakeLeaf(const Polyhedron& cell, const std::vector<int>& covering)
     {
       continue;
     }
-    f.Planes.push_back(ToPlane(face.Plane));
+    f.Planes.push_back(ToPlane(cell.Planes[face]));
     for (size_t k = 1; k + 1 < loop.size(); ++k)
     {
       f.Triangles.insert(f.Triangles.end(), { loop[0], loop[k], loop[k + 1] });
@@ -579,14 +667,8 @@ void vtkVolumeBSPTree::Build()
 
   // Padding keeps the root's own planes off every box, so no fragment has a face on them.
   const dvec3 pad(0.01 * diagonal + tol);
-  const Polyhedron root = MakeAxisBox(lo - pad, hi + pad);
-  std::vector<int> candidates(geometry.size());
-  for (size_t i = 0; i < geometry.size(); ++i)
-  {
-    candidates[i] = static_cast<int>(i);
-  }
   Builder builder(geometry, tol, this->Nodes, this->Fragments);
-  this->Root = builder.Split(root, {}, candidates, 0);
+  this->Root = builder.Build(lo - pad, hi + pad);
   this->Depth = builder.Depth;
 }
 
@@ -602,7 +684,8 @@ int vtkVolumeBSPTree::GetMaximumOverlap() const
 
 int vtkVolumeBSPTree::FindFragment(const Vector3& worldPoint) const
 {
-  const dvec3 p(worldPoint[0] - this->Origin[0], worldPoint[1] - this->Origin[1],
+  const dvec3 p(worldPoint[0] - this->Origin[0],
+    worldPoint[1] - this->Origin[1],
     worldPoint[2] - this->Origin[2]);
   int node = this->Root;
   while (node >= 0)
@@ -619,7 +702,8 @@ int vtkVolumeBSPTree::FindFragment(const Vector3& worldPoint) const
 
 bool vtkVolumeBSPTree::FragmentContainsPoint(int i, const Vector3& worldPoint) const
 {
-  const dvec3 p(worldPoint[0] - this->Origin[0], worldPoint[1] - this->Origin[1],
+  const dvec3 p(worldPoint[0] - this->Origin[0],
+    worldPoint[1] - this->Origin[1],
     worldPoint[2] - this->Origin[2]);
   for (const Plane& plane : this->Fragments[i].Planes)
   {
@@ -631,8 +715,11 @@ bool vtkVolumeBSPTree::FragmentContainsPoint(int i, const Vector3& worldPoint) c
   return true;
 }
 
-void vtkVolumeBSPTree::Collect(int node, const Vector3& localEye, bool parallel,
-  const Vector3& direction, std::vector<int>& order) const
+void vtkVolumeBSPTree::Collect(int node,
+  const Vector3& localEye,
+  bool parallel,
+  const Vector3& direction,
+  std::vector<int>& order) const
 {
   if (node < 0)
   {
@@ -647,25 +734,30 @@ void vtkVolumeBSPTree::Collect(int node, const Vector3& localEye, bool parallel,
   const Plane& s = n.Split;
   // The side rays start on comes first. An eye on the plane sees either side only through
   // itself, and rays parallel to the plane never cross it: then either order is right.
-  const bool insideFirst = parallel
-    ? s[0] * direction[0] + s[1] * direction[1] + s[2] * direction[2] >= 0.0
-    : s[0] * localEye[0] + s[1] * localEye[1] + s[2] * localEye[2] + s[3] <= 0.0;
+  const bool insideFirst =
+    parallel ? s[0] * direction[0] + s[1] * direction[1] + s[2] * direction[2] >= 0.0
+             : s[0] * localEye[0] + s[1] * localEye[1] + s[2] * localEye[2] + s[3] <= 0.0;
   this->Collect(insideFirst ? n.Inside : n.Outside, localEye, parallel, direction, order);
   this->Collect(insideFirst ? n.Outside : n.Inside, localEye, parallel, direction, order);
 }
 
-void vtkVolumeBSPTree::SortFrontToBack(
-  const Vector3& eye, bool parallel, const Vector3& direction, std::vector<int>& order) const
+void vtkVolumeBSPTree::SortFrontToBack(const Vector3& eye,
+  bool parallel,
+  const Vector3& direction,
+  std::vector<int>& order) const
 {
   order.clear();
   order.reserve(this->Fragments.size());
-  const Vector3 local = { { eye[0] - this->Origin[0], eye[1] - this->Origin[1],
-    eye[2] - this->Origin[2] } };
+  const Vector3 local = {
+    { eye[0] - this->Origin[0], eye[1] - this->Origin[1], eye[2] - this->Origin[2] }
+  };
   this->Collect(this->Root, local, parallel, direction, order);
 }
 
-void vtkVolumeBSPTree::SortBackToFront(
-  const Vector3& eye, bool parallel, const Vector3& direction, std::vector<int>& order) const
+void vtkVolumeBSPTree::SortBackToFront(const Vector3& eye,
+  bool parallel,
+  const Vector3& direction,
+  std::vector<int>& order) const
 {
   this->SortFrontToBack(eye, parallel, direction, order);
   std::reverse(order.begin(), order.end());

@@ -48,7 +48,7 @@ public:
   struct Box
   {
     /// Row-major 4x4 matrix mapping the unit cube [0,1]^3 to world coordinates (any rotation,
-    /// non-uniform scale, shear and translation).
+    /// non-uniform scale, shear, mirroring and translation; the last row is taken as 0 0 0 1).
     std::array<double, 16> Matrix;
     int VolumeId;
     bool operator==(const Box& other) const
@@ -130,14 +130,21 @@ public:
    * Parallel: rays travel along `direction` and `eye` is ignored. Fragments on the far side of
    * every plane are never in front of nearer ones, so compositing in this order is exact.
    */
-  void SortFrontToBack(
-    const Vector3& eye, bool parallel, const Vector3& direction, std::vector<int>& order) const;
+  void SortFrontToBack(const Vector3& eye,
+    bool parallel,
+    const Vector3& direction,
+    std::vector<int>& order) const;
   /// The reverse of SortFrontToBack(), for back-to-front compositing.
-  void SortBackToFront(
-    const Vector3& eye, bool parallel, const Vector3& direction, std::vector<int>& order) const;
+  void SortBackToFront(const Vector3& eye,
+    bool parallel,
+    const Vector3& direction,
+    std::vector<int>& order) const;
 
 private:
-  void Collect(int node, const Vector3& localEye, bool parallel, const Vector3& direction,
+  void Collect(int node,
+    const Vector3& localEye,
+    bool parallel,
+    const Vector3& direction,
     std::vector<int>& order) const;
 
   std::vector<Box> Boxes;

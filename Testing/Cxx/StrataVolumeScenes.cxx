@@ -1,0 +1,186 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "StrataVolumeScenes.h"
+#include "StrataTestHelpers.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace strata_test
+{
+vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx, int ny, int nz, const double spacing[3],
+  const double origin[3], int seed)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  image->SetSpacing(spacing[0], spacing[1], spacing[2]);
+  image->SetOrigin(origin[0], origin[1], origin[2]);
+  vtkNew<vtkFloatArray> a;
+  a->SetName("density");
+  a->SetNumberOfValues(image->GetNumberOfPoints());
+  // Three blobs at seed-dependent places inside the unit box of the volume.
+  double centre[3][3], width[3];
+  for (int b = 0; b < 3; ++b)
+  {
+    for (int c = 0; c < 3; ++c)
+      centre[b][c] = 0.25 + 0.5 * std::fmod(0.37 * (seed + 1) * (b + 1) + 0.23 * c * (b + 2), 1.0);
+    width[b] = 0.22 + 0.06 * b;
+  }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const double u[3] = { nx > 1 ? double(i) / (nx - 1) : 0.5, ny > 1 ? double(j) / (ny - 1) : 0.5,
+          nz > 1 ? double(k) / (nz - 1) : 0.5 };
+        double v = 10.0 * u[0];
+        for (int b = 0; b < 3; ++b)
+        {
+          double r2 = 0;
+          for (int c = 0; c < 3; ++c)
+            r2 += (u[c] - centre[b][c]) * (u[c] - centre[b][c]);
+          v += (90.0 - 20 * b) * std::exp(-r2 / (width[b] * width[b]));
+        }
+        a->SetValue((vtkIdType(k) * ny + j) * nx + i, static_cast<float>(v));
+      }
+  image->GetPointData()->SetScalars(a);
+  return image;
+}
+
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDistance)
+{
+  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
+  vtkNew<vtkColorTransferFunction> ctf;
+  const double palette[3][2][3] = { { { 0.1, 0.2, 1.0 }, { 1.0, 0.3, 0.1 } },
+    { { 0.1, 0.8, 0.2 }, { 1.0, 1.0, 0.3 } }, { { 0.6, 0.1, 0.8 }, { 0.2, 0.9, 1.0 } } };
+  const auto& pal = palette[variant % 3];
+  ctf->AddRGBPoint(0, pal[0][0], pal[0][1], pal[0][2]);
+  ctf->AddRGBPoint(100, pal[1][0], pal[1][1], pal[1][2]);
+  vtkNew<vtkPiecewiseFunction> pwf;
+  pwf->AddPoint(0, 0.0);
+  pwf->AddPoint(8, 0.0);
+  pwf->AddPoint(30, 0.04);
+  pwf->AddPoint(100, 0.3);
+  p->SetColor(ctf);
+  p->SetScalarOpacity(pwf);
+  p->SetScalarOpacityUnitDistance(unitDistance);
+  p->SetInterpolationTypeToLinear();
+  return p;
+}
+
+vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image, vtkVolume* member)
+{
+  vtkMultiVolumeReferenceIntegrator::Volume v;
+  image->GetDimensions(v.Dimensions);
+  image->GetOrigin(v.Origin);
+  image->GetSpacing(v.Spacing);
+  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9, v.Direction);
+  member->ComputeMatrix();
+  std::copy(member->GetMatrix()->GetData(), member->GetMatrix()->GetData() + 16, v.ModelMatrix);
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  v.FloatScalars.resize(s->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
+    v.FloatScalars[i] = static_cast<float>(s->GetComponent(i, 0));
+  vtkVolumeProperty* p = member->GetProperty();
+  v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
+    ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
+    : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
+  // The mapper's table: 1024 entries over the union of the opacity and colour ranges.
+  const int n = 1024;
+  vtkPiecewiseFunction* pwf = p->GetScalarOpacity(0);
+  vtkColorTransferFunction* ctf = p->GetRGBTransferFunction(0);
+  double range[2], cr[2];
+  pwf->GetRange(range);
+  ctf->GetRange(cr);
+  range[0] = std::min(range[0], cr[0]);
+  range[1] = std::max(range[1], cr[1]);
+  std::vector<float> alpha(n), rgb(3 * n);
+  pwf->GetTable(range[0], range[1], n, alpha.data());
+  ctf->GetTable(range[0], range[1], n, rgb.data());
+  v.Classification.Range[0] = range[0];
+  v.Classification.Range[1] = range[1];
+  v.Classification.Opacity.assign(alpha.begin(), alpha.end());
+  v.Classification.Color.assign(rgb.begin(), rgb.end());
+  v.Classification.UnitDistance = p->GetScalarOpacityUnitDistance(0);
+  return v;
+}
+
+VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
+  double stepFraction)
+{
+  VolumeComparison r;
+  win->Render();
+  r.Gpu = ReadRGB(win);
+  const int w = win->GetSize()[0], h = win->GetSize()[1];
+  vtkMultiVolumeReferenceIntegrator ref;
+  ref.SetStepFraction(stepFraction);
+  for (const auto& v : volumes)
+  {
+    if (ref.AddVolume(ToReferenceVolume(v.first, v.second)) < 0)
+    {
+      std::cerr << name << ": reference rejected a volume: " << ref.GetLastError() << "\n";
+    }
+  }
+  vtkNew<vtkMatrix4x4> worldToClip, clipToWorld;
+  worldToClip->DeepCopy(
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+  ref.IntegrateImage(clipToWorld->GetData(), w, h, r.Reference);
+  double se = 0.0;
+  std::vector<unsigned char> refImage(3 * size_t(w) * h);
+  for (int i = 0; i < w * h; ++i)
+  {
+    r.Covered += r.Reference[4 * i + 3] > 1.0 / 255.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double expected = 255.0 * std::min(1.0, r.Reference[4 * i + c]);
+      refImage[3 * i + c] = static_cast<unsigned char>(std::lround(expected));
+      const double d = double(r.Gpu[3 * i + c]) - expected;
+      se += d * d;
+      r.Max = std::max(r.Max, std::abs(d));
+    }
+  }
+  r.Rms = std::sqrt(se / (3.0 * w * h));
+  WritePNG(OutputDirectory() + "/" + name + "-gpu.png", r.Gpu, w, h);
+  WritePNG(OutputDirectory() + "/" + name + "-ref.png", refImage, w, h);
+  return r;
+}
+
+bool CheckVolumeComparison(const VolumeComparison& c, const std::string& name, double rmsBound,
+  double maxBound, long minCovered)
+{
+  std::cout << name << ": covered " << c.Covered << " px, RMS error " << c.Rms << " (bound "
+            << rmsBound << "), max error " << c.Max << " (bound " << maxBound << ") of 255\n";
+  bool ok = true;
+  if (c.Covered < minCovered)
+  {
+    std::cerr << name << ": FAILED: only " << c.Covered << " covered pixels, expected >= " << minCovered << "\n";
+    ok = false;
+  }
+  if (c.Rms > rmsBound)
+  {
+    std::cerr << name << ": FAILED: RMS error above its bound\n";
+    ok = false;
+  }
+  if (c.Max > maxBound)
+  {
+    std::cerr << name << ": FAILED: max error above its bound\n";
+    ok = false;
+  }
+  return ok;
+}
+}

@@ -1,0 +1,56 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// Volume scenes and the GPU-versus-reference comparison shared by the multi-volume tests and the
+// volume benchmark: analytic volumes, VTK transfer functions, and their exact counterparts for
+// vtkMultiVolumeReferenceIntegrator (the same tables the mapper samples).
+#ifndef StrataVolumeScenes_h
+#define StrataVolumeScenes_h
+
+#include "vtkMultiVolumeReferenceIntegrator.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+class vtkVolumeProperty;
+
+namespace strata_test
+{
+/// A volume of nx x ny x nz float points: a sum of Gaussian blobs and a gentle ramp, values in
+/// about [0, 100], deterministic in `seed`.
+vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx, int ny, int nz, const double spacing[3],
+  const double origin[3], int seed);
+
+/// A property with a colour ramp (hue by `variant`) and a piecewise-linear opacity, linear
+/// interpolation, opacity per unit distance `unitDistance`.
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDistance = 1.0);
+
+/// The reference's description of a mapper input: geometry, model matrix of `member`, scalars as
+/// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does.
+vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image, vtkVolume* member);
+
+struct VolumeComparison
+{
+  double Rms = 0.0;  ///< over all pixels and RGB channels, in 8-bit units
+  double Max = 0.0;  ///< largest channel difference, in 8-bit units
+  long Covered = 0;  ///< pixels where the reference's opacity is above 1 / 255
+  std::vector<unsigned char> Gpu; ///< RGB, bottom row first
+  std::vector<double> Reference;  ///< premultiplied RGBA
+};
+
+/// Renders `win` (black background) and compares its RGB with the reference composite of the
+/// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`.
+VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
+  double stepFraction = 1.0 / 16.0);
+
+/// Prints the comparison and asserts rms <= rmsBound, max <= maxBound, covered >= minCovered.
+bool CheckVolumeComparison(const VolumeComparison& c, const std::string& name, double rmsBound,
+  double maxBound, long minCovered);
+}
+
+#endif
