@@ -5,8 +5,13 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkNew.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkTransform.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPiecewiseFunction.h"
@@ -18,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 
 namespace strata_test
@@ -71,8 +77,8 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDi
   ctf->AddRGBPoint(100, pal[1][0], pal[1][1], pal[1][2]);
   vtkNew<vtkPiecewiseFunction> pwf;
   pwf->AddPoint(0, 0.0);
-  pwf->AddPoint(8, 0.0);
-  pwf->AddPoint(30, 0.04);
+  pwf->AddPoint(20, 0.0);
+  pwf->AddPoint(40, 0.05);
   pwf->AddPoint(100, 0.3);
   p->SetColor(ctf);
   p->SetScalarOpacity(pwf);
@@ -122,7 +128,12 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
   double stepFraction)
 {
+  // Over mid grey, so that opacity errors show as well as colour errors.
   VolumeComparison r;
+  const double background = 128.0 / 255.0; // exact in 8 bits
+  double oldBackground[3];
+  ren->GetBackground(oldBackground);
+  ren->SetBackground(background, background, background);
   win->Render();
   r.Gpu = ReadRGB(win);
   const int w = win->GetSize()[0], h = win->GetSize()[1];
@@ -147,7 +158,8 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
     r.Covered += r.Reference[4 * i + 3] > 1.0 / 255.0;
     for (int c = 0; c < 3; ++c)
     {
-      const double expected = 255.0 * std::min(1.0, r.Reference[4 * i + c]);
+      const double expected =
+        255.0 * std::min(1.0, r.Reference[4 * i + c] + (1.0 - r.Reference[4 * i + 3]) * background);
       refImage[3 * i + c] = static_cast<unsigned char>(std::lround(expected));
       const double d = double(r.Gpu[3 * i + c]) - expected;
       se += d * d;
@@ -155,9 +167,84 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
     }
   }
   r.Rms = std::sqrt(se / (3.0 * w * h));
+  ren->SetBackground(oldBackground);
   WritePNG(OutputDirectory() + "/" + name + "-gpu.png", r.Gpu, w, h);
   WritePNG(OutputDirectory() + "/" + name + "-ref.png", refImage, w, h);
   return r;
+}
+
+vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,
+  std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs)
+{
+  const std::string path = dataDir + "/volumes/bucky.raw";
+  if (!std::ifstream(path))
+  {
+    std::cerr << "Cannot read " << path << "\n";
+    return nullptr;
+  }
+  vtkNew<vtkImageReader2> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetFileDimensionality(3);
+  reader->SetDataScalarTypeToUnsignedChar();
+  reader->SetDataExtent(0, 31, 0, 31, 0, 31);
+  reader->SetDataByteOrderToLittleEndian();
+  reader->Update();
+  auto bucky = vtkSmartPointer<vtkImageData>::New();
+  bucky->ShallowCopy(reader->GetOutput());
+
+  auto mapper = vtkSmartPointer<vtkMultiVolumeRayCastMapper>::New();
+  mapper->SetSampleDistance(0.25);
+  auto multi = vtkSmartPointer<vtkMultiVolume>::New();
+  multi->SetMapper(mapper);
+  auto add = [&](vtkImageData* image, vtkVolumeProperty* property, vtkTransform* transform) {
+    const int port = static_cast<int>(inputs.size());
+    mapper->SetInputDataObject(port, image);
+    auto v = vtkSmartPointer<vtkVolume>::New();
+    v->SetProperty(property);
+    if (transform)
+    {
+      v->SetUserTransform(transform);
+    }
+    multi->SetVolume(v, port);
+    inputs.emplace_back(image, v);
+  };
+
+  // Bucky ball: density 0-255; the carbon shells opaque-ish, the empty inside clear.
+  auto buckyProperty = vtkSmartPointer<vtkVolumeProperty>::New();
+  vtkNew<vtkColorTransferFunction> ctf;
+  ctf->AddRGBPoint(0, 0.9, 0.9, 0.95);
+  ctf->AddRGBPoint(60, 0.95, 0.85, 0.5);
+  ctf->AddRGBPoint(255, 1.0, 0.5, 0.2);
+  vtkNew<vtkPiecewiseFunction> pwf;
+  pwf->AddPoint(0, 0.0);
+  pwf->AddPoint(25, 0.0);
+  pwf->AddPoint(80, 0.25);
+  pwf->AddPoint(255, 0.6);
+  buckyProperty->SetColor(ctf);
+  buckyProperty->SetScalarOpacity(pwf);
+  buckyProperty->SetInterpolationTypeToLinear();
+  add(bucky, buckyProperty, nullptr);
+
+  const double s1[3] = { 0.9, 0.9, 0.9 }, o1[3] = { 0, 0, 0 };
+  vtkNew<vtkTransform> t1;
+  t1->Translate(14, -6, 2);
+  t1->RotateWXYZ(25, 1, 1, 0);
+  add(MakeBlobVolume(48, 40, 36, s1, o1, 3), MakeVolumeProperty(0, 2.0), t1);
+
+  const double s2[3] = { 1.8, 1.8, 1.8 }, o2[3] = { 0, 0, 0 };
+  vtkNew<vtkTransform> t2;
+  t2->Translate(40, 18, -8);
+  t2->RotateZ(60);
+  add(MakeBlobVolume(20, 20, 20, s2, o2, 5), MakeVolumeProperty(1, 2.0), t2);
+
+  ren->AddVolume(multi);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetFocalPoint(30, 14, 14);
+  cam->SetPosition(-25, -75, 70);
+  cam->SetViewUp(0, 0, 1);
+  cam->SetViewAngle(30);
+  ren->ResetCameraClippingRange(-40, 100, -60, 80, -40, 80);
+  return multi;
 }
 
 bool CheckVolumeComparison(const VolumeComparison& c, const std::string& name, double rmsBound,
