@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkMultiVolumeRayCastMapper.h"
 
+#include "vtkPreIntegrationTable.h"
 #include "vtkVolumeBSPTree.h"
 
 #include "vtkCamera.h"
@@ -69,6 +70,180 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
   for (int i = 0; i < 3; ++i)
     m->SetElement(i, 3, t[i]);
 }
+
+// The fragment shader for k volumes: one unrolled block per volume, the classification's segment
+// code and the compositing loop of the order; nothing a fragment does not use.
+std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
+  bool frontToBack, bool barrier)
+{
+  using C = vtkMultiVolumeRayCastMapper::Classifications;
+  std::string fs = vtkMultiVolumeFragmentFS;
+  std::ostringstream dec, seg;
+  const std::string K = std::to_string(k);
+  for (int i = 0; i < k; ++i)
+  {
+    const std::string n = std::to_string(i);
+    dec << "uniform sampler3D uVolume" << n << ";\n"
+        << "uniform mat4 uLocalToTexture" << n << ";\n"
+        << "float strataScalar" << n << "(vec3 p)\n{\n  return texture(uVolume" << n
+        << ", (uLocalToTexture" << n << " * vec4(p, 1.0)).xyz).r;\n}\n";
+    if (classification == C::PostClassification)
+    {
+      dec << "uniform sampler2D uTransfer" << n << ";\n"
+          << "uniform vec3 uTableRange" << n << ";\n";
+    }
+    else
+    {
+      // x = (s - min) * scale in [0, 1] over the table's scalar range; M samples.
+      dec << "uniform sampler2D uPreTable" << n << ";\n"
+          << "uniform vec3 uPreRange" << n << "; // min, scale, M\n";
+      if (classification == C::PreIntegrated)
+      {
+        dec << "uniform float uPreStep" << n << ";\n"
+            << "vec4 strataPre" << n << "(float sf, float sb, float len)\n{\n"
+            << "  vec2 x = clamp((vec2(sf, sb) - uPreRange" << n << ".x) * uPreRange" << n
+            << ".y, 0.0, 1.0);\n"
+            << "  float m = uPreRange" << n << ".z;\n"
+            << "  vec4 ca = texture(uPreTable" << n << ", (x * (m - 1.0) + 0.5) / m);\n"
+            << "  if (len != uPreStep" << n << ")\n  {\n"
+            << "    // A step cut short by a fragment face: opacity corrected to its length.\n"
+            << "    float a = 1.0 - pow(max(1.0 - ca.a, 0.0), len / uPreStep" << n << ");\n"
+            << "    ca = vec4(ca.a > 0.0 ? ca.rgb * (a / ca.a) : vec3(0.0), a);\n  }\n"
+            << "  return ca;\n}\n";
+      }
+      else
+      {
+        dec << "uniform float uPreMaxColor" << n << ";\n"
+            << "vec4 strataIntegral" << n << "(float x)\n{\n"
+            << "  float f = x * (uPreRange" << n << ".z - 1.0);\n"
+            << "  int i0 = min(int(floor(f)), int(uPreRange" << n << ".z) - 2);\n"
+            << "  return mix(texelFetch(uPreTable" << n << ", ivec2(i0, 0), 0), texelFetch(uPreTable" << n
+            << ", ivec2(i0 + 1, 0), 0), f - float(i0));\n}\n"
+            << "vec4 strataPre" << n << "(float sf, float sb, float len)\n{\n"
+            << "  float xf = clamp((sf - uPreRange" << n << ".x) * uPreRange" << n << ".y, 0.0, 1.0);\n"
+            << "  float xb = clamp((sb - uPreRange" << n << ".x) * uPreRange" << n << ".y, 0.0, 1.0);\n"
+            << "  float h = 1.0 / (uPreRange" << n << ".z - 1.0);\n"
+            << "  float w = max(abs(xb - xf), h);\n"
+            << "  float lo = clamp(0.5 * (xf + xb) - 0.5 * w, 0.0, 1.0 - w);\n"
+            << "  float hi = lo + w;\n"
+            << "  vec4 d = strataIntegral" << n << "(hi) - strataIntegral" << n << "(lo);\n"
+            << "  float tau = max(d.a / (hi - lo), 0.0);\n"
+            << "  vec3 k = clamp(d.rgb / (hi - lo), vec3(0.0), vec3(uPreMaxColor" << n << " * tau));\n"
+            << "  float X = len * tau;\n"
+            << "  float a = X < 0.01 ? X * (1.0 - X / 2.0 + X * X / 6.0) : 1.0 - exp(-X);\n"
+            << "  vec3 c = X < 0.01 ? len * k * (1.0 - X / 2.0 + X * X / 6.0) : len * k * a / X;\n"
+            << "  return vec4(c, a);\n}\n";
+      }
+    }
+  }
+  if (classification == C::PostClassification)
+  {
+    // Emission and extinction of the mixed media at p, one lattice step of length len.
+    seg << "vec4 strataSegment(vec3 p, float len)\n{\n"
+        << "  vec3 e = vec3(0.0);\n  float tau = 0.0;\n  vec4 tf;\n";
+    for (int i = 0; i < k; ++i)
+    {
+      const std::string n = std::to_string(i);
+      seg << "  tf = texture(uTransfer" << n << ", vec2((strataScalar" << n << "(p) - uTableRange" << n
+          << ".x) * uTableRange" << n << ".y + uTableRange" << n << ".z, 0.5));\n"
+          << "  e += tf.rgb * tf.a;\n  tau += tf.a;\n";
+    }
+    seg << "  float a = 1.0 - exp(-tau * len);\n"
+        << "  return tau > 0.0 ? vec4(e / tau * a, a) : vec4(0.0);\n}\n";
+  }
+  else
+  {
+    seg << "void strataSampleAll(vec3 p, out float s[" << K << "])\n{\n";
+    for (int i = 0; i < k; ++i)
+      seg << "  s[" << i << "] = strataScalar" << i << "(p);\n";
+    seg << "}\n";
+    seg << "vec4 strataPair(float sf[" << K << "], float sb[" << K << "], float len)\n{\n";
+    if (k == 1)
+    {
+      seg << "  return strataPre0(sf[0], sb[0], len);\n}\n";
+    }
+    else
+    {
+      // Overlap: each volume's segment as an optical depth and a mean colour; depths add,
+      // colours weighted by depth (exact for one volume, the physical mix for constant media).
+      seg << "  float X = 0.0;\n  vec3 e = vec3(0.0);\n  vec4 ca;\n  float x;\n";
+      for (int i = 0; i < k; ++i)
+      {
+        seg << "  ca = strataPre" << i << "(sf[" << i << "], sb[" << i << "], len);\n"
+            << "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
+            << "  X += x;\n"
+            << "  e += ca.a > 0.0 ? ca.rgb / ca.a * x : vec3(0.0);\n";
+      }
+      seg << "  float a = 1.0 - exp(-X);\n"
+          << "  return X > 0.0 ? vec4(e / X * a, a) : vec4(0.0);\n}\n";
+    }
+  }
+  Replace(fs, "//STRATA::Volumes::Dec", dec.str());
+  Replace(fs, "//STRATA::Segment::Dec", seg.str());
+  if (barrier)
+  {
+    Replace(fs, "//STRATA::Termination::Dec",
+      "uniform sampler2D uAccumulation;\nuniform float uTerminationOpacity;");
+    Replace(fs, "//STRATA::Termination::Impl",
+      "float prior = texelFetch(uAccumulation, ivec2(gl_FragCoord.xy), 0).a;\n"
+      "  if (prior >= uTerminationOpacity)\n  {\n    discard;\n  }\n"
+      "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
+      "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
+  }
+  else if (frontToBack)
+  {
+    Replace(fs, "//STRATA::Termination::Dec", "uniform float uTerminationOpacity;");
+    Replace(fs, "//STRATA::Termination::Impl", "float localStop = uTerminationOpacity;");
+  }
+  else
+  {
+    Replace(fs, "//STRATA::Termination::Dec", "");
+    Replace(fs, "//STRATA::Termination::Impl", "");
+  }
+  const bool pre = classification != C::PostClassification;
+  std::ostringstream loop;
+  if (frontToBack)
+  {
+    loop << "float k0 = floor(tEnter / dt);\n";
+    if (pre)
+      loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
+           << "  strataSampleAll(o + tEnter * d, sA);\n";
+    loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
+         << "    float a = max((k0 + float(it)) * dt, tEnter);\n"
+         << "    float b = min((k0 + float(it) + 1.0) * dt, tExit);\n"
+         << "    if (a >= tExit)\n    {\n      break;\n    }\n"
+         << "    if (b > a)\n    {\n";
+    if (pre)
+      loop << "      strataSampleAll(o + b * d, sB);\n"
+           << "      vec4 c = strataPair(sA, sB, (b - a) * segment);\n"
+           << "      sA = sB;\n";
+    else
+      loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
+    loop << "      acc += (1.0 - acc.a) * c;\n"
+         << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n  }";
+  }
+  else
+  {
+    loop << "float k1 = ceil(tExit / dt);\n";
+    if (pre)
+      loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
+           << "  strataSampleAll(o + tExit * d, sB);\n";
+    loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
+         << "    float b = min((k1 - float(it)) * dt, tExit);\n"
+         << "    float a = max((k1 - float(it) - 1.0) * dt, tEnter);\n"
+         << "    if (b <= tEnter)\n    {\n      break;\n    }\n"
+         << "    if (b > a)\n    {\n";
+    if (pre)
+      loop << "      strataSampleAll(o + a * d, sA);\n"
+           << "      vec4 c = strataPair(sA, sB, (b - a) * segment);\n"
+           << "      sB = sA;\n";
+    else
+      loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
+    loop << "      acc = c + (1.0 - c.a) * acc;\n    }\n  }";
+  }
+  Replace(fs, "//STRATA::Composite::Impl", loop.str());
+  return fs;
+}
 }
 
 // One volume of the current frame.
@@ -90,6 +265,11 @@ struct StrataVolumeTextures
   vtkImageData* DataInput = nullptr;
   bool Linear = true;
   double Range[3] = { 0, 1, 0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
+  double ScalarRange[2] = { 0, 1 };
+  vtkPreIntegrationTable PreIntegration;
+  vtkSmartPointer<vtkTextureObject> PreTable;
+  unsigned long PreTableCount = 0; ///< build count of the uploaded table
+  int PreTableKind = -1;           ///< classification it was uploaded for
 };
 
 class vtkMultiVolumeRayCastMapper::vtkInternals
@@ -117,6 +297,8 @@ public:
         t.second.Data->ReleaseGraphicsResources(window);
       if (t.second.Transfer)
         t.second.Transfer->ReleaseGraphicsResources(window);
+      if (t.second.PreTable)
+        t.second.PreTable->ReleaseGraphicsResources(window);
     }
     this->Textures.clear();
     if (this->Accumulation)
@@ -151,6 +333,15 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 }
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
+
+void vtkMultiVolumeRayCastMapper::SetClassification(Classifications classification)
+{
+  if (classification != this->Classification)
+  {
+    this->Classification = classification;
+    this->Modified();
+  }
+}
 
 void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
 {
@@ -397,6 +588,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Range[0] = range[0];
       tex.Range[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
       tex.Range[2] = 0.5 / TransferTableSize;
+      tex.ScalarRange[0] = range[0];
+      tex.ScalarRange[1] = range[1];
+      std::vector<double> rgbD(3 * TransferTableSize), tauD(TransferTableSize);
+      for (int i = 0; i < TransferTableSize; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+          rgbD[3 * i + c] = table[4 * i + c];
+        tauD[i] = table[4 * i + 3];
+      }
+      tex.PreIntegration.SetTransferFunction(range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
       tex.TransferTime = tfTime;
     }
   }
@@ -497,8 +698,46 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
   }
 
-  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
-  (void)units;
+  // Pre-integration tables, rebuilt only when a transfer function or the step changed.
+  if (this->Classification != Classifications::PostClassification)
+  {
+    const bool full = this->Classification == Classifications::PreIntegrated;
+    for (size_t v = 0; v < volumes.size(); ++v)
+    {
+      StrataVolumeTextures& tex = in.Textures[ports[v]];
+      tex.PreIntegration.SetTableSize(this->PreIntegrationTableSize);
+      tex.PreIntegration.SetStepLength(sampleDistance);
+      if (full)
+        tex.PreIntegration.UpdateFullTable();
+      else
+        tex.PreIntegration.UpdateIntegralTable();
+      const unsigned long count = full ? tex.PreIntegration.GetFullTableBuildCount()
+                                       : tex.PreIntegration.GetIntegralTableBuildCount();
+      const int kind = static_cast<int>(this->Classification);
+      if (!tex.PreTable || tex.PreTableCount != count || tex.PreTableKind != kind)
+      {
+        if (!tex.PreTable)
+        {
+          tex.PreTable = vtkSmartPointer<vtkTextureObject>::New();
+        }
+        const int m = tex.PreIntegration.GetTableSize();
+        tex.PreTable->SetContext(renWin);
+        tex.PreTable->ReleaseGraphicsResources(renWin);
+        tex.PreTable->SetContext(renWin);
+        const std::vector<float>& data =
+          full ? tex.PreIntegration.GetFullTable() : tex.PreIntegration.GetIntegralTable();
+        tex.PreTable->Create2DFromRaw(m, full ? m : 1, 4, VTK_FLOAT, const_cast<float*>(data.data()));
+        tex.PreTable->SetWrapS(vtkTextureObject::ClampToEdge);
+        tex.PreTable->SetWrapT(vtkTextureObject::ClampToEdge);
+        // The full table is read with bilinear filtering; the integral table with texelFetch
+        // and mix in float (filter weights would be amplified by its division).
+        tex.PreTable->SetMinificationFilter(full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+        tex.PreTable->SetMagnificationFilter(full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+        tex.PreTableCount = count;
+        tex.PreTableKind = kind;
+      }
+    }
+  }
   in.Sources.clear();
   in.LastFragments = 0;
   for (int f : order)
@@ -514,69 +753,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces; at most " << MaxPlanes << " are supported.");
       continue;
     }
-    // Shader for k volumes: one unrolled block per volume, nothing else.
-    std::string fs = vtkMultiVolumeFragmentFS;
-    std::ostringstream dec, sample;
-    for (int i = 0; i < k; ++i)
-    {
-      dec << "uniform sampler3D uVolume" << i << ";\n"
-          << "uniform sampler2D uTransfer" << i << ";\n"
-          << "uniform mat4 uLocalToTexture" << i << ";\n"
-          << "uniform vec3 uTableRange" << i << ";\n";
-      sample << "tc = (uLocalToTexture" << i << " * vec4(p, 1.0)).xyz;\n"
-             << "  s = texture(uVolume" << i << ", tc).r;\n"
-             << "  tf = texture(uTransfer" << i << ", vec2((s - uTableRange" << i << ".x) * uTableRange"
-             << i << ".y + uTableRange" << i << ".z, 0.5));\n"
-             << "  emission += tf.rgb * tf.a;\n"
-             << "  extinction += tf.a;\n  ";
-    }
-    Replace(fs, "//STRATA::Volumes::Dec", dec.str());
-    Replace(fs, "//STRATA::Volumes::Sample", sample.str());
-    if (barrier)
-    {
-      Replace(fs, "//STRATA::Termination::Dec",
-        "uniform sampler2D uAccumulation;\nuniform float uTerminationOpacity;");
-      Replace(fs, "//STRATA::Termination::Impl",
-        "float prior = texelFetch(uAccumulation, ivec2(gl_FragCoord.xy), 0).a;\n"
-        "  if (prior >= uTerminationOpacity)\n  {\n    discard;\n  }\n"
-        "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
-        "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
-    }
-    else if (frontToBack)
-    {
-      Replace(fs, "//STRATA::Termination::Dec", "uniform float uTerminationOpacity;");
-      Replace(fs, "//STRATA::Termination::Impl", "float localStop = uTerminationOpacity;");
-    }
-    else
-    {
-      Replace(fs, "//STRATA::Termination::Dec", "");
-      Replace(fs, "//STRATA::Termination::Impl", "");
-    }
-    if (frontToBack)
-    {
-      Replace(fs, "//STRATA::Composite::Impl",
-        "float k0 = floor(tEnter / dt);\n"
-        "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-        "    float a = max((k0 + float(it)) * dt, tEnter);\n"
-        "    float b = min((k0 + float(it) + 1.0) * dt, tExit);\n"
-        "    if (a >= tExit)\n    {\n      break;\n    }\n"
-        "    if (b > a)\n    {\n"
-        "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n"
-        "      acc += (1.0 - acc.a) * c;\n"
-        "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n  }");
-    }
-    else
-    {
-      Replace(fs, "//STRATA::Composite::Impl",
-        "float k1 = ceil(tExit / dt);\n"
-        "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-        "    float b = min((k1 - float(it)) * dt, tExit);\n"
-        "    float a = max((k1 - float(it) - 1.0) * dt, tEnter);\n"
-        "    if (b <= tEnter)\n    {\n      break;\n    }\n"
-        "    if (b > a)\n    {\n"
-        "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n"
-        "      acc = c + (1.0 - c.a) * acc;\n    }\n  }");
-    }
+    const std::string fs = BuildFragmentShader(k, this->Classification, frontToBack, barrier);
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
     if (!program)
@@ -645,10 +822,26 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformMatrix4x4(("uLocalToTexture" + n).c_str(), m);
       tex.Data->Activate();
       program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
-      tex.Transfer->Activate();
-      program->SetUniformi(("uTransfer" + n).c_str(), tex.Transfer->GetTextureUnit());
-      const float range[3] = { float(tex.Range[0]), float(tex.Range[1]), float(tex.Range[2]) };
-      program->SetUniform3f(("uTableRange" + n).c_str(), range);
+      if (this->Classification == Classifications::PostClassification)
+      {
+        tex.Transfer->Activate();
+        program->SetUniformi(("uTransfer" + n).c_str(), tex.Transfer->GetTextureUnit());
+        const float range[3] = { float(tex.Range[0]), float(tex.Range[1]), float(tex.Range[2]) };
+        program->SetUniform3f(("uTableRange" + n).c_str(), range);
+      }
+      else
+      {
+        tex.PreTable->Activate();
+        program->SetUniformi(("uPreTable" + n).c_str(), tex.PreTable->GetTextureUnit());
+        const float preRange[3] = { float(tex.ScalarRange[0]),
+          float(1.0 / (tex.ScalarRange[1] - tex.ScalarRange[0])),
+          float(tex.PreIntegration.GetTableSize()) };
+        program->SetUniform3f(("uPreRange" + n).c_str(), preRange);
+        if (this->Classification == Classifications::PreIntegrated)
+          program->SetUniformf(("uPreStep" + n).c_str(), static_cast<float>(sampleDistance));
+        else
+          program->SetUniformf(("uPreMaxColor" + n).c_str(), static_cast<float>(tex.PreIntegration.GetMaximumColor()));
+      }
     }
     glDrawArrays(GL_TRIANGLES, in.FragmentFirst[f], in.FragmentCount[f]);
     if (barrier)
@@ -662,7 +855,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       StrataVolumeTextures& tex = in.Textures[ports[frag.BoxIndices[i]]];
       tex.Data->Deactivate();
-      tex.Transfer->Deactivate();
+      if (this->Classification == Classifications::PostClassification)
+        tex.Transfer->Deactivate();
+      else
+        tex.PreTable->Deactivate();
     }
     if (barrier)
     {
@@ -705,6 +901,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CompositeOrder: "
      << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront") << "\n";
+  os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
+  os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

@@ -50,6 +50,31 @@ public:
     BackToFront, ///< farthest first; no early termination
   };
 
+  enum class Classifications
+  {
+    PostClassification, ///< classify each sample (at segment midpoints)
+    PreIntegrated,      ///< full 2-D table of segment integrals at the sample distance
+    PreIntegratedApproximate, ///< the two-integral form: two 1-D tables, any segment length
+  };
+
+  ///@{
+  /**
+   * Classification (default PostClassification). Pre-integration integrates the transfer
+   * function between the scalars at both ends of each step, so a coarse step still resolves
+   * sharp features of the transfer function (vtkPreIntegrationTable).
+   */
+  void SetClassification(Classifications classification);
+  Classifications GetClassification() const { return this->Classification; }
+  ///@}
+
+  ///@{
+  /**
+   * Samples per scalar axis of the pre-integration tables (default 256).
+   */
+  vtkSetClampMacro(PreIntegrationTableSize, int, 16, 4096);
+  vtkGetMacro(PreIntegrationTableSize, int);
+  ///@}
+
   ///@{
   /**
    * Compositing order (default FrontToBack). Both give the same image up to rounding and the
@@ -92,6 +117,8 @@ protected:
   void PostRender(vtkRenderer*, int) override {}
 
   CompositeOrders CompositeOrder = CompositeOrders::FrontToBack;
+  Classifications Classification = Classifications::PostClassification;
+  int PreIntegrationTableSize = 256;
   double TerminationOpacity = 0.999;
 
 private:

@@ -21,26 +21,7 @@ uniform sampler2D uSceneDepth;
 
 //STRATA::Termination::Dec
 
-// Emission and extinction of the mixed media at local position p.
-void strataMedium(vec3 p, out vec3 emission, out float extinction)
-{
-  emission = vec3(0.0);
-  extinction = 0.0;
-  vec3 tc;
-  float s;
-  vec4 tf;
-  //STRATA::Volumes::Sample
-}
-
-// One lattice step of world length len: premultiplied colour and opacity.
-vec4 strataSegment(vec3 p, float len)
-{
-  vec3 e;
-  float tau;
-  strataMedium(p, e, tau);
-  float a = 1.0 - exp(-tau * len);
-  return tau > 0.0 ? vec4(e / tau * a, a) : vec4(0.0);
-}
+//STRATA::Segment::Dec
 
 void main()
 {
