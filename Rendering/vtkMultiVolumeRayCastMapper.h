@@ -77,6 +77,27 @@ public:
 
   ///@{
   /**
+   * Rays per pixel, 1 to 8 (default 1): anti-aliasing. Ray r starts at a sub-pixel position of a
+   * fixed pattern and at a lattice phase staggered by r / R of the sample distance; the pixel is
+   * the mean of its rays, each composited through all fragments on its own.
+   */
+  vtkSetClampMacro(RaysPerPixel, int, 1, 8);
+  vtkGetMacro(RaysPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Sub-pixel ray coherence (default off): with several rays per pixel, rays after the centre
+   * one start where the centre ray first met a non-empty sample in the fragment, skipping the
+   * empty space it crossed (exact where the empty space is wider than the pixel's footprint).
+   */
+  vtkSetMacro(RayCoherence, bool);
+  vtkGetMacro(RayCoherence, bool);
+  vtkBooleanMacro(RayCoherence, bool);
+  ///@}
+
+  ///@{
+  /**
    * Compositing order (default FrontToBack). Both give the same image up to rounding and the
    * early-termination threshold.
    */
@@ -119,6 +140,8 @@ protected:
   CompositeOrders CompositeOrder = CompositeOrders::FrontToBack;
   Classifications Classification = Classifications::PostClassification;
   int PreIntegrationTableSize = 256;
+  int RaysPerPixel = 1;
+  bool RayCoherence = false;
   double TerminationOpacity = 0.999;
 
 private:
