@@ -74,7 +74,7 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
 // The fragment shader for k volumes: one unrolled block per volume, the classification's segment
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
-  bool frontToBack, bool barrier)
+  bool frontToBack, bool barrier, int rays, bool coherence)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -180,37 +180,66 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   }
   Replace(fs, "//STRATA::Volumes::Dec", dec.str());
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
-  if (barrier)
+  if (frontToBack)
   {
-    Replace(fs, "//STRATA::Termination::Dec",
-      "uniform sampler2D uAccumulation;\nuniform float uTerminationOpacity;");
+    std::string dec = "uniform float uTerminationOpacity;\n";
+    for (int r = 0; barrier && r < rays; ++r)
+      dec += "uniform sampler2D uAccumulation" + std::to_string(r) + ";\n";
+    Replace(fs, "//STRATA::Termination::Dec", dec);
     Replace(fs, "//STRATA::Termination::Impl",
-      "float prior = texelFetch(uAccumulation, ivec2(gl_FragCoord.xy), 0).a;\n"
-      "  if (prior >= uTerminationOpacity)\n  {\n    discard;\n  }\n"
+      "if (prior >= uTerminationOpacity)\n  {\n    return vec4(0.0);\n  }\n"
       "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
       "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
-  }
-  else if (frontToBack)
-  {
-    Replace(fs, "//STRATA::Termination::Dec", "uniform float uTerminationOpacity;");
-    Replace(fs, "//STRATA::Termination::Impl", "float localStop = uTerminationOpacity;");
   }
   else
   {
     Replace(fs, "//STRATA::Termination::Dec", "");
     Replace(fs, "//STRATA::Termination::Impl", "");
   }
+  // Rays: the centre first, then the others at their sub-pixel offsets and lattice phases.
+  std::ostringstream raysCode;
+  raysCode << "float tFirst0;\n  bool inside0;\n";
+  for (int r = 0; r < rays; ++r)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(r, rays, offset);
+    const std::string R = std::to_string(r);
+    const std::string prior =
+      barrier ? "texelFetch(uAccumulation" + R + ", ivec2(gl_FragCoord.xy), 0).a" : "0.0";
+    std::ostringstream pixel;
+    pixel.precision(9);
+    pixel << "gl_FragCoord.xy + vec2(" << offset[0] << ", " << offset[1] << ")";
+    if (r == 0)
+    {
+      raysCode << "  gl_FragData[0] = strataCastRay(gl_FragCoord.xy, 0.0, " << prior
+               << ", 0.0, tFirst0, inside0);\n";
+      if (rays > 1)
+        raysCode << "  float tFirst;\n  bool inside;\n";
+      if (rays > 1 && coherence)
+        raysCode << "  // Coherence: the others start where the centre ray left empty space.\n"
+                 << "  float tStart = inside0 ? tFirst0 : 0.0;\n";
+    }
+    else
+    {
+      std::ostringstream phase;
+      phase.precision(9);
+      phase << double(r) / rays;
+      raysCode << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", " << phase.str()
+               << ", " << prior << ", " << (coherence ? "tStart" : "0.0") << ", tFirst, inside);\n";
+    }
+  }
+  Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
   std::ostringstream loop;
   if (frontToBack)
   {
-    loop << "float k0 = floor(tEnter / dt);\n";
+    loop << "float k0 = floor(tEnter / dt - phase);\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tEnter * d, sA);\n";
     loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-         << "    float a = max((k0 + float(it)) * dt, tEnter);\n"
-         << "    float b = min((k0 + float(it) + 1.0) * dt, tExit);\n"
+         << "    float a = max((k0 + float(it) + phase) * dt, tEnter);\n"
+         << "    float b = min((k0 + float(it) + 1.0 + phase) * dt, tExit);\n"
          << "    if (a >= tExit)\n    {\n      break;\n    }\n"
          << "    if (b > a)\n    {\n";
     if (pre)
@@ -219,18 +248,19 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
            << "      sA = sB;\n";
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
-    loop << "      acc += (1.0 - acc.a) * c;\n"
+    loop << "      if (c.a > 0.0 && tFirst == tExit)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
+         << "      acc += (1.0 - acc.a) * c;\n"
          << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n  }";
   }
   else
   {
-    loop << "float k1 = ceil(tExit / dt);\n";
+    loop << "float k1 = ceil(tExit / dt - phase);\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tExit * d, sB);\n";
     loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-         << "    float b = min((k1 - float(it)) * dt, tExit);\n"
-         << "    float a = max((k1 - float(it) - 1.0) * dt, tEnter);\n"
+         << "    float b = min((k1 - float(it) + phase) * dt, tExit);\n"
+         << "    float a = max((k1 - float(it) - 1.0 + phase) * dt, tEnter);\n"
          << "    if (b <= tEnter)\n    {\n      break;\n    }\n"
          << "    if (b > a)\n    {\n";
     if (pre)
@@ -239,7 +269,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
            << "      sB = sA;\n";
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
-    loop << "      acc = c + (1.0 - c.a) * acc;\n    }\n  }";
+    loop << "      if (c.a > 0.0)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
+         << "      acc = c + (1.0 - c.a) * acc;\n    }\n  }";
   }
   Replace(fs, "//STRATA::Composite::Impl", loop.str());
   return fs;
@@ -282,7 +313,7 @@ public:
   unsigned int EmptyVAO = 0;
   std::vector<int> FragmentFirst, FragmentCount;
   bool GeometryValid = false;
-  vtkSmartPointer<vtkTextureObject> Accumulation;
+  std::vector<vtkSmartPointer<vtkTextureObject>> Accumulation; ///< one integration buffer per ray
   vtkSmartPointer<vtkTextureObject> SceneDepth;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   std::map<int, std::string> Sources; // fragment shader per number of volumes, last frame
@@ -301,13 +332,13 @@ public:
         t.second.PreTable->ReleaseGraphicsResources(window);
     }
     this->Textures.clear();
-    if (this->Accumulation)
-      this->Accumulation->ReleaseGraphicsResources(window);
+    for (auto& a : this->Accumulation)
+      a->ReleaseGraphicsResources(window);
     if (this->SceneDepth)
       this->SceneDepth->ReleaseGraphicsResources(window);
     if (this->Framebuffer)
       this->Framebuffer->ReleaseGraphicsResources(window);
-    this->Accumulation = nullptr;
+    this->Accumulation.clear();
     this->SceneDepth = nullptr;
     this->Framebuffer = nullptr;
     if (this->FragmentVAO)
@@ -333,6 +364,18 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 }
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
+
+void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
+{
+  // Ray 0 at the pixel centre, the others spread over the pixel (a rotated-grid-like pattern,
+  // in pixels from the centre); the first R of these for R rays.
+  static const double pattern[8][2] = { { 0.0, 0.0 }, { 0.25, 0.25 }, { -0.25, -0.25 },
+    { 0.375, -0.125 }, { -0.375, 0.125 }, { -0.125, 0.375 }, { 0.125, -0.375 }, { 0.4375, 0.4375 } };
+  (void)rays;
+  const int r = std::min(std::max(ray, 0), 7);
+  offset[0] = pattern[r][0];
+  offset[1] = pattern[r][1];
+}
 
 void vtkMultiVolumeRayCastMapper::SetClassification(Classifications classification)
 {
@@ -614,23 +657,34 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   vtkMatrix4x4::Invert(localToClip, clipToLocal);
 
   // --- Integration buffer and the scene's depth.
+  const int rays = this->RaysPerPixel;
   if (!in.Framebuffer)
   {
     in.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
-    in.Accumulation = vtkSmartPointer<vtkTextureObject>::New();
     in.SceneDepth = vtkSmartPointer<vtkTextureObject>::New();
   }
   in.Framebuffer->SetContext(renWin);
-  in.Accumulation->SetContext(renWin);
   in.SceneDepth->SetContext(renWin);
-  if (int(in.Accumulation->GetWidth()) != width || int(in.Accumulation->GetHeight()) != height)
+  if (int(in.SceneDepth->GetWidth()) != width || int(in.SceneDepth->GetHeight()) != height)
   {
-    in.Accumulation->ReleaseGraphicsResources(renWin);
-    in.Accumulation->SetContext(renWin);
-    in.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
     in.SceneDepth->ReleaseGraphicsResources(renWin);
     in.SceneDepth->SetContext(renWin);
     in.SceneDepth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  while (static_cast<int>(in.Accumulation.size()) < rays)
+  {
+    in.Accumulation.push_back(vtkSmartPointer<vtkTextureObject>::New());
+  }
+  for (int r = 0; r < rays; ++r)
+  {
+    vtkTextureObject* acc = in.Accumulation[r];
+    acc->SetContext(renWin);
+    if (int(acc->GetWidth()) != width || int(acc->GetHeight()) != height || !acc->GetHandle())
+    {
+      acc->ReleaseGraphicsResources(renWin);
+      acc->SetContext(renWin);
+      acc->Allocate2D(width, height, 4, VTK_FLOAT);
+    }
   }
   in.SceneDepth->Activate();
   in.SceneDepth->CopyFromFrameBuffer(vp[0], vp[1], 0, 0, width, height);
@@ -644,8 +698,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 
   state->PushFramebufferBindings();
   in.Framebuffer->Bind();
-  in.Framebuffer->AddColorAttachment(0, in.Accumulation);
-  in.Framebuffer->ActivateDrawBuffer(0);
+  for (int r = 0; r < rays; ++r)
+  {
+    in.Framebuffer->AddColorAttachment(r, in.Accumulation[r]);
+  }
+  in.Framebuffer->ActivateDrawBuffers(rays);
   vtkOpenGLState::ScopedglViewport viewportSaver(state);
   vtkOpenGLState::ScopedglClearColor clearSaver(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
@@ -753,7 +810,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces; at most " << MaxPlanes << " are supported.");
       continue;
     }
-    const std::string fs = BuildFragmentShader(k, this->Classification, frontToBack, barrier);
+    const std::string fs = BuildFragmentShader(
+      k, this->Classification, frontToBack, barrier, rays, this->RayCoherence && rays > 1);
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
     if (!program)
@@ -784,6 +842,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     program->SetUniformMatrix4x4("uClipToLocal", m);
     const float viewport[4] = { 0.f, 0.f, float(width), float(height) };
     program->SetUniform4f("uViewport", viewport);
+    const float viewportSize[2] = { float(width), float(height) };
+    program->SetUniform2f("uViewportSize", viewportSize);
+    float centroid[3] = { 0.f, 0.f, 0.f };
+    for (const auto& vtx : frag.Vertices)
+      for (int c = 0; c < 3; ++c)
+        centroid[c] += static_cast<float>(vtx[c] / frag.Vertices.size());
+    program->SetUniform3f("uCentroid", centroid);
+    // Sub-pixel rays reach half a pixel diagonal from the centre: 1.5 pixels of dilation covers
+    // them also along edges that are not perpendicular to the direction from the centre.
+    program->SetUniformf("uDilate", rays > 1 ? 1.5f : 0.0f);
     program->SetUniformf("uSampleDistance", static_cast<float>(sampleDistance));
     std::vector<float> planes(4 * MaxPlanes, 0.f);
     for (size_t p = 0; p < frag.Planes.size(); ++p)
@@ -797,10 +865,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       program->SetUniformf("uTerminationOpacity", static_cast<float>(this->TerminationOpacity));
     }
-    if (barrier)
+    for (int r = 0; barrier && r < rays; ++r)
     {
-      in.Accumulation->Activate();
-      program->SetUniformi("uAccumulation", in.Accumulation->GetTextureUnit());
+      in.Accumulation[r]->Activate();
+      program->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
     }
     for (int i = 0; i < k; ++i)
     {
@@ -860,9 +928,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       else
         tex.PreTable->Deactivate();
     }
-    if (barrier)
+    for (int r = 0; barrier && r < rays; ++r)
     {
-      in.Accumulation->Deactivate();
+      in.Accumulation[r]->Deactivate();
     }
     in.SceneDepth->Deactivate();
     glBindVertexArray(0);
@@ -873,15 +941,31 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   state->PopFramebufferBindings();
 
   // --- Blend the integration buffer over the scene.
+  // The pixel is the mean of its rays' composites.
+  std::string compositeFS = vtkMultiVolumeCompositeFS;
+  {
+    std::ostringstream dec, impl;
+    for (int r = 0; r < rays; ++r)
+    {
+      dec << "uniform sampler2D uAccumulation" << r << ";\n";
+      impl << (r ? " + " : "") << "texelFetch(uAccumulation" << r << ", pixel, 0)";
+    }
+    Replace(compositeFS, "//STRATA::Accumulation::Dec", dec.str());
+    Replace(compositeFS, "//STRATA::Accumulation::Impl",
+      "fragOutput0 = (" + impl.str() + ") / " + std::to_string(rays) + ".0;");
+  }
   vtkShaderProgram* composite = renWin->GetShaderCache()->ReadyShaderProgram(
-    vtkMultiVolumeCompositeVS, vtkMultiVolumeCompositeFS, "");
+    vtkMultiVolumeCompositeVS, compositeFS.c_str(), "");
   if (composite)
   {
     state->vtkglViewport(vp[0], vp[1], width, height);
     state->vtkglDisable(GL_CULL_FACE);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    in.Accumulation->Activate();
-    composite->SetUniformi("uAccumulation", in.Accumulation->GetTextureUnit());
+    for (int r = 0; r < rays; ++r)
+    {
+      in.Accumulation[r]->Activate();
+      composite->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
+    }
     const float vpOrigin[2] = { float(vp[0]), float(vp[1]) };
     composite->SetUniform2f("uViewportOrigin", vpOrigin);
     if (!in.EmptyVAO)
@@ -891,7 +975,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     glBindVertexArray(in.EmptyVAO);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    in.Accumulation->Deactivate();
+    for (int r = 0; r < rays; ++r)
+    {
+      in.Accumulation[r]->Deactivate();
+    }
   }
   vtkOpenGLCheckErrorMacro("failed after multi-volume ray casting");
 }

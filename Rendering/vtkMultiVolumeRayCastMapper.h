@@ -114,6 +114,12 @@ public:
   vtkGetMacro(TerminationOpacity, double);
   ///@}
 
+  /**
+   * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; ray 0 is the
+   * centre. Tests and references use it to integrate the same rays.
+   */
+  static void GetRayOffset(int ray, int rays, double offset[2]);
+
   /// Number of BSP fragments drawn in the last frame.
   int GetNumberOfFragments() const;
 

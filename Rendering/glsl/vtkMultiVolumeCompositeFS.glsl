@@ -1,11 +1,13 @@
 //VTK::System::Dec
-// Strata multi-volume ray caster: blends the integration buffer (premultiplied colour and
-// opacity of every ray) over the scene; the draw uses blend factors (1, 1 - source alpha).
+// Strata multi-volume ray caster: blends the integration buffers (premultiplied colour and
+// opacity, one buffer per ray of a pixel) over the scene as their mean; the draw uses blend
+// factors (1, 1 - source alpha).
 out vec4 fragOutput0;
-uniform sampler2D uAccumulation;
+//STRATA::Accumulation::Dec
 uniform vec2 uViewportOrigin;
 
 void main()
 {
-  fragOutput0 = texelFetch(uAccumulation, ivec2(gl_FragCoord.xy - uViewportOrigin), 0);
+  ivec2 pixel = ivec2(gl_FragCoord.xy - uViewportOrigin);
+  //STRATA::Accumulation::Impl
 }

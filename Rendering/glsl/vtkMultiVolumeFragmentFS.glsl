@@ -6,9 +6,11 @@
 // each lattice step is clipped to the fragment, so neighbouring fragments split the ray exactly.
 // Overlapping media mix physically: extinctions add, emission is weighted by extinction.
 // Tags are filled by vtkMultiVolumeRayCastMapper for the fragment's volume count and the scene's
-// options; what a fragment does not use leaves no code here.
+// options; what a fragment does not use leaves no code here. With R rays per pixel, ray r writes
+// gl_FragData[r], its own integration buffer, so each ray composites through all fragments on
+// its own and the pixel is their mean.
 
-out vec4 fragOutput0;
+//VTK::Output::Dec
 
 uniform mat4 uClipToLocal;
 uniform vec4 uViewport;      // window x, y, width, height of the renderer
@@ -23,9 +25,15 @@ uniform sampler2D uSceneDepth;
 
 //STRATA::Segment::Dec
 
-void main()
+// One ray through window position `pixel` across this fragment, its samples on the lattice
+// t = (k + phase) dt. `prior`: the ray's opacity before this fragment; `tMin`: where to start
+// (ray coherence). Returns the fragment's premultiplied composite; tFirst is the t of its first
+// non-empty step (tExit if none), inside whether the ray meets the fragment at all.
+vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float tFirst, out bool inside)
 {
-  vec2 ndc = (gl_FragCoord.xy - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
+  tFirst = 0.0;
+  inside = false;
+  vec2 ndc = (pixel - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
   vec4 n4 = uClipToLocal * vec4(ndc, -1.0, 1.0);
   vec4 f4 = uClipToLocal * vec4(ndc, 1.0, 1.0);
   vec3 o = n4.xyz / n4.w;
@@ -47,11 +55,11 @@ void main()
     }
     else if (dist > 0.0)
     {
-      discard;
+      return vec4(0.0);
     }
   }
   // Opaque geometry ends the ray: its depth, unprojected onto this ray.
-  float zw = texelFetch(uSceneDepth, ivec2(gl_FragCoord.xy - uViewport.xy), 0).r;
+  float zw = texelFetch(uSceneDepth, ivec2(pixel - uViewport.xy), 0).r;
   if (zw < 1.0)
   {
     vec4 s4 = uClipToLocal * vec4(ndc, 2.0 * zw - 1.0, 1.0);
@@ -59,10 +67,13 @@ void main()
   }
   if (tEnter >= tExit)
   {
-    discard;
+    return vec4(0.0);
   }
+  inside = true;
+  tFirst = tExit;
+  tEnter = max(tEnter, tMin);
 
-  // t spans the near-to-far segment [0, 1]; the sample lattice is t = k dt from the near plane.
+  // t spans the near-to-far segment [0, 1]; the sample lattice is t = (k + phase) dt.
   float segment = length(d);
   float dt = uSampleDistance / segment;
 
@@ -70,5 +81,10 @@ void main()
 
   vec4 acc = vec4(0.0);
   //STRATA::Composite::Impl
-  fragOutput0 = acc;
+  return acc;
+}
+
+void main()
+{
+  //STRATA::Rays::Impl
 }

@@ -118,12 +118,12 @@ struct VolumeScene
     cam->SetViewAngle(30);
     this->Ren->ResetCameraClippingRange(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
   }
-  VolumeComparison Compare(const std::string& name)
+  VolumeComparison Compare(const std::string& name, int raysPerPixel = 1)
   {
     std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
     for (size_t i = 0; i < this->Images.size(); ++i)
       list.emplace_back(this->Images[i], this->Volumes[i]);
-    return CompareVolumesWithReference(this->Win, this->Ren, list, name);
+    return CompareVolumesWithReference(this->Win, this->Ren, list, name, 1.0 / 16.0, raysPerPixel);
   }
 };
 
@@ -374,6 +374,44 @@ int RunMultiVolumeCase(const std::string& name)
       std::cerr << "FAILED: pre-integration at d must beat post-classification at d / 4\n";
       ok = false;
     }
+  }
+  else if (name == "RaysPerPixel")
+  {
+    // Several rays per pixel, each composited through all fragments on its own: against the
+    // reference integrating the same sub-pixel rays. Coherence lets rays after the centre one
+    // skip the empty space it crossed, exact wherever that space ends at the same depth across
+    // the pixel, approximate at silhouettes.
+    VolumeScene s;
+    s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
+    vtkNew<vtkTransform> t;
+    t->Translate(30, 10, 4);
+    t->RotateZ(30);
+    s.Add(Blob(24, 20, 18, 1.6, 1.5, 1.4, 0, 0, 0, 2), MakeVolumeProperty(1), t);
+    s.UseMultiVolume();
+    const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
+    s.Camera(pos, foc);
+    // The first volume is visibly dense up to its faces: hard silhouettes to anti-alias.
+    vtkPiecewiseFunction* pwf = s.Volumes[0]->GetProperty()->GetScalarOpacity(0);
+    pwf->AddPoint(0, 0.6);
+    pwf->AddPoint(20, 0.6);
+    for (const auto& mode : { std::make_pair(2, false), std::make_pair(5, true), std::make_pair(5, false) })
+    {
+      s.Mapper->SetRaysPerPixel(mode.first);
+      s.Mapper->SetRayCoherence(mode.second);
+      const std::string tag = "Rays" + std::to_string(mode.first) + (mode.second ? "-coherent" : "");
+      // Coherence is an accuracy knob: where a pixel straddles a silhouette, a sub-pixel ray can
+      // enter the volume well before the centre ray's first non-empty sample and loses that
+      // stretch. Measured here: 125 of 8075 covered pixels off by more than 4/255, at most 14.
+      // Its bounds: RMS 1, max 16; without coherence the usual 0.4 and 2.
+      const bool approx = mode.second;
+      ok = CheckVolumeComparison(s.Compare(tag, mode.first), tag, approx ? 1.0 : 0.4, approx ? 16 : 2, 3000) && ok;
+    }
+    // The mean of 5 rays is not the centre ray: compared with the centre-only reference the
+    // error must grow at the hard silhouettes (so the rays really are spread over the pixel).
+    auto centre = s.Compare("Rays5-vs-centre", 1);
+    std::cout << "Rays5 against the centre-ray reference: RMS " << centre.Rms << ", max " << centre.Max << "\n";
+    Check(centre.Max > 2.0, "5 rays per pixel differ from one centre ray somewhere by more than 2/255");
+    ok = ok && Failures() == 0;
   }
   else if (name == "ShaderSource")
   {

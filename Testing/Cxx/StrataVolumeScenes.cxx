@@ -126,7 +126,7 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
 
 VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
-  double stepFraction)
+  double stepFraction, int raysPerPixel)
 {
   // Over mid grey, so that opacity errors show as well as colour errors.
   VolumeComparison r;
@@ -150,7 +150,20 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
   worldToClip->DeepCopy(
     ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
   vtkMatrix4x4::Invert(worldToClip, clipToWorld);
-  ref.IntegrateImage(clipToWorld->GetData(), w, h, r.Reference);
+  r.Reference.assign(4 * size_t(w) * h, 0.0);
+  for (int ray = 0; ray < raysPerPixel; ++ray)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, raysPerPixel, offset);
+    vtkNew<vtkMatrix4x4> shift, shifted;
+    shift->SetElement(0, 3, 2.0 * offset[0] / w);
+    shift->SetElement(1, 3, 2.0 * offset[1] / h);
+    vtkMatrix4x4::Multiply4x4(clipToWorld, shift, shifted);
+    std::vector<double> one;
+    ref.IntegrateImage(shifted->GetData(), w, h, one);
+    for (size_t i = 0; i < one.size(); ++i)
+      r.Reference[i] += one[i] / raysPerPixel;
+  }
   double se = 0.0;
   std::vector<unsigned char> refImage(3 * size_t(w) * h);
   for (int i = 0; i < w * h; ++i)

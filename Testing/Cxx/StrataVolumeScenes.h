@@ -43,10 +43,11 @@ struct VolumeComparison
 };
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
-/// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`.
+/// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with
+/// several rays per pixel the reference averages the same sub-pixel rays as the mapper.
 VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
-  double stepFraction = 1.0 / 16.0);
+  double stepFraction = 1.0 / 16.0, int raysPerPixel = 1);
 
 /// The demo's multi-volume scene: the Bucky ball (real CT-like density, 32^3 uint8 read from
 /// `dataDir`/volumes/bucky.raw), an analytic 48 x 40 x 36 volume turned 25 degrees about (1, 1, 0)
