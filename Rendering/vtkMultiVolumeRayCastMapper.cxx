@@ -8,6 +8,8 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
@@ -74,7 +76,7 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
 // The fragment shader for k volumes: one unrolled block per volume, the classification's segment
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
-  bool frontToBack, bool barrier, int rays, bool coherence)
+  bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -87,6 +89,34 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
         << "uniform mat4 uLocalToTexture" << n << ";\n"
         << "float strataScalar" << n << "(vec3 p)\n{\n  return texture(uVolume" << n
         << ", (uLocalToTexture" << n << " * vec4(p, 1.0)).xyz).r;\n}\n";
+    if (shaded[i])
+    {
+      // Gradient by central differences one voxel apart in texture space, taken to the local
+      // frame by the transpose of the local -> texture Jacobian; lit two-sided (a volume's
+      // gradient has no inside), Blinn-Phong with the scene's lights.
+      dec << "uniform vec3 uVoxel" << n << "; // 1 / dimensions\n"
+          << "uniform vec4 uMaterial" << n << "; // ambient, diffuse, specular, specular power\n"
+          << "vec3 strataShade" << n << "(vec3 p, vec3 color)\n{\n"
+          << "  vec3 tc = (uLocalToTexture" << n << " * vec4(p, 1.0)).xyz;\n"
+          << "  vec3 e = uVoxel" << n << ";\n"
+          << "  vec3 g = vec3(texture(uVolume" << n << ", tc + vec3(e.x, 0.0, 0.0)).r - texture(uVolume" << n
+          << ", tc - vec3(e.x, 0.0, 0.0)).r,\n"
+          << "    texture(uVolume" << n << ", tc + vec3(0.0, e.y, 0.0)).r - texture(uVolume" << n
+          << ", tc - vec3(0.0, e.y, 0.0)).r,\n"
+          << "    texture(uVolume" << n << ", tc + vec3(0.0, 0.0, e.z)).r - texture(uVolume" << n
+          << ", tc - vec3(0.0, 0.0, e.z)).r) / (2.0 * e);\n"
+          << "  g = transpose(mat3(uLocalToTexture" << n << ")) * g;\n"
+          << "  float len = length(g);\n"
+          << "  vec4 m = uMaterial" << n << ";\n"
+          << "  if (len <= 0.0)\n  {\n    return color * (m.x + m.y);\n  }\n"
+          << "  vec3 N = g / len;\n"
+          << "  vec3 diffuse = vec3(0.0);\n  vec3 specular = vec3(0.0);\n"
+          << "  for (int l = 0; l < uNumLights; ++l)\n  {\n"
+          << "    diffuse += abs(dot(N, uLightDirection[l])) * uLightColor[l];\n"
+          << "    vec3 H = normalize(uLightDirection[l] + gViewDirection);\n"
+          << "    specular += pow(abs(dot(N, H)), m.w) * uLightColor[l];\n  }\n"
+          << "  return color * (m.x + m.y * diffuse) + m.z * specular;\n}\n";
+    }
     if (classification == C::PostClassification)
     {
       dec << "uniform sampler2D uTransfer" << n << ";\n"
@@ -136,6 +166,14 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       }
     }
   }
+  bool anyShaded = false;
+  for (int i = 0; i < k; ++i)
+    anyShaded = anyShaded || shaded[i];
+  if (anyShaded)
+  {
+    dec.str("uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, unit\n"
+            "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n" + dec.str());
+  }
   if (classification == C::PostClassification)
   {
     // Emission and extinction of the mixed media at p, one lattice step of length len.
@@ -145,8 +183,10 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     {
       const std::string n = std::to_string(i);
       seg << "  tf = texture(uTransfer" << n << ", vec2((strataScalar" << n << "(p) - uTableRange" << n
-          << ".x) * uTableRange" << n << ".y + uTableRange" << n << ".z, 0.5));\n"
-          << "  e += tf.rgb * tf.a;\n  tau += tf.a;\n";
+          << ".x) * uTableRange" << n << ".y + uTableRange" << n << ".z, 0.5));\n";
+      if (shaded[i])
+        seg << "  if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade" << n << "(p, tf.rgb);\n  }\n";
+      seg << "  e += tf.rgb * tf.a;\n  tau += tf.a;\n";
     }
     seg << "  float a = 1.0 - exp(-tau * len);\n"
         << "  return tau > 0.0 ? vec4(e / tau * a, a) : vec4(0.0);\n}\n";
@@ -157,10 +197,14 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     for (int i = 0; i < k; ++i)
       seg << "  s[" << i << "] = strataScalar" << i << "(p);\n";
     seg << "}\n";
-    seg << "vec4 strataPair(float sf[" << K << "], float sb[" << K << "], float len)\n{\n";
+    seg << "vec4 strataPair(float sf[" << K << "], float sb[" << K << "], float len, vec3 mid)\n{\n";
     if (k == 1)
     {
-      seg << "  return strataPre0(sf[0], sb[0], len);\n}\n";
+      if (shaded[0])
+        seg << "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
+            << "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n";
+      else
+        seg << "  return strataPre0(sf[0], sb[0], len);\n}\n";
     }
     else
     {
@@ -171,8 +215,11 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       {
         seg << "  ca = strataPre" << i << "(sf[" << i << "], sb[" << i << "], len);\n"
             << "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
-            << "  X += x;\n"
-            << "  e += ca.a > 0.0 ? ca.rgb / ca.a * x : vec3(0.0);\n";
+            << "  X += x;\n";
+        if (shaded[i])
+          seg << "  e += ca.a > 0.0 ? strataShade" << i << "(mid, ca.rgb / ca.a) * x : vec3(0.0);\n";
+        else
+          seg << "  e += ca.a > 0.0 ? ca.rgb / ca.a * x : vec3(0.0);\n";
       }
       seg << "  float a = 1.0 - exp(-X);\n"
           << "  return X > 0.0 ? vec4(e / X * a, a) : vec4(0.0);\n}\n";
@@ -231,6 +278,10 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
   std::ostringstream loop;
+  if (anyShaded)
+  {
+    loop << "gViewDirection = -normalize(d);\n  ";
+  }
   if (frontToBack)
   {
     loop << "float k0 = floor(tEnter / dt - phase);\n";
@@ -244,7 +295,7 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
          << "    if (b > a)\n    {\n";
     if (pre)
       loop << "      strataSampleAll(o + b * d, sB);\n"
-           << "      vec4 c = strataPair(sA, sB, (b - a) * segment);\n"
+           << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
            << "      sA = sB;\n";
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
@@ -265,7 +316,7 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
          << "    if (b > a)\n    {\n";
     if (pre)
       loop << "      strataSampleAll(o + a * d, sA);\n"
-           << "      vec4 c = strataPair(sA, sB, (b - a) * segment);\n"
+           << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
            << "      sB = sA;\n";
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
@@ -795,6 +846,31 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
     }
   }
+  // Lights: directions towards each switched-on light (a positional light counts as directional
+  // from its position to its focal point) and colour times intensity; at most 8.
+  std::vector<float> lightDirections, lightColors;
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator lit_it;
+  lights->InitTraversal(lit_it);
+  while (vtkLight* light = lights->GetNextLight(lit_it))
+  {
+    if (!light->GetSwitch() || lightDirections.size() >= 24)
+      continue;
+    double pos[3], fp[3];
+    light->GetTransformedPosition(pos);
+    light->GetTransformedFocalPoint(fp);
+    double dir[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (len <= 0.0)
+      continue;
+    const double* c = light->GetDiffuseColor();
+    for (int a = 0; a < 3; ++a)
+    {
+      lightDirections.push_back(static_cast<float>(dir[a] / len));
+      lightColors.push_back(static_cast<float>(c[a] * light->GetIntensity()));
+    }
+  }
+  const bool lit = ren->GetLights()->GetNumberOfItems() > 0;
   in.Sources.clear();
   in.LastFragments = 0;
   for (int f : order)
@@ -810,8 +886,15 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces; at most " << MaxPlanes << " are supported.");
       continue;
     }
-    const std::string fs = BuildFragmentShader(
-      k, this->Classification, frontToBack, barrier, rays, this->RayCoherence && rays > 1);
+    std::vector<bool> shaded(k);
+    bool anyShaded = false;
+    for (int i = 0; i < k; ++i)
+    {
+      shaded[i] = lit && volumes[frag.BoxIndices[i]].Property->GetShade(0) != 0;
+      anyShaded = anyShaded || shaded[i];
+    }
+    const std::string fs = BuildFragmentShader(k, this->Classification, frontToBack, barrier, rays,
+      this->RayCoherence && rays > 1, shaded);
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
     if (!program)
@@ -853,6 +936,17 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     // them also along edges that are not perpendicular to the direction from the centre.
     program->SetUniformf("uDilate", rays > 1 ? 1.5f : 0.0f);
     program->SetUniformf("uSampleDistance", static_cast<float>(sampleDistance));
+    if (anyShaded)
+    {
+      program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
+      if (!lightDirections.empty())
+      {
+        program->SetUniform3fv("uLightDirection", static_cast<int>(lightDirections.size() / 3),
+          reinterpret_cast<const float(*)[3]>(lightDirections.data()));
+        program->SetUniform3fv("uLightColor", static_cast<int>(lightColors.size() / 3),
+          reinterpret_cast<const float(*)[3]>(lightColors.data()));
+      }
+    }
     std::vector<float> planes(4 * MaxPlanes, 0.f);
     for (size_t p = 0; p < frag.Planes.size(); ++p)
       for (int c = 0; c < 4; ++c)
@@ -890,6 +984,15 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformMatrix4x4(("uLocalToTexture" + n).c_str(), m);
       tex.Data->Activate();
       program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
+      if (shaded[i])
+      {
+        const float voxel[3] = { 1.0f / e.Dims[0], 1.0f / e.Dims[1], 1.0f / e.Dims[2] };
+        program->SetUniform3f(("uVoxel" + n).c_str(), voxel);
+        vtkVolumeProperty* p = e.Property;
+        const float material[4] = { float(p->GetAmbient(0)), float(p->GetDiffuse(0)),
+          float(p->GetSpecular(0)), float(p->GetSpecularPower(0)) };
+        program->SetUniform4f(("uMaterial" + n).c_str(), material);
+      }
       if (this->Classification == Classifications::PostClassification)
       {
         tex.Transfer->Activate();
