@@ -1,7 +1,10 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkMultiVolumeRayCastMapper.h"
 
+#include "vtkBrickAtlasAllocator.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkVolumeBrickTree.h"
+#include "vtkVolumeCut.h"
 #include "vtkVolumeBSPTree.h"
 
 #include "vtkCamera.h"
@@ -27,6 +30,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -76,7 +80,8 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
 // The fragment shader for k volumes: one unrolled block per volume, the classification's segment
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
-  bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded)
+  bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded,
+  bool atlas)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -85,27 +90,52 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   for (int i = 0; i < k; ++i)
   {
     const std::string n = std::to_string(i);
-    dec << "uniform sampler3D uVolume" << n << ";\n"
-        << "uniform mat4 uLocalToTexture" << n << ";\n"
-        << "float strataScalar" << n << "(vec3 p)\n{\n  return texture(uVolume" << n
-        << ", (uLocalToTexture" << n << " * vec4(p, 1.0)).xyz).r;\n}\n";
+    // The data lookup, one function per volume in index coordinates (point (i, j, k) at
+    // (i, j, k)): the only code that knows where the voxels live.
+    if (atlas)
+    {
+      if (i == 0)
+      {
+        dec << "uniform sampler3D uAtlas;\nuniform vec3 uAtlasSize; // texels\n"
+            << "uniform float uBrickSize;\n";
+      }
+      dec << "uniform usampler3D uIndex" << n << ";\n"
+          << "uniform vec3 uTableDims" << n << ";\n"
+          << "uniform float uEmptyScalar" << n << "; // a value the transfer function makes transparent\n"
+          << "float strataScalarAt" << n << "(vec3 idx)\n{\n"
+          << "  float S = uBrickSize - 1.0;\n"
+          << "  vec3 x = clamp(idx, vec3(0.0), uTableDims" << n << " * S);\n"
+          << "  ivec3 b = min(ivec3(floor(x / S)), ivec3(uTableDims" << n << ") - 1);\n"
+          << "  uvec4 e = texelFetch(uIndex" << n << ", b, 0);\n"
+          << "  if (e.w >= 65534u)\n  {\n    return uEmptyScalar" << n << ";\n  }\n"
+          << "  vec3 t = vec3(e.xyz) * uBrickSize + x * exp2(-float(e.w)) - vec3(b >> int(e.w)) * S + 0.5;\n"
+          << "  return texture(uAtlas, t / uAtlasSize).r;\n}\n";
+    }
+    else
+    {
+      dec << "uniform sampler3D uVolume" << n << ";\n"
+          << "uniform vec3 uDims" << n << ";\n"
+          << "float strataScalarAt" << n << "(vec3 idx)\n{\n"
+          << "  return texture(uVolume" << n << ", (idx + 0.5) / uDims" << n << ").r;\n}\n";
+    }
+    dec << "uniform mat4 uLocalToIndex" << n << ";\n"
+        << "uniform float uNearest" << n << "; // 1: nearest-point interpolation\n"
+        << "float strataScalar" << n << "(vec3 p)\n{\n"
+        << "  vec3 idx = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
+        << "  return strataScalarAt" << n << "(mix(idx, floor(idx + 0.5), uNearest" << n << "));\n}\n";
     if (shaded[i])
     {
       // Gradient by central differences one voxel apart in texture space, taken to the local
       // frame by the transpose of the local -> texture Jacobian; lit two-sided (a volume's
       // gradient has no inside), Blinn-Phong with the scene's lights.
-      dec << "uniform vec3 uVoxel" << n << "; // 1 / dimensions\n"
-          << "uniform vec4 uMaterial" << n << "; // ambient, diffuse, specular, specular power\n"
+      dec << "uniform vec4 uMaterial" << n << "; // ambient, diffuse, specular, specular power\n"
           << "vec3 strataShade" << n << "(vec3 p, vec3 color)\n{\n"
-          << "  vec3 tc = (uLocalToTexture" << n << " * vec4(p, 1.0)).xyz;\n"
-          << "  vec3 e = uVoxel" << n << ";\n"
-          << "  vec3 g = vec3(texture(uVolume" << n << ", tc + vec3(e.x, 0.0, 0.0)).r - texture(uVolume" << n
-          << ", tc - vec3(e.x, 0.0, 0.0)).r,\n"
-          << "    texture(uVolume" << n << ", tc + vec3(0.0, e.y, 0.0)).r - texture(uVolume" << n
-          << ", tc - vec3(0.0, e.y, 0.0)).r,\n"
-          << "    texture(uVolume" << n << ", tc + vec3(0.0, 0.0, e.z)).r - texture(uVolume" << n
-          << ", tc - vec3(0.0, 0.0, e.z)).r) / (2.0 * e);\n"
-          << "  g = transpose(mat3(uLocalToTexture" << n << ")) * g;\n"
+          << "  vec3 x = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
+          << "  vec3 g = 0.5 * vec3(strataScalarAt" << n << "(x + vec3(1.0, 0.0, 0.0)) - strataScalarAt" << n
+          << "(x - vec3(1.0, 0.0, 0.0)),\n"
+          << "    strataScalarAt" << n << "(x + vec3(0.0, 1.0, 0.0)) - strataScalarAt" << n << "(x - vec3(0.0, 1.0, 0.0)),\n"
+          << "    strataScalarAt" << n << "(x + vec3(0.0, 0.0, 1.0)) - strataScalarAt" << n << "(x - vec3(0.0, 0.0, 1.0)));\n"
+          << "  g = transpose(mat3(uLocalToIndex" << n << ")) * g;\n"
           << "  float len = length(g);\n"
           << "  vec4 m = uMaterial" << n << ";\n"
           << "  if (len <= 0.0)\n  {\n    return color * (m.x + m.y);\n  }\n"
@@ -349,6 +379,11 @@ struct StrataVolumeTextures
   double Range[3] = { 0, 1, 0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
   double ScalarRange[2] = { 0, 1 };
   vtkPreIntegrationTable PreIntegration;
+  std::vector<float> Scalars;               ///< the input as float; the brick tree borrows it
+  std::unique_ptr<vtkVolumeBrickTree> Tree; ///< bricks and octree (brick atlas on)
+  unsigned int IndexTexture = 0;            ///< RGBA16UI, one texel per level-0 brick
+  std::vector<double> OpacityNodes;         ///< (x, y) pairs of the opacity function
+  double EmptyScalar = 0.0;                 ///< a scalar of zero opacity
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table
   int PreTableKind = -1;           ///< classification it was uploaded for
@@ -368,6 +403,13 @@ public:
   vtkSmartPointer<vtkTextureObject> SceneDepth;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   std::map<int, std::string> Sources; // fragment shader per number of volumes, last frame
+  vtkBrickAtlasAllocator Atlas;
+  vtkVolumeCut Cut;
+  unsigned int AtlasTexture = 0;
+  std::vector<std::pair<int, vtkVolumeBrickTree*>> CutVolumes; // (port, tree) per cut volume
+  int AtlasBrickSize = 0;
+  int ResidentBricks = 0;
+  double AtlasBudget = 0.0;
   std::map<int, vtkShaderProgram*> ProgramOfVao;
   int LastFragments = 0;
 
@@ -392,6 +434,16 @@ public:
     this->Accumulation.clear();
     this->SceneDepth = nullptr;
     this->Framebuffer = nullptr;
+    for (auto& t : this->Textures)
+    {
+      if (t.second.IndexTexture)
+        glDeleteTextures(1, &t.second.IndexTexture);
+    }
+    if (this->AtlasTexture)
+      glDeleteTextures(1, &this->AtlasTexture);
+    this->AtlasTexture = 0;
+    this->CutVolumes.clear();
+    this->Textures.clear();
     if (this->FragmentVAO)
       glDeleteVertexArrays(1, &this->FragmentVAO);
     if (this->EmptyVAO)
@@ -444,6 +496,16 @@ void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
     this->CompositeOrder = order;
     this->Modified();
   }
+}
+
+int vtkMultiVolumeRayCastMapper::GetNumberOfResidentBricks() const
+{
+  return this->Internals->ResidentBricks;
+}
+
+int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
+{
+  return this->Internals->Atlas.GetNumberOfSlots();
 }
 
 int vtkMultiVolumeRayCastMapper::GetNumberOfFragments() const
@@ -597,30 +659,41 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         return;
       }
       const vtkIdType n = vtkIdType(e.Dims[0]) * e.Dims[1] * e.Dims[2];
-      std::vector<float> values(n);
+      tex.Scalars.resize(n);
       for (vtkIdType i = 0; i < n; ++i)
-        values[i] = static_cast<float>(scalars->GetComponent(i, 0));
-      if (!tex.Data)
+        tex.Scalars[i] = static_cast<float>(scalars->GetComponent(i, 0));
+      tex.DataTime = e.Input->GetMTime();
+      tex.DataInput = e.Input;
+      tex.Tree.reset();
+      if (tex.Data)
       {
-        tex.Data = vtkSmartPointer<vtkTextureObject>::New();
+        tex.Data->ReleaseGraphicsResources(renWin);
+        tex.Data = nullptr;
       }
+    }
+    if (this->UseBrickAtlas && (!tex.Tree || tex.Tree->GetBrickSize() != this->BrickSize))
+    {
+      tex.Tree.reset(new vtkVolumeBrickTree);
+      if (!tex.Tree->Build(tex.Scalars.data(), e.Dims, this->BrickSize))
+      {
+        vtkErrorMacro("Cannot brick the volume on port " << ports[v] << ": " << tex.Tree->GetErrorMessage());
+        return;
+      }
+      in.CutVolumes.clear(); // the cut must be rebuilt with this tree
+    }
+    if (!this->UseBrickAtlas && !tex.Data)
+    {
+      tex.Data = vtkSmartPointer<vtkTextureObject>::New();
       tex.Data->SetContext(renWin);
-      tex.Data->ReleaseGraphicsResources(renWin);
-      tex.Data->SetContext(renWin);
-      tex.Data->Create3DFromRaw(e.Dims[0], e.Dims[1], e.Dims[2], 1, VTK_FLOAT, values.data());
+      tex.Data->Create3DFromRaw(e.Dims[0], e.Dims[1], e.Dims[2], 1, VTK_FLOAT, tex.Scalars.data());
       tex.Data->SetWrapS(vtkTextureObject::ClampToEdge);
       tex.Data->SetWrapT(vtkTextureObject::ClampToEdge);
       tex.Data->SetWrapR(vtkTextureObject::ClampToEdge);
-      tex.DataTime = e.Input->GetMTime();
-      tex.DataInput = e.Input;
-      tex.Linear = !linear; // force the filter update below
+      // Nearest volumes snap to voxel centres in the shader: linear filtering serves both.
+      tex.Data->SetMinificationFilter(vtkTextureObject::Linear);
+      tex.Data->SetMagnificationFilter(vtkTextureObject::Linear);
     }
-    if (tex.Linear != linear)
-    {
-      tex.Data->SetMinificationFilter(linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
-      tex.Data->SetMagnificationFilter(linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
-      tex.Linear = linear;
-    }
+    (void)linear;
     // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
     const bool rgb = e.Property->GetColorChannels(0) == 3;
     vtkColorTransferFunction* color = rgb ? e.Property->GetRGBTransferFunction(0) : nullptr;
@@ -692,6 +765,25 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         tauD[i] = table[4 * i + 3];
       }
       tex.PreIntegration.SetTransferFunction(range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
+      // For the cut: the opacity function's nodes, and a scalar it makes transparent (what an
+      // empty brick reads).
+      tex.OpacityNodes.clear();
+      for (int i = 0; i < opacity->GetSize(); ++i)
+      {
+        double node[4];
+        opacity->GetNodeValue(i, node);
+        tex.OpacityNodes.push_back(node[0]);
+        tex.OpacityNodes.push_back(node[1]);
+      }
+      tex.EmptyScalar = range[0];
+      for (int i = 0; i < TransferTableSize; ++i)
+      {
+        if (alpha[i] <= 0.0f)
+        {
+          tex.EmptyScalar = range[0] + (range[1] - range[0]) * i / (TransferTableSize - 1.0);
+          break;
+        }
+      }
       tex.TransferTime = tfTime;
     }
   }
@@ -706,6 +798,103 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   Translation(toWorld, origin);
   vtkMatrix4x4::Multiply4x4(worldToClip, toWorld, localToClip);
   vtkMatrix4x4::Invert(localToClip, clipToLocal);
+
+  // --- Brick atlas: the cut through all volumes' octrees for this camera, bricks uploaded
+  // into the shared atlas, one index texture per volume.
+  if (this->UseBrickAtlas)
+  {
+    bool rebuild = in.CutVolumes.size() != volumes.size() || in.AtlasBrickSize != this->BrickSize ||
+      in.AtlasBudget != this->AtlasBudget || !in.AtlasTexture;
+    for (size_t v = 0; !rebuild && v < volumes.size(); ++v)
+    {
+      rebuild = in.CutVolumes[v].first != ports[v] || in.CutVolumes[v].second != in.Textures[ports[v]].Tree.get();
+    }
+    if (rebuild)
+    {
+      GLint max3D = 2048;
+      glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3D);
+      if (!in.Atlas.InitializeFromBudget(this->AtlasBudget, this->BrickSize, 4, std::min(max3D, 2048)))
+      {
+        vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of " << this->BrickSize << "^3 float voxels.");
+        return;
+      }
+      const auto size = in.Atlas.GetTextureSize();
+      if (!in.AtlasTexture)
+        glGenTextures(1, &in.AtlasTexture);
+      glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
+      glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size[0], size[1], size[2], 0, GL_RED, GL_FLOAT, nullptr);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+      glBindTexture(GL_TEXTURE_3D, 0);
+      in.Cut.RemoveAllVolumes();
+      in.CutVolumes.clear();
+      for (size_t v = 0; v < volumes.size(); ++v)
+      {
+        vtkVolumeBrickTree* tree = in.Textures[ports[v]].Tree.get();
+        in.Cut.AddVolume(tree, volumes[v].IndexToWorld->GetData());
+        in.CutVolumes.emplace_back(ports[v], tree);
+      }
+      in.Cut.SetBudget(in.Atlas.GetNumberOfSlots());
+      in.AtlasBrickSize = this->BrickSize;
+      in.AtlasBudget = this->AtlasBudget;
+    }
+    for (size_t v = 0; v < volumes.size(); ++v)
+    {
+      in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
+      const std::vector<double> nodes = in.Textures[ports[v]].OpacityNodes;
+      in.Cut.SetVolumeOpacity(static_cast<int>(v), [nodes](double lo, double hi) {
+        return nodes.empty() ? 1.0
+                             : vtkVolumeCut::MaxOfPiecewiseLinear(nodes.data(), static_cast<int>(nodes.size() / 2), lo, hi);
+      });
+    }
+    vtkVolumeCut::Camera cutCamera;
+    camera->GetPosition(cutCamera.Position);
+    if (camera->GetParallelProjection())
+      cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
+    else
+      cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
+    cutCamera.UseFrustum = true;
+    camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+    in.Cut.Update(cutCamera);
+    in.Atlas.BeginFrame();
+    std::vector<vtkVolumeCut::Upload> uploads;
+    const int missing = in.Cut.AssignSlots(in.Atlas, uploads);
+    if (missing > 0)
+    {
+      vtkWarningMacro(<< missing << " bricks found no atlas slot: raise AtlasBudget.");
+    }
+    const int B = this->BrickSize;
+    std::vector<float> brick(size_t(B) * B * B);
+    glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (const auto& u : uploads)
+    {
+      in.CutVolumes[u.Volume].second->ExtractBrick(u.Node, brick.data());
+      const auto pos = in.Atlas.GetSlotPosition(u.Slot);
+      glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, brick.data());
+    }
+    glBindTexture(GL_TEXTURE_3D, 0);
+    for (size_t v = 0; v < volumes.size(); ++v)
+    {
+      StrataVolumeTextures& tex = in.Textures[ports[v]];
+      std::vector<uint16_t> table;
+      in.Cut.BuildIndexTable(static_cast<int>(v), in.Atlas, table);
+      const int* dims = tex.Tree->GetLevelBricks(0);
+      if (!tex.IndexTexture)
+        glGenTextures(1, &tex.IndexTexture);
+      glBindTexture(GL_TEXTURE_3D, tex.IndexTexture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16UI, dims[0], dims[1], dims[2], 0, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, table.data());
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glBindTexture(GL_TEXTURE_3D, 0);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    }
+    in.ResidentBricks = in.Atlas.GetNumberOfUsedSlots();
+  }
 
   // --- Integration buffer and the scene's depth.
   const int rays = this->RaysPerPixel;
@@ -871,6 +1060,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     }
   }
   const bool lit = ren->GetLights()->GetNumberOfItems() > 0;
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   in.Sources.clear();
   in.LastFragments = 0;
   for (int f : order)
@@ -894,7 +1084,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       anyShaded = anyShaded || shaded[i];
     }
     const std::string fs = BuildFragmentShader(k, this->Classification, frontToBack, barrier, rays,
-      this->RayCoherence && rays > 1, shaded);
+      this->RayCoherence && rays > 1, shaded, this->UseBrickAtlas);
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
     if (!program)
@@ -964,30 +1154,54 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       in.Accumulation[r]->Activate();
       program->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
     }
+    std::vector<int> rawUnits;
+    if (this->UseBrickAtlas)
+    {
+      const int unit = units->Allocate();
+      rawUnits.push_back(unit);
+      state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
+      program->SetUniformi("uAtlas", unit);
+      const auto size = in.Atlas.GetTextureSize();
+      const float atlasSize[3] = { float(size[0]), float(size[1]), float(size[2]) };
+      program->SetUniform3f("uAtlasSize", atlasSize);
+      program->SetUniformf("uBrickSize", static_cast<float>(this->BrickSize));
+    }
     for (int i = 0; i < k; ++i)
     {
       const int v = frag.BoxIndices[i];
       StrataVolumeTextures& tex = in.Textures[ports[v]];
       const StrataVolumeEntry& e = volumes[v];
-      // local -> texture: (index + 0.5) / n of index = IndexToWorld^-1 (local + origin).
-      vtkNew<vtkMatrix4x4> worldToIndex, localToIndex, indexToTex, localToTex;
+      // local -> index: IndexToWorld^-1 (local + origin).
+      vtkNew<vtkMatrix4x4> worldToIndex, localToIndex;
       vtkMatrix4x4::Invert(e.IndexToWorld, worldToIndex);
       vtkMatrix4x4::Multiply4x4(worldToIndex, toWorld, localToIndex);
-      for (int a = 0; a < 3; ++a)
-      {
-        indexToTex->SetElement(a, a, 1.0 / e.Dims[a]);
-        indexToTex->SetElement(a, 3, 0.5 / e.Dims[a]);
-      }
-      vtkMatrix4x4::Multiply4x4(indexToTex, localToIndex, localToTex);
-      ToFloat(localToTex, m);
+      ToFloat(localToIndex, m);
       const std::string n = std::to_string(i);
-      program->SetUniformMatrix4x4(("uLocalToTexture" + n).c_str(), m);
-      tex.Data->Activate();
-      program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
+      program->SetUniformMatrix4x4(("uLocalToIndex" + n).c_str(), m);
+      program->SetUniformf(("uNearest" + n).c_str(),
+        e.Property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
+      if (this->UseBrickAtlas)
+      {
+        const int unit = units->Allocate();
+        rawUnits.push_back(unit);
+        state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_3D, tex.IndexTexture);
+        program->SetUniformi(("uIndex" + n).c_str(), unit);
+        const int* b = tex.Tree->GetLevelBricks(0);
+        const float tableDims[3] = { float(b[0]), float(b[1]), float(b[2]) };
+        program->SetUniform3f(("uTableDims" + n).c_str(), tableDims);
+        program->SetUniformf(("uEmptyScalar" + n).c_str(), static_cast<float>(tex.EmptyScalar));
+      }
+      else
+      {
+        tex.Data->Activate();
+        program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
+        const float dims[3] = { float(e.Dims[0]), float(e.Dims[1]), float(e.Dims[2]) };
+        program->SetUniform3f(("uDims" + n).c_str(), dims);
+      }
       if (shaded[i])
       {
-        const float voxel[3] = { 1.0f / e.Dims[0], 1.0f / e.Dims[1], 1.0f / e.Dims[2] };
-        program->SetUniform3f(("uVoxel" + n).c_str(), voxel);
         vtkVolumeProperty* p = e.Property;
         const float material[4] = { float(p->GetAmbient(0)), float(p->GetDiffuse(0)),
           float(p->GetSpecular(0)), float(p->GetSpecularPower(0)) };
@@ -1025,7 +1239,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (int i = 0; i < k; ++i)
     {
       StrataVolumeTextures& tex = in.Textures[ports[frag.BoxIndices[i]]];
-      tex.Data->Deactivate();
+      if (tex.Data && !this->UseBrickAtlas)
+        tex.Data->Deactivate();
       if (this->Classification == Classifications::PostClassification)
         tex.Transfer->Deactivate();
       else
@@ -1034,6 +1249,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (int r = 0; barrier && r < rays; ++r)
     {
       in.Accumulation[r]->Deactivate();
+    }
+    for (int unit : rawUnits)
+    {
+      state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_3D, 0);
+      units->Free(unit);
     }
     in.SceneDepth->Deactivate();
     glBindVertexArray(0);
@@ -1093,6 +1314,11 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
      << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront") << "\n";
   os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "UseBrickAtlas: " << this->UseBrickAtlas << "\n";
+  os << indent << "BrickSize: " << this->BrickSize << "\n";
+  os << indent << "AtlasBudget: " << this->AtlasBudget << " MB\n";
+  os << indent << "RaysPerPixel: " << this->RaysPerPixel << "\n";
+  os << indent << "RayCoherence: " << this->RayCoherence << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

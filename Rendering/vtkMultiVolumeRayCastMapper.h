@@ -77,6 +77,28 @@ public:
 
   ///@{
   /**
+   * Virtualized volume data (default on): each volume is cut into bricks of BrickSize^3 voxels
+   * sharing one voxel layer, with a down-sampled octree; one shared atlas texture of at most
+   * AtlasBudget MB holds the bricks of all volumes chosen by a greedy split/collapse on their
+   * screen-space error (vtkVolumeCut), and each volume reaches its bricks through an index
+   * texture. Bricks that the transfer function makes transparent are neither stored nor
+   * sampled. Off: one plain 3-D texture per volume at full resolution.
+   */
+  vtkSetMacro(UseBrickAtlas, bool);
+  vtkGetMacro(UseBrickAtlas, bool);
+  vtkBooleanMacro(UseBrickAtlas, bool);
+  vtkSetClampMacro(BrickSize, int, 4, 256);
+  vtkGetMacro(BrickSize, int);
+  vtkSetClampMacro(AtlasBudget, double, 0.001, 65536.0);
+  vtkGetMacro(AtlasBudget, double);
+  ///@}
+
+  /// Bricks resident in the atlas after the last frame, and atlas slots.
+  int GetNumberOfResidentBricks() const;
+  int GetNumberOfAtlasSlots() const;
+
+  ///@{
+  /**
    * Rays per pixel, 1 to 8 (default 1): anti-aliasing. Ray r starts at a sub-pixel position of a
    * fixed pattern and at a lattice phase staggered by r / R of the sample distance; the pixel is
    * the mean of its rays, each composited through all fragments on its own.
@@ -147,6 +169,9 @@ protected:
   Classifications Classification = Classifications::PostClassification;
   int PreIntegrationTableSize = 256;
   int RaysPerPixel = 1;
+  bool UseBrickAtlas = true;
+  int BrickSize = 32;
+  double AtlasBudget = 256.0;
   bool RayCoherence = false;
   double TerminationOpacity = 0.999;
 
