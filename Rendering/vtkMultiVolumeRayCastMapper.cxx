@@ -255,6 +255,28 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
           << "  return X > 0.0 ? vec4(e / X * a, a) : vec4(0.0);\n}\n";
     }
   }
+  if (atlas && frontToBack)
+  {
+    // The t up to which every volume's level-0 brick at o + t d is empty (t itself if one is
+    // not): the ray's exit from the brick's index box, nearest over the volumes.
+    seg << "float strataEmptyUntil(vec3 o, vec3 d, float t)\n{\n"
+        << "  float S = uBrickSize - 1.0;\n  float until = 3.0e38;\n"
+        << "  vec3 x0;\n  vec3 dx;\n  ivec3 b;\n  vec3 lo;\n  vec3 hi;\n  vec3 te;\n";
+    for (int i = 0; i < k; ++i)
+    {
+      const std::string n = std::to_string(i);
+      seg << "  x0 = (uLocalToIndex" << n << " * vec4(o + t * d, 1.0)).xyz;\n"
+          << "  dx = mat3(uLocalToIndex" << n << ") * d;\n"
+          << "  b = clamp(ivec3(floor(x0 / S)), ivec3(0), ivec3(uTableDims" << n << ") - 1);\n"
+          << "  if (texelFetch(uIndex" << n << ", b, 0).w != 65535u)\n  {\n    return t;\n  }\n"
+          << "  lo = vec3(b) * S;\n  hi = lo + S;\n"
+          << "  te = vec3(dx.x > 0.0 ? (hi.x - x0.x) / dx.x : (dx.x < 0.0 ? (lo.x - x0.x) / dx.x : 3.0e38),\n"
+          << "    dx.y > 0.0 ? (hi.y - x0.y) / dx.y : (dx.y < 0.0 ? (lo.y - x0.y) / dx.y : 3.0e38),\n"
+          << "    dx.z > 0.0 ? (hi.z - x0.z) / dx.z : (dx.z < 0.0 ? (lo.z - x0.z) / dx.z : 3.0e38));\n"
+          << "  until = min(until, t + max(min(te.x, min(te.y, te.z)), 0.0));\n";
+    }
+    seg << "  return until;\n}\n";
+  }
   Replace(fs, "//STRATA::Volumes::Dec", dec.str());
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
   if (frontToBack)
@@ -314,15 +336,25 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   }
   if (frontToBack)
   {
-    loop << "float k0 = floor(tEnter / dt - phase);\n";
+    loop << "float kk = floor(tEnter / dt - phase);\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tEnter * d, sA);\n";
     loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-         << "    float a = max((k0 + float(it) + phase) * dt, tEnter);\n"
-         << "    float b = min((k0 + float(it) + 1.0 + phase) * dt, tExit);\n"
-         << "    if (a >= tExit)\n    {\n      break;\n    }\n"
-         << "    if (b > a)\n    {\n";
+         << "    float a = max((kk + phase) * dt, tEnter);\n"
+         << "    float b = min((kk + 1.0 + phase) * dt, tExit);\n"
+         << "    if (a >= tExit)\n    {\n      break;\n    }\n";
+    if (atlas)
+    {
+      // Empty-space skipping: jump to the lattice step where some volume's brick is not empty.
+      loop << "    float skip = strataEmptyUntil(o, d, a);\n"
+           << "    if (skip > b)\n    {\n"
+           << "      kk = max(kk + 1.0, floor(skip / dt - phase));\n";
+      if (pre)
+        loop << "      strataSampleAll(o + min(max((kk + phase) * dt, tEnter), tExit) * d, sA);\n";
+      loop << "      continue;\n    }\n";
+    }
+    loop << "    if (b > a)\n    {\n";
     if (pre)
       loop << "      strataSampleAll(o + b * d, sB);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -331,7 +363,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
     loop << "      if (c.a > 0.0 && tFirst == tExit)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
          << "      acc += (1.0 - acc.a) * c;\n"
-         << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n  }";
+         << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n"
+         << "    kk += 1.0;\n  }";
   }
   else
   {
