@@ -242,7 +242,15 @@ vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::strin
   vtkNew<vtkTransform> t1;
   t1->Translate(14, -6, 2);
   t1->RotateWXYZ(25, 1, 1, 0);
-  add(MakeBlobVolume(48, 40, 36, s1, o1, 3), MakeVolumeProperty(0, 2.0), t1);
+  // Its faint outskirts (values 20-35) would veil the Bucky ball: transparent here.
+  auto blobProperty = MakeVolumeProperty(0, 2.0);
+  vtkPiecewiseFunction* blobOpacity = blobProperty->GetScalarOpacity(0);
+  blobOpacity->RemoveAllPoints();
+  blobOpacity->AddPoint(0, 0.0);
+  blobOpacity->AddPoint(35, 0.0);
+  blobOpacity->AddPoint(60, 0.08);
+  blobOpacity->AddPoint(100, 0.3);
+  add(MakeBlobVolume(48, 40, 36, s1, o1, 3), blobProperty, t1);
 
   const double s2[3] = { 1.8, 1.8, 1.8 }, o2[3] = { 0, 0, 0 };
   vtkNew<vtkTransform> t2;
