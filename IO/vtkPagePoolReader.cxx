@@ -1,0 +1,355 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkPagePoolReader.h"
+#include "vtkStrataGridReaderUtilities.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleKey.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPagePoolFile.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkType.h"
+
+#include <vtksys/FStream.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkPagePoolReader);
+
+namespace
+{
+using Format = vtkPagePoolFormat;
+using strata_io::ClearOutput;
+
+/// The resolution key travels upstream with the update extent, like UPDATE_EXTENT itself, so a
+/// filter between the consumer and the reader need not know about it.
+class vtkPagePoolResolutionKey : public vtkInformationDoubleKey
+{
+public:
+  vtkPagePoolResolutionKey(const char* name, const char* location)
+    : vtkInformationDoubleKey(name, location)
+  {
+  }
+  void CopyDefaultInformation(vtkInformation* request,
+    vtkInformation* fromInfo,
+    vtkInformation* toInfo) override
+  {
+    if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+    {
+      this->ShallowCopy(fromInfo, toInfo);
+    }
+  }
+};
+
+vtkInformationDoubleKey* ResolutionKey = new vtkPagePoolResolutionKey("UPDATE_RESOLUTION", "vtkPagePoolReader");
+
+int ToVTKType(Format::ScalarType type)
+{
+  switch (type)
+  {
+    case Format::ScalarType::UInt8:
+      return VTK_UNSIGNED_CHAR;
+    case Format::ScalarType::UInt16:
+      return VTK_UNSIGNED_SHORT;
+    case Format::ScalarType::Int16:
+      return VTK_SHORT;
+    case Format::ScalarType::Float32:
+      return VTK_FLOAT;
+  }
+  return VTK_VOID;
+}
+
+/// First page whose points include level index p (pages share their last point with the next
+/// page's first, so p = i S belongs to page i - 1 as well; the lower one is taken).
+int PageOf(int p, int stride, int pages)
+{
+  const int i = p <= 0 ? 0 : (p - 1) / stride;
+  return std::min(i, pages - 1);
+}
+}
+
+//------------------------------------------------------------------------------
+vtkInformationDoubleKey* vtkPagePoolReader::UPDATE_RESOLUTION()
+{
+  return ResolutionKey;
+}
+
+//------------------------------------------------------------------------------
+vtkPagePoolReader::vtkPagePoolReader()
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetArrayName("values");
+}
+
+//------------------------------------------------------------------------------
+vtkPagePoolReader::~vtkPagePoolReader()
+{
+  this->SetFileName(nullptr);
+  this->SetArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkPagePoolReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
+  os << indent << "Layer: " << this->Layer << "\n";
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
+  os << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n";
+  os << indent << "IsTilePool: " << this->IsTilePool << "\n";
+  os << indent << "NumberOfPagesRead: " << this->NumberOfPagesRead << "\n";
+  os << indent << "LevelRead: " << this->LevelRead << "\n";
+}
+
+//------------------------------------------------------------------------------
+int vtkPagePoolReader::ResolutionToLevel(double r, int levels)
+{
+  if (levels <= 1)
+  {
+    return 0;
+  }
+  if (!(r > 0.0))
+  {
+    return levels - 1;
+  }
+  r = std::min(r, 1.0);
+  // The small tolerance keeps exact powers of two (0.5, 0.25) on their own level.
+  const int l = static_cast<int>(std::floor(std::log2(1.0 / r) + 1e-9));
+  return std::max(0, std::min(l, levels - 1));
+}
+
+//------------------------------------------------------------------------------
+bool vtkPagePoolReader::CanReadFile(const char* fileName)
+{
+  if (!fileName || !*fileName)
+  {
+    return false;
+  }
+  vtksys::ifstream in(fileName, std::ios::in | std::ios::binary);
+  if (!in)
+  {
+    return false;
+  }
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<long long>(in.tellg());
+  in.seekg(0, std::ios::beg);
+  unsigned char bytes[Format::HeaderSize];
+  if (size < static_cast<long long>(Format::HeaderSize) ||
+    !in.read(reinterpret_cast<char*>(bytes), Format::HeaderSize))
+  {
+    return false;
+  }
+  Format::Header header;
+  std::string error;
+  return Format::ValidateHeaderBytes(bytes, static_cast<uint64_t>(size), header, error);
+}
+
+//------------------------------------------------------------------------------
+int vtkPagePoolReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  this->NumberOfLevels = 0;
+  this->NumberOfLayers = 0;
+  this->IsTilePool = false;
+  vtkPagePoolFile file;
+  if (!this->FileName || !*this->FileName || !file.Open(this->FileName))
+  {
+    ClearOutput(outInfo);
+    vtkErrorMacro("Cannot read page pool \"" << (this->FileName ? this->FileName : "")
+                                             << "\": "
+                                             << (this->FileName && *this->FileName
+                                                    ? file.GetErrorMessage()
+                                                    : std::string("no file name set")));
+    return 0;
+  }
+  const Format::Header& h = file.GetHeader();
+  this->NumberOfLevels = file.GetNumberOfLevels();
+  this->IsTilePool = h.PoolKind == Format::Kind::TilePool;
+  this->NumberOfLayers = this->IsTilePool ? h.Dimensions[2] : 1;
+  const int nz = this->IsTilePool ? 1 : h.Dimensions[2];
+  const int extent[6] = { 0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, nz - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), h.Spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), h.Origin, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), h.Direction, 9);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPagePoolReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  this->NumberOfPagesRead = 0;
+  this->LevelRead = -1;
+  if (!output)
+  {
+    vtkErrorMacro("No vtkImageData output to fill.");
+    return 0;
+  }
+  output->Initialize();
+  const std::string name = this->FileName ? this->FileName : "";
+  auto fail = [&](const std::string& error) {
+    output->Initialize();
+    vtkErrorMacro("Cannot read page pool \"" << name << "\": " << error);
+    return 0;
+  };
+
+  // Opened again rather than kept from the information pass: the object holds a descriptor,
+  // and a reader that sits in a pipeline for hours should not pin a file that may be replaced.
+  vtkPagePoolFile file;
+  if (name.empty())
+  {
+    return fail("no file name set");
+  }
+  if (!file.Open(name))
+  {
+    return fail(file.GetErrorMessage());
+  }
+  const Format::Header& h = file.GetHeader();
+  const bool tiles = h.PoolKind == Format::Kind::TilePool;
+  const int layers = tiles ? h.Dimensions[2] : 1;
+  if (tiles && (this->Layer < 0 || this->Layer >= layers))
+  {
+    std::ostringstream msg;
+    msg << "layer " << this->Layer << " out of range [0, " << layers - 1 << "]";
+    return fail(msg.str());
+  }
+
+  double resolution = this->Resolution;
+  if (outInfo->Has(UPDATE_RESOLUTION()))
+  {
+    resolution = outInfo->Get(UPDATE_RESOLUTION());
+  }
+  const int level = ResolutionToLevel(resolution, file.GetNumberOfLevels());
+  const Format::Level& lv = file.GetLevel(level);
+
+  int updateExtent[6] = { 0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0,
+    tiles ? 0 : h.Dimensions[2] - 1 };
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), updateExtent);
+  }
+  const int axes = tiles ? 2 : 3;
+  int extent[6] = { 0, 0, 0, 0, 0, 0 };
+  double spacing[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n0 = a < axes ? h.Dimensions[a] : 1;
+    const int nl = a < axes ? lv.Dimensions[a] : 1;
+    const int lo = std::max(updateExtent[2 * a], 0);
+    const int hi = std::min(updateExtent[2 * a + 1], n0 - 1);
+    if (lo > hi)
+    {
+      // An empty request: an empty output, and no error.
+      return 1;
+    }
+    if (nl > 1)
+    {
+      const double ratio = static_cast<double>(n0 - 1) / (nl - 1);
+      spacing[a] = h.Spacing[a] * ratio;
+      // The 1e-9 guards floor/ceil of exact quotients against rounding.
+      extent[2 * a] = std::max(0, static_cast<int>(std::floor(lo / ratio + 1e-9)));
+      extent[2 * a + 1] = std::min(nl - 1, static_cast<int>(std::ceil(hi / ratio - 1e-9)));
+    }
+    else
+    {
+      spacing[a] = h.Spacing[a];
+      extent[2 * a] = extent[2 * a + 1] = 0;
+    }
+  }
+
+  output->SetExtent(extent);
+  output->SetSpacing(spacing);
+  output->SetOrigin(h.Origin);
+  output->SetDirectionMatrix(h.Direction);
+  const int vtkType = ToVTKType(h.Type);
+  output->AllocateScalars(vtkType, 1);
+  vtkDataArray* scalars = output->GetPointData()->GetScalars();
+  scalars->SetName(this->ArrayName);
+  const int valueSize = Format::GetScalarSize(h.Type);
+  auto* dst = static_cast<unsigned char*>(scalars->GetVoidPointer(0));
+  const vtkIdType ox = extent[1] - extent[0] + 1;
+  const vtkIdType oy = extent[3] - extent[2] + 1;
+
+  const int B = h.PageSize;
+  const int S = B - 1;
+  int p0[3], p1[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    if (a < axes)
+    {
+      p0[a] = PageOf(extent[2 * a], S, lv.Pages[a]);
+      p1[a] = PageOf(extent[2 * a + 1], S, lv.Pages[a]);
+    }
+    else
+    {
+      p0[a] = p1[a] = 0;
+    }
+  }
+  const vtkIdType total =
+    vtkIdType(p1[0] - p0[0] + 1) * (p1[1] - p0[1] + 1) * (p1[2] - p0[2] + 1);
+  std::vector<unsigned char> page(file.GetPageBytes());
+  this->LevelRead = level;
+  this->UpdateProgress(0.0);
+  std::string error;
+  for (int pk = p0[2]; pk <= p1[2]; ++pk)
+  {
+    for (int pj = p0[1]; pj <= p1[1]; ++pj)
+    {
+      for (int pi = p0[0]; pi <= p1[0]; ++pi)
+      {
+        const uint64_t index =
+          uint64_t(pi) + uint64_t(lv.Pages[0]) * (uint64_t(pj) + uint64_t(lv.Pages[1]) * pk);
+        if (!file.ReadPageNative(level, index, page.data(), &error))
+        {
+          return fail(error);
+        }
+        ++this->NumberOfPagesRead;
+        // The part of the page inside the output extent, in level indices.
+        const int base[3] = { pi * S, pj * S, tiles ? 0 : pk * S };
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          const int pageHi = a < axes ? base[a] + B - 1 : 0;
+          lo[a] = std::max(extent[2 * a], base[a]);
+          hi[a] = std::min(extent[2 * a + 1], pageHi);
+        }
+        const size_t run = static_cast<size_t>(hi[0] - lo[0] + 1) * valueSize;
+        for (int z = lo[2]; z <= hi[2]; ++z)
+        {
+          for (int y = lo[1]; y <= hi[1]; ++y)
+          {
+            // Tile pages are x, y, layer; brick pages x, y, z.
+            const size_t pz = tiles ? static_cast<size_t>(this->Layer) : size_t(z - base[2]);
+            const size_t src = ((pz * B + size_t(y - base[1])) * B + size_t(lo[0] - base[0]));
+            const vtkIdType out =
+              ((vtkIdType(z - extent[4]) * oy + (y - extent[2])) * ox + (lo[0] - extent[0]));
+            std::memcpy(dst + out * valueSize, page.data() + src * valueSize, run);
+          }
+        }
+        this->UpdateProgress(static_cast<double>(this->NumberOfPagesRead) / total);
+      }
+    }
+  }
+  return 1;
+}

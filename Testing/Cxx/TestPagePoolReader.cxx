@@ -1,0 +1,387 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// vtkImageToPagePoolWriter and vtkPagePoolReader round trips:
+// - a generated 70 x 50 x 41 uint16 volume (page size 16, so 4 levels and pages that do not
+//   divide the dimensions), a generated 2-D float grid with NaN holes, Testing/Data's bucky.raw
+//   (32^3 uint8, through vtkImageReader2, which streams) and the Reek .gri horizon (through
+//   vtkIrapBinaryGridReader): full-resolution reads must equal the input bit for bit, geometry
+//   included;
+// - a sub-extent read must read exactly the pages overlapping it and give the input's values;
+// - a coarse read (UPDATE_RESOLUTION 0.5 and 0) must give level 1 (n/2 + 1 points per axis) and
+//   the coarsest level, with the same physical bounds as the full image;
+// - the writer's progress events are non-decreasing and end at 1;
+// - errors: a missing file, a corrupt page and an unwritable output are reported (counted by an
+//   observer) and leave an empty output / no file.
+#include "StrataTestHelpers.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkInformation.h"
+#include "vtkIrapBinaryGridReader.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkPagePoolFile.h"
+#include "vtkPagePoolReader.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <vtksys/SystemTools.hxx>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+using strata_test::Check;
+using strata_test::ErrorCounter;
+
+void RecordProgress(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData));
+}
+
+/// Converts `image` (or the output of `producer`) and checks progress and success.
+bool Convert(vtkAlgorithm* producer, vtkImageData* image, const std::string& path, int pageSize)
+{
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  if (producer)
+  {
+    writer->SetInputConnection(producer->GetOutputPort());
+  }
+  else
+  {
+    writer->SetInputData(image);
+  }
+  writer->SetFileName(path.c_str());
+  writer->SetPageSize(pageSize);
+  writer->SetCompression(true);
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetCallback(RecordProgress);
+  cb->SetClientData(&progress);
+  writer->AddObserver(vtkCommand::ProgressEvent, cb);
+  const bool ok = writer->Write();
+  Check(ok, "conversion to " + path + " succeeds");
+  bool monotonic = true;
+  for (size_t i = 1; i < progress.size(); ++i)
+  {
+    monotonic = monotonic && progress[i] >= progress[i - 1];
+  }
+  Check(progress.size() > 2 && monotonic && progress.back() == 1.0,
+    "progress of " + path + " is non-decreasing and ends at 1");
+  return ok;
+}
+
+/// Bit-exact equality of the scalars of `a` over the extent of `b` (b within a), and of the
+/// geometry when `geometry`.
+bool SameValues(vtkImageData* full, vtkImageData* part, bool geometry)
+{
+  vtkDataArray* fa = full->GetPointData()->GetScalars();
+  vtkDataArray* pa = part->GetPointData()->GetScalars();
+  if (!fa || !pa || fa->GetDataType() != pa->GetDataType())
+  {
+    std::cerr << "  scalars missing or of different types\n";
+    return false;
+  }
+  if (geometry)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (full->GetSpacing()[a] != part->GetSpacing()[a] ||
+        std::fabs(full->GetOrigin()[a] - part->GetOrigin()[a]) > 1e-9)
+      {
+        std::cerr << "  geometry differs on axis " << a << "\n";
+        return false;
+      }
+    }
+    for (int i = 0; i < 9; ++i)
+    {
+      if (full->GetDirectionMatrix()->GetData()[i] != part->GetDirectionMatrix()->GetData()[i])
+      {
+        std::cerr << "  direction differs\n";
+        return false;
+      }
+    }
+  }
+  const int size = fa->GetDataTypeSize();
+  int e[6];
+  part->GetExtent(e);
+  for (int k = e[4]; k <= e[5]; ++k)
+    for (int j = e[2]; j <= e[3]; ++j)
+      for (int i = e[0]; i <= e[1]; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        const vtkIdType fi = full->ComputePointId(ijk);
+        const vtkIdType pi = part->ComputePointId(ijk);
+        if (std::memcmp(static_cast<char*>(fa->GetVoidPointer(0)) + fi * size,
+              static_cast<char*>(pa->GetVoidPointer(0)) + pi * size, size) != 0)
+        {
+          std::cerr << "  value differs at (" << i << ", " << j << ", " << k << ")\n";
+          return false;
+        }
+      }
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> Read(const std::string& path, const int* extent = nullptr,
+  double resolution = -1, vtkPagePoolReader* keep = nullptr)
+{
+  vtkNew<vtkPagePoolReader> local;
+  vtkPagePoolReader* reader = keep ? keep : local.Get();
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  if (resolution >= 0)
+  {
+    reader->GetOutputInformation(0)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), resolution);
+  }
+  else
+  {
+    reader->GetOutputInformation(0)->Remove(vtkPagePoolReader::UPDATE_RESOLUTION());
+  }
+  if (extent)
+  {
+    reader->UpdateExtent(extent);
+  }
+  else
+  {
+    reader->Update();
+  }
+  vtkNew<vtkImageData> copy;
+  copy->DeepCopy(reader->GetOutput());
+  return copy.Get();
+}
+
+int PageOf(int p, int stride, int pages)
+{
+  return std::min(p <= 0 ? 0 : (p - 1) / stride, pages - 1);
+}
+
+void RoundTrip(const std::string& what, vtkImageData* input, const std::string& path)
+{
+  vtkSmartPointer<vtkImageData> back = Read(path);
+  int a[6], b[6];
+  input->GetExtent(a);
+  back->GetExtent(b);
+  Check(std::equal(a, a + 6, b), what + ": extent preserved");
+  Check(SameValues(input, back, true), what + ": full-resolution read is bit-exact");
+}
+}
+
+int TestPagePoolReader(int, char*[])
+{
+  const std::string out = strata_test::OutputDirectory() + "/TestPagePoolReader";
+  vtksys::SystemTools::MakeDirectory(out);
+
+  // ---- Generated uint16 volume. ----
+  vtkNew<vtkImageData> vol;
+  vol->SetDimensions(70, 50, 41);
+  vol->SetSpacing(0.5, 0.75, 2.0);
+  vol->SetOrigin(10, -20, 300);
+  vol->AllocateScalars(VTK_UNSIGNED_SHORT, 1);
+  {
+    auto* p = static_cast<unsigned short*>(vol->GetScalarPointer());
+    for (vtkIdType n = 0; n < 70 * 50 * 41; ++n)
+    {
+      p[n] = static_cast<unsigned short>((n * 2654435761u) >> 16);
+    }
+  }
+  const std::string volPath = out + "/volume.spp";
+  Convert(nullptr, vol, volPath, 16);
+  RoundTrip("uint16 volume", vol, volPath);
+
+  // Sub-extent: only the overlapping pages.
+  {
+    vtkNew<vtkPagePoolReader> reader;
+    const int sub[6] = { 10, 33, 5, 12, 30, 40 };
+    vtkSmartPointer<vtkImageData> part = Read(volPath, sub, 1.0, reader);
+    int e[6];
+    part->GetExtent(e);
+    Check(std::equal(sub, sub + 6, e), "sub-extent read has the requested extent");
+    Check(SameValues(vol, part, false), "sub-extent values are bit-exact");
+    // Level 0 of 70 x 50 x 41 with B = 16 (stride 15): 5 x 4 x 3 pages.
+    long expected = 1;
+    const int pages[3] = { 5, 4, 3 };
+    for (int a = 0; a < 3; ++a)
+    {
+      expected *= PageOf(sub[2 * a + 1], 15, pages[a]) - PageOf(sub[2 * a], 15, pages[a]) + 1;
+    }
+    std::cout << "sub-extent read " << reader->GetNumberOfPagesRead() << " pages (expected "
+              << expected << " of 60 at level 0)\n";
+    Check(reader->GetNumberOfPagesRead() == expected && expected < 60,
+      "sub-extent reads only the overlapping pages");
+  }
+
+  // Coarse reads: same physical region.
+  for (double r : { 0.5, 0.0 })
+  {
+    vtkNew<vtkPagePoolReader> reader;
+    vtkSmartPointer<vtkImageData> coarse = Read(volPath, nullptr, r, reader);
+    int dims[3];
+    coarse->GetDimensions(dims);
+    double fb[6], cb[6];
+    vol->GetBounds(fb);
+    coarse->GetBounds(cb);
+    bool sameBounds = true;
+    for (int i = 0; i < 6; ++i)
+    {
+      sameBounds = sameBounds && std::fabs(fb[i] - cb[i]) < 1e-9;
+    }
+    std::cout << "resolution " << r << ": level " << reader->GetLevelRead() << ", " << dims[0]
+              << " x " << dims[1] << " x " << dims[2] << ", spacing " << coarse->GetSpacing()[0]
+              << " " << coarse->GetSpacing()[1] << " " << coarse->GetSpacing()[2] << ", "
+              << reader->GetNumberOfPagesRead() << " pages\n";
+    if (r == 0.5)
+    {
+      Check(reader->GetLevelRead() == 1 && dims[0] == 36 && dims[1] == 26 && dims[2] == 21,
+        "resolution 0.5 reads level 1 (n/2 + 1 points)");
+      Check(coarse->GetSpacing()[0] == 0.5 * 69 / 35, "level-1 spacing covers the same span");
+    }
+    else
+    {
+      Check(reader->GetLevelRead() == reader->GetNumberOfLevels() - 1 &&
+          reader->GetNumberOfPagesRead() == 1,
+        "resolution 0 reads the single root page");
+    }
+    Check(sameBounds, "coarse read covers the same physical bounds");
+  }
+
+  // ---- Generated 2-D float grid with NaN holes -> tile pool. ----
+  {
+    vtkNew<vtkImageData> grid;
+    grid->SetDimensions(61, 45, 1);
+    grid->SetSpacing(25, 12.5, 1);
+    grid->SetOrigin(456000, 6780000, 0);
+    grid->AllocateScalars(VTK_FLOAT, 1);
+    auto* p = static_cast<float*>(grid->GetScalarPointer());
+    for (int j = 0; j < 45; ++j)
+      for (int i = 0; i < 61; ++i)
+      {
+        const bool hole = (i - 30) * (i - 30) + (j - 20) * (j - 20) < 49 || (i + j) % 17 == 0;
+        p[j * 61 + i] = hole ? std::numeric_limits<float>::quiet_NaN()
+                             : 1500.0f + 3.7f * std::sin(0.1f * i) * j;
+      }
+    const std::string path = out + "/grid.spp";
+    Convert(nullptr, grid, path, 8);
+    RoundTrip("float grid with holes", grid, path);
+    vtkNew<vtkPagePoolReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->UpdateInformation();
+    Check(reader->GetIsTilePool() && reader->GetNumberOfLayers() == 1, "2-D input gives a tile pool");
+  }
+
+  // ---- bucky.raw (32^3 uint8) through a streaming vtkImageReader2. ----
+  {
+    const std::string raw = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
+    vtkNew<vtkImageReader2> rr;
+    rr->SetFileName(raw.c_str());
+    rr->SetFileDimensionality(3);
+    rr->SetDataExtent(0, 31, 0, 31, 0, 31);
+    rr->SetDataScalarTypeToUnsignedChar();
+    const std::string path = out + "/bucky.spp";
+    Convert(rr, nullptr, path, 8);
+    rr->UpdateWholeExtent();
+    RoundTrip("bucky.raw", rr->GetOutput(), path);
+  }
+
+  // ---- Reek horizon (rotated Irap grid) -> tile pool. ----
+  {
+    vtkNew<vtkIrapBinaryGridReader> gr;
+    gr->SetFileName(
+      (strata_test::TestDataDirectory() + "/horizons/reek_01_topreek_rota.gri").c_str());
+    const std::string path = out + "/reek.spp";
+    Convert(gr, nullptr, path, 32);
+    gr->Update();
+    RoundTrip("reek_01_topreek_rota.gri", gr->GetOutput(), path);
+  }
+
+  // ---- Errors. ----
+  {
+    vtkNew<vtkPagePoolReader> reader;
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->SetFileName((out + "/does-not-exist.spp").c_str());
+    reader->Update();
+    Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
+      "missing file: error and empty output");
+    Check(!vtkPagePoolReader::CanReadFile((out + "/does-not-exist.spp").c_str()) &&
+        vtkPagePoolReader::CanReadFile(volPath.c_str()),
+      "CanReadFile");
+
+    // Corrupt the first page of a copy: full reads fail, reads not touching it succeed.
+    const std::string bad = out + "/corrupt.spp";
+    vtksys::SystemTools::CopyAFile(volPath, bad);
+    uint64_t offset = 0;
+    {
+      vtkPagePoolFile f;
+      Check(f.Open(bad), "copy opens");
+      offset = f.GetPageEntry(0).Offset;
+    }
+    {
+      std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
+      f.seekp(static_cast<std::streamoff>(offset + 5));
+      char c = 0x5a;
+      f.write(&c, 1);
+    }
+    errors->Reset();
+    reader->SetFileName(bad.c_str());
+    reader->GetOutputInformation(0)->Remove(vtkPagePoolReader::UPDATE_RESOLUTION());
+    reader->UpdateInformation();
+    reader->UpdateWholeExtent();
+    std::cout << "corrupt page: \"" << errors->First << "\"\n";
+    Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
+      "corrupt page: error and empty output");
+    errors->Reset();
+    const int far[6] = { 50, 69, 40, 49, 30, 40 };
+    vtkNew<vtkPagePoolReader> fresh;
+    errors->Watch(fresh);
+    fresh->SetFileName(bad.c_str());
+    fresh->UpdateExtent(far);
+    std::cout << "far read: " << errors->Errors << " errors (\"" << errors->First << "\"), "
+              << fresh->GetOutput()->GetNumberOfPoints() << " points\n";
+    Check(errors->Errors == 0 && fresh->GetOutput()->GetNumberOfPoints() > 0,
+      "a read away from the corrupt page succeeds");
+
+    // Unwritable output: error, no file.
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    vtkNew<ErrorCounter> werrors;
+    writer->AddObserver(vtkCommand::ErrorEvent, werrors);
+    writer->SetInputData(vol);
+    const std::string nowhere = out + "/no-such-dir/volume.spp";
+    writer->SetFileName(nowhere.c_str());
+    Check(!writer->Write() && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(nowhere),
+      "unwritable output: error, no file");
+    std::cout << "unwritable: \"" << werrors->First << "\"\n";
+
+    // Failing upstream: a raw reader on a missing file.
+    vtkNew<vtkImageReader2> rr;
+    vtkNew<ErrorCounter> rerrors;
+    rerrors->Watch(rr);
+    rr->SetFileName((out + "/missing.raw").c_str());
+    rr->SetDataExtent(0, 9, 0, 9, 0, 9);
+    writer->SetInputConnection(rr->GetOutputPort());
+    const std::string target = out + "/from-missing.spp";
+    vtksys::SystemTools::RemoveFile(target); // a stale one from an earlier run
+    writer->SetFileName(target.c_str());
+    werrors->Reset();
+    const bool wrote = writer->Write();
+    std::cout << "failing upstream: wrote " << wrote << ", " << werrors->Errors
+              << " writer errors (\"" << werrors->First << "\"), " << rerrors->Errors
+              << " reader errors\n";
+    Check(!wrote && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(target),
+      "failing upstream: error, no file");
+  }
+
+  return strata_test::Failures() == 0 ? 0 : 1;
+}
