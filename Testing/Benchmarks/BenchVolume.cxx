@@ -1,0 +1,1530 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// Benchmark of the multi-volume ray caster (vtkMultiVolumeRayCastMapper): its accuracy and cost
+// against the double-precision reference integrator over its settings, and its frame time
+// against VTK's vtkGPUVolumeRayCastMapper on one volume, on a sparse volume and on VTK's own
+// multi-volume path (vtkMultiVolume), plus the BSP rebuild time. scripts/bench volume runs the
+// sub-modes, one process each (one per mapper where peak memory is measured), and collects
+// bench-results/volume.csv. Usage:
+//   BenchVolume header                      -> the CSV header line
+//   BenchVolume accuracy <data>             -> the settings grid at 256 x 256, each image
+//                                              against the reference
+//   BenchVolume frame <single|sparse> <data> [<method>=<MB>,...]
+//                                           -> strata, strata-no-atlas and VTK at 512 x 512,
+//                                              timed interleaved; peak RSS from `memory`
+//   BenchVolume memory <single|sparse> <data> <strata|strata-no-atlas|vtk>
+//                                           -> "<method>=<peak RSS MB>", one mapper alone
+//   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
+//   BenchVolume bsp <volumes> [ring|grid]   -> ms per vtkVolumeBSPTree::Build
+//   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
+//   BenchVolume report <csv> <png>          -> summary tables and the RMS-vs-time plot
+// Each prints CSV rows on stdout and progress on stderr. Data: bucky, tooth, engine, bonsai,
+// read from $STRATA_SHARED_DATA/volumes (default ../shared/data; bucky first from
+// $STRATA_TEST_DATA/volumes); a missing file gives a row with a note, never a failure.
+// sample_distance is in world units; every volume here has unit spacing, so it is in voxels.
+// Frame times are the median of several renders after warm-up, each ended by
+// WaitForCompletion. STRATA_BENCH_FRAMES overrides the number of timed frames;
+// STRATA_BENCH_IMAGES names a directory to write each measured image (and its reference) to.
+// Checks of the reference itself: STRATA_BENCH_CONVERGE=1 makes `multi` also compare its
+// reference with one at half the step; STRATA_BENCH_UNSNAPPED=1 makes `converge` also compare
+// with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
+#include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataTestHelpers.h"
+#include "StrataVolumeScenes.h"
+
+#include "vtkAxis.h"
+#include "vtkCamera.h"
+#include "vtkChartLegend.h"
+#include "vtkChartXY.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkContextScene.h"
+#include "vtkContextView.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkGenericRenderWindowInteractor.h"
+#include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkMultiVolumeReferenceIntegrator.h"
+#include "vtkNrrdReader.h"
+#include "vtkPNGWriter.h"
+#include "vtkPen.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlotPoints.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
+#include "vtkTransform.h"
+#include "vtkVolume.h"
+#include "vtkVolumeBSPTree.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtkXMLImageDataReader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+using Classifications = vtkMultiVolumeRayCastMapper::Classifications;
+using CompositeOrders = vtkMultiVolumeRayCastMapper::CompositeOrders;
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+// CompareVolumesWithReference's background: mid grey, exact in 8 bits, so that opacity errors
+// show as well as colour errors.
+const double Grey = 128.0 / 255.0;
+// The reference integrator's step, as a fraction of a voxel: converged, see Accuracy().
+const double ReferenceStep = 1.0 / 16.0;
+
+const char* const Header = "case,method,ms_per_frame,rms_error,classification,order,rays,coherence,"
+                           "sample_distance,volumes,rms_error_same_rays,width,height,fragments,"
+                           "peak_rss_mb,note";
+
+/// One CSV row; NaN or negative fields are written empty.
+struct Row
+{
+  std::string Case, Method;
+  double Ms = NaN, Rms = NaN;
+  std::string Classification, Order;
+  int Rays = -1, Coherence = -1;
+  double SampleDistance = NaN;
+  int Volumes = -1;
+  double RmsSameRays = NaN;
+  int Width = -1, Height = -1, Fragments = -1;
+  double PeakRss = NaN;
+  std::string Note;
+
+  std::string Csv() const
+  {
+    std::ostringstream s;
+    auto num = [&](double v, int digits)
+    {
+      if (!std::isnan(v))
+      {
+        char b[32];
+        std::snprintf(b, sizeof(b), "%.*f", digits, v);
+        s << b;
+      }
+      s << ',';
+    };
+    auto integer = [&](int v)
+    {
+      if (v >= 0)
+        s << v;
+      s << ',';
+    };
+    s << this->Case << ',' << this->Method << ',';
+    num(this->Ms, this->Ms < 1.0 ? 4 : this->Ms < 10.0 ? 3 : 1);
+    num(this->Rms, 3);
+    s << this->Classification << ',' << this->Order << ',';
+    integer(this->Rays);
+    s << (this->Coherence < 0 ? "" : this->Coherence ? "on" : "off") << ',';
+    num(this->SampleDistance, 3);
+    integer(this->Volumes);
+    num(this->RmsSameRays, 3);
+    integer(this->Width);
+    integer(this->Height);
+    integer(this->Fragments);
+    num(this->PeakRss, 0);
+    std::string note = this->Note;
+    std::replace(note.begin(), note.end(), ',', ';'); // one field, unquoted
+    s << note;
+    return s.str();
+  }
+};
+
+void Emit(const Row& row)
+{
+  std::cout << row.Csv() << std::endl;
+}
+
+double PeakRssMB()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return std::stod(line.substr(6)) / 1024.0;
+    }
+  }
+  return NaN;
+}
+
+/// The 1-minute load average: this machine's 2 cores are shared, and the timings show it.
+std::string LoadNote()
+{
+  std::ifstream in("/proc/loadavg");
+  std::string load;
+  in >> load;
+  return load.empty() ? std::string() : "; load average " + load;
+}
+
+double Seconds(Clock::time_point since)
+{
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+int TimedFrames(int fallback)
+{
+  const char* n = std::getenv("STRATA_BENCH_FRAMES");
+  return n && std::atoi(n) > 0 ? std::atoi(n) : fallback;
+}
+
+std::string SharedData()
+{
+  const std::string d = strata_test::SharedDataDirectory();
+  return d.empty() ? "../shared/data" : d;
+}
+
+bool Readable(const std::string& path)
+{
+  return static_cast<bool>(std::ifstream(path));
+}
+
+// --- Data sets ------------------------------------------------------------------------------
+
+/// Reads a data set by name; on failure returns nullptr and says why in `why`.
+vtkSmartPointer<vtkImageData> LoadVolume(const std::string& name, std::string& why)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  const std::string dir = SharedData() + "/volumes/";
+  if (name == "bucky")
+  {
+    std::string path = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
+    if (!Readable(path))
+      path = dir + "bucky.raw";
+    if (!Readable(path))
+    {
+      why = "missing " + path;
+      return nullptr;
+    }
+    vtkNew<vtkImageReader2> reader;
+    reader->SetFileName(path.c_str());
+    reader->SetFileDimensionality(3);
+    reader->SetDataScalarTypeToUnsignedChar();
+    reader->SetDataExtent(0, 31, 0, 31, 0, 31);
+    reader->SetDataByteOrderToLittleEndian();
+    reader->Update();
+    image->ShallowCopy(reader->GetOutput());
+  }
+  else if (name == "tooth")
+  {
+    const std::string path = dir + "tooth.nrrd";
+    if (!Readable(path))
+    {
+      why = "missing " + path;
+      return nullptr;
+    }
+    vtkNew<vtkNrrdReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    image->ShallowCopy(reader->GetOutput());
+  }
+  else if (name == "engine" || name == "bonsai")
+  {
+    const std::string path = dir + name + ".vti";
+    if (!Readable(path))
+    {
+      why = "missing " + path;
+      return nullptr;
+    }
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    image->ShallowCopy(reader->GetOutput());
+  }
+  else
+  {
+    why = "unknown data set " + name + " (known: bucky tooth engine bonsai)";
+    return nullptr;
+  }
+  if (image->GetNumberOfPoints() < 8 || !image->GetPointData()->GetScalars())
+  {
+    why = "could not read " + name;
+    return nullptr;
+  }
+  image->SetOrigin(0, 0, 0);
+  return image;
+}
+
+/// Hand-tuned transfer functions over the full 8-bit range of each data set (so that neither
+/// mapper clamps data to the table's ends), opacity per voxel, trilinear interpolation.
+vtkSmartPointer<vtkVolumeProperty> MakeProperty(const std::string& name)
+{
+  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
+  vtkNew<vtkColorTransferFunction> ctf;
+  vtkNew<vtkPiecewiseFunction> pwf;
+  if (name == "bucky")
+  {
+    // The demo's: carbon shells orange and fairly opaque, the empty inside clear.
+    ctf->AddRGBPoint(0, 0.9, 0.9, 0.95);
+    ctf->AddRGBPoint(60, 0.95, 0.85, 0.5);
+    ctf->AddRGBPoint(255, 1.0, 0.5, 0.2);
+    pwf->AddPoint(0, 0.0);
+    pwf->AddPoint(25, 0.0);
+    pwf->AddPoint(80, 0.25);
+    pwf->AddPoint(255, 0.6);
+  }
+  else if (name == "tooth")
+  {
+    // Background (72-88) clear, dentin (150-170) a faint red haze, enamel (> 215) white.
+    ctf->AddRGBPoint(0, 0.5, 0.5, 0.5);
+    ctf->AddRGBPoint(140, 0.8, 0.35, 0.25);
+    ctf->AddRGBPoint(180, 0.95, 0.7, 0.5);
+    ctf->AddRGBPoint(230, 1.0, 1.0, 0.95);
+    ctf->AddRGBPoint(255, 1.0, 1.0, 1.0);
+    pwf->AddPoint(0, 0.0);
+    pwf->AddPoint(110, 0.0);
+    pwf->AddPoint(150, 0.02);
+    pwf->AddPoint(185, 0.04);
+    pwf->AddPoint(215, 0.15);
+    pwf->AddPoint(235, 0.5);
+    pwf->AddPoint(255, 0.6);
+  }
+  else if (name == "engine")
+  {
+    // Air (< 60) clear, the block (120-160) a thin blue-grey shell, dense parts (> 190) orange.
+    ctf->AddRGBPoint(0, 0.0, 0.0, 0.0);
+    ctf->AddRGBPoint(90, 0.3, 0.4, 0.9);
+    ctf->AddRGBPoint(150, 0.8, 0.8, 0.9);
+    ctf->AddRGBPoint(200, 1.0, 0.6, 0.2);
+    ctf->AddRGBPoint(255, 1.0, 0.95, 0.6);
+    pwf->AddPoint(0, 0.0);
+    pwf->AddPoint(70, 0.0);
+    pwf->AddPoint(130, 0.015);
+    pwf->AddPoint(170, 0.03);
+    pwf->AddPoint(200, 0.3);
+    pwf->AddPoint(255, 0.8);
+  }
+  else
+  {
+    // bonsai: the tree only (leaves 48-60 green, branches to 110 brown); air, the noise below
+    // 48, soil and pot (> 118) clear, so most of the volume is empty under the transfer function.
+    ctf->AddRGBPoint(0, 0.2, 0.7, 0.2);
+    ctf->AddRGBPoint(50, 0.2, 0.7, 0.2);
+    ctf->AddRGBPoint(100, 0.55, 0.35, 0.15);
+    ctf->AddRGBPoint(255, 0.55, 0.35, 0.15);
+    pwf->AddPoint(0, 0.0);
+    pwf->AddPoint(48, 0.0);
+    pwf->AddPoint(60, 0.08);
+    pwf->AddPoint(100, 0.3);
+    pwf->AddPoint(118, 0.0);
+    pwf->AddPoint(255, 0.0);
+  }
+  p->SetColor(ctf);
+  p->SetScalarOpacity(pwf);
+  p->SetScalarOpacityUnitDistance(1.0);
+  p->SetInterpolationTypeToLinear();
+  return p;
+}
+
+/// Fraction of points whose opacity under `p` is not zero.
+double VisibleFraction(vtkImageData* image, vtkVolumeProperty* p)
+{
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  vtkPiecewiseFunction* pwf = p->GetScalarOpacity(0);
+  long visible = 0;
+  for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
+    visible += pwf->GetValue(s->GetComponent(i, 0)) > 0.0;
+  return double(visible) / std::max<vtkIdType>(1, s->GetNumberOfTuples());
+}
+
+// --- Scenes ---------------------------------------------------------------------------------
+
+/// Camera from direction `dir` at the centre of the world bounds of the (image, volume) pairs,
+/// at `distanceFactor` times the distance from which their bounding sphere just fills the view
+/// (below 1: closer, the sphere's rim outside the view).
+void Frame(vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  const double dir[3],
+  const double up[3],
+  double distanceFactor)
+{
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (const auto& v : volumes)
+  {
+    double b[6];
+    v.first->GetBounds(b);
+    v.second->ComputeMatrix();
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double p[4] = {
+        b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1
+      };
+      double w[4];
+      v.second->GetMatrix()->MultiplyPoint(p, w);
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], w[c]);
+        hi[c] = std::max(hi[c], w[c]);
+      }
+    }
+  }
+  double centre[3], radius = 0.0, len = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    centre[c] = 0.5 * (lo[c] + hi[c]);
+    radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
+    len += dir[c] * dir[c];
+  }
+  radius = std::sqrt(radius);
+  len = std::sqrt(len);
+  const double distance = distanceFactor * radius / std::sin(15.0 * std::acos(-1.0) / 180.0);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetFocalPoint(centre);
+  cam->SetPosition(centre[0] + distance * dir[0] / len,
+    centre[1] + distance * dir[1] / len,
+    centre[2] + distance * dir[2] / len);
+  cam->SetViewUp(up[0], up[1], up[2]);
+  cam->SetViewAngle(30);
+  ren->ResetCameraClippingRange(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+}
+
+/// Each data set's view: direction from the focal point towards the eye, and up.
+void ViewDirection(const std::string& name, double dir[3], double up[3])
+{
+  const double d[3] = { -0.6, -1.0, 0.7 }, z[3] = { 0, 0, 1 };
+  const double e[3] = { 1.0, -0.8, 0.4 };                     // the tooth from its side
+  const double b[3] = { 0.9, 0.35, 0.6 }, y[3] = { 0, 1, 0 }; // the bonsai grows along +y
+  const double* s = name == "tooth" ? e : name == "bonsai" ? b : d;
+  const double* u = name == "bonsai" ? y : z;
+  std::copy(s, s + 3, dir);
+  std::copy(u, u + 3, up);
+}
+
+/// Renders until uploads, shader compiles and the brick cut of `strata` (which may refine over
+/// several frames) are done: at least `minimum` frames, then until the resident bricks stop
+/// changing (at most 10). Returns the number of frames rendered.
+int WarmUp(vtkRenderWindow* win, vtkMultiVolumeRayCastMapper* strata, int minimum)
+{
+  int frames = 0, bricks = -1;
+  do
+  {
+    bricks = strata ? strata->GetNumberOfResidentBricks() : 0;
+    win->Render();
+    win->WaitForCompletion();
+    ++frames;
+  } while (
+    frames < minimum || (strata && strata->GetNumberOfResidentBricks() != bricks && frames < 10));
+  return frames;
+}
+
+double Median(std::vector<double> v)
+{
+  if (v.empty())
+    return NaN;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+/// Median of `frames` timed renders (after warm-up), each ended by WaitForCompletion.
+double MedianMs(vtkRenderWindow* win, int frames)
+{
+  std::vector<double> ms;
+  for (int i = 0; i < frames; ++i)
+  {
+    const auto t0 = Clock::now();
+    win->Render();
+    win->WaitForCompletion();
+    ms.push_back(1000.0 * Seconds(t0));
+  }
+  return Median(ms);
+}
+
+// --- Reference --------------------------------------------------------------------------------
+
+/// The reference image as CompareVolumesWithReference forms it, before rounding to 8 bits:
+/// RGB in 8-bit units, the reference's premultiplied colour over the grey background.
+struct Reference
+{
+  std::vector<double> Rgb;
+  int Width = 0, Height = 0;
+  long Covered = 0;
+  double Seconds = 0.0;
+};
+
+/**
+ * Makes every straight run of a table an exact arithmetic progression. The integrator splits
+ * rays wherever a table's slope changes, comparing slopes exactly; the mapper's 1024-entry float
+ * table (which ToReferenceVolume copies) has rounding noise in every slope, so every entry counts
+ * as a kink: a cell whose 8-bit scalars span 100 units is cut into ~400 pieces, each root-found
+ * and given the full number of steps. Here runs are grown greedily while the straight line from a
+ * run's first entry to its last stays within 1e-6 of the channel's largest value of every entry
+ * between (float noise is 6e-8 of it, so runs span whole linear pieces of the transfer
+ * function); each run becomes a + k d with a and d multiples of 2^-40, so that all its values
+ * and differences are exact and its slopes bit-identical. The table then differs from the
+ * mapper's by at most 1e-6 of its largest value, far below an 8-bit step (4e-3), and the
+ * integrator splits only at the transfer function's real nodes: the bucky reference at 256 x 256
+ * and step 1/16 takes 1.0 s instead of 50 s, and the two differ by RMS 0.0005 (max 0.006) of an
+ * 8-bit step.
+ */
+void SnapRuns(std::vector<double>& table, size_t stride, size_t offset)
+{
+  const size_t n = table.size() / stride;
+  if (n < 2)
+    return;
+  std::vector<double> original(n);
+  for (size_t k = 0; k < n; ++k)
+    original[k] = table[k * stride + offset];
+  auto grid = [](double x) { return std::ldexp(std::round(std::ldexp(x, 40)), -40); };
+  double largest = 0.0;
+  for (double v : original)
+    largest = std::max(largest, std::abs(v));
+  const double tolerance = 1e-6 * largest;
+  std::vector<double> snapped(n);
+  snapped[0] = grid(original[0]);
+  size_t start = 0;
+  while (start + 1 < n)
+  {
+    // The longest run [start, end] whose line through snapped[start] and original[end] stays
+    // within the tolerance of every entry in between.
+    const double a = snapped[start];
+    size_t end = start + 1;
+    double d = grid(original[end] - a);
+    for (size_t e = end + 1; e < n; ++e)
+    {
+      const double de = grid((original[e] - a) / double(e - start));
+      bool straight = true;
+      for (size_t m = start + 1; m <= e && straight; ++m)
+        straight = std::abs(a + double(m - start) * de - original[m]) <= tolerance;
+      if (!straight)
+        break;
+      end = e;
+      d = de;
+    }
+    for (size_t m = start + 1; m <= end; ++m)
+      snapped[m] = a + double(m - start) * d;
+    start = end;
+  }
+  for (size_t k = 0; k < n; ++k)
+    table[k * stride + offset] = snapped[k];
+}
+
+/// ToReferenceVolume with its tables' runs made exact (SnapRuns).
+vtkMultiVolumeReferenceIntegrator::Volume ReferenceVolume(vtkImageData* image, vtkVolume* member)
+{
+  auto v = strata_test::ToReferenceVolume(image, member);
+  SnapRuns(v.Classification.Opacity, 1, 0);
+  for (size_t c = 0; c < 3 && !v.Classification.Color.empty(); ++c)
+    SnapRuns(v.Classification.Color, 3, c);
+  return v;
+}
+
+/// The reference with one ray per pixel through the pixel centre moved by `offset` pixels.
+Reference ComputeReference(vtkRenderer* ren,
+  int width,
+  int height,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  double stepFraction,
+  bool snap = true,
+  const double offset[2] = nullptr)
+{
+  const auto t0 = Clock::now();
+  vtkMultiVolumeReferenceIntegrator integrator;
+  integrator.SetStepFraction(stepFraction);
+  for (const auto& v : volumes)
+  {
+    if (integrator.AddVolume(snap ? ReferenceVolume(v.first, v.second)
+                                  : strata_test::ToReferenceVolume(v.first, v.second)) < 0)
+    {
+      std::cerr << "reference rejected a volume: " << integrator.GetLastError() << "\n";
+    }
+  }
+  vtkNew<vtkMatrix4x4> worldToClip, clipToWorld;
+  worldToClip->DeepCopy(
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(double(width) / height, -1, 1));
+  if (offset)
+  {
+    // Shift the image by -offset (a pixel is 2 / size in NDC), so that the integrator's ray
+    // through a pixel centre goes through centre + offset of the unshifted image.
+    vtkNew<vtkMatrix4x4> shift, shifted;
+    shift->SetElement(0, 3, -2.0 * offset[0] / width);
+    shift->SetElement(1, 3, -2.0 * offset[1] / height);
+    vtkMatrix4x4::Multiply4x4(shift, worldToClip, shifted);
+    worldToClip->DeepCopy(shifted);
+  }
+  vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+  std::vector<double> rgba;
+  integrator.IntegrateImage(clipToWorld->GetData(), width, height, rgba);
+  Reference r;
+  r.Width = width;
+  r.Height = height;
+  r.Rgb.resize(3 * size_t(width) * height);
+  for (int i = 0; i < width * height; ++i)
+  {
+    r.Covered += rgba[4 * i + 3] > 1.0 / 255.0;
+    for (int c = 0; c < 3; ++c)
+      r.Rgb[3 * i + c] = 255.0 * std::min(1.0, rgba[4 * i + c] + (1.0 - rgba[4 * i + 3]) * Grey);
+  }
+  r.Seconds = Seconds(t0);
+  return r;
+}
+
+/**
+ * The converged value of what the mapper computes with `rays` rays per pixel: the mean of the
+ * references through its rays' sub-pixel positions (vtkMultiVolumeRayCastMapper::GetRayOffset).
+ * Against this, only the integration error of the rays is left; against the pixel-centre
+ * reference, also the difference between the rays' mean and the centre (anti-aliasing blur, and
+ * any shift of the pattern's centroid). References of offsets already computed are reused.
+ */
+Reference SameRaysReference(vtkRenderer* ren,
+  int width,
+  int height,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  int rays,
+  std::map<std::pair<double, double>, Reference>& byOffset)
+{
+  Reference mean;
+  for (int r = 0; r < rays; ++r)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(r, rays, offset);
+    const auto key = std::make_pair(offset[0], offset[1]);
+    if (!byOffset.count(key))
+      byOffset[key] = ComputeReference(ren, width, height, volumes, ReferenceStep, true, offset);
+    const Reference& one = byOffset[key];
+    if (r == 0)
+    {
+      mean = one;
+      mean.Seconds = 0.0;
+    }
+    else
+      for (size_t i = 0; i < mean.Rgb.size(); ++i)
+        mean.Rgb[i] += one.Rgb[i];
+    mean.Seconds += one.Seconds;
+  }
+  for (double& v : mean.Rgb)
+    v /= rays;
+  return mean;
+}
+
+/// RMS over all pixels and channels, in 8-bit units, as CompareVolumesWithReference.
+double Rms(const std::vector<unsigned char>& gpu, const Reference& ref, double* maxError = nullptr)
+{
+  double se = 0.0, mx = 0.0;
+  for (size_t i = 0; i < ref.Rgb.size(); ++i)
+  {
+    const double d = double(gpu[i]) - ref.Rgb[i];
+    se += d * d;
+    mx = std::max(mx, std::abs(d));
+  }
+  if (maxError)
+    *maxError = mx;
+  return std::sqrt(se / std::max<size_t>(1, ref.Rgb.size()));
+}
+
+/// RMS and largest difference of two references, in 8-bit units.
+double Difference(const Reference& a, const Reference& b, double* maxError)
+{
+  double se = 0.0, mx = 0.0;
+  for (size_t i = 0; i < a.Rgb.size(); ++i)
+  {
+    const double d = a.Rgb[i] - b.Rgb[i];
+    se += d * d;
+    mx = std::max(mx, std::abs(d));
+  }
+  *maxError = mx;
+  return std::sqrt(se / std::max<size_t>(1, a.Rgb.size()));
+}
+
+void MaybeWriteImages(const std::string& name,
+  const std::vector<unsigned char>& gpu,
+  const Reference* ref,
+  int width,
+  int height)
+{
+  const char* dir = std::getenv("STRATA_BENCH_IMAGES");
+  if (!dir || !*dir)
+    return;
+  strata_test::WritePNG(std::string(dir) + "/" + name + ".png", gpu, width, height);
+  if (ref)
+  {
+    std::vector<unsigned char> r(ref->Rgb.size());
+    for (size_t i = 0; i < r.size(); ++i)
+      r[i] = static_cast<unsigned char>(std::lround(ref->Rgb[i]));
+    strata_test::WritePNG(std::string(dir) + "/" + name + "-ref.png", r, width, height);
+  }
+}
+
+const char* ClassificationName(Classifications c)
+{
+  return c == Classifications::PostClassification ? "post"
+         : c == Classifications::PreIntegrated    ? "pre"
+                                                  : "pre-approx";
+}
+
+// --- Sub-modes --------------------------------------------------------------------------------
+
+/// The settings grid on one data set at 256 x 256, each image against one reference.
+///
+/// The reference is converged: the integrator's step is 1/16 of a voxel (shorter where it cuts
+/// rays at cell planes and transfer-function nodes), its error second order in the step.
+/// `BenchVolume converge <data> 16 32` measured step 1/16 against 1/32 at these cameras: RMS
+/// 0.0004 / 0.0003 / 0.0004 and largest difference 0.004 / 0.008 / 0.010 of an 8-bit step for
+/// bucky / tooth / engine, below the 0.05 of a step asked for and far below the 0.29 that 8-bit
+/// rounding of the GPU image alone contributes.
+int Accuracy(const std::string& data)
+{
+  const int size = 256;
+  const std::string name = "accuracy-" + data;
+  std::string why;
+  auto image = LoadVolume(data, why);
+  if (!image)
+  {
+    std::cerr << name << ": skipped: " << why << "\n";
+    Row row;
+    row.Case = name;
+    row.Method = "strata";
+    row.Note = "skipped: " + why;
+    Emit(row);
+    return 0;
+  }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, size, size);
+  ren->SetBackground(Grey, Grey, Grey);
+  auto property = MakeProperty(data);
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetInputData(image);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  ren->AddVolume(volume);
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>> list = { { image, volume } };
+  double dir[3], up[3];
+  ViewDirection(data, dir, up);
+  Frame(ren, list, dir, up, 0.75);
+
+  std::cerr << name << ": reference at step 1/16 voxel, " << size << " x " << size << " ... ";
+  const Reference ref = ComputeReference(ren, size, size, list, ReferenceStep);
+  std::cerr << ref.Seconds << " s, " << ref.Covered << " covered pixels\n";
+  std::map<std::pair<double, double>, Reference> byOffset;
+  std::map<int, Reference> sameRays;
+  for (int rays : { 1, 2, 5 })
+  {
+    sameRays[rays] = SameRaysReference(ren, size, size, list, rays, byOffset);
+    std::cerr << name << ": reference of the " << rays
+              << " rays' positions: " << sameRays[rays].Seconds << " s\n";
+  }
+
+  const Classifications classifications[] = { Classifications::PostClassification,
+    Classifications::PreIntegrated,
+    Classifications::PreIntegratedApproximate };
+  const CompositeOrders orders[] = { CompositeOrders::FrontToBack, CompositeOrders::BackToFront };
+  // Coherence only matters with several rays: one ray alone, then each count with it off and on.
+  const std::pair<int, bool> rays[] = {
+    { 1, false }, { 2, false }, { 2, true }, { 5, false }, { 5, true }
+  };
+  const double distances[] = { 1.0, 0.5 };
+  const int frames = TimedFrames(3);
+  const int total = 3 * 2 * 5 * 2;
+  int done = 0;
+  const auto t0 = Clock::now();
+  for (double d : distances)
+    for (Classifications c : classifications)
+      for (CompositeOrders o : orders)
+        for (const auto& r : rays)
+        {
+          mapper->SetSampleDistance(d);
+          mapper->SetClassification(c);
+          mapper->SetCompositeOrder(o);
+          mapper->SetRaysPerPixel(r.first);
+          mapper->SetRayCoherence(r.second);
+          Row row;
+          row.Case = name;
+          row.Method = "strata";
+          WarmUp(win, mapper, 1);
+          row.Ms = MedianMs(win, frames);
+          // The last timed frame is still in the window: read it rather than render again.
+          const auto gpu = strata_test::ReadRGB(win);
+          row.Rms = Rms(gpu, ref);
+          row.RmsSameRays = Rms(gpu, sameRays[r.first]);
+          row.Classification = ClassificationName(c);
+          row.Order = o == CompositeOrders::FrontToBack ? "front-to-back" : "back-to-front";
+          row.Rays = r.first;
+          row.Coherence = r.second;
+          row.SampleDistance = d;
+          row.Volumes = 1;
+          row.Width = row.Height = size;
+          row.Fragments = mapper->GetNumberOfFragments();
+          Emit(row);
+          ++done;
+          std::cerr << "  [" << done << "/" << total << "] " << row.Classification << " "
+                    << row.Order << " rays " << r.first << (r.second ? " coherent" : "") << " d "
+                    << d << ": " << row.Ms << " ms, RMS " << row.Rms << " (same rays "
+                    << row.RmsSameRays << ") (" << Seconds(t0) << " s)\n";
+          MaybeWriteImages(name + "-" + row.Classification + "-" + row.Order + "-r" +
+                             std::to_string(r.first) + (r.second ? "c" : "") + "-d" +
+                             std::to_string(d),
+            gpu,
+            &ref,
+            size,
+            size);
+        }
+  return 0;
+}
+
+/// One way of rendering a scene, in its own window, and its frame times.
+struct Contender
+{
+  std::string Method;
+  vtkSmartPointer<vtkRenderWindow> Win;
+  vtkSmartPointer<vtkRenderer> Ren;
+  vtkSmartPointer<vtkProp> Prop;
+  vtkMultiVolumeRayCastMapper* Strata = nullptr; ///< when the mapper is Strata's
+  int WarmupFrames = 0;
+  std::vector<double> Ms;
+};
+
+void WarmUp(Contender& c)
+{
+  c.WarmupFrames = WarmUp(c.Win, c.Strata, 2);
+}
+
+/**
+ * Times the contenders' frames interleaved: round after round, one frame of each, the order
+ * rotating. This machine's two cores are shared, and a neighbour's burst of work then slows all
+ * contenders alike instead of whichever happened to be measured at the time.
+ */
+void TimeInterleaved(std::vector<Contender>& contenders, int frames)
+{
+  for (auto& c : contenders)
+    WarmUp(c);
+  const size_t n = contenders.size();
+  for (int round = 0; round < frames; ++round)
+    for (size_t k = 0; k < n; ++k)
+    {
+      Contender& c = contenders[(k + round) % n];
+      const auto t0 = Clock::now();
+      c.Win->Render();
+      c.Win->WaitForCompletion();
+      c.Ms.push_back(1000.0 * Seconds(t0));
+    }
+}
+
+/// The single-volume scene of `data` at 512 x 512 with one mapper: strata, strata-no-atlas
+/// (UseBrickAtlas off: one plain texture, no skipping of transparent bricks) or vtk.
+Contender MakeSingle(const std::string& method,
+  const std::string& data,
+  vtkImageData* image,
+  vtkVolumeProperty* p)
+{
+  Contender c;
+  c.Method = method == "vtk" ? "vtkGPUVolumeRayCastMapper" : method;
+  strata_test::MakeWindow(c.Win, c.Ren, 512, 512);
+  c.Ren->SetBackground(Grey, Grey, Grey);
+  vtkSmartPointer<vtkGPUVolumeRayCastMapper> mapper;
+  if (method == "vtk")
+    mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
+  else
+  {
+    c.Strata = vtkMultiVolumeRayCastMapper::New();
+    mapper.TakeReference(c.Strata);
+    c.Strata->SetUseBrickAtlas(method != "strata-no-atlas");
+  }
+  mapper->SetInputData(image);
+  mapper->AutoAdjustSampleDistancesOff();
+  mapper->SetSampleDistance(0.5);
+  auto volume = vtkSmartPointer<vtkVolume>::New();
+  volume->SetMapper(mapper);
+  volume->SetProperty(p);
+  c.Ren->AddVolume(volume);
+  c.Prop = volume;
+  double dir[3], up[3];
+  ViewDirection(data, dir, up);
+  Frame(c.Ren, { { image, volume } }, dir, up, 0.7);
+  return c;
+}
+
+const char* const SingleMethods[] = { "strata", "strata-no-atlas", "vtk" };
+
+/// Peak RSS of one mapper alone on the single-volume scene, one process per mapper: prints
+/// "<method>=<MB>" for `frame` to put in its rows.
+int Memory(const std::string& kind, const std::string& data, const std::string& method)
+{
+  std::string why;
+  auto image = LoadVolume(data, why);
+  if (!image)
+  {
+    std::cerr << kind << "-" << data << ": skipped: " << why << "\n";
+    return 0;
+  }
+  auto property = MakeProperty(data);
+  Contender c = MakeSingle(method, data, image, property);
+  WarmUp(c);
+  std::printf("%s=%.0f\n", method.c_str(), PeakRssMB());
+  return 0;
+}
+
+/**
+ * One volume at 512 x 512, sample distance 0.5 voxel, the three mappers in one process and
+ * timed interleaved (TimeInterleaved). `memory` lists "<method>=<MB>" from `memory` runs, for
+ * the peak_rss_mb column.
+ */
+int FrameCase(const std::string& kind, const std::string& data, const std::string& memory)
+{
+  const std::string name = kind + "-" + data;
+  std::map<std::string, std::string> rss;
+  std::stringstream list(memory);
+  std::string item;
+  while (std::getline(list, item, ','))
+    if (item.find('=') != std::string::npos)
+      rss[item.substr(0, item.find('='))] = item.substr(item.find('=') + 1);
+  std::string why;
+  auto image = LoadVolume(data, why);
+  std::vector<Contender> contenders;
+  auto property = MakeProperty(data);
+  if (image)
+    for (const char* m : SingleMethods)
+      contenders.push_back(MakeSingle(m, data, image, property));
+  else
+    std::cerr << name << ": skipped: " << why << "\n";
+  TimeInterleaved(contenders, TimedFrames(7));
+  const std::string load = LoadNote();
+  for (size_t k = 0; k < 3; ++k)
+  {
+    Row row;
+    row.Case = name;
+    row.Method =
+      SingleMethods[k] == std::string("vtk") ? "vtkGPUVolumeRayCastMapper" : SingleMethods[k];
+    row.Classification = "post";
+    row.SampleDistance = 0.5;
+    row.Volumes = 1;
+    row.Width = row.Height = 512;
+    if (!image)
+    {
+      row.Note = "skipped: " + why;
+      Emit(row);
+      continue;
+    }
+    Contender& c = contenders[k];
+    row.Ms = Median(c.Ms);
+    if (c.Strata)
+    {
+      row.Order = "front-to-back";
+      row.Rays = 1;
+      row.Coherence = 0;
+      row.Fragments = c.Strata->GetNumberOfFragments();
+    }
+    if (rss.count(SingleMethods[k]) && !rss[SingleMethods[k]].empty())
+      row.PeakRss = std::atof(rss[SingleMethods[k]].c_str());
+    std::ostringstream note;
+    note.precision(3);
+    note << 100.0 * VisibleFraction(image, property) << "% of voxels visible";
+    if (c.Strata && c.Strata->GetUseBrickAtlas())
+      note << "; " << c.Strata->GetNumberOfResidentBricks() << " bricks resident of "
+           << c.Strata->GetNumberOfAtlasSlots() << " atlas slots";
+    note << "; " << c.WarmupFrames << " warm-up frames; timed interleaved with the others";
+    if (k > 0)
+    {
+      // The same picture: RMS difference from Strata's image (8-bit units).
+      const auto mine = strata_test::ReadRGB(c.Win),
+                 theirs = strata_test::ReadRGB(contenders[0].Win);
+      double se = 0.0;
+      for (size_t i = 0; i < mine.size(); ++i)
+        se += (double(mine[i]) - theirs[i]) * (double(mine[i]) - theirs[i]);
+      note << "; image differs from strata's by RMS "
+           << std::sqrt(se / std::max<size_t>(1, mine.size()));
+    }
+    note << load;
+    row.Note = note.str();
+    Emit(row);
+    MaybeWriteImages(name + "-" + SingleMethods[k], strata_test::ReadRGB(c.Win), nullptr, 512, 512);
+    std::cerr << name << " " << row.Method << ": " << row.Ms << " ms\n";
+  }
+  return 0;
+}
+
+/// n overlapping 96^3 analytic volumes, each turned differently, at 384 x 384: Strata and VTK's
+/// own multi-volume path, each timed and compared with the reference (which mixes the media
+/// physically where they overlap; VTK composites the volumes' samples one after the other).
+int Multi(int n)
+{
+  const int size = 384, dim = 96;
+  const double distance = 1.0;
+  const std::string name = "multi" + std::to_string(n) + "-blob";
+
+  std::vector<vtkSmartPointer<vtkImageData>> images;
+  std::vector<vtkSmartPointer<vtkVolumeProperty>> properties;
+  std::vector<vtkSmartPointer<vtkTransform>> transforms;
+  // Centres on a small circle (each box overlapping the others by more than half), axes
+  // turned about different directions.
+  const double axes[4][3] = { { 0, 0, 1 }, { 1, 1, 0 }, { 1, 0, 1 }, { 0, 1, 1 } };
+  const double angles[4] = { 0, 30, -25, 45 };
+  for (int i = 0; i < n; ++i)
+  {
+    const double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+    images.push_back(strata_test::MakeBlobVolume(dim, dim, dim, spacing, origin, 11 + i));
+    // Opacity per 3 voxels: each volume semi-transparent, so the overlaps show.
+    properties.push_back(strata_test::MakeVolumeProperty(i, 3.0));
+    auto t = vtkSmartPointer<vtkTransform>::New();
+    const double a = 2.0 * std::acos(-1.0) * i / n;
+    t->Translate(16 * std::cos(a), 16 * std::sin(a), 8.0 * (i % 2));
+    t->Translate(0.5 * (dim - 1), 0.5 * (dim - 1), 0.5 * (dim - 1));
+    t->RotateWXYZ(angles[i], axes[i][0], axes[i][1], axes[i][2]);
+    t->Translate(-0.5 * (dim - 1), -0.5 * (dim - 1), -0.5 * (dim - 1));
+    transforms.push_back(t);
+  }
+  auto build = [&](vtkGPUVolumeRayCastMapper* mapper,
+                 vtkMultiVolume* multi,
+                 std::vector<vtkSmartPointer<vtkVolume>>& members)
+  {
+    mapper->AutoAdjustSampleDistancesOff();
+    mapper->SetSampleDistance(distance);
+    multi->SetMapper(mapper);
+    for (int i = 0; i < n; ++i)
+    {
+      mapper->SetInputDataObject(i, images[i]);
+      auto v = vtkSmartPointer<vtkVolume>::New();
+      v->SetProperty(properties[i]);
+      v->SetUserTransform(transforms[i]);
+      multi->SetVolume(v, i);
+      members.push_back(v);
+    }
+  };
+  // Each in its own window, the same camera: close, as the blobs fill the middle of their boxes
+  // and the boxes' corners are empty.
+  std::vector<Contender> contenders(2);
+  std::vector<std::vector<vtkSmartPointer<vtkVolume>>> members(2);
+  const double dir[3] = { -0.5, -1.0, 0.6 }, up[3] = { 0, 0, 1 };
+  std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
+  for (int k = 0; k < 2; ++k)
+  {
+    Contender& c = contenders[k];
+    vtkSmartPointer<vtkGPUVolumeRayCastMapper> mapper;
+    if (k == 0)
+    {
+      c.Method = "strata";
+      c.Strata = vtkMultiVolumeRayCastMapper::New();
+      mapper.TakeReference(c.Strata);
+    }
+    else
+    {
+      c.Method = "vtkGPUVolumeRayCastMapper";
+      mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
+    }
+    auto multi = vtkSmartPointer<vtkMultiVolume>::New();
+    build(mapper, multi, members[k]);
+    strata_test::MakeWindow(c.Win, c.Ren, size, size);
+    c.Ren->SetBackground(Grey, Grey, Grey);
+    c.Ren->AddVolume(multi);
+    c.Prop = multi;
+    list.clear();
+    for (int i = 0; i < n; ++i)
+      list.emplace_back(images[i], members[k][i]);
+    Frame(c.Ren, list, dir, up, 0.5);
+  }
+  vtkRenderer* ren = contenders[0].Ren;
+  std::cerr << name << ": reference at step 1/16 voxel, " << size << " x " << size << " ... ";
+  const Reference ref = ComputeReference(ren, size, size, list, ReferenceStep);
+  std::cerr << ref.Seconds << " s, " << ref.Covered << " covered pixels\n";
+  if (std::getenv("STRATA_BENCH_CONVERGE"))
+  {
+    // The same check as `converge` for this scene, step 1/16 against 1/32: measured RMS 3e-6,
+    // max 3e-5 (2 volumes) and RMS 5e-6, max 6e-5 (4 volumes) of an 8-bit step.
+    const Reference fine = ComputeReference(ren, size, size, list, ReferenceStep / 2.0);
+    double mx = 0.0;
+    const double rms = Difference(ref, fine, &mx);
+    std::cerr << name << ": reference at 1/16 vs 1/32: RMS " << rms << ", max " << mx << "\n";
+  }
+
+  TimeInterleaved(contenders, TimedFrames(7));
+  const std::string load = LoadNote();
+  for (Contender& c : contenders)
+  {
+    const bool strata = c.Strata != nullptr;
+    Row row;
+    row.Case = name;
+    row.Method = c.Method;
+    row.Ms = Median(c.Ms);
+    const auto gpu = strata_test::ReadRGB(c.Win);
+    double mx = 0.0;
+    row.Rms = Rms(gpu, ref, &mx);
+    row.Classification = "post";
+    if (strata)
+    {
+      row.Order = "front-to-back";
+      row.Rays = 1;
+      row.Coherence = 0;
+      row.Fragments = c.Strata->GetNumberOfFragments();
+    }
+    row.SampleDistance = distance;
+    row.Volumes = n;
+    row.Width = row.Height = size;
+    std::ostringstream note;
+    note.precision(3);
+    note << "max error " << mx << "; timed interleaved with the other" << load;
+    row.Note = note.str();
+    Emit(row);
+    MaybeWriteImages(name + "-" + (strata ? "strata" : "vtk"), gpu, &ref, size, size);
+    std::cerr << name << " " << row.Method << ": " << row.Ms << " ms, RMS " << row.Rms << "\n";
+  }
+  return 0;
+}
+
+/// Rebuild time of the BSP tree for n overlapping 96^3 boxes, each turned differently.
+int Bsp(int n, const std::string& layout)
+{
+  std::vector<vtkVolumeBSPTree::Box> boxes;
+  for (int i = 0; i < n; ++i)
+  {
+    vtkNew<vtkTransform> t;
+    if (layout == "grid")
+    {
+      // Tiles of a survey: a square grid at a pitch of 3/4 of a box, so that each overlaps its
+      // neighbours by a quarter, each turned by up to 12 degrees about its own axes.
+      const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
+      t->Translate(72.0 * (i % side), 72.0 * (i / side), 4.0 * (i % 3));
+      t->RotateWXYZ(5.0 + 7.0 * ((i * 5) % 3), std::sin(1.3 * i), std::cos(0.7 * i), 1.0);
+    }
+    else
+    {
+      // Centres on a ring (radius 40 for 3, growing with n), rotations by 17 to 200 degrees
+      // about varied axes: each box overlaps its neighbours and some those across the ring.
+      const double a = 2.0 * std::acos(-1.0) * i / n, r = 40.0 * std::sqrt(n / 3.0);
+      t->Translate(r * std::cos(a), r * std::sin(a), 10.0 * ((i % 3) - 1));
+      t->RotateWXYZ(17.0 + 23.0 * i, std::sin(1.3 * i), std::cos(0.7 * i), 0.5 + 0.1 * i);
+    }
+    t->Scale(96, 96, 96);
+    t->Translate(-0.5, -0.5, -0.5);
+    vtkVolumeBSPTree::Box box;
+    std::copy(t->GetMatrix()->GetData(), t->GetMatrix()->GetData() + 16, box.Matrix.begin());
+    box.VolumeId = i;
+    boxes.push_back(box);
+  }
+  vtkVolumeBSPTree tree;
+  tree.SetBoxes(boxes);
+  tree.Build(); // warm-up
+  int builds = 0;
+  const auto t0 = Clock::now();
+  while (builds < 100 || Seconds(t0) < 1.0)
+  {
+    tree.Build();
+    ++builds;
+  }
+  Row row;
+  row.Case = "bsp" + std::to_string(n) + (layout == "grid" ? "-grid" : "");
+  row.Method = "strata";
+  row.Ms = 1000.0 * Seconds(t0) / builds;
+  row.Volumes = n;
+  row.Fragments = tree.GetNumberOfFragments();
+  std::ostringstream note;
+  note << "ms per vtkVolumeBSPTree::Build over " << builds << " builds; " << layout
+       << " of 96^3 boxes; depth " << tree.GetDepth() << "; max overlap "
+       << tree.GetMaximumOverlap();
+  row.Note = note.str();
+  Emit(row);
+  std::cerr << row.Case << ": " << row.Ms << " ms per build, " << row.Fragments << " fragments\n";
+  return 0;
+}
+
+/// Reference convergence: step 1/`coarse` against 1/`fine` of a voxel at the accuracy
+/// benchmark's camera.
+int Converge(const std::string& data, double coarse, double fine)
+{
+  const int size = 256;
+  std::string why;
+  auto image = LoadVolume(data, why);
+  if (!image)
+  {
+    std::cerr << data << ": " << why << "\n";
+    return 1;
+  }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, size, size);
+  auto property = MakeProperty(data);
+  vtkNew<vtkVolume> volume;
+  volume->SetProperty(property);
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>> list = { { image, volume } };
+  double dir[3], up[3];
+  ViewDirection(data, dir, up);
+  Frame(ren, list, dir, up, 0.75);
+  const Reference a = ComputeReference(ren, size, size, list, 1.0 / coarse);
+  const Reference b = ComputeReference(ren, size, size, list, 1.0 / fine);
+  double mx;
+  double rms = Difference(a, b, &mx);
+  std::printf("%s: step 1/%g (%.1f s) vs 1/%g (%.1f s): RMS %.6f, max %.6f of 255, %ld covered\n",
+    data.c_str(),
+    coarse,
+    a.Seconds,
+    fine,
+    b.Seconds,
+    rms,
+    mx,
+    a.Covered);
+  if (std::getenv("STRATA_BENCH_UNSNAPPED"))
+  {
+    // The same at the coarse step with ToReferenceVolume's tables as they are (slow).
+    const Reference c = ComputeReference(ren, size, size, list, 1.0 / coarse, false);
+    rms = Difference(a, c, &mx);
+    std::printf(
+      "%s: exact runs vs float table at step 1/%g (%.1f s vs %.1f s): RMS %.6f, max %.6f\n",
+      data.c_str(),
+      coarse,
+      a.Seconds,
+      c.Seconds,
+      rms,
+      mx);
+  }
+  return 0;
+}
+
+// --- Report -----------------------------------------------------------------------------------
+
+std::vector<std::map<std::string, std::string>> ReadCsv(const std::string& path)
+{
+  std::vector<std::map<std::string, std::string>> rows;
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> names;
+  auto split = [](const std::string& s)
+  {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string f;
+    while (std::getline(ss, f, ','))
+      out.push_back(f);
+    if (!s.empty() && s.back() == ',')
+      out.emplace_back();
+    return out;
+  };
+  while (std::getline(in, line))
+  {
+    if (line.empty())
+      continue;
+    auto fields = split(line);
+    if (names.empty())
+    {
+      names = fields;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < names.size(); ++i)
+      row[names[i]] = i < fields.size() ? fields[i] : "";
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double Number(const std::map<std::string, std::string>& row, const std::string& key)
+{
+  auto it = row.find(key);
+  return it == row.end() || it->second.empty() ? NaN : std::atof(it->second.c_str());
+}
+
+std::string Get(const std::map<std::string, std::string>& row, const std::string& key)
+{
+  auto it = row.find(key);
+  return it == row.end() ? std::string() : it->second;
+}
+
+/// RMS error against ms per frame, one series per (data set, classification), as a PNG.
+void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std::string& png)
+{
+  vtkNew<vtkContextView> view;
+  // An interactor that never talks to a display: the view's own (X) one would, on first render.
+  vtkNew<vtkGenericRenderWindowInteractor> interactor;
+  view->SetInteractor(interactor);
+  view->GetRenderWindow()->SetSize(1000, 650);
+  view->GetRenderWindow()->SetMultiSamples(0);
+  view->GetRenderer()->SetBackground(1, 1, 1);
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetTitle("vtkMultiVolumeRayCastMapper on llvmpipe, 256 x 256: RMS error against the "
+                  "reference vs frame time, every setting");
+  chart->GetTitleProperties()->SetFontSize(16);
+  chart->SetShowLegend(true);
+  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("ms per frame (log)");
+  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error against the reference, 8-bit units (log)");
+  chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+
+  std::vector<std::string> datasets;
+  for (const auto& r : rows)
+  {
+    const std::string c = Get(r, "case");
+    if (c.rfind("accuracy-", 0) == 0 && !std::isnan(Number(r, "rms_error")) &&
+        std::find(datasets.begin(), datasets.end(), c) == datasets.end())
+      datasets.push_back(c);
+  }
+  const unsigned char colours[4][3] = {
+    { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 }, { 204, 121, 167 }
+  };
+  const int markers[3] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE, vtkPlotPoints::DIAMOND };
+  const char* kinds[3] = { "post", "pre", "pre-approx" };
+  std::vector<vtkSmartPointer<vtkTable>> tables; // kept alive until rendered
+  double range[4] = { VTK_DOUBLE_MAX, 0.0, VTK_DOUBLE_MAX, 0.0 };
+  for (size_t d = 0; d < datasets.size(); ++d)
+    for (int k = 0; k < 3; ++k)
+    {
+      vtkNew<vtkDoubleArray> x, y;
+      const std::string label = datasets[d].substr(9) + ", " + kinds[k];
+      x->SetName(("ms " + label).c_str());
+      y->SetName(label.c_str());
+      for (const auto& r : rows)
+      {
+        const double ms = Number(r, "ms_per_frame"), rms = Number(r, "rms_error");
+        if (Get(r, "case") == datasets[d] && Get(r, "classification") == kinds[k] && ms > 0 &&
+            rms > 0)
+        {
+          x->InsertNextValue(ms);
+          y->InsertNextValue(rms);
+          range[0] = std::min(range[0], ms);
+          range[1] = std::max(range[1], ms);
+          range[2] = std::min(range[2], rms);
+          range[3] = std::max(range[3], rms);
+        }
+      }
+      if (x->GetNumberOfTuples() == 0)
+        continue;
+      auto table = vtkSmartPointer<vtkTable>::New();
+      table->AddColumn(x);
+      table->AddColumn(y);
+      tables.push_back(table);
+      auto* points = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
+      points->SetInputData(table, 0, 1);
+      points->SetColor(colours[d % 4][0], colours[d % 4][1], colours[d % 4][2], 255);
+      points->SetMarkerStyle(markers[k]);
+      points->SetMarkerSize(9);
+      points->SetLabel(label);
+    }
+  if (range[1] > 0.0)
+  {
+    // Margins so that no point sits on the frame, and room above the points for the legend.
+    vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
+    vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+    x->SetBehavior(vtkAxis::FIXED);
+    y->SetBehavior(vtkAxis::FIXED);
+    x->SetUnscaledRange(range[0] / 1.25, range[1] * 1.25);
+    y->SetUnscaledRange(
+      range[2] / 1.25, range[3] * std::max(3.0, std::pow(range[3] / range[2], 0.6)));
+  }
+  view->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view->GetRenderWindow());
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(png.c_str());
+  writer->Write();
+}
+
+int Report(const std::string& csv, const std::string& png)
+{
+  const auto rows = ReadCsv(csv);
+  std::set<std::string> seen;
+  std::vector<std::string> cases;
+  for (const auto& r : rows)
+    if (seen.insert(Get(r, "case")).second)
+      cases.push_back(Get(r, "case"));
+
+  // 1. The settings grid, one table per data set: "ms / RMS" per rays-coherence column.
+  const char* combos[5][2] = {
+    { "1", "off" }, { "2", "off" }, { "2", "on" }, { "5", "off" }, { "5", "on" }
+  };
+  for (const auto& c : cases)
+  {
+    if (c.rfind("accuracy-", 0) != 0)
+      continue;
+    std::printf("\n%s: ms per frame, RMS error against the pixel-centre reference and (in\n"
+                "brackets) against the reference through the same sub-pixel rays; 8-bit units\n",
+      c.c_str());
+    std::printf("%-11s %-14s %5s", "class", "order", "d");
+    for (const auto& k : combos)
+      std::printf(
+        "  %20s", (std::string("rays ") + k[0] + (k[1][1] == 'n' ? " coherent" : "")).c_str());
+    std::printf("\n");
+    std::vector<std::string> keys;
+    for (const auto& r : rows)
+    {
+      if (Get(r, "case") != c)
+        continue;
+      if (!Get(r, "note").empty() && Get(r, "classification").empty())
+      {
+        std::printf("  %s\n", Get(r, "note").c_str());
+        continue;
+      }
+      const std::string key =
+        Get(r, "classification") + "|" + Get(r, "order") + "|" + Get(r, "sample_distance");
+      if (std::find(keys.begin(), keys.end(), key) != keys.end())
+        continue;
+      keys.push_back(key);
+      std::printf("%-11s %-14s %5s",
+        Get(r, "classification").c_str(),
+        Get(r, "order").c_str(),
+        Get(r, "sample_distance").c_str());
+      for (const auto& k : combos)
+      {
+        std::string cell = "-";
+        for (const auto& s : rows)
+          if (Get(s, "case") == c &&
+              Get(s, "classification") + "|" + Get(s, "order") + "|" + Get(s, "sample_distance") ==
+                key &&
+              Get(s, "rays") == k[0] && Get(s, "coherence") == k[1])
+          {
+            char b[64];
+            std::snprintf(b,
+              sizeof(b),
+              "%.1f %.3f (%.3f)",
+              Number(s, "ms_per_frame"),
+              Number(s, "rms_error"),
+              Number(s, "rms_error_same_rays"));
+            cell = b;
+          }
+        std::printf("  %20s", cell.c_str());
+      }
+      std::printf("\n");
+    }
+  }
+
+  // 2. Strata against VTK: time ratio against its target.
+  std::printf("\nStrata vs vtkGPUVolumeRayCastMapper (same sample distance, property, camera; "
+              "ratio = Strata ms / VTK ms)\n");
+  std::printf("%-16s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
+    "case",
+    "size",
+    "strata_ms",
+    "vtk_ms",
+    "ratio",
+    "target",
+    "met",
+    "no_atlas_ms",
+    "rms_str",
+    "rms_vtk",
+    "rss_str",
+    "rss_vtk",
+    "note");
+  for (const auto& c : cases)
+  {
+    double target = NaN;
+    if (c.rfind("single-", 0) == 0)
+      target = 1.2;
+    else if (c.rfind("sparse-", 0) == 0)
+      target = 1.0 / 1.5;
+    else if (c.rfind("multi", 0) == 0)
+      target = 1.0;
+    else
+      continue;
+    const std::map<std::string, std::string>* s = nullptr;
+    const std::map<std::string, std::string>* v = nullptr;
+    const std::map<std::string, std::string>* plain = nullptr;
+    for (const auto& r : rows)
+      if (Get(r, "case") == c)
+      {
+        const std::string m = Get(r, "method");
+        if (m == "strata")
+          s = &r;
+        else if (m == "strata-no-atlas")
+          plain = &r;
+        else
+          v = &r;
+      }
+    auto fmt = [](double x, const char* f)
+    {
+      if (std::isnan(x))
+        return std::string("-");
+      char b[32];
+      std::snprintf(b, sizeof(b), f, x);
+      return std::string(b);
+    };
+    const double sm = s ? Number(*s, "ms_per_frame") : NaN,
+                 vm = v ? Number(*v, "ms_per_frame") : NaN;
+    const double ratio = sm / vm;
+    std::string note;
+    for (auto* r : { s, v, plain })
+      if (r && Get(*r, "ms_per_frame").empty() && !Get(*r, "note").empty())
+        note = Get(*r, "note");
+    std::printf("%-16s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
+      c.c_str(),
+      s ? Get(*s, "width").c_str() : "-",
+      fmt(sm, "%.1f").c_str(),
+      fmt(vm, "%.1f").c_str(),
+      fmt(ratio, "%.2f").c_str(),
+      ("<= " + fmt(target, "%.2f")).c_str(),
+      std::isnan(ratio) ? "-"
+      : ratio <= target ? "yes"
+                        : "NO",
+      fmt(plain ? Number(*plain, "ms_per_frame") : NaN, "%.1f").c_str(),
+      fmt(s ? Number(*s, "rms_error") : NaN, "%.3f").c_str(),
+      fmt(v ? Number(*v, "rms_error") : NaN, "%.3f").c_str(),
+      fmt(s ? Number(*s, "peak_rss_mb") : NaN, "%.0f").c_str(),
+      fmt(v ? Number(*v, "peak_rss_mb") : NaN, "%.0f").c_str(),
+      note.c_str());
+  }
+
+  // 3. BSP rebuilds.
+  std::printf("\nBSP rebuild (vtkVolumeBSPTree::Build; the paper reports 0.15 to 0.29 ms)\n");
+  for (const auto& r : rows)
+    if (Get(r, "case").rfind("bsp", 0) == 0)
+      std::printf("%-10s %7.4f ms per build, %s fragments  (%s)\n",
+        Get(r, "case").c_str(),
+        Number(r, "ms_per_frame"),
+        Get(r, "fragments").c_str(),
+        Get(r, "note").c_str());
+
+  // 4. Anything skipped.
+  for (const auto& r : rows)
+    if (Get(r, "ms_per_frame").empty() && !Get(r, "note").empty())
+      std::printf("\nNOTE %s (%s): %s",
+        Get(r, "case").c_str(),
+        Get(r, "method").c_str(),
+        Get(r, "note").c_str());
+  std::printf("\n");
+  Plot(rows, png);
+  std::printf("\n%s\n", png.c_str());
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "header")
+  {
+    std::cout << Header << "\n";
+    return 0;
+  }
+  if (mode == "accuracy" && argc > 2)
+    return Accuracy(argv[2]);
+  if (mode == "frame" && argc > 3)
+    return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "");
+  if (mode == "memory" && argc > 4)
+    return Memory(argv[2], argv[3], argv[4]);
+  if (mode == "multi" && argc > 2)
+    return Multi(std::max(2, std::min(4, std::atoi(argv[2]))));
+  if (mode == "bsp" && argc > 2)
+    return Bsp(std::max(1, std::atoi(argv[2])), argc > 3 ? argv[3] : "ring");
+  if (mode == "converge" && argc > 2)
+    return Converge(
+      argv[2], argc > 3 ? std::atof(argv[3]) : 16.0, argc > 4 ? std::atof(argv[4]) : 32.0);
+  if (mode == "report" && argc > 3)
+    return Report(argv[2], argv[3]);
+  std::cerr << "usage: BenchVolume header | accuracy <data> | frame <single|sparse> <data> "
+               "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
+               "multi <2-4> | bsp <n> [ring|grid] | converge "
+               "<data> [1/h 1/h'] | report <csv> <png>\n";
+  return 2;
+}
