@@ -295,7 +295,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     Replace(fs, "//STRATA::Termination::Dec", "");
     Replace(fs, "//STRATA::Termination::Impl", "");
   }
-  // Rays: the centre first, then the others at their sub-pixel offsets and lattice phases.
+  // Rays: the first (the coherence leader), then the others at their sub-pixel offsets and
+  // lattice phases.
   std::ostringstream raysCode;
   raysCode << "float tFirst0;\n  bool inside0;\n";
   for (int r = 0; r < rays; ++r)
@@ -310,7 +311,7 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     pixel << "gl_FragCoord.xy + vec2(" << offset[0] << ", " << offset[1] << ")";
     if (r == 0)
     {
-      raysCode << "  gl_FragData[0] = strataCastRay(gl_FragCoord.xy, 0.0, " << prior
+      raysCode << "  gl_FragData[0] = strataCastRay(" << (rays > 1 ? pixel.str() : "gl_FragCoord.xy") << ", 0.0, " << prior
                << ", 0.0, tFirst0, inside0);\n";
       if (rays > 1)
         raysCode << "  float tFirst;\n  bool inside;\n";
@@ -503,14 +504,21 @@ vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
 
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
 {
-  // Ray 0 at the pixel centre, the others spread over the pixel (a rotated-grid-like pattern,
-  // in pixels from the centre); the first R of these for R rays.
+  // A rotated-grid-like pattern in pixels from the centre; the first R of these for R rays.
   static const double pattern[8][2] = { { 0.0, 0.0 }, { 0.25, 0.25 }, { -0.25, -0.25 },
     { 0.375, -0.125 }, { -0.375, 0.125 }, { -0.125, 0.375 }, { 0.125, -0.375 }, { 0.4375, 0.4375 } };
-  (void)rays;
-  const int r = std::min(std::max(ray, 0), 7);
-  offset[0] = pattern[r][0];
-  offset[1] = pattern[r][1];
+  // Re-centred so that the mean of the R rays is the pixel centre for every R (otherwise two
+  // rays would shift the image by 1/8 pixel).
+  const int count = std::min(std::max(rays, 1), 8);
+  double mean[2] = { 0.0, 0.0 };
+  for (int i = 0; i < count; ++i)
+  {
+    mean[0] += pattern[i][0] / count;
+    mean[1] += pattern[i][1] / count;
+  }
+  const int r = std::min(std::max(ray, 0), count - 1);
+  offset[0] = pattern[r][0] - mean[0];
+  offset[1] = pattern[r][1] - mean[1];
 }
 
 void vtkMultiVolumeRayCastMapper::SetClassification(Classifications classification)

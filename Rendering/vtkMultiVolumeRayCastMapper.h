@@ -137,8 +137,8 @@ public:
   ///@}
 
   /**
-   * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; ray 0 is the
-   * centre. Tests and references use it to integrate the same rays.
+   * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; the offsets of
+   * the R rays average to the centre. Tests and references use it to integrate the same rays.
    */
   static void GetRayOffset(int ray, int rays, double offset[2]);
 
