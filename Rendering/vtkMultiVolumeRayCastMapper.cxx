@@ -854,7 +854,13 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       GLint max3D = 2048;
       glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3D);
-      if (!in.Atlas.InitializeFromBudget(this->AtlasBudget, this->BrickSize, 4, std::min(max3D, 2048)))
+      // No larger than every brick of every level: small scenes do not pay for the whole budget.
+      double allBricks = 0.0;
+      for (size_t v = 0; v < volumes.size(); ++v)
+        allBricks += in.Textures[ports[v]].Tree->GetNumberOfNodes();
+      const double brickMB = std::pow(double(this->BrickSize), 3) * 4.0 / (1024.0 * 1024.0);
+      const double budget = std::min(this->AtlasBudget, (allBricks + 0.5) * brickMB);
+      if (!in.Atlas.InitializeFromBudget(budget, this->BrickSize, 4, std::min(max3D, 2048)))
       {
         vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of " << this->BrickSize << "^3 float voxels.");
         return;

@@ -80,7 +80,8 @@ public:
    * Virtualized volume data (default on): each volume is cut into bricks of BrickSize^3 voxels
    * sharing one voxel layer, with a down-sampled octree; one shared atlas texture of at most
    * AtlasBudget MB holds the bricks of all volumes chosen by a greedy split/collapse on their
-   * screen-space error (vtkVolumeCut), and each volume reaches its bricks through an index
+   * screen-space error (vtkVolumeCut; the atlas is never larger than all bricks of all levels),
+   * and each volume reaches its bricks through an index
    * texture. Bricks that the transfer function makes transparent are neither stored nor
    * sampled. Off: one plain 3-D texture per volume at full resolution.
    */
