@@ -398,6 +398,7 @@ struct StrataVolumeEntry
   vtkImageData* Input = nullptr;
   vtkVolumeProperty* Property = nullptr;
   vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
+  float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
   int Dims[3] = { 0, 0, 0 };
 };
 
@@ -432,6 +433,9 @@ public:
   unsigned int FragmentVBO = 0;
   unsigned int EmptyVAO = 0;
   std::vector<int> FragmentFirst, FragmentCount;
+  std::vector<std::array<float, 3>> FragmentCentroid; ///< local frame, for the outline dilation
+  std::vector<std::vector<float>> FragmentPlanes;    ///< 4 floats per face, local frame
+  std::map<std::string, std::string> ShaderSources;  ///< generated sources by feature key
   bool GeometryValid = false;
   std::vector<vtkSmartPointer<vtkTextureObject>> Accumulation; ///< one integration buffer per ray
   vtkSmartPointer<vtkTextureObject> SceneDepth;
@@ -444,7 +448,7 @@ public:
   int AtlasBrickSize = 0;
   int ResidentBricks = 0;
   double AtlasBudget = 0.0;
-  std::map<int, vtkShaderProgram*> ProgramOfVao;
+  vtkShaderProgram* VaoProgram = nullptr; ///< the program the VAO's attribute was set up for
   int LastFragments = 0;
 
   void Release(vtkWindow* window)
@@ -486,7 +490,7 @@ public:
       glDeleteBuffers(1, &this->FragmentVBO);
     this->FragmentVAO = this->EmptyVAO = this->FragmentVBO = 0;
     this->GeometryValid = false;
-    this->ProgramOfVao.clear();
+    this->VaoProgram = nullptr;
   }
 };
 
@@ -661,6 +665,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     std::vector<float> verts;
     in.FragmentFirst.assign(numFragments, 0);
     in.FragmentCount.assign(numFragments, 0);
+    in.FragmentCentroid.assign(numFragments, { 0.f, 0.f, 0.f });
+    in.FragmentPlanes.assign(numFragments, {});
     for (int f = 0; f < numFragments; ++f)
     {
       const auto& frag = in.Tree.GetFragment(f);
@@ -671,6 +677,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           verts.push_back(static_cast<float>(frag.Vertices[idx][a]));
       }
       in.FragmentCount[f] = static_cast<int>(frag.Triangles.size());
+      for (const auto& vtx : frag.Vertices)
+        for (int c = 0; c < 3; ++c)
+          in.FragmentCentroid[f][c] += static_cast<float>(vtx[c] / frag.Vertices.size());
+      for (const auto& plane : frag.Planes)
+        for (int c = 0; c < 4; ++c)
+          in.FragmentPlanes[f].push_back(static_cast<float>(plane[c]));
     }
     if (!in.FragmentVBO)
     {
@@ -679,7 +691,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     glBindBuffer(GL_ARRAY_BUFFER, in.FragmentVBO);
     glBufferData(GL_ARRAY_BUFFER, verts.size() * sizeof(float), verts.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    in.ProgramOfVao.clear();
+    in.VaoProgram = nullptr;
     in.GeometryValid = true;
   }
 
@@ -839,6 +851,14 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   Translation(toWorld, origin);
   vtkMatrix4x4::Multiply4x4(worldToClip, toWorld, localToClip);
   vtkMatrix4x4::Invert(localToClip, clipToLocal);
+  for (auto& e : volumes)
+  {
+    // local -> index: IndexToWorld^-1 (local + origin), once per frame for all fragments.
+    vtkNew<vtkMatrix4x4> worldToIndex, localToIndex;
+    vtkMatrix4x4::Invert(e.IndexToWorld, worldToIndex);
+    vtkMatrix4x4::Multiply4x4(worldToIndex, toWorld, localToIndex);
+    ToFloat(localToIndex, e.LocalToIndex);
+  }
 
   // --- Brick atlas: the cut through all volumes' octrees for this camera, bricks uploaded
   // into the shared atlas, one index texture per volume.
@@ -1130,8 +1150,19 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       shaded[i] = lit && volumes[frag.BoxIndices[i]].Property->GetShade(0) != 0;
       anyShaded = anyShaded || shaded[i];
     }
-    const std::string fs = BuildFragmentShader(k, this->Classification, frontToBack, barrier, rays,
-      this->RayCoherence && rays > 1, shaded, this->UseBrickAtlas);
+    // One source per feature set, generated once.
+    const bool coherent = this->RayCoherence && rays > 1;
+    std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
+      (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
+      (this->UseBrickAtlas ? "a" : "-");
+    for (bool sh : shaded)
+      key += sh ? 's' : '-';
+    std::string& fs = in.ShaderSources[key];
+    if (fs.empty())
+    {
+      fs = BuildFragmentShader(
+        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, this->UseBrickAtlas);
+    }
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
     if (!program)
@@ -1145,14 +1176,14 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       glGenVertexArrays(1, &in.FragmentVAO);
     }
     glBindVertexArray(in.FragmentVAO);
-    if (in.ProgramOfVao[0] != program)
+    if (in.VaoProgram != program)
     {
       glBindBuffer(GL_ARRAY_BUFFER, in.FragmentVBO);
       const GLint location = glGetAttribLocation(program->GetHandle(), "vertexLocal");
       glEnableVertexAttribArray(location);
       glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
       glBindBuffer(GL_ARRAY_BUFFER, 0);
-      in.ProgramOfVao[0] = program;
+      in.VaoProgram = program;
     }
 
     float m[16];
@@ -1164,11 +1195,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     program->SetUniform4f("uViewport", viewport);
     const float viewportSize[2] = { float(width), float(height) };
     program->SetUniform2f("uViewportSize", viewportSize);
-    float centroid[3] = { 0.f, 0.f, 0.f };
-    for (const auto& vtx : frag.Vertices)
-      for (int c = 0; c < 3; ++c)
-        centroid[c] += static_cast<float>(vtx[c] / frag.Vertices.size());
-    program->SetUniform3f("uCentroid", centroid);
+    program->SetUniform3f("uCentroid", in.FragmentCentroid[f].data());
     // Sub-pixel rays reach half a pixel diagonal from the centre: 1.5 pixels of dilation covers
     // them also along edges that are not perpendicular to the direction from the centre.
     program->SetUniformf("uDilate", rays > 1 ? 1.5f : 0.0f);
@@ -1184,12 +1211,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           reinterpret_cast<const float(*)[3]>(lightColors.data()));
       }
     }
-    std::vector<float> planes(4 * MaxPlanes, 0.f);
-    for (size_t p = 0; p < frag.Planes.size(); ++p)
-      for (int c = 0; c < 4; ++c)
-        planes[4 * p + c] = static_cast<float>(frag.Planes[p][c]);
-    program->SetUniformi("uNumPlanes", static_cast<int>(frag.Planes.size()));
-    program->SetUniform4fv("uPlanes", MaxPlanes, reinterpret_cast<const float(*)[4]>(planes.data()));
+    const std::vector<float>& planes = in.FragmentPlanes[f];
+    program->SetUniformi("uNumPlanes", static_cast<int>(planes.size() / 4));
+    program->SetUniform4fv(
+      "uPlanes", static_cast<int>(planes.size() / 4), reinterpret_cast<const float(*)[4]>(planes.data()));
     in.SceneDepth->Activate();
     program->SetUniformi("uSceneDepth", in.SceneDepth->GetTextureUnit());
     if (frontToBack)
@@ -1219,13 +1244,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       const int v = frag.BoxIndices[i];
       StrataVolumeTextures& tex = in.Textures[ports[v]];
       const StrataVolumeEntry& e = volumes[v];
-      // local -> index: IndexToWorld^-1 (local + origin).
-      vtkNew<vtkMatrix4x4> worldToIndex, localToIndex;
-      vtkMatrix4x4::Invert(e.IndexToWorld, worldToIndex);
-      vtkMatrix4x4::Multiply4x4(worldToIndex, toWorld, localToIndex);
-      ToFloat(localToIndex, m);
       const std::string n = std::to_string(i);
-      program->SetUniformMatrix4x4(("uLocalToIndex" + n).c_str(), m);
+      program->SetUniformMatrix4x4(("uLocalToIndex" + n).c_str(), const_cast<float*>(e.LocalToIndex));
       program->SetUniformf(("uNearest" + n).c_str(),
         e.Property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
       if (this->UseBrickAtlas)
