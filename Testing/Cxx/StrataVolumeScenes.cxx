@@ -130,7 +130,7 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
 {
   // Over mid grey, so that opacity errors show as well as colour errors.
   VolumeComparison r;
-  const double background = 128.0 / 255.0; // exact in 8 bits
+  const double background = 128.0 / 255.0; // exact in 8 bits: CompositeOver gets 128
   double oldBackground[3];
   ren->GetBackground(oldBackground);
   ren->SetBackground(background, background, background);
@@ -146,10 +146,7 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
       std::cerr << name << ": reference rejected a volume: " << ref.GetLastError() << "\n";
     }
   }
-  vtkNew<vtkMatrix4x4> worldToClip, clipToWorld;
-  worldToClip->DeepCopy(
-    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
-  vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+  auto clipToWorld = ClipToWorld(ren);
   r.Reference.assign(4 * size_t(w) * h, 0.0);
   for (int ray = 0; ray < raysPerPixel; ++ray)
   {
@@ -164,26 +161,54 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
     for (size_t i = 0; i < one.size(); ++i)
       r.Reference[i] += one[i] / raysPerPixel;
   }
-  double se = 0.0;
-  std::vector<unsigned char> refImage(3 * size_t(w) * h);
+  const std::vector<unsigned char> grey(3 * size_t(w) * h, 128);
+  const std::vector<double> expected = CompositeOver(r.Reference, grey);
+  std::vector<unsigned char> refImage(expected.size());
+  for (size_t i = 0; i < expected.size(); ++i)
+    refImage[i] = static_cast<unsigned char>(std::lround(expected[i]));
   for (int i = 0; i < w * h; ++i)
-  {
     r.Covered += r.Reference[4 * i + 3] > 1.0 / 255.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double expected =
-        255.0 * std::min(1.0, r.Reference[4 * i + c] + (1.0 - r.Reference[4 * i + 3]) * background);
-      refImage[3 * i + c] = static_cast<unsigned char>(std::lround(expected));
-      const double d = double(r.Gpu[3 * i + c]) - expected;
-      se += d * d;
-      r.Max = std::max(r.Max, std::abs(d));
-    }
-  }
-  r.Rms = std::sqrt(se / (3.0 * w * h));
+  const ChannelError e = ImageError(r.Gpu, expected);
+  r.Rms = e.Rms;
+  r.Max = e.Max;
   ren->SetBackground(oldBackground);
   WritePNG(OutputDirectory() + "/" + name + "-gpu.png", r.Gpu, w, h);
   WritePNG(OutputDirectory() + "/" + name + "-ref.png", refImage, w, h);
   return r;
+}
+
+vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren)
+{
+  vtkNew<vtkMatrix4x4> worldToClip;
+  worldToClip->DeepCopy(
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  auto clipToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
+  vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+  return clipToWorld;
+}
+
+std::vector<double> CompositeOver(const std::vector<double>& rgba, const std::vector<unsigned char>& background)
+{
+  std::vector<double> out(background.size());
+  for (size_t i = 0; i < out.size() / 3; ++i)
+    for (int c = 0; c < 3; ++c)
+      out[3 * i + c] =
+        255.0 * std::min(1.0, rgba[4 * i + c] + (1.0 - rgba[4 * i + 3]) * background[3 * i + c] / 255.0);
+  return out;
+}
+
+ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected)
+{
+  ChannelError e;
+  double se = 0.0;
+  for (size_t i = 0; i < image.size(); ++i)
+  {
+    const double d = double(image[i]) - expected[i];
+    se += d * d;
+    e.Max = std::max(e.Max, std::abs(d));
+  }
+  e.Rms = image.empty() ? 0.0 : std::sqrt(se / image.size());
+  return e;
 }
 
 vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,

@@ -13,6 +13,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkMatrix4x4;
 class vtkRenderWindow;
 class vtkRenderer;
 class vtkVolume;
@@ -41,6 +42,22 @@ struct VolumeComparison
   std::vector<unsigned char> Gpu; ///< RGB, bottom row first
   std::vector<double> Reference;  ///< premultiplied RGBA
 };
+
+/// The active camera's clip -> world matrix for `ren` (what the reference's rays go through).
+vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren);
+
+/// The reference's premultiplied RGBA composited over `background` (RGB bytes, same pixel
+/// layout), in 8-bit units (not rounded).
+std::vector<double> CompositeOver(const std::vector<double>& rgba, const std::vector<unsigned char>& background);
+
+/// RMS over all channels and largest channel difference, in 8-bit units, of `image` (RGB bytes)
+/// from `expected` (same layout, 8-bit units).
+struct ChannelError
+{
+  double Rms = 0.0;
+  double Max = 0.0;
+};
+ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected);
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with
