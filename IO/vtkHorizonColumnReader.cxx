@@ -32,7 +32,8 @@ vtkStandardNewMacro(vtkHorizonColumnReader);
 namespace
 {
 using strata_io::ClearOutput;
-using strata_io::RotationToDirection;
+using strata_io::SetGridGeometry;
+using strata_io::SetGridInformation;
 using ColumnMode = vtkHorizonColumnReader::ColumnMode;
 
 // Same bound as the other horizon readers: 2^31 nodes or more is not a horizon.
@@ -896,16 +897,9 @@ int vtkHorizonColumnReader::RequestInformation(vtkInformation*,
                                                    << "\": " << error);
     return 0;
   }
-  const int extent[6] = { 0, this->NX - 1, 0, this->NY - 1, 0, 0 };
-  const double origin[3] = { this->GridOrigin[0], this->GridOrigin[1], 0.0 };
-  const double spacing[3] = { this->GridSpacing[0], this->GridSpacing[1], 1.0 };
-  double direction[9];
-  RotationToDirection(this->GridRotation, direction);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  const double origin[2] = { this->GridOrigin[0], this->GridOrigin[1] };
+  const double spacing[2] = { this->GridSpacing[0], this->GridSpacing[1] };
+  SetGridInformation(outInfo, this->NX, this->NY, origin, spacing, this->GridRotation, VTK_FLOAT);
   return 1;
 }
 
@@ -944,12 +938,9 @@ int vtkHorizonColumnReader::RequestData(vtkInformation*,
     }
   }
 
-  double direction[9];
-  RotationToDirection(this->GridRotation, direction);
-  output->SetExtent(0, this->NX - 1, 0, this->NY - 1, 0, 0);
-  output->SetOrigin(this->GridOrigin[0], this->GridOrigin[1], 0.0);
-  output->SetSpacing(this->GridSpacing[0], this->GridSpacing[1], 1.0);
-  output->SetDirectionMatrix(direction);
+  const double gridOrigin[2] = { this->GridOrigin[0], this->GridOrigin[1] };
+  const double gridSpacing[2] = { this->GridSpacing[0], this->GridSpacing[1] };
+  SetGridGeometry(output, this->NX, this->NY, gridOrigin, gridSpacing, this->GridRotation);
   output->GetPointData()->SetScalars(this->Internals->Grid);
   this->Internals->Grid = nullptr;
   this->UpdateProgress(1.0);

@@ -29,7 +29,8 @@ vtkStandardNewMacro(vtkIrapBinaryGridReader);
 namespace
 {
 using strata_io::ClearOutput;
-using strata_io::RotationToDirection;
+using strata_io::SetGridGeometry;
+using strata_io::SetGridInformation;
 // Irap's nominal undefined value. RMS and xtgeo write 1e30 instead; anything at least that large
 // in magnitude is a hole as well, since no depth, time or thickness comes anywhere near it.
 constexpr float IrapUndefined = 9999900.0f;
@@ -307,16 +308,9 @@ int vtkIrapBinaryGridReader::RequestInformation(vtkInformation*,
   this->YOrigin = h.YOrigin;
   this->Rotation = h.Rotation;
 
-  const int extent[6] = { 0, h.NX - 1, 0, h.NY - 1, 0, 0 };
-  const double origin[3] = { h.XOrigin, h.YOrigin, 0.0 };
-  const double spacing[3] = { h.XInc, h.YInc, 1.0 };
-  double direction[9];
-  RotationToDirection(h.Rotation, direction);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  const double origin[2] = { h.XOrigin, h.YOrigin };
+  const double spacing[2] = { h.XInc, h.YInc };
+  SetGridInformation(outInfo, h.NX, h.NY, origin, spacing, h.Rotation, VTK_FLOAT);
   return 1;
 }
 
@@ -440,12 +434,9 @@ int vtkIrapBinaryGridReader::RequestData(vtkInformation*,
   }
   // Bytes after the last value (some writers pad) are not part of the grid and are ignored.
 
-  double direction[9];
-  RotationToDirection(h.Rotation, direction);
-  output->SetExtent(0, h.NX - 1, 0, h.NY - 1, 0, 0);
-  output->SetOrigin(h.XOrigin, h.YOrigin, 0.0);
-  output->SetSpacing(h.XInc, h.YInc, 1.0);
-  output->SetDirectionMatrix(direction);
+  const double gridOrigin[2] = { h.XOrigin, h.YOrigin };
+  const double gridSpacing[2] = { h.XInc, h.YInc };
+  SetGridGeometry(output, h.NX, h.NY, gridOrigin, gridSpacing, h.Rotation);
   output->GetPointData()->SetScalars(values);
   this->NumberOfNoDataValues = noData;
   this->UpdateProgress(1.0);

@@ -32,7 +32,8 @@ vtkStandardNewMacro(vtkNumpyGridReader);
 namespace
 {
 using strata_io::ClearOutput;
-using strata_io::RotationToDirection;
+using strata_io::SetGridGeometry;
+using strata_io::SetGridInformation;
 // Same bound as the other horizon readers: 2^31 nodes or more is a corrupt header, not a horizon.
 constexpr long long MaxNodes = 2147483647LL;
 // numpy itself writes headers of a few hundred bytes; anything beyond this is not a header.
@@ -732,16 +733,9 @@ int vtkNumpyGridReader::RequestInformation(vtkInformation*,
   internals.Valid = true;
   internals.Swapped = this->SwapAxes;
 
-  const int extent[6] = { 0, internals.NX() - 1, 0, internals.NY() - 1, 0, 0 };
-  const double origin[3] = { this->Origin[0], this->Origin[1], 0.0 };
-  const double spacing[3] = { this->Spacing[0], this->Spacing[1], 1.0 };
-  double direction[9];
-  RotationToDirection(this->Rotation, direction);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, this->GetOutputDataType(), 1);
+  const double origin[2] = { this->Origin[0], this->Origin[1] };
+  const double spacing[2] = { this->Spacing[0], this->Spacing[1] };
+  SetGridInformation(outInfo, internals.NX(), internals.NY(), origin, spacing, this->Rotation, this->GetOutputDataType());
   return 1;
 }
 
@@ -857,12 +851,9 @@ int vtkNumpyGridReader::RequestData(vtkInformation*,
     this->UpdateProgress(static_cast<double>(first + n) / total);
   }
 
-  double direction[9];
-  RotationToDirection(this->Rotation, direction);
-  output->SetExtent(0, this->Internals->NX() - 1, 0, this->Internals->NY() - 1, 0, 0);
-  output->SetOrigin(this->Origin[0], this->Origin[1], 0.0);
-  output->SetSpacing(this->Spacing[0], this->Spacing[1], 1.0);
-  output->SetDirectionMatrix(direction);
+  const double gridOrigin[2] = { this->Origin[0], this->Origin[1] };
+  const double gridSpacing[2] = { this->Spacing[0], this->Spacing[1] };
+  SetGridGeometry(output, this->Internals->NX(), this->Internals->NY(), gridOrigin, gridSpacing, this->Rotation);
   output->GetPointData()->SetScalars(values);
   this->NumberOfNoDataValues = noData;
   return 1;

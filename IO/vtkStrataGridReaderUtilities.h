@@ -1,7 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // Private helpers shared by Strata's horizon-grid readers (not installed): the one definition
-// of how a grid rotation becomes a direction matrix, and of what a failed read leaves behind.
+// of how a grid rotation becomes a direction matrix, of the grid information every reader
+// reports, and of what a failed read leaves behind.
 #ifndef vtkStrataGridReaderUtilities_h
 #define vtkStrataGridReaderUtilities_h
 
@@ -38,6 +39,35 @@ inline void RotationToDirection(double degrees, double d[9])
   }
   const double m[9] = { c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0 };
   std::copy(m, m + 9, d);
+}
+
+/// Reports an nx x ny grid with the given lateral origin, spacing and rotation (degrees) and
+/// scalar type to the pipeline, as every horizon reader's RequestInformation does.
+inline void SetGridInformation(vtkInformation* outInfo, int nx, int ny, const double origin[2],
+  const double spacing[2], double rotationDegrees, int scalarType)
+{
+  const int extent[6] = { 0, nx - 1, 0, ny - 1, 0, 0 };
+  const double origin3[3] = { origin[0], origin[1], 0.0 };
+  const double spacing3[3] = { spacing[0], spacing[1], 1.0 };
+  double direction[9];
+  RotationToDirection(rotationDegrees, direction);
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing3, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, scalarType, 1);
+}
+
+/// Gives `output` the same grid geometry that SetGridInformation() reported.
+inline void SetGridGeometry(vtkImageData* output, int nx, int ny, const double origin[2],
+  const double spacing[2], double rotationDegrees)
+{
+  double direction[9];
+  RotationToDirection(rotationDegrees, direction);
+  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
+  output->SetOrigin(origin[0], origin[1], 0.0);
+  output->SetSpacing(spacing[0], spacing[1], 1.0);
+  output->SetDirectionMatrix(direction);
 }
 
 /// Leaves the output with no points and the pipeline with an empty extent.
