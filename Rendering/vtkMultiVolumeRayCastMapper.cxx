@@ -49,8 +49,7 @@
 
 namespace
 {
-// Entries of each volume's transfer-function table (colour and extinction over its range).
-constexpr int TransferTableSize = 1024;
+constexpr int TransferTableSize = vtkMultiVolumeRayCastMapper::TransferTableSize;
 constexpr int MaxPlanes = 64;
 
 void Replace(std::string& source, const std::string& tag, const std::string& code)
@@ -410,7 +409,6 @@ struct StrataVolumeTextures
   vtkMTimeType DataTime = 0;
   vtkMTimeType TransferTime = 0;
   vtkImageData* DataInput = nullptr;
-  bool Linear = true;
   double Range[3] = { 0, 1, 0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
   double ScalarRange[2] = { 0, 1 };
   vtkPreIntegrationTable PreIntegration;
@@ -505,6 +503,42 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 }
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
+
+void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* property, int size,
+  double range[2], std::vector<float>& rgb, std::vector<float>& opacity)
+{
+  // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
+  const bool useRgb = property->GetColorChannels(0) == 3;
+  vtkColorTransferFunction* color = useRgb ? property->GetRGBTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* gray = useRgb ? nullptr : property->GetGrayTransferFunction(0);
+  vtkPiecewiseFunction* alpha = property->GetScalarOpacity(0);
+  alpha->GetRange(range);
+  double cr[2];
+  if (useRgb)
+    color->GetRange(cr);
+  else
+    gray->GetRange(cr);
+  range[0] = std::min(range[0], cr[0]);
+  range[1] = std::max(range[1], cr[1]);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  rgb.resize(3 * size_t(size));
+  opacity.resize(size);
+  if (useRgb)
+  {
+    color->GetTable(range[0], range[1], size, rgb.data());
+  }
+  else
+  {
+    std::vector<float> g(size);
+    gray->GetTable(range[0], range[1], size, g.data());
+    for (int i = 0; i < size; ++i)
+      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = g[i];
+  }
+  alpha->GetTable(range[0], range[1], size, opacity.data());
+}
 
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
 {
@@ -700,7 +734,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     StrataVolumeTextures& tex = in.Textures[ports[v]];
     const StrataVolumeEntry& e = volumes[v];
-    const bool linear = e.Property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
     if (!tex.Data || tex.DataInput != e.Input || tex.DataTime < e.Input->GetMTime())
     {
       int cellFlag = 0;
@@ -746,7 +779,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Data->SetMinificationFilter(vtkTextureObject::Linear);
       tex.Data->SetMagnificationFilter(vtkTextureObject::Linear);
     }
-    (void)linear;
     // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
     const bool rgb = e.Property->GetColorChannels(0) == 3;
     vtkColorTransferFunction* color = rgb ? e.Property->GetRGBTransferFunction(0) : nullptr;
@@ -757,31 +789,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     if (!tex.Transfer || tex.TransferTime < tfTime)
     {
       double range[2];
-      opacity->GetRange(range);
-      double cr[2];
-      if (rgb)
-        color->GetRange(cr);
-      else
-        gray->GetRange(cr);
-      range[0] = std::min(range[0], cr[0]);
-      range[1] = std::max(range[1], cr[1]);
-      if (!(range[1] > range[0]))
-      {
-        range[1] = range[0] + 1.0;
-      }
-      std::vector<float> rgbTable(3 * TransferTableSize), alpha(TransferTableSize), table(4 * TransferTableSize);
-      if (rgb)
-      {
-        color->GetTable(range[0], range[1], TransferTableSize, rgbTable.data());
-      }
-      else
-      {
-        std::vector<float> g(TransferTableSize);
-        gray->GetTable(range[0], range[1], TransferTableSize, g.data());
-        for (int i = 0; i < TransferTableSize; ++i)
-          rgbTable[3 * i] = rgbTable[3 * i + 1] = rgbTable[3 * i + 2] = g[i];
-      }
-      opacity->GetTable(range[0], range[1], TransferTableSize, alpha.data());
+      std::vector<float> rgbTable, alpha, table(4 * TransferTableSize);
+      TabulateTransferFunction(e.Property, TransferTableSize, range, rgbTable, alpha);
       // Extinction per unit length from VTK's opacity per unit distance; opacity 1 would be
       // infinite extinction: 1 - 1e-6 keeps it finite (a unit length then lets 1e-6 through).
       const double unit = std::max(e.Property->GetScalarOpacityUnitDistance(0), 1e-30);

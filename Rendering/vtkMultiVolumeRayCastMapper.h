@@ -34,7 +34,9 @@
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
+#include <vector> // For std::vector
 
+class vtkVolumeProperty;
 class vtkWindow;
 
 class STRATA_EXPORT vtkMultiVolumeRayCastMapper : public vtkGPUVolumeRayCastMapper
@@ -142,6 +144,18 @@ public:
    * the R rays average to the centre. Tests and references use it to integrate the same rays.
    */
   static void GetRayOffset(int ray, int rays, double offset[2]);
+
+  /**
+   * The transfer-function table this mapper samples for `property` (component 0): `size`
+   * entries evenly over `range` (the union of the colour and opacity functions' ranges), RGB
+   * colour and opacity per unit distance, as VTK's GetTable computes them. References use it
+   * to integrate exactly what the GPU sees.
+   */
+  static void TabulateTransferFunction(vtkVolumeProperty* property, int size, double range[2],
+    std::vector<float>& rgb, std::vector<float>& opacity);
+
+  /// Entries of the tables the mapper builds (TabulateTransferFunction's size).
+  static constexpr int TransferTableSize = 1024;
 
   /// Number of BSP fragments drawn in the last frame.
   int GetNumberOfFragments() const;

@@ -104,18 +104,11 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
     ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
     : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
-  // The mapper's table: 1024 entries over the union of the opacity and colour ranges.
-  const int n = 1024;
-  vtkPiecewiseFunction* pwf = p->GetScalarOpacity(0);
-  vtkColorTransferFunction* ctf = p->GetRGBTransferFunction(0);
-  double range[2], cr[2];
-  pwf->GetRange(range);
-  ctf->GetRange(cr);
-  range[0] = std::min(range[0], cr[0]);
-  range[1] = std::max(range[1], cr[1]);
-  std::vector<float> alpha(n), rgb(3 * n);
-  pwf->GetTable(range[0], range[1], n, alpha.data());
-  ctf->GetTable(range[0], range[1], n, rgb.data());
+  // Exactly the mapper's table.
+  double range[2];
+  std::vector<float> rgb, alpha;
+  vtkMultiVolumeRayCastMapper::TabulateTransferFunction(
+    p, vtkMultiVolumeRayCastMapper::TransferTableSize, range, rgb, alpha);
   v.Classification.Range[0] = range[0];
   v.Classification.Range[1] = range[1];
   v.Classification.Opacity.assign(alpha.begin(), alpha.end());
