@@ -5,6 +5,7 @@
 #include "vtkPreIntegrationTable.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeCut.h"
+#include "vtkVolumeSkipGrid.h"
 #include "vtkVolumeBSPTree.h"
 
 #include "vtkCamera.h"
@@ -80,7 +81,7 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
   bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded,
-  bool atlas)
+  bool atlas, bool skipping)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -198,11 +199,11 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   bool anyShaded = false;
   for (int i = 0; i < k; ++i)
     anyShaded = anyShaded || shaded[i];
-  if (anyShaded)
-  {
-    dec.str("uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, unit\n"
-            "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n" + dec.str());
-  }
+  // The lights come before the volumes' shading functions that read them.
+  const std::string lights = anyShaded
+    ? "uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, unit\n"
+      "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n"
+    : "";
   if (classification == C::PostClassification)
   {
     // Emission and extinction of the mixed media at p, one lattice step of length len.
@@ -254,29 +255,39 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
           << "  return X > 0.0 ? vec4(e / X * a, a) : vec4(0.0);\n}\n";
     }
   }
-  if (atlas && frontToBack)
+  if (skipping)
   {
-    // The t up to which every volume's level-0 brick at o + t d is empty (t itself if one is
-    // not): the ray's exit from the brick's index box, nearest over the volumes.
-    seg << "float strataEmptyUntil(vec3 o, vec3 d, float t)\n{\n"
-        << "  float S = uBrickSize - 1.0;\n  float until = 3.0e38;\n"
-        << "  vec3 x0;\n  vec3 dx;\n  ivec3 b;\n  vec3 lo;\n  vec3 hi;\n  vec3 te;\n";
+    // Empty-space skipping: from o + t d, moving along dir d (dir = 1 front to back, -1 back
+    // to front), the t at which the ray leaves the empty box around its cell in every volume
+    // (t itself if some volume's cell is visible). Cell c with distance D > 0 sits in the
+    // empty box of cells c - (D - 1) .. c + (D - 1), index coordinates [lo, hi] below.
+    for (int i = 0; i < k; ++i)
+    {
+      const std::string n = std::to_string(i);
+      dec << "uniform usampler3D uSkip" << n << ";\n"
+          << "uniform vec4 uSkipGrid" << n << "; // cells per axis, cell size in voxels\n";
+    }
+    seg << "float strataEmptyUntil(vec3 o, vec3 d, float t, float dir)\n{\n"
+        << "  float until = 3.0e38;\n  vec3 x0;\n  vec3 dx;\n  ivec3 c;\n  float D;\n  vec3 lo;\n"
+        << "  vec3 hi;\n  vec3 te;\n";
     for (int i = 0; i < k; ++i)
     {
       const std::string n = std::to_string(i);
       seg << "  x0 = (uLocalToIndex" << n << " * vec4(o + t * d, 1.0)).xyz;\n"
-          << "  dx = mat3(uLocalToIndex" << n << ") * d;\n"
-          << "  b = clamp(ivec3(floor(x0 / S)), ivec3(0), ivec3(uTableDims" << n << ") - 1);\n"
-          << "  if (texelFetch(uIndex" << n << ", b, 0).w != 65535u)\n  {\n    return t;\n  }\n"
-          << "  lo = vec3(b) * S;\n  hi = lo + S;\n"
+          << "  dx = dir * (mat3(uLocalToIndex" << n << ") * d);\n"
+          << "  c = clamp(ivec3(floor(x0 / uSkipGrid" << n << ".w)), ivec3(0), ivec3(uSkipGrid" << n << ".xyz) - 1);\n"
+          << "  D = float(texelFetch(uSkip" << n << ", c, 0).r);\n"
+          << "  if (D == 0.0)\n  {\n    return t;\n  }\n"
+          << "  lo = (vec3(c) - (D - 1.0)) * uSkipGrid" << n << ".w;\n"
+          << "  hi = (vec3(c) + D) * uSkipGrid" << n << ".w;\n"
           << "  te = vec3(dx.x > 0.0 ? (hi.x - x0.x) / dx.x : (dx.x < 0.0 ? (lo.x - x0.x) / dx.x : 3.0e38),\n"
           << "    dx.y > 0.0 ? (hi.y - x0.y) / dx.y : (dx.y < 0.0 ? (lo.y - x0.y) / dx.y : 3.0e38),\n"
           << "    dx.z > 0.0 ? (hi.z - x0.z) / dx.z : (dx.z < 0.0 ? (lo.z - x0.z) / dx.z : 3.0e38));\n"
-          << "  until = min(until, t + max(min(te.x, min(te.y, te.z)), 0.0));\n";
+          << "  until = min(until, max(min(te.x, min(te.y, te.z)), 0.0));\n";
     }
-    seg << "  return until;\n}\n";
+    seg << "  return t + dir * until;\n}\n";
   }
-  Replace(fs, "//STRATA::Volumes::Dec", dec.str());
+  Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str());
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
   if (frontToBack)
   {
@@ -337,6 +348,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   if (frontToBack)
   {
     loop << "float kk = floor(tEnter / dt - phase);\n";
+    if (skipping)
+      loop << "  bool probe = true; // look for empty space: at the start and after transparent steps\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tEnter * d, sA);\n";
@@ -344,10 +357,10 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
          << "    float a = max((kk + phase) * dt, tEnter);\n"
          << "    float b = min((kk + 1.0 + phase) * dt, tExit);\n"
          << "    if (a >= tExit)\n    {\n      break;\n    }\n";
-    if (atlas)
+    if (skipping)
     {
-      // Empty-space skipping: jump to the lattice step where some volume's brick is not empty.
-      loop << "    float skip = strataEmptyUntil(o, d, a);\n"
+      // Jump to the lattice step in which the empty space ends.
+      loop << "    float skip = probe ? strataEmptyUntil(o, d, a, 1.0) : a;\n"
            << "    if (skip > b)\n    {\n"
            << "      kk = max(kk + 1.0, floor(skip / dt - phase));\n";
       if (pre)
@@ -362,21 +375,33 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
     loop << "      if (c.a > 0.0 && tFirst == tExit)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
+         << (skipping ? "      probe = c.a <= 0.0;\n" : "")
          << "      acc += (1.0 - acc.a) * c;\n"
          << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n"
          << "    kk += 1.0;\n  }";
   }
   else
   {
-    loop << "float k1 = ceil(tExit / dt - phase);\n";
+    loop << "float kb = ceil(tExit / dt - phase);\n";
+    if (skipping)
+      loop << "  bool probe = true;\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tExit * d, sB);\n";
     loop << "  for (int it = 0; it < 1048576; ++it)\n  {\n"
-         << "    float b = min((k1 - float(it) + phase) * dt, tExit);\n"
-         << "    float a = max((k1 - float(it) - 1.0 + phase) * dt, tEnter);\n"
-         << "    if (b <= tEnter)\n    {\n      break;\n    }\n"
-         << "    if (b > a)\n    {\n";
+         << "    float b = min((kb + phase) * dt, tExit);\n"
+         << "    float a = max((kb - 1.0 + phase) * dt, tEnter);\n"
+         << "    if (b <= tEnter)\n    {\n      break;\n    }\n";
+    if (skipping)
+    {
+      loop << "    float skip = probe ? strataEmptyUntil(o, d, b, -1.0) : b;\n"
+           << "    if (skip < a)\n    {\n"
+           << "      kb = min(kb - 1.0, ceil(skip / dt - phase));\n";
+      if (pre)
+        loop << "      strataSampleAll(o + min(max((kb + phase) * dt, tEnter), tExit) * d, sB);\n";
+      loop << "      continue;\n    }\n";
+    }
+    loop << "    if (b > a)\n    {\n";
     if (pre)
       loop << "      strataSampleAll(o + a * d, sA);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -384,7 +409,9 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
     loop << "      if (c.a > 0.0)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
-         << "      acc = c + (1.0 - c.a) * acc;\n    }\n  }";
+         << (skipping ? "      probe = c.a <= 0.0;\n" : "")
+         << "      acc = c + (1.0 - c.a) * acc;\n    }\n"
+         << "    kb -= 1.0;\n  }";
   }
   Replace(fs, "//STRATA::Composite::Impl", loop.str());
   return fs;
@@ -415,7 +442,26 @@ struct StrataVolumeTextures
   std::vector<float> Scalars;               ///< the input as float; the brick tree borrows it
   std::unique_ptr<vtkVolumeBrickTree> Tree; ///< bricks and octree (brick atlas on)
   unsigned int IndexTexture = 0;            ///< RGBA16UI, one texel per level-0 brick
-  std::vector<double> OpacityNodes;         ///< (x, y) pairs of the opacity function
+  vtkVolumeSkipGrid Skip;                   ///< cell ranges and distances to visible cells
+  unsigned int SkipTexture = 0;             ///< R8UI distances, one texel per cell
+  vtkMTimeType SkipTime = 0;                ///< distances classified for this transfer table
+  vtkMTimeType SkipDataTime = 0;            ///< cell ranges built from this data
+
+  // The largest opacity the linearly interpolated table reaches for scalars in [lo, hi]: the
+  // entries whose interpolation intervals meet it (clamped at the ends, as the texture is).
+  double MaxOpacity(double lo, double hi) const
+  {
+    const int n = static_cast<int>(this->Alpha.size());
+    if (n == 0)
+      return 1.0;
+    const double scale = (n - 1) / (this->ScalarRange[1] - this->ScalarRange[0]);
+    const double x0 = std::floor((lo - this->ScalarRange[0]) * scale);
+    const double x1 = std::ceil((hi - this->ScalarRange[0]) * scale);
+    const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
+    const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
+    return *std::max_element(this->Alpha.begin() + i0, this->Alpha.begin() + i1 + 1);
+  }
+  std::vector<float> Alpha;                 ///< the tabulated opacity, TransferTableSize entries
   double EmptyScalar = 0.0;                 ///< a scalar of zero opacity
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table
@@ -474,6 +520,8 @@ public:
     {
       if (t.second.IndexTexture)
         glDeleteTextures(1, &t.second.IndexTexture);
+      if (t.second.SkipTexture)
+        glDeleteTextures(1, &t.second.SkipTexture);
     }
     if (this->AtlasTexture)
       glDeleteTextures(1, &this->AtlasTexture);
@@ -827,16 +875,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         tauD[i] = table[4 * i + 3];
       }
       tex.PreIntegration.SetTransferFunction(range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
-      // For the cut: the opacity function's nodes, and a scalar it makes transparent (what an
-      // empty brick reads).
-      tex.OpacityNodes.clear();
-      for (int i = 0; i < opacity->GetSize(); ++i)
-      {
-        double node[4];
-        opacity->GetNodeValue(i, node);
-        tex.OpacityNodes.push_back(node[0]);
-        tex.OpacityNodes.push_back(node[1]);
-      }
+      // What the shader reads: for the cut's transparent bricks, the skip grid and the scalar an
+      // empty brick reads.
+      tex.Alpha = alpha;
       tex.EmptyScalar = range[0];
       for (int i = 0; i < TransferTableSize; ++i)
       {
@@ -847,6 +888,35 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         }
       }
       tex.TransferTime = tfTime;
+    }
+  }
+
+  // --- Empty-space skipping: cell ranges when the data change, distances when the table does.
+  for (size_t v = 0; this->EmptySpaceSkipping && v < volumes.size(); ++v)
+  {
+    StrataVolumeTextures& tex = in.Textures[ports[v]];
+    const bool build = tex.SkipDataTime != tex.DataTime || tex.Skip.GetCellSize() != this->SkipCellSize ||
+      tex.Skip.GetMinima().empty();
+    if (build)
+    {
+      tex.Skip.Build(tex.Scalars.data(), volumes[v].Dims, this->SkipCellSize);
+      tex.SkipDataTime = tex.DataTime;
+    }
+    if (build || tex.SkipTime != tex.TransferTime || !tex.SkipTexture)
+    {
+      tex.Skip.Classify([&tex](double lo, double hi) { return tex.MaxOpacity(lo, hi); });
+      const int* cd = tex.Skip.GetCellDimensions();
+      if (!tex.SkipTexture)
+        glGenTextures(1, &tex.SkipTexture);
+      glBindTexture(GL_TEXTURE_3D, tex.SkipTexture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, cd[0], cd[1], cd[2], 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+        tex.Skip.GetDistances().data());
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glBindTexture(GL_TEXTURE_3D, 0);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      tex.SkipTime = tex.TransferTime;
     }
   }
 
@@ -920,11 +990,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (size_t v = 0; v < volumes.size(); ++v)
     {
       in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
-      const std::vector<double> nodes = in.Textures[ports[v]].OpacityNodes;
-      in.Cut.SetVolumeOpacity(static_cast<int>(v), [nodes](double lo, double hi) {
-        return nodes.empty() ? 1.0
-                             : vtkVolumeCut::MaxOfPiecewiseLinear(nodes.data(), static_cast<int>(nodes.size() / 2), lo, hi);
-      });
+      const StrataVolumeTextures* tex = &in.Textures[ports[v]];
+      in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
     }
     vtkVolumeCut::Camera cutCamera;
     camera->GetPosition(cutCamera.Position);
@@ -1163,14 +1230,15 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     const bool coherent = this->RayCoherence && rays > 1;
     std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
       (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
-      (this->UseBrickAtlas ? "a" : "-");
+      (this->UseBrickAtlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-");
     for (bool sh : shaded)
       key += sh ? 's' : '-';
     std::string& fs = in.ShaderSources[key];
     if (fs.empty())
     {
       fs = BuildFragmentShader(
-        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, this->UseBrickAtlas);
+        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, this->UseBrickAtlas,
+        this->EmptySpaceSkipping);
     }
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
@@ -1275,6 +1343,17 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         program->SetUniformi(("uVolume" + n).c_str(), tex.Data->GetTextureUnit());
         const float dims[3] = { float(e.Dims[0]), float(e.Dims[1]), float(e.Dims[2]) };
         program->SetUniform3f(("uDims" + n).c_str(), dims);
+      }
+      if (this->EmptySpaceSkipping)
+      {
+        const int unit = units->Allocate();
+        rawUnits.push_back(unit);
+        state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_3D, tex.SkipTexture);
+        program->SetUniformi(("uSkip" + n).c_str(), unit);
+        const int* cd = tex.Skip.GetCellDimensions();
+        const float grid[4] = { float(cd[0]), float(cd[1]), float(cd[2]), float(tex.Skip.GetCellSize()) };
+        program->SetUniform4f(("uSkipGrid" + n).c_str(), grid);
       }
       if (shaded[i])
       {

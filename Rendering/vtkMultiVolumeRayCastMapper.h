@@ -96,6 +96,22 @@ public:
   vtkGetMacro(AtlasBudget, double);
   ///@}
 
+  ///@{
+  /**
+   * Empty-space skipping (default on), in both compositing orders and with or without the
+   * atlas: each volume keeps a grid of cells of SkipCellSize voxels per axis with the
+   * chessboard distance to the nearest cell the transfer function makes visible
+   * (vtkVolumeSkipGrid); a ray in empty space jumps out of the whole empty box around its cell
+   * with one texel fetch, and resumes on its own sample lattice, so the image is unchanged.
+   * Probed only after a transparent step. Off: no skipping code in the shaders.
+   */
+  vtkSetMacro(EmptySpaceSkipping, bool);
+  vtkGetMacro(EmptySpaceSkipping, bool);
+  vtkBooleanMacro(EmptySpaceSkipping, bool);
+  vtkSetClampMacro(SkipCellSize, int, 1, 256);
+  vtkGetMacro(SkipCellSize, int);
+  ///@}
+
   /// Bricks resident in the atlas after the last frame, and atlas slots.
   int GetNumberOfResidentBricks() const;
   int GetNumberOfAtlasSlots() const;
@@ -187,6 +203,8 @@ protected:
   bool UseBrickAtlas = true;
   int BrickSize = 32;
   double AtlasBudget = 256.0;
+  bool EmptySpaceSkipping = true;
+  int SkipCellSize = 8;
   bool RayCoherence = false;
   double TerminationOpacity = 0.999;
 
