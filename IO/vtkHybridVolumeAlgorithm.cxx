@@ -3,6 +3,8 @@
 
 #include "vtkCellArray.h"
 #include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkHybridVolumeFile.h"
 #include "vtkImageData.h"
@@ -228,4 +230,12 @@ void vtkHybridVolumeAlgorithm::FillOutputs(const vtkHybridVolumeFile& file,
   pd->AddArray(error);
   pd->SetNormals(normals);
   pd->AddArray(codes);
+  // The world size of the error-grid cell a point stands for: what a renderer draws it as.
+  vtkSmartPointer<vtkDoubleArray> cell = vtkSmartPointer<vtkDoubleArray>::New();
+  cell->SetName("PointSpacing");
+  cell->SetNumberOfComponents(3);
+  const double g[3] = { file.ErrorGridStep[0] * file.Spacing[0], file.ErrorGridStep[1] * file.Spacing[1],
+    file.ErrorGridStep[2] * file.Spacing[2] };
+  cell->InsertNextTuple(g);
+  points->GetFieldData()->AddArray(cell);
 }

@@ -26,6 +26,8 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
@@ -552,6 +554,24 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
 
+void vtkMultiVolumeRayCastMapper::TabulateExtinction(
+  vtkVolumeProperty* property, int size, double range[2], std::vector<float>& rgbTau, std::vector<float>& opacity)
+{
+  std::vector<float> rgb;
+  TabulateTransferFunction(property, size, range, rgb, opacity);
+  // Opacity 1 would be infinite extinction: 1 - 1e-6 keeps it finite (a unit length then
+  // lets 1e-6 through).
+  const double unit = std::max(property->GetScalarOpacityUnitDistance(0), 1e-30);
+  rgbTau.resize(4 * size_t(size));
+  for (int i = 0; i < size; ++i)
+  {
+    const double a = std::min(std::max(double(opacity[i]), 0.0), 1.0 - 1e-6);
+    for (int c = 0; c < 3; ++c)
+      rgbTau[4 * i + c] = rgb[3 * i + c];
+    rgbTau[4 * i + 3] = static_cast<float>(-std::log(1.0 - a) / unit);
+  }
+}
+
 void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* property, int size,
   double range[2], std::vector<float>& rgb, std::vector<float>& opacity)
 {
@@ -837,18 +857,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     if (!tex.Transfer || tex.TransferTime < tfTime)
     {
       double range[2];
-      std::vector<float> rgbTable, alpha, table(4 * TransferTableSize);
-      TabulateTransferFunction(e.Property, TransferTableSize, range, rgbTable, alpha);
-      // Extinction per unit length from VTK's opacity per unit distance; opacity 1 would be
-      // infinite extinction: 1 - 1e-6 keeps it finite (a unit length then lets 1e-6 through).
-      const double unit = std::max(e.Property->GetScalarOpacityUnitDistance(0), 1e-30);
-      for (int i = 0; i < TransferTableSize; ++i)
-      {
-        const double a = std::min(std::max(double(alpha[i]), 0.0), 1.0 - 1e-6);
-        for (int c = 0; c < 3; ++c)
-          table[4 * i + c] = rgbTable[3 * i + c];
-        table[4 * i + 3] = static_cast<float>(-std::log(1.0 - a) / unit);
-      }
+      std::vector<float> alpha, table;
+      TabulateExtinction(e.Property, TransferTableSize, range, table, alpha);
       if (!tex.Transfer)
       {
         tex.Transfer = vtkSmartPointer<vtkTextureObject>::New();
@@ -930,6 +940,27 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   Translation(toWorld, origin);
   vtkMatrix4x4::Multiply4x4(worldToClip, toWorld, localToClip);
   vtkMatrix4x4::Invert(localToClip, clipToLocal);
+  // The mapper's clipping planes (world; VTK keeps the side the normal points to) in the
+  // fragments' convention, dot(n, p) + w <= 0 inside, in the local frame: each fragment's ray
+  // is clipped by them like by its own faces, on the same sample lattice.
+  std::vector<float> clipPlanes;
+  if (this->ClippingPlanes)
+  {
+    for (int i = 0; i < this->ClippingPlanes->GetNumberOfItems(); ++i)
+    {
+      vtkPlane* plane = this->ClippingPlanes->GetItem(i);
+      double n[3], o[3];
+      plane->GetNormal(n);
+      plane->GetOrigin(o);
+      double w = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        clipPlanes.push_back(static_cast<float>(-n[c]));
+        w += n[c] * (o[c] - origin[c]);
+      }
+      clipPlanes.push_back(static_cast<float>(w));
+    }
+  }
   for (auto& e : volumes)
   {
     // local -> index: IndexToWorld^-1 (local + origin), once per frame for all fragments.
@@ -1214,9 +1245,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       continue;
     }
-    if (static_cast<int>(frag.Planes.size()) > MaxPlanes)
+    if (static_cast<int>(frag.Planes.size() + clipPlanes.size() / 4) > MaxPlanes)
     {
-      vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces; at most " << MaxPlanes << " are supported.");
+      vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces and there are " << clipPlanes.size() / 4
+                                          << " clipping planes; at most " << MaxPlanes << " in all are supported.");
       continue;
     }
     std::vector<bool> shaded(k);
@@ -1288,7 +1320,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           reinterpret_cast<const float(*)[3]>(lightColors.data()));
       }
     }
-    const std::vector<float>& planes = in.FragmentPlanes[f];
+    std::vector<float> planes = in.FragmentPlanes[f];
+    planes.insert(planes.end(), clipPlanes.begin(), clipPlanes.end());
     program->SetUniformi("uNumPlanes", static_cast<int>(planes.size() / 4));
     program->SetUniform4fv(
       "uPlanes", static_cast<int>(planes.size() / 4), reinterpret_cast<const float(*)[4]>(planes.data()));

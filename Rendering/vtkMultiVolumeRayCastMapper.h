@@ -170,6 +170,14 @@ public:
   static void TabulateTransferFunction(vtkVolumeProperty* property, int size, double range[2],
     std::vector<float>& rgb, std::vector<float>& opacity);
 
+  /**
+   * The table the shaders read: TabulateTransferFunction's, with the opacity turned into
+   * extinction per unit length (-ln(1 - a) / unit distance; a capped at 1 - 1e-6 so that it
+   * stays finite), interleaved RGBA per entry. `opacity` gets the tabulated opacity.
+   */
+  static void TabulateExtinction(vtkVolumeProperty* property, int size, double range[2],
+    std::vector<float>& rgbTau, std::vector<float>& opacity);
+
   /// Entries of the tables the mapper builds (TabulateTransferFunction's size).
   static constexpr int TransferTableSize = 1024;
 

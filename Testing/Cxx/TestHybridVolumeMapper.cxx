@@ -1,0 +1,217 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// The hybrid point + volume renderer against its parts: a volume with thin features the
+// factor-4 volume blurs away. Asserts that the points bring the image closer to the
+// full-resolution rendering than the low-resolution volume alone (squares and splats), that
+// no points (a constant error of zero, or points adding no opacity) give exactly the
+// low-resolution rendering however many depth slabs, and that the generated point shaders
+// hold only what the settings use.
+#include "StrataHeightFieldScenes.h"
+#include "StrataTestHelpers.h"
+#include "StrataVolumeScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkHybridVolumeFilter.h"
+#include "vtkHybridVolumeMapper.h"
+#include "vtkImageData.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+
+using namespace strata_test;
+
+namespace
+{
+const int Size = 128;
+
+// A soft blob with thin rods and a thin shell through it: 65 x 57 x 49 points (not multiples
+// of the factor).
+vtkSmartPointer<vtkImageData> ThinFeatures()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(65, 57, 49);
+  image->AllocateScalars(VTK_FLOAT, 1);
+  float* v = static_cast<float*>(image->GetScalarPointer());
+  for (int z = 0; z < 49; ++z)
+    for (int y = 0; y < 57; ++y)
+      for (int x = 0; x < 65; ++x)
+      {
+        const double r = std::sqrt((x - 32.0) * (x - 32.0) + (y - 28.0) * (y - 28.0) + (z - 24.0) * (z - 24.0));
+        double s = 90.0 * std::exp(-r * r / 300.0);
+        if ((x == 20 && z == 30) || (y == 40 && z == 12) || (x == 45 && y == 15))
+          s = 230.0; // one-voxel rods along three axes
+        if (std::abs(r - 19.0) < 0.5)
+          s = std::max(s, 200.0); // a thin shell
+        v[x + 65 * (y + 57 * z)] = static_cast<float>(s);
+      }
+  return image;
+}
+
+vtkSmartPointer<vtkVolumeProperty> Property()
+{
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0, 0.2, 0.3, 0.9);
+  color->AddRGBPoint(100, 0.9, 0.8, 0.3);
+  color->AddRGBPoint(255, 1.0, 0.3, 0.2);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.0);
+  opacity->AddPoint(40, 0.0);
+  opacity->AddPoint(100, 0.05);
+  opacity->AddPoint(255, 0.6);
+  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
+  p->SetColor(color);
+  p->SetScalarOpacity(opacity);
+  p->SetInterpolationTypeToLinear();
+  p->ShadeOff();
+  return p;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Win;
+  vtkSmartPointer<vtkRenderer> Ren;
+  vtkNew<vtkVolume> Volume;
+  Scene(vtkVolumeProperty* property)
+  {
+    MakeWindow(this->Win, this->Ren, Size, Size);
+    this->Volume->SetProperty(property);
+    this->Ren->AddVolume(this->Volume);
+    vtkCamera* cam = this->Ren->GetActiveCamera();
+    cam->SetFocalPoint(32, 28, 24);
+    cam->SetPosition(32 - 80, 28 - 110, 24 + 70);
+    cam->SetViewUp(0, 0, 1);
+    cam->SetViewAngle(30);
+    this->Ren->ResetCameraClippingRange();
+  }
+  std::vector<unsigned char> Render(vtkVolumeMapper* mapper)
+  {
+    this->Volume->SetMapper(mapper);
+    this->Ren->ResetCameraClippingRange();
+    this->Win->Render();
+    return ReadRGB(this->Win);
+  }
+};
+
+double Rms(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  return ImageError(a, std::vector<double>(b.begin(), b.end())).Rms;
+}
+
+int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  int mx = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    mx = std::max(mx, std::abs(int(a[i]) - int(b[i])));
+  return mx;
+}
+}
+
+int TestHybridVolumeMapper(int, char*[])
+{
+  CapturingOutputWindow* output = CapturingOutputWindow::Install();
+  auto original = ThinFeatures();
+  auto property = Property();
+  Scene scene(property);
+
+  vtkNew<vtkMultiVolumeRayCastMapper> fullMapper;
+  fullMapper->SetInputData(original);
+  fullMapper->SetSampleDistance(0.5);
+  const auto full = scene.Render(fullMapper);
+
+  vtkNew<vtkHybridVolumeFilter> filter;
+  filter->SetInputData(original);
+  filter->SetFactor(4, 4, 4);
+  filter->SetFilterToCubic();
+  filter->SetThreshold(25.0);
+  filter->Update();
+  vtkPolyData* points = filter->GetPointsOutput();
+  vtkNew<vtkImageData> low;
+  low->DeepCopy(filter->GetLowResolutionOutput());
+  std::cout << "Hybrid: low-resolution " << low->GetDimensions()[0] << "x" << low->GetDimensions()[1] << "x"
+            << low->GetDimensions()[2] << ", " << points->GetNumberOfPoints() << " points\n";
+
+  vtkNew<vtkMultiVolumeRayCastMapper> lowMapper;
+  lowMapper->SetInputData(low);
+  lowMapper->SetSampleDistance(0.5);
+  const auto lowImage = scene.Render(lowMapper);
+
+  vtkNew<vtkHybridVolumeMapper> hybrid;
+  hybrid->SetInputData(low);
+  hybrid->SetPointsInputData(points);
+  hybrid->GetVolumeMapper()->SetSampleDistance(0.5);
+  const auto squares = scene.Render(hybrid);
+  const vtkIdType drawn = hybrid->GetNumberOfPointsDrawn();
+  const std::string squareVS = hybrid->GetPointVertexShaderSource();
+  const std::string squareFS = hybrid->GetPointFragmentShaderSource();
+  hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
+  const auto splats = scene.Render(hybrid);
+  const std::string splatFS = hybrid->GetPointFragmentShaderSource();
+
+  const double lowRms = Rms(lowImage, full), squareRms = Rms(squares, full), splatRms = Rms(splats, full);
+  std::cout << "Hybrid: RMS against full resolution: low-resolution alone " << lowRms << ", squares " << squareRms
+            << ", splats " << splatRms << " (" << drawn << " points drawn)\n";
+  Check(points->GetNumberOfPoints() > 100 && drawn == points->GetNumberOfPoints(), "points were made and all drawn");
+  Check(lowRms > 2.0, "the thin features make the low-resolution image wrong (RMS > 2)");
+  Check(squareRms < 0.6 * lowRms, "squares bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
+  Check(splatRms < 0.6 * lowRms, "splats bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
+
+  // Points that add no opacity (error 0): every slab is drawn, nothing added.
+  vtkNew<vtkPolyData> silent;
+  silent->DeepCopy(points);
+  vtkFloatArray* err = vtkFloatArray::SafeDownCast(silent->GetPointData()->GetArray("Error"));
+  for (vtkIdType i = 0; i < err->GetNumberOfTuples(); ++i)
+    err->SetValue(i, 0.0f);
+  hybrid->SetPointsInputData(silent);
+  // Each slab is blended into the 8-bit window on its own: up to half a level of rounding per
+  // slab, about S / 4 levels in all.
+  for (int slabs : { 1, 4, 16 })
+  {
+    hybrid->SetNumberOfSlabs(slabs);
+    const int mx = MaxDifference(scene.Render(hybrid), lowImage);
+    std::cout << "Hybrid: " << slabs << " slabs, points adding nothing: max difference to the low-resolution image " << mx << "\n";
+    Check(mx <= std::max(1, slabs / 4), "depth slabs recompose the low-resolution image (" + std::to_string(slabs) +
+        " slabs: max difference <= " + std::to_string(std::max(1, slabs / 4)) + " of 255)");
+  }
+
+  // A constant volume: no error, no points, the low-resolution rendering exactly.
+  vtkNew<vtkImageData> constant;
+  constant->DeepCopy(original);
+  std::fill_n(static_cast<float*>(constant->GetScalarPointer()), 65 * 57 * 49, 120.0f);
+  vtkNew<vtkHybridVolumeFilter> flat;
+  flat->SetInputData(constant);
+  flat->SetFactor(4, 4, 4);
+  flat->Update();
+  vtkNew<vtkImageData> flatLow;
+  flatLow->DeepCopy(flat->GetLowResolutionOutput());
+  hybrid->SetInputData(flatLow);
+  hybrid->SetPointsInputData(flat->GetPointsOutput());
+  const auto flatHybrid = scene.Render(hybrid);
+  lowMapper->SetInputData(flatLow);
+  const auto flatPlain = scene.Render(lowMapper);
+  const int flatDiff = MaxDifference(flatHybrid, flatPlain);
+  std::cout << "Hybrid: constant volume: " << flat->GetPointsOutput()->GetNumberOfPoints()
+            << " points; max difference to the low-resolution rendering " << flatDiff << "\n";
+  Check(flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff == 0,
+    "a constant volume gives no points and renders as the low-resolution volume alone");
+
+  auto has = [](const std::string& s, const char* what) { return s.find(what) != std::string::npos; };
+  Check(!has(squareFS, "gl_PointCoord") && !has(squareFS, "exp("), "squares: no splat kernel code");
+  Check(has(splatFS, "gl_PointCoord") && has(splatFS, "exp("), "splats: the Gaussian kernel");
+  Check(!has(squareVS, "ormal"), "shading off: no normals");
+  Check(output->Errors == 0 && output->Warnings == 0, "no VTK errors or warnings");
+  std::cout << (Failures() ? "FAILED" : "passed") << "\n";
+  return Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
+}
