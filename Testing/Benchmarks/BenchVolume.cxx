@@ -29,6 +29,7 @@
 // reference with one at half the step; STRATA_BENCH_UNSNAPPED=1 makes `converge` also compare
 // with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
@@ -188,153 +189,7 @@ int TimedFrames(int fallback)
   return n && std::atoi(n) > 0 ? std::atoi(n) : fallback;
 }
 
-std::string SharedData()
-{
-  const std::string d = strata_test::SharedDataDirectory();
-  return d.empty() ? "../shared/data" : d;
-}
-
-bool Readable(const std::string& path)
-{
-  return static_cast<bool>(std::ifstream(path));
-}
-
 // --- Data sets ------------------------------------------------------------------------------
-
-/// Reads a data set by name; on failure returns nullptr and says why in `why`.
-vtkSmartPointer<vtkImageData> LoadVolume(const std::string& name, std::string& why)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  const std::string dir = SharedData() + "/volumes/";
-  if (name == "bucky")
-  {
-    std::string path = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
-    if (!Readable(path))
-      path = dir + "bucky.raw";
-    if (!Readable(path))
-    {
-      why = "missing " + path;
-      return nullptr;
-    }
-    vtkNew<vtkImageReader2> reader;
-    reader->SetFileName(path.c_str());
-    reader->SetFileDimensionality(3);
-    reader->SetDataScalarTypeToUnsignedChar();
-    reader->SetDataExtent(0, 31, 0, 31, 0, 31);
-    reader->SetDataByteOrderToLittleEndian();
-    reader->Update();
-    image->ShallowCopy(reader->GetOutput());
-  }
-  else if (name == "tooth")
-  {
-    const std::string path = dir + "tooth.nrrd";
-    if (!Readable(path))
-    {
-      why = "missing " + path;
-      return nullptr;
-    }
-    vtkNew<vtkNrrdReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    image->ShallowCopy(reader->GetOutput());
-  }
-  else if (name == "engine" || name == "bonsai")
-  {
-    const std::string path = dir + name + ".vti";
-    if (!Readable(path))
-    {
-      why = "missing " + path;
-      return nullptr;
-    }
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    image->ShallowCopy(reader->GetOutput());
-  }
-  else
-  {
-    why = "unknown data set " + name + " (known: bucky tooth engine bonsai)";
-    return nullptr;
-  }
-  if (image->GetNumberOfPoints() < 8 || !image->GetPointData()->GetScalars())
-  {
-    why = "could not read " + name;
-    return nullptr;
-  }
-  image->SetOrigin(0, 0, 0);
-  return image;
-}
-
-/// Hand-tuned transfer functions over the full 8-bit range of each data set (so that neither
-/// mapper clamps data to the table's ends), opacity per voxel, trilinear interpolation.
-vtkSmartPointer<vtkVolumeProperty> MakeProperty(const std::string& name)
-{
-  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
-  vtkNew<vtkColorTransferFunction> ctf;
-  vtkNew<vtkPiecewiseFunction> pwf;
-  if (name == "bucky")
-  {
-    // The demo's: carbon shells orange and fairly opaque, the empty inside clear.
-    ctf->AddRGBPoint(0, 0.9, 0.9, 0.95);
-    ctf->AddRGBPoint(60, 0.95, 0.85, 0.5);
-    ctf->AddRGBPoint(255, 1.0, 0.5, 0.2);
-    pwf->AddPoint(0, 0.0);
-    pwf->AddPoint(25, 0.0);
-    pwf->AddPoint(80, 0.25);
-    pwf->AddPoint(255, 0.6);
-  }
-  else if (name == "tooth")
-  {
-    // Background (72-88) clear, dentin (150-170) a faint red haze, enamel (> 215) white.
-    ctf->AddRGBPoint(0, 0.5, 0.5, 0.5);
-    ctf->AddRGBPoint(140, 0.8, 0.35, 0.25);
-    ctf->AddRGBPoint(180, 0.95, 0.7, 0.5);
-    ctf->AddRGBPoint(230, 1.0, 1.0, 0.95);
-    ctf->AddRGBPoint(255, 1.0, 1.0, 1.0);
-    pwf->AddPoint(0, 0.0);
-    pwf->AddPoint(110, 0.0);
-    pwf->AddPoint(150, 0.02);
-    pwf->AddPoint(185, 0.04);
-    pwf->AddPoint(215, 0.15);
-    pwf->AddPoint(235, 0.5);
-    pwf->AddPoint(255, 0.6);
-  }
-  else if (name == "engine")
-  {
-    // Air (< 60) clear, the block (120-160) a thin blue-grey shell, dense parts (> 190) orange.
-    ctf->AddRGBPoint(0, 0.0, 0.0, 0.0);
-    ctf->AddRGBPoint(90, 0.3, 0.4, 0.9);
-    ctf->AddRGBPoint(150, 0.8, 0.8, 0.9);
-    ctf->AddRGBPoint(200, 1.0, 0.6, 0.2);
-    ctf->AddRGBPoint(255, 1.0, 0.95, 0.6);
-    pwf->AddPoint(0, 0.0);
-    pwf->AddPoint(70, 0.0);
-    pwf->AddPoint(130, 0.015);
-    pwf->AddPoint(170, 0.03);
-    pwf->AddPoint(200, 0.3);
-    pwf->AddPoint(255, 0.8);
-  }
-  else
-  {
-    // bonsai: the tree only (leaves 48-60 green, branches to 110 brown); air, the noise below
-    // 48, soil and pot (> 118) clear, so most of the volume is empty under the transfer function.
-    ctf->AddRGBPoint(0, 0.2, 0.7, 0.2);
-    ctf->AddRGBPoint(50, 0.2, 0.7, 0.2);
-    ctf->AddRGBPoint(100, 0.55, 0.35, 0.15);
-    ctf->AddRGBPoint(255, 0.55, 0.35, 0.15);
-    pwf->AddPoint(0, 0.0);
-    pwf->AddPoint(48, 0.0);
-    pwf->AddPoint(60, 0.08);
-    pwf->AddPoint(100, 0.3);
-    pwf->AddPoint(118, 0.0);
-    pwf->AddPoint(255, 0.0);
-  }
-  p->SetColor(ctf);
-  p->SetScalarOpacity(pwf);
-  p->SetScalarOpacityUnitDistance(1.0);
-  p->SetInterpolationTypeToLinear();
-  return p;
-}
 
 /// Fraction of points whose opacity under `p` is not zero.
 double VisibleFraction(vtkImageData* image, vtkVolumeProperty* p)
@@ -348,68 +203,6 @@ double VisibleFraction(vtkImageData* image, vtkVolumeProperty* p)
 }
 
 // --- Scenes ---------------------------------------------------------------------------------
-
-/// Camera from direction `dir` at the centre of the world bounds of the (image, volume) pairs,
-/// at `distanceFactor` times the distance from which their bounding sphere just fills the view
-/// (below 1: closer, the sphere's rim outside the view).
-void Frame(vtkRenderer* ren,
-  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
-  const double dir[3],
-  const double up[3],
-  double distanceFactor)
-{
-  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
-  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  for (const auto& v : volumes)
-  {
-    double b[6];
-    v.first->GetBounds(b);
-    v.second->ComputeMatrix();
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      const double p[4] = {
-        b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1
-      };
-      double w[4];
-      v.second->GetMatrix()->MultiplyPoint(p, w);
-      for (int c = 0; c < 3; ++c)
-      {
-        lo[c] = std::min(lo[c], w[c]);
-        hi[c] = std::max(hi[c], w[c]);
-      }
-    }
-  }
-  double centre[3], radius = 0.0, len = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    centre[c] = 0.5 * (lo[c] + hi[c]);
-    radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
-    len += dir[c] * dir[c];
-  }
-  radius = std::sqrt(radius);
-  len = std::sqrt(len);
-  const double distance = distanceFactor * radius / std::sin(15.0 * std::acos(-1.0) / 180.0);
-  vtkCamera* cam = ren->GetActiveCamera();
-  cam->SetFocalPoint(centre);
-  cam->SetPosition(centre[0] + distance * dir[0] / len,
-    centre[1] + distance * dir[1] / len,
-    centre[2] + distance * dir[2] / len);
-  cam->SetViewUp(up[0], up[1], up[2]);
-  cam->SetViewAngle(30);
-  ren->ResetCameraClippingRange(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
-}
-
-/// Each data set's view: direction from the focal point towards the eye, and up.
-void ViewDirection(const std::string& name, double dir[3], double up[3])
-{
-  const double d[3] = { -0.6, -1.0, 0.7 }, z[3] = { 0, 0, 1 };
-  const double e[3] = { 1.0, -0.8, 0.4 };                     // the tooth from its side
-  const double b[3] = { 0.9, 0.35, 0.6 }, y[3] = { 0, 1, 0 }; // the bonsai grows along +y
-  const double* s = name == "tooth" ? e : name == "bonsai" ? b : d;
-  const double* u = name == "bonsai" ? y : z;
-  std::copy(s, s + 3, dir);
-  std::copy(u, u + 3, up);
-}
 
 /// Renders until uploads, shader compiles and the brick cut of `strata` (which may refine over
 /// several frames) are done: at least `minimum` frames, then until the resident bricks stop
@@ -687,7 +480,7 @@ int Accuracy(const std::string& data)
   const int size = 256;
   const std::string name = "accuracy-" + data;
   std::string why;
-  auto image = LoadVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, why);
   if (!image)
   {
     std::cerr << name << ": skipped: " << why << "\n";
@@ -702,7 +495,7 @@ int Accuracy(const std::string& data)
   vtkSmartPointer<vtkRenderer> ren;
   strata_test::MakeWindow(win, ren, size, size);
   ren->SetBackground(Grey, Grey, Grey);
-  auto property = MakeProperty(data);
+  auto property = strata_test::MakeRealVolumeProperty(data);
   vtkNew<vtkMultiVolumeRayCastMapper> mapper;
   mapper->SetInputData(image);
   vtkNew<vtkVolume> volume;
@@ -711,8 +504,8 @@ int Accuracy(const std::string& data)
   ren->AddVolume(volume);
   const std::vector<std::pair<vtkImageData*, vtkVolume*>> list = { { image, volume } };
   double dir[3], up[3];
-  ViewDirection(data, dir, up);
-  Frame(ren, list, dir, up, 0.75);
+  strata_test::RealVolumeView(data, dir, up);
+  strata_test::FrameVolumes(ren, list, dir, up, 0.75);
 
   std::cerr << name << ": reference at step 1/16 voxel, " << size << " x " << size << " ... ";
   const Reference ref = ComputeReference(ren, size, size, list, ReferenceStep);
@@ -850,8 +643,8 @@ Contender MakeSingle(const std::string& method,
   c.Ren->AddVolume(volume);
   c.Prop = volume;
   double dir[3], up[3];
-  ViewDirection(data, dir, up);
-  Frame(c.Ren, { { image, volume } }, dir, up, 0.7);
+  strata_test::RealVolumeView(data, dir, up);
+  strata_test::FrameVolumes(c.Ren, { { image, volume } }, dir, up, 0.7);
   return c;
 }
 
@@ -862,13 +655,13 @@ const char* const SingleMethods[] = { "strata", "strata-no-atlas", "vtk" };
 int Memory(const std::string& kind, const std::string& data, const std::string& method)
 {
   std::string why;
-  auto image = LoadVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, why);
   if (!image)
   {
     std::cerr << kind << "-" << data << ": skipped: " << why << "\n";
     return 0;
   }
-  auto property = MakeProperty(data);
+  auto property = strata_test::MakeRealVolumeProperty(data);
   Contender c = MakeSingle(method, data, image, property);
   WarmUp(c);
   std::printf("%s=%.0f\n", method.c_str(), PeakRssMB());
@@ -890,9 +683,9 @@ int FrameCase(const std::string& kind, const std::string& data, const std::strin
     if (item.find('=') != std::string::npos)
       rss[item.substr(0, item.find('='))] = item.substr(item.find('=') + 1);
   std::string why;
-  auto image = LoadVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, why);
   std::vector<Contender> contenders;
-  auto property = MakeProperty(data);
+  auto property = strata_test::MakeRealVolumeProperty(data);
   if (image)
     for (const char* m : SingleMethods)
       contenders.push_back(MakeSingle(m, data, image, property));
@@ -1031,7 +824,7 @@ int Multi(int n)
     list.clear();
     for (int i = 0; i < n; ++i)
       list.emplace_back(images[i], members[k][i]);
-    Frame(c.Ren, list, dir, up, 0.5);
+    strata_test::FrameVolumes(c.Ren, list, dir, up, 0.5);
   }
   vtkRenderer* ren = contenders[0].Ren;
   std::cerr << name << ": reference at step 1/16 voxel, " << size << " x " << size << " ... ";
@@ -1143,7 +936,7 @@ int Converge(const std::string& data, double coarse, double fine)
 {
   const int size = 256;
   std::string why;
-  auto image = LoadVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, why);
   if (!image)
   {
     std::cerr << data << ": " << why << "\n";
@@ -1152,13 +945,13 @@ int Converge(const std::string& data, double coarse, double fine)
   vtkSmartPointer<vtkRenderWindow> win;
   vtkSmartPointer<vtkRenderer> ren;
   strata_test::MakeWindow(win, ren, size, size);
-  auto property = MakeProperty(data);
+  auto property = strata_test::MakeRealVolumeProperty(data);
   vtkNew<vtkVolume> volume;
   volume->SetProperty(property);
   const std::vector<std::pair<vtkImageData*, vtkVolume*>> list = { { image, volume } };
   double dir[3], up[3];
-  ViewDirection(data, dir, up);
-  Frame(ren, list, dir, up, 0.75);
+  strata_test::RealVolumeView(data, dir, up);
+  strata_test::FrameVolumes(ren, list, dir, up, 0.75);
   const Reference a = ComputeReference(ren, size, size, list, 1.0 / coarse);
   const Reference b = ComputeReference(ren, size, size, list, 1.0 / fine);
   double mx;
