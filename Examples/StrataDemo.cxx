@@ -15,6 +15,7 @@
 #include "vtkCamera.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkHybridVolumeMapper.h"
+#include "vtkImageAppend.h"
 #include "vtkImageData.h"
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkMultiVolumeRayCastMapper.h"
@@ -192,12 +193,26 @@ int main(int argc, char* argv[])
       strata_test::FrameVolumes(ren, { { tooth.Get(), volume.Get() } }, dir, up, 0.85);
       const std::pair<vtkVolumeMapper*, const char*> views[3] = { { full, "full" }, { low, "low" },
         { hybrid, "hybrid" } };
+      vtkNew<vtkImageAppend> strip; // the three side by side
+      strip->SetAppendAxis(0);
       for (const auto& view : views)
       {
         volume->SetMapper(view.first);
         win->Render();
         written.push_back(Save(win, out + "/strata-tooth-" + view.second + ".png"));
+        vtkNew<vtkWindowToImageFilter> grab;
+        grab->SetInput(win);
+        grab->ReadFrontBufferOff();
+        grab->Update();
+        vtkNew<vtkImageData> copy;
+        copy->DeepCopy(grab->GetOutput());
+        strip->AddInputData(copy);
       }
+      vtkNew<vtkPNGWriter> stripWriter;
+      stripWriter->SetInputConnection(strip->GetOutputPort());
+      stripWriter->SetFileName((out + "/strata-tooth-compare.png").c_str());
+      stripWriter->Write();
+      written.push_back(out + "/strata-tooth-compare.png");
       std::cerr << "tooth: " << tooth->GetDimensions()[0] << "x" << tooth->GetDimensions()[1] << "x"
                 << tooth->GetDimensions()[2] << " voxels; factor 4 -> "
                 << hybridFilter->GetLowResolutionOutput()->GetNumberOfPoints() << " low-resolution voxels + "

@@ -12,6 +12,7 @@
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -64,6 +65,17 @@ vtkHybridVolumeFilter::vtkHybridVolumeFilter()
 vtkHybridVolumeFilter::~vtkHybridVolumeFilter()
 {
   this->SetFileName(nullptr);
+  this->SetOpacityFunction(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkCxxSetObjectMacro(vtkHybridVolumeFilter, OpacityFunction, vtkPiecewiseFunction);
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkHybridVolumeFilter::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  return this->OpacityFunction ? std::max(t, this->OpacityFunction->GetMTime()) : t;
 }
 
 //------------------------------------------------------------------------------
@@ -117,6 +129,11 @@ void vtkHybridVolumeFilter::ConfigureBuilder(vtkHybridVolumeBuilder& builder) co
   builder.SetOverestimationBound(this->OverestimationBound);
   builder.SetErrorGridStep(this->ErrorGridStep[0], this->ErrorGridStep[1], this->ErrorGridStep[2]);
   builder.SetThreshold(this->Threshold);
+  if (vtkPiecewiseFunction* f = this->OpacityFunction)
+  {
+    builder.SetImportance([f](double original, double reconstruction)
+      { return std::max(0.0, f->GetValue(original) - f->GetValue(reconstruction)); });
+  }
   builder.SetPointBudget(static_cast<uint64_t>(this->PointBudget));
   builder.SetMemoryLimit(this->MemoryLimit);
 }

@@ -37,6 +37,7 @@
 #include "vtkHybridVolumeFile.h" // For FilterType
 
 class vtkHybridVolumeBuilder;
+class vtkPiecewiseFunction;
 
 class STRATA_EXPORT vtkHybridVolumeFilter : public vtkHybridVolumeAlgorithm
 {
@@ -82,9 +83,21 @@ public:
   ///@}
 
   ///@{
-  /// Points need |error| > Threshold (>= 0). Default 0.
+  /// Points need |error| > Threshold (>= 0), or, with an opacity function, missing opacity
+  /// above it. Default 0.
   vtkSetMacro(Threshold, double);
   vtkGetMacro(Threshold, double);
+
+  /**
+   * Optional: the opacity function the data will be seen with. Points are then ranked by the
+   * opacity the low-resolution volume misses, max(0, f(original) - f(reconstruction)), instead
+   * of |error| (see vtkHybridVolumeBuilder::SetImportance); Threshold is in opacity units.
+   */
+  void SetOpacityFunction(vtkPiecewiseFunction* opacity);
+  vtkGetObjectMacro(OpacityFunction, vtkPiecewiseFunction);
+
+  /// Includes the opacity function's modification time.
+  vtkMTimeType GetMTime() override;
   ///@}
 
   ///@{
@@ -130,6 +143,7 @@ protected:
   double OverestimationBound = 0.0;
   int ErrorGridStep[3] = { 1, 1, 1 };
   double Threshold = 0.0;
+  vtkPiecewiseFunction* OpacityFunction = nullptr;
   vtkIdType PointBudget = 0;
   double MemoryLimit = 256.0;
   char* FileName = nullptr;

@@ -487,7 +487,8 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
         const size_t at = static_cast<size_t>(y) * n[0] + x;
         const double value = sz[at];
         const double error = value - r;
-        const double magnitude = std::fabs(error);
+        const double magnitude =
+          this->ImportanceFunction ? this->ImportanceFunction(value, r) : std::fabs(error);
         if (!(magnitude > this->Threshold))
         {
           continue;

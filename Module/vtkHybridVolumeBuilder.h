@@ -82,10 +82,21 @@ public:
   void SetErrorGridStep(int sx, int sy, int sz);
   ///@}
   ///@{
-  /// Points need |error| > Threshold (default 0, >= 0).
+  /// Points need |error| > Threshold (default 0, >= 0), or Importance > Threshold when set.
   void SetThreshold(double t) { this->Threshold = t; }
   double GetThreshold() const { return this->Threshold; }
   ///@}
+
+  /**
+   * What a point is worth, from the original value and its reconstruction, in place of |error|
+   * for the threshold and the budget (default: none, |error|). A renderer that can only add
+   * opacity over the low-resolution volume gains nothing from a point whose value the transfer
+   * function makes no more opaque than the reconstruction: with the opacity function known at
+   * preprocessing, max(0, opacity(original) - opacity(reconstruction)) spends the bytes where
+   * the image is wrong (vtkHybridVolumeFilter::SetOpacityFunction).
+   */
+  using Importance = std::function<double(double original, double reconstruction)>;
+  void SetImportance(Importance importance) { this->ImportanceFunction = std::move(importance); }
   ///@{
   /// At most this many points, the largest errors (default 0: no budget).
   void SetPointBudget(uint64_t n) { this->PointBudget = n; }
@@ -119,6 +130,7 @@ private:
   double OverestimationBound = 0;
   int ErrorGridStep[3] = { 1, 1, 1 };
   double Threshold = 0;
+  Importance ImportanceFunction;
   uint64_t PointBudget = 0;
   double MemoryLimit = 256;
   ProgressCallback Progress;

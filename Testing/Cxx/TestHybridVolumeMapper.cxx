@@ -168,6 +168,64 @@ int TestHybridVolumeMapper(int, char*[])
   Check(squareRms < 0.6 * lowRms, "squares bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
   Check(splatRms < 0.6 * lowRms, "splats bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
 
+  // Ranked by the opacity the low-resolution volume misses (the transfer function known at
+  // preprocessing), on the volume plus a plate of -300 the transfer function hides: every point
+  // misses more opacity than the threshold, exactly the points that do are kept, and with as
+  // many points the image is closer than with |error| ranking (which spends them on the plate).
+  {
+    vtkNew<vtkImageData> plated;
+    plated->DeepCopy(original);
+    float* pv = static_cast<float*>(plated->GetScalarPointer());
+    for (int z = 0; z < 49; ++z)
+      for (int y = 0; y < 57; ++y)
+        pv[55 + 65 * (y + 57 * z)] = -300.0f;
+    fullMapper->SetInputData(plated);
+    const auto platedFull = scene.Render(fullMapper);
+    vtkPiecewiseFunction* f = property->GetScalarOpacity(0);
+    auto make = [&](vtkPiecewiseFunction* opacity, double threshold, vtkIdType budget) {
+      auto filter = vtkSmartPointer<vtkHybridVolumeFilter>::New();
+      filter->SetInputData(plated);
+      filter->SetFactor(4, 4, 4);
+      filter->SetFilterToCubic();
+      filter->SetOpacityFunction(opacity);
+      filter->SetThreshold(threshold);
+      filter->SetPointBudget(budget);
+      filter->Update();
+      return filter;
+    };
+    auto missing = [f](vtkPolyData* p, vtkIdType i) {
+      const double s = p->GetPointData()->GetArray("Value")->GetComponent(i, 0);
+      return f->GetValue(s) - f->GetValue(s - p->GetPointData()->GetArray("Error")->GetComponent(i, 0));
+    };
+    auto weighted = make(f, 0.02, 0);
+    auto all = make(nullptr, 0.0, 0); // every point with an error: the brute force
+    vtkPolyData* wp = weighted->GetPointsOutput();
+    vtkIdType below = 0, expected = 0;
+    for (vtkIdType i = 0; i < wp->GetNumberOfPoints(); ++i)
+      below += missing(wp, i) > 0.02 ? 0 : 1;
+    for (vtkIdType i = 0; i < all->GetPointsOutput()->GetNumberOfPoints(); ++i)
+      expected += missing(all->GetPointsOutput(), i) > 0.02 ? 1 : 0;
+    std::cout << "Hybrid: ranked by missing opacity > 0.02: " << wp->GetNumberOfPoints() << " points (brute force "
+              << expected << "), " << below << " below the threshold\n";
+    Check(wp->GetNumberOfPoints() == expected && below == 0 && expected > 0,
+      "opacity ranking keeps exactly the points missing more opacity than the threshold");
+    const vtkIdType n = wp->GetNumberOfPoints();
+    auto byError = make(nullptr, 0.0, n);
+    vtkNew<vtkImageData> wl;
+    wl->DeepCopy(weighted->GetLowResolutionOutput());
+    hybrid->SetInputData(wl);
+    hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::Squares);
+    hybrid->SetPointsInputData(wp);
+    const double weightedRms = Rms(scene.Render(hybrid), platedFull);
+    hybrid->SetPointsInputData(byError->GetPointsOutput());
+    const double errorRms = Rms(scene.Render(hybrid), platedFull);
+    std::cout << "Hybrid: " << n << " points: RMS ranked by missing opacity " << weightedRms << ", by |error| "
+              << errorRms << "\n";
+    Check(weightedRms < errorRms - 1.0, "with as many points, ranking by missing opacity gives the closer image (by > 1 RMS level)");
+    hybrid->SetInputData(low);
+    hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
+  }
+
   // Points that add no opacity (error 0): every slab is drawn, nothing added.
   vtkNew<vtkPolyData> silent;
   silent->DeepCopy(points);
