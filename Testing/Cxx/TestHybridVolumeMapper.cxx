@@ -269,6 +269,16 @@ int TestHybridVolumeMapper(int, char*[])
   Check(!has(squareFS, "gl_PointCoord") && !has(squareFS, "exp("), "squares: no splat kernel code");
   Check(has(splatFS, "gl_PointCoord") && has(splatFS, "exp("), "splats: the Gaussian kernel");
   Check(!has(squareVS, "ormal"), "shading off: no normals");
+  // Shading on: the points are lit with their normals (and only then is normal code compiled).
+  property->ShadeOn();
+  hybrid->SetInputData(low);
+  hybrid->SetPointsInputData(points);
+  const auto shadedImage = scene.Render(hybrid);
+  const double shadedRms = Rms(shadedImage, splats);
+  std::cout << "Hybrid: shaded, RMS to the unshaded image " << shadedRms << "\n";
+  Check(has(hybrid->GetPointVertexShaderSource(), "pointNormal") && shadedRms > 0.5,
+    "shading on: the points are lit with their normals");
+  property->ShadeOff();
   Check(output->Errors == 0 && output->Warnings == 0, "no VTK errors or warnings");
   std::cout << (Failures() ? "FAILED" : "passed") << "\n";
   return Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
