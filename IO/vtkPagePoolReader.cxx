@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
+#include "vtkInformationStringKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -78,6 +79,9 @@ int PageOf(int p, int stride, int pages)
   return std::min(i, pages - 1);
 }
 }
+
+//------------------------------------------------------------------------------
+vtkInformationKeyMacro(vtkPagePoolReader, POOL_FILE_NAME, String);
 
 //------------------------------------------------------------------------------
 vtkInformationDoubleKey* vtkPagePoolReader::UPDATE_RESOLUTION()
@@ -170,6 +174,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   if (!this->FileName || !*this->FileName || !file.Open(this->FileName))
   {
     ClearOutput(outInfo);
+    outInfo->Remove(POOL_FILE_NAME());
     vtkErrorMacro("Cannot read page pool \"" << (this->FileName ? this->FileName : "")
                                              << "\": "
                                              << (this->FileName && *this->FileName
@@ -188,6 +193,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::ORIGIN(), h.Origin, 3);
   outInfo->Set(vtkDataObject::DIRECTION(), h.Direction, 9);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  outInfo->Set(POOL_FILE_NAME(), this->FileName);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), 1);
   return 1;
 }
@@ -214,13 +220,37 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
     return 0;
   };
 
-  // Opened again rather than kept from the information pass: the object holds a descriptor,
-  // and a reader that sits in a pipeline for hours should not pin a file that may be replaced.
-  vtkPagePoolFile file;
   if (name.empty())
   {
     return fail("no file name set");
   }
+  // The same request as last time, the reader unchanged: the same output, without reading.
+  std::ostringstream request;
+  {
+    double r = this->Resolution;
+    if (outInfo->Has(UPDATE_RESOLUTION()))
+      r = outInfo->Get(UPDATE_RESOLUTION());
+    int ue[6] = { 0, -1, 0, -1, 0, -1 };
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ue);
+    request << name << '|' << ResolutionToLevel(r, this->NumberOfLevels) << '|' << this->Layer;
+    for (int v : ue)
+      request << '|' << v;
+  }
+  if (this->LastOutput && this->LastRequest == request.str() && this->LastTime >= this->GetMTime())
+  {
+    output->ShallowCopy(this->LastOutput);
+    output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
+    this->LevelRead = ResolutionToLevel(outInfo->Has(UPDATE_RESOLUTION()) ? outInfo->Get(UPDATE_RESOLUTION())
+                                                                            : this->Resolution,
+      this->NumberOfLevels);
+    return 1;
+  }
+  this->LastOutput = nullptr;
+
+  // Opened again rather than kept from the information pass: the object holds a descriptor,
+  // and a reader that sits in a pipeline for hours should not pin a file that may be replaced.
+  vtkPagePoolFile file;
   if (!file.Open(name))
   {
     return fail(file.GetErrorMessage());
@@ -279,6 +309,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   }
 
   output->SetExtent(extent);
+  output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
   output->SetSpacing(spacing);
   output->SetOrigin(h.Origin);
   output->SetDirectionMatrix(h.Direction);
@@ -351,5 +382,9 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
       }
     }
   }
+  this->LastOutput = vtkSmartPointer<vtkImageData>::New();
+  this->LastOutput->ShallowCopy(output);
+  this->LastRequest = request.str();
+  this->LastTime = this->GetMTime();
   return 1;
 }

@@ -42,9 +42,14 @@
 #include "StrataModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
-#include <memory> // For std::unique_ptr
+#include "vtkSmartPointer.h" // For LastOutput
 
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class vtkImageData;
 class vtkInformationDoubleKey;
+class vtkInformationStringKey;
 
 class STRATA_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
 {
@@ -79,6 +84,13 @@ public:
   ///@}
 
   /// Requested resolution in [0, 1] (1 = finest), read from the reader's output information.
+  /**
+   * The pool's file name, set by RequestInformation on the output information and by
+   * RequestData on the output data object's information: how the Strata mappers recognise a
+   * pool behind their input and page from it directly instead of using the (coarse) image.
+   */
+  static vtkInformationStringKey* POOL_FILE_NAME();
+
   static vtkInformationDoubleKey* UPDATE_RESOLUTION();
 
   /// Level that resolution `r` selects in a pool of `levels` levels.
@@ -121,6 +133,12 @@ protected:
   bool IsTilePool = false;
   vtkIdType NumberOfPagesRead = 0;
   int LevelRead = -1;
+  // The last output and the request it answered: the executive asks again for every update of
+  // a coarse level (its extent is in level indices, never "inside" the level-0 request), and
+  // the answer must not cost I/O again, nor fail if the file changed on disk since.
+  vtkSmartPointer<vtkImageData> LastOutput;
+  std::string LastRequest;
+  vtkMTimeType LastTime = 0;
 
 private:
   vtkPagePoolReader(const vtkPagePoolReader&) = delete;

@@ -96,9 +96,33 @@ bool vtkVolumeBrickTree::Build(const void* scalars,
   this->ErrorMessage.clear();
   this->Input = nullptr;
   this->BrickSize = 0;
+  if (!scalars)
+  {
+    this->ErrorMessage = "no scalars";
+    return false;
+  }
+  if (!this->BuildLevels(dims, brickSize))
+  {
+    return false;
+  }
+  this->Type = type;
+  this->Input = scalars;
+  for (int l = 0; l < this->GetNumberOfLevels(); ++l)
+  {
+    if (l > 0)
+    {
+      Dispatch(type, [&](auto t) { this->Downsample<decltype(t)>(l); });
+    }
+    Dispatch(type, [&](auto t) { this->ComputeRanges<decltype(t)>(l); });
+  }
+  return true;
+}
+
+bool vtkVolumeBrickTree::BuildLevels(const int dims[3], int brickSize)
+{
   // 2^40 voxels (a terabyte of bytes) is beyond any volume held in memory.
   const double voxels = static_cast<double>(dims[0]) * dims[1] * dims[2];
-  if (!scalars || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels > 1099511627776.0)
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels > 1099511627776.0)
   {
     this->ErrorMessage = "volume of " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) +
                          " x " + std::to_string(dims[2]) + " voxels is empty, absent or too large";
@@ -110,8 +134,6 @@ bool vtkVolumeBrickTree::Build(const void* scalars,
     this->ErrorMessage = "brick size " + std::to_string(brickSize) + " is not in [2, 1024]";
     return false;
   }
-  this->Type = type;
-  this->Input = scalars;
   this->BrickSize = brickSize;
   const int stride = brickSize - 1;
 
@@ -151,15 +173,9 @@ bool vtkVolumeBrickTree::Build(const void* scalars,
   this->Nodes.resize(static_cast<size_t>(offset));
   for (int l = 0; l < this->GetNumberOfLevels(); ++l)
   {
-    if (l > 0)
-    {
-      Dispatch(type, [&](auto t) { this->Downsample<decltype(t)>(l); });
-    }
     const int* b = this->Levels[l].Bricks;
     for (int k = 0; k < b[2]; ++k)
-    {
       for (int j = 0; j < b[1]; ++j)
-      {
         for (int i = 0; i < b[0]; ++i)
         {
           Node& node = this->Nodes[this->GetNodeId(l, i, j, k)];
@@ -168,12 +184,41 @@ bool vtkVolumeBrickTree::Build(const void* scalars,
           node.Index[1] = j;
           node.Index[2] = k;
         }
-      }
-    }
-    Dispatch(type, [&](auto t) { this->ComputeRanges<decltype(t)>(l); });
   }
   return true;
 }
+
+bool vtkVolumeBrickTree::BuildStructure(const int dims[3], int brickSize, const float* minima, const float* maxima)
+{
+  this->Levels.clear();
+  this->Nodes.clear();
+  this->ErrorMessage.clear();
+  this->Input = nullptr;
+  this->BrickSize = 0;
+  if (!minima || !maxima || !this->BuildLevels(dims, brickSize))
+  {
+    if (this->ErrorMessage.empty())
+      this->ErrorMessage = "no brick ranges";
+    return false;
+  }
+  this->Type = ScalarType::Float32;
+  // Finest level first, so every child's subtree range is known before its parent's.
+  for (size_t id = 0; id < this->Nodes.size(); ++id)
+  {
+    Node& node = this->Nodes[id];
+    node.Min = node.SubtreeMin = minima[id];
+    node.Max = node.SubtreeMax = maxima[id];
+    int children[8];
+    const int count = this->GetChildren(static_cast<int>(id), children);
+    for (int c = 0; c < count; ++c)
+    {
+      node.SubtreeMin = std::min(node.SubtreeMin, this->Nodes[children[c]].SubtreeMin);
+      node.SubtreeMax = std::max(node.SubtreeMax, this->Nodes[children[c]].SubtreeMax);
+    }
+  }
+  return true;
+}
+
 
 const void* vtkVolumeBrickTree::GetLevelData(int l) const
 {

@@ -76,6 +76,15 @@ public:
   bool Build(const float* scalars, const int dims[3], int brickSize);
   ///@}
 
+  /**
+   * The structure alone, for a volume that stays on disk (a page pool, whose pages are this
+   * tree's bricks in node order): levels, nodes and ranges from `minima`/`maxima` per node
+   * id, no voxels. GetLevelData, GetVoxel and ExtractBrick must not be called on it.
+   */
+  bool BuildStructure(const int dims[3], int brickSize, const float* minima, const float* maxima);
+  /// False for a structure-only tree.
+  bool HasData() const { return this->Input != nullptr; }
+
   ScalarType GetScalarType() const { return this->Type; }
   int GetBrickSize() const { return this->BrickSize; }
   /// Distance between the first voxels of neighbouring bricks: brick size - 1.
@@ -139,6 +148,7 @@ private:
     std::vector<unsigned char> Storage; ///< empty for level 0, which is borrowed
   };
 
+  bool BuildLevels(const int dims[3], int brickSize);
   template<typename T>
   void Downsample(int l);
   template<typename T>

@@ -31,6 +31,7 @@ public:
     const vtkVolumeBrickTree* Tree = nullptr;
     double Matrix[16];
     OpacityRangeFunction Opacity;
+    AvailabilityFunction Available;
     double VoxelSize = 1.0; ///< world length of the longest level-0 voxel edge
     std::vector<uint8_t> State;
     std::vector<uint8_t> Empty;
@@ -56,6 +57,23 @@ public:
       visible += this->Volumes[v].Empty[children[c]] ? 0 : 1;
     }
     return visible;
+  }
+
+  // Asks for every visible child (so all missing ones get queued), true if all are there.
+  bool ChildrenAvailable(int v, int n) const
+  {
+    const Volume& vol = this->Volumes[v];
+    if (!vol.Available)
+      return true;
+    int children[8];
+    const int count = vol.Tree->GetChildren(n, children);
+    bool all = true;
+    for (int c = 0; c < count; ++c)
+    {
+      if (!vol.Empty[children[c]])
+        all = vol.Available(children[c], vol.Priority[n]) && all;
+    }
+    return all;
   }
 
   bool Splittable(int v, int n) const
@@ -220,6 +238,11 @@ void vtkVolumeCut::SetVolumeMatrix(int volume, const double indexToWorld[16])
   vol.VoxelSize = longest > 0.0 ? longest : (any > 0.0 ? any : 1.0);
 }
 
+void vtkVolumeCut::SetVolumeAvailability(int volume, AvailabilityFunction available)
+{
+  this->Internals->Volumes[volume].Available = std::move(available);
+}
+
 void vtkVolumeCut::SetVolumeOpacity(int volume, OpacityRangeFunction maxOpacity)
 {
   this->Internals->Volumes[volume].Opacity = std::move(maxOpacity);
@@ -376,8 +399,15 @@ int vtkVolumeCut::Update(const Camera& camera)
   while (!in.Splits.empty())
   {
     const auto [priority, v, n] = *in.Splits.rbegin();
+    if (!in.ChildrenAvailable(v, n))
+    {
+      in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
+      continue;
+    }
     const int children = in.VisibleChildren(v, n);
-    if (bound > 0 && added + children > bound)
+    // The bound stops refinement after the first split that reaches it: a split larger than
+    // the bound must still happen, or the cut would never refine past it.
+    if (bound > 0 && added > 0 && added + children > bound)
     {
       break;
     }
@@ -404,7 +434,7 @@ int vtkVolumeCut::Update(const Camera& camera)
       }
     }
     const int moves = static_cast<int>(payers.size()) / 2;
-    if (freed < need || (bound > 0 && added + children + moves > bound))
+    if (freed < need || (bound > 0 && added > 0 && added + children + moves > bound))
     {
       in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
       continue;

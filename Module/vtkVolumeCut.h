@@ -96,6 +96,15 @@ public:
   void SetVolumeMatrix(int volume, const double indexToWorld[16]);
   /// Transfer function of a volume; an empty function makes every brick visible (default).
   void SetVolumeOpacity(int volume, OpacityRangeFunction maxOpacity);
+  /**
+   * Whether a node's data can be uploaded now, asked (with the node's priority) for the
+   * visible children of a node before it is split; a split waits until all are available. A
+   * paging renderer answers from its RAM cache and queues the missing ones at that priority,
+   * so the cut refines as pages arrive and never shows a brick it has no data for. Empty
+   * function (default): everything is available.
+   */
+  using AvailabilityFunction = std::function<bool(int node, double priority)>;
+  void SetVolumeAvailability(int volume, AvailabilityFunction available);
   void RemoveAllVolumes();
   int GetNumberOfVolumes() const;
   const vtkVolumeBrickTree* GetTree(int volume) const;
@@ -132,7 +141,8 @@ public:
   ///@{
   /**
    * Most bricks one Update() may bring into the cut (each split brings its visible
-   * children, each collapse the parent), bounding uploads per frame. Default 0: no bound.
+   * children, each collapse the parent), bounding uploads per frame; the first split of an
+   * Update is always allowed, so a bound below 8 still refines. Default 0: no bound.
    */
   void SetMaxNewBricksPerUpdate(int bricks) { this->MaxNewBricksPerUpdate = bricks; }
   int GetMaxNewBricksPerUpdate() const { return this->MaxNewBricksPerUpdate; }

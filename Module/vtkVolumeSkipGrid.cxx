@@ -58,6 +58,18 @@ void vtkVolumeSkipGrid::Build(const float* scalars, const int dims[3], int cellS
   this->Distance.assign(this->Min.size(), 255);
 }
 
+void vtkVolumeSkipGrid::BuildFromRanges(
+  const int cellDims[3], int cellSize, const float* minima, const float* maxima)
+{
+  this->CellSize = std::max(cellSize, 1);
+  for (int a = 0; a < 3; ++a)
+    this->CellDims[a] = std::max(cellDims[a], 1);
+  const size_t n = size_t(this->CellDims[0]) * this->CellDims[1] * this->CellDims[2];
+  this->Min.assign(minima, minima + n);
+  this->Max.assign(maxima, maxima + n);
+  this->Distance.assign(n, 255);
+}
+
 long long vtkVolumeSkipGrid::Classify(const OpacityRange& opacity)
 {
   const int cx = this->CellDims[0], cy = this->CellDims[1], cz = this->CellDims[2];

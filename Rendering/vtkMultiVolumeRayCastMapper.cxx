@@ -2,16 +2,23 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkPageCache.h"
+#include "vtkPagePoolFile.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeCut.h"
 #include "vtkVolumeSkipGrid.h"
 #include "vtkVolumeBSPTree.h"
 
+#include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationStringKey.h"
+#include "vtkInformationVector.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
@@ -32,6 +39,7 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
 #include "vtkVolume.h"
@@ -44,6 +52,7 @@
 #include "vtkMultiVolumeFragmentVS.h"
 
 #include <algorithm>
+#include <mutex>
 #include <array>
 #include <cmath>
 #include <map>
@@ -428,6 +437,7 @@ struct StrataVolumeEntry
   vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
   float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
   int Dims[3] = { 0, 0, 0 };
+  bool Pooled = false; ///< the data stay in a page pool; Input is a coarse stand-in
 };
 
 // GPU resources of one input port.
@@ -448,6 +458,11 @@ struct StrataVolumeTextures
   unsigned int SkipTexture = 0;             ///< R8UI distances, one texel per cell
   vtkMTimeType SkipTime = 0;                ///< distances classified for this transfer table
   vtkMTimeType SkipDataTime = 0;            ///< cell ranges built from this data
+  // Paged volumes: the pool, the pages held for the cut and its ancestors (held pages are never
+  // evicted, so a collapse always finds its parent), the root read when the pool was opened.
+  std::shared_ptr<vtkPagePoolFile> Pool;
+  std::string PoolName;
+  std::map<int, vtkPageCache::Page> Held; ///< by node id
 
   // The largest opacity the linearly interpolated table reaches for scalars in [lo, hi]: the
   // entries whose interpolation intervals meet it (clamped at the ends, as the texture is).
@@ -475,6 +490,26 @@ class vtkMultiVolumeRayCastMapper::vtkInternals
 public:
   vtkVolumeBSPTree Tree;
   std::map<int, StrataVolumeTextures> Textures; // by input port
+
+  vtkInternals()
+  {
+    this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
+      std::shared_ptr<vtkPagePoolFile> pool;
+      {
+        std::lock_guard<std::mutex> lock(this->PoolsMutex);
+        auto it = this->PoolsByPort.find(key.Dataset);
+        if (it != this->PoolsByPort.end())
+          pool = it->second;
+      }
+      if (!pool)
+      {
+        error = "no page pool on port " + std::to_string(key.Dataset);
+        return false;
+      }
+      out.resize(pool->GetPageValues() * sizeof(float));
+      return pool->ReadPage(key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
+    });
+  }
   unsigned int FragmentVAO = 0;
   unsigned int FragmentVBO = 0;
   unsigned int EmptyVAO = 0;
@@ -496,6 +531,13 @@ public:
   double AtlasBudget = 0.0;
   vtkShaderProgram* VaoProgram = nullptr; ///< the program the VAO's attribute was set up for
   int LastFragments = 0;
+
+  // Paging: one RAM cache for every pooled volume, keyed (port, level, page in level); the
+  // loader finds the pool of a port under a lock (the render thread may open new ones).
+  vtkPageCache Cache;
+  std::mutex PoolsMutex;
+  std::map<int, std::shared_ptr<vtkPagePoolFile>> PoolsByPort;
+  vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
 
   void Release(vtkWindow* window)
   {
@@ -679,8 +721,54 @@ void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
 
 void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
+  // A page pool behind an input: ask its reader for the coarsest level only (one page); the
+  // ray caster pages the rest itself (see GPURender).
+  for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
+  {
+    if (this->GetNumberOfInputConnections(port) == 0)
+      continue;
+    this->GetInputAlgorithm(port, 0)->UpdateInformation();
+    vtkInformation* info = this->GetInputInformation(port, 0);
+    if (info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+    {
+      info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+      this->GetInputAlgorithm(port, 0)->Update(this->GetInputConnection(port, 0)->GetIndex());
+    }
+  }
   this->Superclass::Render(ren, vol);
 }
+
+vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
+  // level only: the bricks are paged, not read through the pipeline.
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
+    {
+      for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+      {
+        vtkInformation* info = inputVector[port]->GetInformationObject(c);
+        if (info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+          info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+      }
+    }
+  }
+  return result;
+}
+
+vtkMultiVolumeRayCastMapper::PagingStatistics vtkMultiVolumeRayCastMapper::GetPagingStatistics() const
+{
+  return this->Internals->Paging;
+}
+
+void vtkMultiVolumeRayCastMapper::RetryFailedPages()
+{
+  this->Internals->Cache.RetryAll();
+}
+
 
 void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
@@ -714,11 +802,41 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     e.Input = image;
     e.Property = member->GetProperty();
     image->GetDimensions(e.Dims);
-    // index -> world: prop * [D diag(spacing) | origin].
-    vtkNew<vtkMatrix4x4> imageMatrix;
     const double* o = image->GetOrigin();
     const double* s = image->GetSpacing();
     const double* d = image->GetDirectionMatrix()->GetData();
+    // A page pool behind the input (vtkPagePoolReader): its level 0 is the volume, paged.
+    // (The image handed over is a transformed copy: the key is read from the pipeline.)
+    vtkInformation* portInfo = this->GetInputInformation(port, 0);
+    const char* pool = portInfo ? portInfo->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
+    if (pool && *pool)
+    {
+      StrataVolumeTextures& tex = in.Textures[port];
+      if (tex.PoolName != pool || !tex.Pool)
+      {
+        auto file = std::make_shared<vtkPagePoolFile>();
+        if (!file->Open(pool) || file->GetKind() != vtkPagePoolFormat::Kind::BrickPool)
+        {
+          vtkErrorMacro("Cannot page the volume on port " << port << " from \"" << pool << "\": "
+                                                          << (file->IsOpen() ? "not a brick pool" : file->GetErrorMessage()));
+          continue;
+        }
+        tex.Pool = file;
+        tex.PoolName = pool;
+        tex.Tree.reset();
+        tex.Held.clear();
+        std::lock_guard<std::mutex> lock(in.PoolsMutex);
+        in.PoolsByPort[port] = file;
+      }
+      const vtkPagePoolFile::Header& h = tex.Pool->GetHeader();
+      e.Pooled = true;
+      std::copy(h.Dimensions, h.Dimensions + 3, e.Dims);
+      o = h.Origin;
+      s = h.Spacing;
+      d = h.Direction;
+    }
+    // index -> world: prop * [D diag(spacing) | origin].
+    vtkNew<vtkMatrix4x4> imageMatrix;
     for (int r = 0; r < 3; ++r)
     {
       for (int c = 0; c < 3; ++c)
@@ -730,6 +848,23 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     volumes.push_back(e);
     ports.push_back(port);
   }
+  // Pools fix the brick size (their page size) and need the atlas.
+  int brickSize = this->BrickSize;
+  bool anyPooled = false;
+  for (size_t v = 0; v < volumes.size(); ++v)
+  {
+    if (!volumes[v].Pooled)
+      continue;
+    const int B = in.Textures[ports[v]].Pool->GetPageSize();
+    if (anyPooled && B != brickSize)
+    {
+      vtkErrorMacro("Paged volumes of page sizes " << brickSize << " and " << B << " cannot share one atlas.");
+      return;
+    }
+    brickSize = B;
+    anyPooled = true;
+  }
+  const bool atlas = this->UseBrickAtlas || anyPooled;
   if (volumes.empty())
   {
     return;
@@ -802,7 +937,31 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     StrataVolumeTextures& tex = in.Textures[ports[v]];
     const StrataVolumeEntry& e = volumes[v];
-    if (!tex.Data || tex.DataInput != e.Input || tex.DataTime < e.Input->GetMTime())
+    if (e.Pooled)
+    {
+      if (!tex.Tree)
+      {
+        // The structure from the page table: page i is node i, its min/max the node's range.
+        const vtkPagePoolFile& file = *tex.Pool;
+        std::vector<float> lo(file.GetNumberOfPages()), hi(file.GetNumberOfPages());
+        for (uint64_t id = 0; id < file.GetNumberOfPages(); ++id)
+        {
+          lo[id] = file.GetPageEntry(id).Min;
+          hi[id] = file.GetPageEntry(id).Max;
+        }
+        tex.Tree.reset(new vtkVolumeBrickTree);
+        if (!tex.Tree->BuildStructure(e.Dims, brickSize, lo.data(), hi.data()) ||
+          static_cast<uint64_t>(tex.Tree->GetNumberOfNodes()) != file.GetNumberOfPages())
+        {
+          vtkErrorMacro("The pool \"" << tex.PoolName << "\" does not match its brick tree.");
+          tex.Tree.reset();
+          return;
+        }
+        tex.SkipDataTime = 0;
+        in.CutVolumes.clear();
+      }
+    }
+    else if (tex.Scalars.empty() || tex.DataInput != e.Input || tex.DataTime < e.Input->GetMTime())
     {
       int cellFlag = 0;
       vtkDataArray* scalars = vtkAbstractMapper::GetScalars(e.Input, this->ScalarMode,
@@ -825,17 +984,17 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         tex.Data = nullptr;
       }
     }
-    if (this->UseBrickAtlas && (!tex.Tree || tex.Tree->GetBrickSize() != this->BrickSize))
+    if (!e.Pooled && atlas && (!tex.Tree || tex.Tree->GetBrickSize() != brickSize))
     {
       tex.Tree.reset(new vtkVolumeBrickTree);
-      if (!tex.Tree->Build(tex.Scalars.data(), e.Dims, this->BrickSize))
+      if (!tex.Tree->Build(tex.Scalars.data(), e.Dims, brickSize))
       {
         vtkErrorMacro("Cannot brick the volume on port " << ports[v] << ": " << tex.Tree->GetErrorMessage());
         return;
       }
       in.CutVolumes.clear(); // the cut must be rebuilt with this tree
     }
-    if (!this->UseBrickAtlas && !tex.Data)
+    if (!atlas && !tex.Data)
     {
       tex.Data = vtkSmartPointer<vtkTextureObject>::New();
       tex.Data->SetContext(renWin);
@@ -905,9 +1064,24 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   for (size_t v = 0; this->EmptySpaceSkipping && v < volumes.size(); ++v)
   {
     StrataVolumeTextures& tex = in.Textures[ports[v]];
-    const bool build = tex.SkipDataTime != tex.DataTime || tex.Skip.GetCellSize() != this->SkipCellSize ||
-      tex.Skip.GetMinima().empty();
-    if (build)
+    const bool build = volumes[v].Pooled ? tex.SkipDataTime == 0
+                                         : tex.SkipDataTime != tex.DataTime || tex.Skip.GetCellSize() != this->SkipCellSize ||
+        tex.Skip.GetMinima().empty();
+    if (build && volumes[v].Pooled)
+    {
+      // Paged: the level-0 bricks' ranges are the cells (stride B - 1), nothing is read.
+      const vtkVolumeBrickTree& tree = *tex.Tree;
+      const int* nb = tree.GetLevelBricks(0);
+      std::vector<float> lo(tree.GetLevelOffset(0) + size_t(nb[0]) * nb[1] * nb[2]), hi(lo.size());
+      for (size_t id = 0; id < lo.size(); ++id)
+      {
+        lo[id] = tree.GetNode(static_cast<int>(id)).Min;
+        hi[id] = tree.GetNode(static_cast<int>(id)).Max;
+      }
+      tex.Skip.BuildFromRanges(nb, tree.GetBrickStride(), lo.data(), hi.data());
+      tex.SkipDataTime = 1;
+    }
+    else if (build)
     {
       tex.Skip.Build(tex.Scalars.data(), volumes[v].Dims, this->SkipCellSize);
       tex.SkipDataTime = tex.DataTime;
@@ -972,9 +1146,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 
   // --- Brick atlas: the cut through all volumes' octrees for this camera, bricks uploaded
   // into the shared atlas, one index texture per volume.
-  if (this->UseBrickAtlas)
+  if (atlas)
   {
-    bool rebuild = in.CutVolumes.size() != volumes.size() || in.AtlasBrickSize != this->BrickSize ||
+    bool rebuild = in.CutVolumes.size() != volumes.size() || in.AtlasBrickSize != brickSize ||
       in.AtlasBudget != this->AtlasBudget || !in.AtlasTexture;
     for (size_t v = 0; !rebuild && v < volumes.size(); ++v)
     {
@@ -988,11 +1162,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       double allBricks = 0.0;
       for (size_t v = 0; v < volumes.size(); ++v)
         allBricks += in.Textures[ports[v]].Tree->GetNumberOfNodes();
-      const double brickMB = std::pow(double(this->BrickSize), 3) * 4.0 / (1024.0 * 1024.0);
+      const double brickMB = std::pow(double(brickSize), 3) * 4.0 / (1024.0 * 1024.0);
       const double budget = std::min(this->AtlasBudget, (allBricks + 0.5) * brickMB);
-      if (!in.Atlas.InitializeFromBudget(budget, this->BrickSize, 4, std::min(max3D, 2048)))
+      if (!in.Atlas.InitializeFromBudget(budget, brickSize, 4, std::min(max3D, 2048)))
       {
-        vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of " << this->BrickSize << "^3 float voxels.");
+        vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of " << brickSize << "^3 float voxels.");
         return;
       }
       const auto size = in.Atlas.GetTextureSize();
@@ -1015,14 +1189,70 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         in.CutVolumes.emplace_back(ports[v], tree);
       }
       in.Cut.SetBudget(in.Atlas.GetNumberOfSlots());
-      in.AtlasBrickSize = this->BrickSize;
+      in.AtlasBrickSize = brickSize;
+      for (auto& t : in.Textures)
+        t.second.Held.clear(); // a new cut starts from the roots
       in.AtlasBudget = this->AtlasBudget;
     }
     for (size_t v = 0; v < volumes.size(); ++v)
     {
       in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
-      const StrataVolumeTextures* tex = &in.Textures[ports[v]];
+      StrataVolumeTextures* tex = &in.Textures[ports[v]];
       in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
+      if (volumes[v].Pooled)
+      {
+        // A brick may enter the cut only with its page in RAM: found now (and pinned for this
+        // frame), or queued at the parent's screen-space priority for a later frame.
+        const int port = ports[v];
+        vtkInternals* internals = &in;
+        in.Cut.SetVolumeAvailability(static_cast<int>(v), [tex, port, internals](int node, double priority) {
+          if (tex->Held.count(node))
+            return true;
+          const auto& n = tex->Tree->GetNode(node);
+          vtkPageCache::Key key;
+          key.Dataset = port;
+          key.Level = n.Level;
+          key.Page = node - tex->Tree->GetLevelOffset(n.Level);
+          if (vtkPageCache::Page page = internals->Cache.Find(key))
+          {
+            tex->Held[node] = page;
+            return true;
+          }
+          internals->Cache.Request(key, priority);
+          ++internals->Paging.MissesThisFrame;
+          return false;
+        });
+      }
+      else
+      {
+        in.Cut.SetVolumeAvailability(static_cast<int>(v), nullptr);
+      }
+    }
+    in.Cut.SetMaxNewBricksPerUpdate(anyPooled ? this->PagesPerFrame : 0);
+    if (anyPooled)
+    {
+      in.Cache.SetBudgetMiB(this->PageCacheBudget);
+      in.Cache.Start();
+      in.Cache.BeginFrame();
+      // Roots first, on this thread: one page per pool, once, so that a volume is never a hole.
+      for (size_t v = 0; v < volumes.size(); ++v)
+      {
+        StrataVolumeTextures& tex = in.Textures[ports[v]];
+        const int root = volumes[v].Pooled ? tex.Tree->GetRootId() : -1;
+        if (root < 0 || tex.Held.count(root))
+          continue;
+        auto page = std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
+        std::string error;
+        const int level = tex.Tree->GetNode(root).Level;
+        if (!tex.Pool->ReadPage(level, 0, reinterpret_cast<float*>(page->data()), &error))
+        {
+          vtkErrorMacro("Cannot read the root page of \"" << tex.PoolName << "\": " << error);
+          return;
+        }
+        tex.Held[root] = page;
+        ++in.Paging.RootPagesRead;
+        in.Paging.BytesRead += static_cast<long long>(page->size());
+      }
     }
     vtkVolumeCut::Camera cutCamera;
     camera->GetPosition(cutCamera.Position);
@@ -1032,7 +1262,46 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
     cutCamera.UseFrustum = true;
     camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
-    in.Cut.Update(cutCamera);
+    in.Paging.MissesThisFrame = 0;
+    const int entered = in.Cut.Update(cutCamera);
+    if (anyPooled)
+    {
+      // Keep the pages of the cut and of its ancestors (for collapses), release the rest.
+      for (size_t v = 0; v < volumes.size(); ++v)
+      {
+        if (!volumes[v].Pooled)
+          continue;
+        StrataVolumeTextures& tex = in.Textures[ports[v]];
+        for (auto it = tex.Held.begin(); it != tex.Held.end();)
+        {
+          const int n = it->first;
+          const bool keep = n == tex.Tree->GetRootId() || in.Cut.IsInCut(static_cast<int>(v), n) ||
+            (tex.Tree->GetParent(n) >= 0 && !in.Cut.IsInCut(static_cast<int>(v), n) && [&] {
+              // an ancestor of the cut: some child is in the cut or is itself kept
+              int children[8];
+              const int count = tex.Tree->GetChildren(n, children);
+              for (int c = 0; c < count; ++c)
+                if (in.Cut.IsInCut(static_cast<int>(v), children[c]) || tex.Held.count(children[c]))
+                  return true;
+              return false;
+            }());
+          it = keep ? std::next(it) : tex.Held.erase(it);
+        }
+      }
+      for (const auto& failure : in.Cache.TakeNewFailures())
+      {
+        vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page << " of the volume on port "
+                              << failure.PageKey.Dataset << " failed to load (" << failure.Error
+                              << "); showing the coarser level.");
+        ++in.Paging.Failures;
+      }
+      const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
+      in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
+      in.Paging.BytesRead = stats.BytesRead + in.Paging.RootPagesRead * static_cast<long long>(
+        std::pow(double(brickSize), 3) * sizeof(float));
+      in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
+      in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0;
+    }
     in.Atlas.BeginFrame();
     std::vector<vtkVolumeCut::Upload> uploads;
     const int missing = in.Cut.AssignSlots(in.Atlas, uploads);
@@ -1040,15 +1309,36 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       vtkWarningMacro(<< missing << " bricks found no atlas slot: raise AtlasBudget.");
     }
-    const int B = this->BrickSize;
+    const int B = brickSize;
     std::vector<float> brick(size_t(B) * B * B);
     glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    in.Paging.BytesUploaded = 0;
     for (const auto& u : uploads)
     {
-      in.CutVolumes[u.Volume].second->ExtractBrick(u.Node, brick.data());
+      const float* data = brick.data();
+      const StrataVolumeTextures& tex = in.Textures[in.CutVolumes[u.Volume].first];
+      if (tex.Tree->HasData())
+      {
+        tex.Tree->ExtractBrick(u.Node, brick.data());
+      }
+      else
+      {
+        // Paged: the cut only holds bricks whose pages are held (see the availability).
+        auto it = tex.Held.find(u.Node);
+        if (it == tex.Held.end())
+        {
+          vtkErrorMacro("Brick " << u.Node << " entered the cut without its page.");
+          std::fill(brick.begin(), brick.end(), static_cast<float>(tex.EmptyScalar));
+        }
+        else
+        {
+          data = reinterpret_cast<const float*>(it->second->data());
+        }
+      }
       const auto pos = in.Atlas.GetSlotPosition(u.Slot);
-      glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, brick.data());
+      glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, data);
+      in.Paging.BytesUploaded += static_cast<long long>(brick.size() * sizeof(float));
     }
     glBindTexture(GL_TEXTURE_3D, 0);
     for (size_t v = 0; v < volumes.size(); ++v)
@@ -1262,14 +1552,14 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     const bool coherent = this->RayCoherence && rays > 1;
     std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
       (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
-      (this->UseBrickAtlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-");
+      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-");
     for (bool sh : shaded)
       key += sh ? 's' : '-';
     std::string& fs = in.ShaderSources[key];
     if (fs.empty())
     {
       fs = BuildFragmentShader(
-        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, this->UseBrickAtlas,
+        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, atlas,
         this->EmptySpaceSkipping);
     }
     vtkShaderProgram* program =
@@ -1337,7 +1627,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
     }
     std::vector<int> rawUnits;
-    if (this->UseBrickAtlas)
+    if (atlas)
     {
       const int unit = units->Allocate();
       rawUnits.push_back(unit);
@@ -1347,7 +1637,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       const auto size = in.Atlas.GetTextureSize();
       const float atlasSize[3] = { float(size[0]), float(size[1]), float(size[2]) };
       program->SetUniform3f("uAtlasSize", atlasSize);
-      program->SetUniformf("uBrickSize", static_cast<float>(this->BrickSize));
+      program->SetUniformf("uBrickSize", static_cast<float>(brickSize));
     }
     for (int i = 0; i < k; ++i)
     {
@@ -1358,7 +1648,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformMatrix4x4(("uLocalToIndex" + n).c_str(), const_cast<float*>(e.LocalToIndex));
       program->SetUniformf(("uNearest" + n).c_str(),
         e.Property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
-      if (this->UseBrickAtlas)
+      if (atlas)
       {
         const int unit = units->Allocate();
         rawUnits.push_back(unit);
@@ -1427,7 +1717,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (int i = 0; i < k; ++i)
     {
       StrataVolumeTextures& tex = in.Textures[ports[frag.BoxIndices[i]]];
-      if (tex.Data && !this->UseBrickAtlas)
+      if (tex.Data && !atlas)
         tex.Data->Deactivate();
       if (this->Classification == Classifications::PostClassification)
         tex.Transfer->Deactivate();

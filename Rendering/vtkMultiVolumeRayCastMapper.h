@@ -112,6 +112,40 @@ public:
   vtkGetMacro(SkipCellSize, int);
   ///@}
 
+  ///@{
+  /**
+   * Out of core. An input produced by vtkPagePoolReader (recognised by
+   * vtkPagePoolReader::POOL_FILE_NAME() on its data) is not read through the pipeline: the
+   * reader is asked for its coarsest level only, and the bricks are paged from the pool. The
+   * cut (shared with in-core volumes, under AtlasBudget) may split a brick only when its
+   * children's pages are in the RAM page cache (PageCacheBudget MB, LRU, worker threads); the
+   * missing ones are queued at the brick's screen-space priority and the cut refines in later
+   * frames, at most PagesPerFrame new bricks per frame. The render thread reads one page per
+   * pool (its root, when the pool is first seen) and never waits for any other. Pages that
+   * fail to load give one VTK error each and the volume keeps its coarser bricks there. The
+   * brick size is the pool's page size (all pools of a scene must share it).
+   */
+  vtkSetClampMacro(PageCacheBudget, double, 1.0, 1048576.0);
+  vtkGetMacro(PageCacheBudget, double);
+  vtkSetClampMacro(PagesPerFrame, int, 1, 65536);
+  vtkGetMacro(PagesPerFrame, int);
+  ///@}
+
+  struct PagingStatistics
+  {
+    int PendingPages = 0;        ///< queued or loading after the last frame
+    bool Converged = false;      ///< the last frame's cut did not change and nothing is pending
+    long long BytesRead = 0;     ///< in all, root pages included
+    long long BytesUploaded = 0; ///< to the atlas in the last frame (paged or not)
+    long long CacheBytes = 0;    ///< resident in the page cache
+    int RootPagesRead = 0;       ///< pages the render thread read itself (one per pool)
+    int Failures = 0;            ///< pages that failed to load
+    int MissesThisFrame = 0;     ///< bricks the last frame's cut wanted but had no page for
+  };
+  PagingStatistics GetPagingStatistics() const;
+  /// Loads failed pages again (after a transient error).
+  void RetryFailedPages();
+
   /// Bricks resident in the atlas after the last frame, and atlas slots.
   int GetNumberOfResidentBricks() const;
   int GetNumberOfAtlasSlots() const;
@@ -193,6 +227,9 @@ public:
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
+  /// Asks page-pool readers for their coarsest level (see PageCacheBudget).
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   void GetReductionRatio(double ratio[3]) override;
 
@@ -212,6 +249,8 @@ protected:
   int BrickSize = 32;
   double AtlasBudget = 256.0;
   bool EmptySpaceSkipping = true;
+  double PageCacheBudget = 512.0;
+  int PagesPerFrame = 64;
   int SkipCellSize = 8;
   bool RayCoherence = false;
   double TerminationOpacity = 0.999;

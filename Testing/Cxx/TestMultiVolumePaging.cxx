@@ -1,0 +1,304 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// The multi-volume ray caster paging a volume from a page pool (vtkPagePoolReader in front of
+// vtkMultiVolumeRayCastMapper): along a scripted camera path, every frame before the cache
+// settles is a valid coarser rendering (its error against the converged in-core image is no
+// larger than the root-only rendering's), and after it settles the paged image equals the
+// in-core rendering of the same data. Then the faults: a corrupt page, a pool truncated while
+// rendering, a truncated pool and a missing file give VTK errors and no crash, and the paged
+// volume keeps its coarser bricks.
+#include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataTestHelpers.h"
+#include "StrataVolumeScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkNew.h"
+#include "vtkPagePoolFile.h"
+#include "vtkPagePoolReader.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <unistd.h>
+
+using namespace strata_test;
+
+namespace
+{
+const int Size = 128;
+const int Page = 16;
+
+double Rms(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  return ImageError(a, std::vector<double>(b.begin(), b.end())).Rms;
+}
+
+int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  int mx = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    mx = std::max(mx, std::abs(int(a[i]) - int(b[i])));
+  return mx;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Win;
+  vtkSmartPointer<vtkRenderer> Ren;
+  vtkNew<vtkVolume> Volume;
+  explicit Scene(vtkVolumeProperty* property)
+  {
+    MakeWindow(this->Win, this->Ren, Size, Size);
+    this->Volume->SetProperty(property);
+    this->Ren->AddVolume(this->Volume);
+  }
+  void Camera(double azimuth)
+  {
+    vtkCamera* cam = this->Ren->GetActiveCamera();
+    const double a = azimuth * std::acos(-1.0) / 180.0;
+    cam->SetFocalPoint(40, 35, 30);
+    cam->SetPosition(40 + 120 * std::cos(a), 35 + 120 * std::sin(a), 30 + 60);
+    cam->SetViewUp(0, 0, 1);
+    cam->SetViewAngle(30);
+    this->Ren->ResetCameraClippingRange(0, 80, 0, 70, 0, 60);
+  }
+  std::vector<unsigned char> Render(vtkMultiVolumeRayCastMapper* mapper)
+  {
+    this->Volume->SetMapper(mapper);
+    this->Win->Render();
+    return ReadRGB(this->Win);
+  }
+};
+
+void Configure(vtkMultiVolumeRayCastMapper* m, double atlasMB)
+{
+  m->SetSampleDistance(0.5);
+  m->SetBrickSize(Page);
+  m->SetAtlasBudget(atlasMB);
+}
+
+// Renders the paged mapper until it reports convergence (at most `frames`), letting the
+// workers load between frames; returns the frames and calls `each` on every image.
+template <typename F>
+int RenderUntilConverged(Scene& s, vtkMultiVolumeRayCastMapper* paged, int frames, F each)
+{
+  for (int f = 1; f <= frames; ++f)
+  {
+    const auto image = s.Render(paged);
+    each(image);
+    if (std::getenv("STRATA_DEBUG_PAGING")) // per-frame state, for looking into a failure
+    {
+      const auto st = paged->GetPagingStatistics();
+      std::cout << "  frame " << f << ": resident " << paged->GetNumberOfResidentBricks() << ", pending " << st.PendingPages
+                << ", misses " << st.MissesThisFrame << ", converged " << st.Converged << ", read " << st.BytesRead << "\n";
+    }
+    if (paged->GetPagingStatistics().Converged)
+      return f;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return -1;
+}
+}
+
+int TestMultiVolumePaging(int, char*[])
+{
+  CapturingOutputWindow* output = CapturingOutputWindow::Install();
+  const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
+  auto image = MakeBlobVolume(81, 71, 61, spacing, origin, 3);
+  auto property = MakeVolumeProperty(0);
+  const std::string dir = OutputDirectory();
+  const std::string pool = dir + "/paging.spp";
+  {
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(pool.c_str());
+    writer->SetPageSize(Page);
+    Check(writer->Write(), "pool written");
+    std::cout << "Paging: pool of " << writer->GetNumberOfPages() << " pages, " << writer->GetFileSize() << " bytes\n";
+  }
+  // Atlas of 48 bricks: the cut must choose (the volume has 6 x 5 x 4 level-0 bricks).
+  const double atlasMB = 48.0 * Page * Page * Page * 4 / (1024.0 * 1024.0);
+  Scene s(property);
+  vtkNew<vtkMultiVolumeRayCastMapper> incore, coarse, paged;
+  incore->SetInputData(image);
+  Configure(incore, atlasMB);
+  coarse->SetInputData(image);
+  Configure(coarse, 1.0 * Page * Page * Page * 4 / (1024.0 * 1024.0)); // the root alone
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(pool.c_str());
+  paged->SetInputConnection(reader->GetOutputPort());
+  Configure(paged, atlasMB);
+  paged->SetPagesPerFrame(4); // refine slowly: many intermediate frames to check
+
+  int pathFrames = 0, worstMax = 0;
+  double worstExcess = -1e9;
+  for (double azimuth : { -120.0, -60.0, 10.0 })
+  {
+    s.Camera(azimuth);
+    std::vector<unsigned char> full, root;
+    for (int i = 0; i < 3; ++i)
+      full = s.Render(incore);
+    root = s.Render(coarse);
+    const double rootRms = Rms(root, full);
+    int intermediate = 0;
+    double worst = 0.0;
+    std::vector<unsigned char> last;
+    const int frames = RenderUntilConverged(s, paged, 400, [&](const std::vector<unsigned char>& img) {
+      const double rms = Rms(img, full);
+      worst = std::max(worst, rms);
+      worstExcess = std::max(worstExcess, rms - rootRms);
+      intermediate += rms > 0.0 ? 1 : 0;
+      last = img;
+    });
+    const int mx = MaxDifference(last, full);
+    worstMax = std::max(worstMax, mx);
+    pathFrames += std::max(frames, 0);
+    std::cout << "Paging: azimuth " << azimuth << ": converged after " << frames << " frames (" << intermediate
+              << " differing from the in-core image), worst RMS " << worst << " vs root-only RMS " << rootRms
+              << "; converged max difference " << mx << "\n";
+    Check(frames > 0, "the paged view converges (azimuth " + std::to_string(int(azimuth)) + ")");
+    Check(worst <= rootRms + 0.5, "every frame is at least as close as the root-only rendering (+0.5 RMS)");
+    Check(mx <= 1, "converged: the paged image equals the in-core one (max difference <= 1)");
+  }
+  std::cout << "Paging: the reader's own output: level " << reader->GetLevelRead() << ", "
+            << reader->GetNumberOfPagesRead() << " page(s)\n";
+  Check(reader->GetLevelRead() == reader->GetNumberOfLevels() - 1 && reader->GetNumberOfPagesRead() <= 1,
+    "through the pipeline the reader serves its coarsest level only (one page, then from its last output)");
+  const auto stats = paged->GetPagingStatistics();
+  std::cout << "Paging: " << pathFrames << " frames on the path; " << stats.RootPagesRead << " page read on the render thread; "
+            << stats.BytesRead << " bytes read; " << stats.CacheBytes << " bytes cached\n";
+  Check(stats.RootPagesRead == 1 && stats.Failures == 0, "one root page read on the render thread, no failures");
+  Check(output->Errors == 0, "no VTK errors while paging a sound pool");
+
+  // --- Faults. A corrupt level-0 page (one stored byte flipped): one error, the rest converges.
+  const std::string corrupt = dir + "/paging-corrupt.spp";
+  {
+    std::ifstream in(pool, std::ios::binary);
+    std::ofstream out(corrupt, std::ios::binary);
+    out << in.rdbuf();
+  }
+  {
+    vtkPagePoolFile file;
+    file.Open(corrupt);
+    const auto entry = file.GetPageEntry(7); // a level-0 page
+    file.Close();
+    std::fstream f(corrupt, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekg(static_cast<std::streamoff>(entry.Offset + 5));
+    char c = 0;
+    f.read(&c, 1);
+    c = static_cast<char>(c ^ 0x5A);
+    f.seekp(static_cast<std::streamoff>(entry.Offset + 5));
+    f.write(&c, 1);
+  }
+  s.Camera(-60.0);
+  std::vector<unsigned char> full;
+  for (int i = 0; i < 3; ++i)
+    full = s.Render(incore);
+  const auto rootImage = s.Render(coarse);
+  {
+    vtkNew<vtkPagePoolReader> r;
+    r->SetFileName(corrupt.c_str());
+    vtkNew<vtkMultiVolumeRayCastMapper> m;
+    m->SetInputConnection(r->GetOutputPort());
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(r);
+    errors->Watch(m);
+    Configure(m, atlasMB);
+    std::vector<unsigned char> last;
+    double worst = 0.0;
+    for (int f = 0; f < 60; ++f)
+    {
+      last = s.Render(m);
+      worst = std::max(worst, Rms(last, full));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const bool named = errors->First.find("failed to load") != std::string::npos &&
+      errors->First.find("checksum") != std::string::npos;
+    std::cout << "Paging: corrupt page: " << m->GetPagingStatistics().Failures << " failed page(s), "
+              << errors->Errors << " VTK error(s): \"" << errors->First << "\"; RMS to in-core " << Rms(last, full)
+              << " (root-only " << Rms(rootImage, full) << ")\n";
+    Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named,
+      "a corrupt page: one clear error naming the failed load");
+    Check(worst <= Rms(rootImage, full) + 0.5, "with a corrupt page the volume stays a valid coarser rendering");
+  }
+
+  // A pool truncated while it is being rendered: reads past the end fail, coarse bricks stay.
+  const std::string shrinking = dir + "/paging-shrinking.spp";
+  {
+    std::ifstream in(pool, std::ios::binary);
+    std::ofstream out(shrinking, std::ios::binary);
+    out << in.rdbuf();
+  }
+  {
+    vtkNew<vtkPagePoolReader> r;
+    r->SetFileName(shrinking.c_str());
+    vtkNew<vtkMultiVolumeRayCastMapper> m;
+    m->SetInputConnection(r->GetOutputPort());
+    Configure(m, atlasMB);
+    m->SetPagesPerFrame(1);
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(r);
+    errors->Watch(m);
+    s.Render(m); // opened, root read
+    {
+      vtkPagePoolFile file;
+      file.Open(shrinking);
+      const auto firstPage = file.GetPageEntry(0).Offset;
+      file.Close();
+      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0, "pool truncated behind the reader's back");
+    }
+    double worst = 0.0;
+    for (int f = 0; f < 40; ++f)
+    {
+      worst = std::max(worst, Rms(s.Render(m), full));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    std::cout << "Paging: pool truncated while rendering: " << m->GetPagingStatistics().Failures << " failed pages, "
+              << errors->Errors << " VTK errors; worst RMS " << worst << "\n";
+    Check(m->GetPagingStatistics().Failures > 0 && errors->Errors == m->GetPagingStatistics().Failures,
+      "read errors while rendering: one VTK error per failed page");
+    Check(worst <= Rms(rootImage, full) + 0.5, "after read errors the volume keeps its coarser bricks");
+  }
+
+  // A truncated pool and a missing file: errors from the reader, nothing drawn, no crash.
+  for (const std::string& bad : { dir + "/paging-truncated.spp", dir + "/no-such-pool.spp" })
+  {
+    if (bad.find("truncated") != std::string::npos)
+    {
+      std::ifstream in(pool, std::ios::binary);
+      std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      std::ofstream(bad, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+    }
+    vtkNew<vtkPagePoolReader> r;
+    r->SetFileName(bad.c_str());
+    vtkNew<vtkMultiVolumeRayCastMapper> m;
+    m->SetInputConnection(r->GetOutputPort());
+    Configure(m, atlasMB);
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(r);
+    errors->Watch(m);
+    s.Render(m);
+    std::cout << "Paging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors << " VTK error(s): \"" << errors->First
+              << "\"\n";
+    Check(errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
+  }
+  std::remove(pool.c_str());
+  std::remove(corrupt.c_str());
+  std::remove(shrinking.c_str());
+  std::remove((dir + "/paging-truncated.spp").c_str());
+  Check(output->Errors == 0, "every expected error was caught by its observer");
+  std::cout << (Failures() ? "FAILED" : "passed") << "\n";
+  return Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
+}
