@@ -2,100 +2,108 @@
 //
 // strata-convert: converts a volume or a horizon grid into a Strata page pool (.spp), streaming
 // the input slab by slab with bounded memory (vtkImageToPagePoolWriter).
-//   volumes -> brick pool: .vti, .mhd/.mha, .nrrd/.nhdr, raw (--raw ...)
+//   volumes -> brick pool: .vti, .mhd/.mha (compressed ones read whole), .nrrd/.nhdr,
+//                          raw (--raw ...), SEG-Y (.sgy/.segy, read inline by inline)
 //   grids   -> tile pool:  .npy, .gri, and any 2-D input (one point along z)
+// The pool is written to <output>.tmp-<pid> and renamed when complete; temporaries that killed
+// runs left beside the output are removed first.
+#include "StrataCommandLine.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
-#include "vtkAlgorithm.h"
 #include "vtkImageReader2.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkIrapBinaryGridReader.h"
-#include "vtkMetaImageReader.h"
 #include "vtkNew.h"
-#include "vtkNrrdReader.h"
 #include "vtkNumpyGridReader.h"
-#include "vtkObjectFactory.h"
-#include "vtkOutputWindow.h"
-#include "vtkSmartPointer.h"
-#include "vtkXMLImageDataReader.h"
+#include "vtkSegyVolumeReader.h"
+#include "vtkStreamingMetaImageReader.h"
 
-#include <vtksys/SystemTools.hxx>
+#include <vtksys/Directory.hxx>
 
-#include <algorithm>
+#include <cerrno>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <iostream>
-#include <string>
+#include <signal.h> // For kill (is a temporary's writer alive?)
 
 namespace
 {
+using strata_cli::ParseDouble;
+using strata_cli::ParseInt;
+
 void Usage(std::ostream& os)
 {
   os << "usage: strata-convert <input> <output.spp> [--page-size B] [--compress]\n"
         "         [--memory-limit MB]\n"
-        "         [--raw DIMX DIMY DIMZ uint8|uint16|int16|float [--spacing sx sy sz]\n"
-        "          [--little|--big] [--header-size BYTES]]\n"
-        "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw) -> brick pool;\n"
-        "        .npy, .gri (and any input one point thick along z) -> tile pool\n";
-}
-
-struct Progress
-{
-  int Last = -1;
-  static void Callback(vtkObject* caller, unsigned long, void* clientData, void* callData)
-  {
-    (void)caller;
-    auto* self = static_cast<Progress*>(clientData);
-    const double f = *static_cast<double*>(callData);
-    const int percent = static_cast<int>(f * 100.0 + 1e-9);
-    if (percent == self->Last)
-    {
-      return;
-    }
-    self->Last = percent;
-    constexpr int width = 40;
-    const int filled = std::min(width, percent * width / 100);
-    std::string bar(filled, '#');
-    bar.append(width - filled, '.');
-    std::fprintf(stderr, "\r[%s] %3d%%", bar.c_str(), percent);
-    std::fflush(stderr);
-  }
-};
-
-/// Forwards VTK's error messages to stderr without the object/file prefix clutter.
-class PlainOutputWindow : public vtkOutputWindow
-{
-public:
-  static PlainOutputWindow* New();
-  vtkTypeMacro(PlainOutputWindow, vtkOutputWindow);
-  void DisplayText(const char* text) override { std::cerr << "\n" << text; }
-};
-vtkStandardNewMacro(PlainOutputWindow);
-
-bool ParseInt(const char* s, int& v)
-{
-  char* end = nullptr;
-  const long x = std::strtol(s, &end, 10);
-  if (!end || *end || x < -2147483647L || x > 2147483647L)
-  {
-    return false;
-  }
-  v = static_cast<int>(x);
-  return true;
-}
-
-bool ParseDouble(const char* s, double& v)
-{
-  char* end = nullptr;
-  v = std::strtod(s, &end);
-  return end && !*end;
+        "         "
+     << strata_cli::RawVolumeOptions::Usage
+     << "\n"
+        "         [--inline-byte N] [--crossline-byte N] [--segy-format CODE]\n"
+        "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw), .sgy/.segy -> brick pool;\n"
+        "        .npy, .gri (and any input one point thick along z) -> tile pool\n"
+        "SEG-Y: inline and crossline numbers at trace-header bytes 189 and 193 unless given;\n"
+        "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8)\n";
 }
 
 int Die(const std::string& message)
 {
   std::cerr << "strata-convert: " << message << "\n";
   return 1;
+}
+
+/// Removes <output>.tmp-<pid> files whose process is gone: what a conversion killed before its
+/// rename left behind (vtkPagePoolWriter names its temporary so). A live pid's file is left.
+void RemoveStaleTemporaries(const std::string& output)
+{
+  const std::string dir = vtksys::SystemTools::GetFilenamePath(output);
+  const std::string prefix = vtksys::SystemTools::GetFilenameName(output) + ".tmp-";
+  vtksys::Directory listing;
+  if (!listing.Load(dir.empty() ? "." : dir))
+  {
+    return;
+  }
+  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+  {
+    const std::string name = listing.GetFile(f);
+    long long pid = 0;
+    if (name.compare(0, prefix.size(), prefix) != 0 ||
+        !strata_cli::ParseInt64(name.c_str() + prefix.size(), pid) || pid <= 0 ||
+        pid > 2147483647LL)
+    {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+    {
+      const std::string path = dir.empty() ? name : dir + "/" + name;
+      if (std::remove(path.c_str()) == 0)
+      {
+        std::cerr << "strata-convert: removed \"" << path << "\", left by a killed conversion\n";
+      }
+    }
+  }
+}
+
+/// The raw volume of the --raw options, streamed by vtkImageReader2.
+vtkSmartPointer<vtkAlgorithm> NewRawReader(const std::string& path,
+  const strata_cli::RawVolumeOptions& raw)
+{
+  auto r = vtkSmartPointer<vtkImageReader2>::New();
+  r->SetFileName(path.c_str());
+  r->SetFileDimensionality(3);
+  r->SetDataExtent(0, raw.Dimensions[0] - 1, 0, raw.Dimensions[1] - 1, 0, raw.Dimensions[2] - 1);
+  r->SetDataSpacing(raw.Spacing[0], raw.Spacing[1], raw.Spacing[2]);
+  r->SetHeaderSize(static_cast<unsigned long>(raw.HeaderSize));
+  if (raw.Type == "uint8")
+    r->SetDataScalarTypeToUnsignedChar();
+  else if (raw.Type == "uint16")
+    r->SetDataScalarTypeToUnsignedShort();
+  else if (raw.Type == "int16")
+    r->SetDataScalarTypeToShort();
+  else
+    r->SetDataScalarTypeToFloat();
+  if (raw.BigEndian)
+    r->SetDataByteOrderToBigEndian();
+  else
+    r->SetDataByteOrderToLittleEndian();
+  return r;
 }
 }
 
@@ -105,20 +113,24 @@ int main(int argc, char* argv[])
   int pageSize = 32;
   bool compress = false;
   double memoryMB = 512;
-  bool raw = false;
-  int rawDims[3] = { 0, 0, 0 };
-  std::string rawType;
-  double spacing[3] = { 1, 1, 1 };
-  bool bigEndian = false;
-  int headerSize = 0;
+  strata_cli::RawVolumeOptions raw;
+  int inlineByte = 189;
+  int crosslineByte = 193;
+  int segyFormat = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     auto need = [&](int n) { return i + n < argc; };
+    std::string error;
     if (a == "-h" || a == "--help")
     {
       Usage(std::cout);
       return 0;
+    }
+    else if (raw.Parse(argc, argv, i, error))
+    {
+      if (!error.empty())
+        return Die(error);
     }
     else if (a == "--page-size" && need(1))
     {
@@ -134,54 +146,21 @@ int main(int argc, char* argv[])
       if (!ParseDouble(argv[++i], memoryMB) || !(memoryMB > 0))
         return Die("--memory-limit needs a positive number of MB");
     }
-    else if (a == "--raw" && need(4))
+    else if ((a == "--inline-byte" || a == "--crossline-byte") && need(1))
     {
-      raw = true;
-      for (int d = 0; d < 3; ++d)
-      {
-        if (!ParseInt(argv[++i], rawDims[d]) || rawDims[d] <= 0)
-          return Die("--raw needs three positive dimensions");
-      }
-      rawType = argv[++i];
+      int& byte = a == "--inline-byte" ? inlineByte : crosslineByte;
+      if (!ParseInt(argv[++i], byte) || byte < 1 || byte > 237)
+        return Die(a + " needs a trace-header byte position in [1, 237]");
     }
-    else if (a == "--spacing" && need(3))
+    else if (a == "--segy-format" && need(1))
     {
-      for (int d = 0; d < 3; ++d)
-      {
-        if (!ParseDouble(argv[++i], spacing[d]) || !(spacing[d] > 0))
-          return Die("--spacing needs three positive numbers");
-      }
+      if (!ParseInt(argv[++i], segyFormat) || segyFormat < 1)
+        return Die("--segy-format needs a format code (1, 2, 3, 5 or 8)");
     }
-    else if (a == "--little")
-    {
-      bigEndian = false;
-    }
-    else if (a == "--big")
-    {
-      bigEndian = true;
-    }
-    else if (a == "--header-size" && need(1))
-    {
-      if (!ParseInt(argv[++i], headerSize) || headerSize < 0)
-        return Die("--header-size needs a non-negative integer");
-    }
-    else if (!a.empty() && a[0] == '-')
+    else if (!strata_cli::TakePositional(a, input, output, error))
     {
       Usage(std::cerr);
-      return Die("unknown or incomplete option " + a);
-    }
-    else if (input.empty())
-    {
-      input = a;
-    }
-    else if (output.empty())
-    {
-      output = a;
-    }
-    else
-    {
-      Usage(std::cerr);
-      return Die("too many arguments");
+      return Die(error);
     }
   }
   if (input.empty() || output.empty())
@@ -193,60 +172,32 @@ int main(int argc, char* argv[])
   {
     return Die("input \"" + input + "\" does not exist or is not a file");
   }
-  vtkOutputWindow::SetInstance(vtkSmartPointer<PlainOutputWindow>::New());
+  strata_cli::PlainOutputWindow::Install();
 
-  const std::string ext = vtksys::SystemTools::LowerCase(
-    vtksys::SystemTools::GetFilenameLastExtension(input));
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(input));
   vtkSmartPointer<vtkAlgorithm> reader;
-  if (raw)
+  if (raw.Enabled)
   {
-    auto r = vtkSmartPointer<vtkImageReader2>::New();
+    // Checked before the pipeline reads past the end of a too-short file.
+    const std::string sizeError = raw.CheckFileSize(input);
+    if (!sizeError.empty())
+      return Die(sizeError);
+    reader = NewRawReader(input, raw);
+  }
+  else if (ext == ".sgy" || ext == ".segy")
+  {
+    auto r = vtkSmartPointer<vtkSegyVolumeReader>::New();
     r->SetFileName(input.c_str());
-    r->SetFileDimensionality(3);
-    r->SetDataExtent(0, rawDims[0] - 1, 0, rawDims[1] - 1, 0, rawDims[2] - 1);
-    r->SetDataSpacing(spacing);
-    r->SetHeaderSize(static_cast<unsigned long>(headerSize));
-    if (rawType == "uint8")
-      r->SetDataScalarTypeToUnsignedChar();
-    else if (rawType == "uint16")
-      r->SetDataScalarTypeToUnsignedShort();
-    else if (rawType == "int16")
-      r->SetDataScalarTypeToShort();
-    else if (rawType == "float")
-      r->SetDataScalarTypeToFloat();
-    else
-      return Die("unknown raw type \"" + rawType + "\" (uint8, uint16, int16 or float)");
-    if (bigEndian)
-      r->SetDataByteOrderToBigEndian();
-    else
-      r->SetDataByteOrderToLittleEndian();
-    // Check the size before the pipeline reads past the end of a too-short file.
-    const unsigned long long size = vtksys::SystemTools::FileLength(input);
-    const int bytes = rawType == "uint8" ? 1 : rawType == "float" ? 4 : 2;
-    const unsigned long long need = static_cast<unsigned long long>(headerSize) +
-      static_cast<unsigned long long>(rawDims[0]) * rawDims[1] * rawDims[2] * bytes;
-    if (size < need)
-    {
-      return Die("raw file \"" + input + "\" has " + std::to_string(size) + " bytes, " +
-        std::to_string(need) + " needed");
-    }
+    r->SetInlineByte(inlineByte);
+    r->SetCrosslineByte(crosslineByte);
+    r->SetSampleFormat(segyFormat);
     reader = r;
   }
-  else if (ext == ".vti")
+  else if ((ext == ".mhd" || ext == ".mha") &&
+           vtkStreamingMetaImageReader::IsStreamable(input.c_str()))
   {
-    auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
-    r->SetFileName(input.c_str());
-    reader = r;
-  }
-  else if (ext == ".mhd" || ext == ".mha")
-  {
-    auto r = vtkSmartPointer<vtkMetaImageReader>::New();
-    r->SetFileName(input.c_str());
-    reader = r;
-  }
-  else if (ext == ".nrrd" || ext == ".nhdr")
-  {
-    auto r = vtkSmartPointer<vtkNrrdReader>::New();
+    auto r = vtkSmartPointer<vtkStreamingMetaImageReader>::New();
     r->SetFileName(input.c_str());
     reader = r;
   }
@@ -264,36 +215,52 @@ int main(int argc, char* argv[])
   }
   else
   {
+    reader = strata_cli::NewVolumeReader(input);
+  }
+  if (!reader)
+  {
     Usage(std::cerr);
     return Die("cannot tell the format of \"" + input + "\" (use --raw for raw files)");
   }
 
+  RemoveStaleTemporaries(output);
   vtkNew<vtkImageToPagePoolWriter> writer;
-  writer->SetInputConnection(reader->GetOutputPort());
+  if (reader->IsA("vtkMetaImageReader"))
+  {
+    // Compressed or multi-file MetaImage data: VTK's reader cannot read a sub-extent (it would
+    // overrun a slab's buffer), so the volume is read whole.
+    std::cerr << "strata-convert: compressed or multi-file MetaImage data, read whole\n";
+    reader->Update();
+    writer->SetInputData(reader->GetOutputDataObject(0));
+  }
+  else
+  {
+    writer->SetInputConnection(reader->GetOutputPort());
+  }
   writer->SetFileName(output.c_str());
   writer->SetPageSize(pageSize);
   writer->SetCompression(compress);
   writer->SetMemoryLimit(memoryMB);
-  Progress progress;
+  strata_cli::ProgressBar bar;
   vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetCallback(&Progress::Callback);
-  onProgress->SetClientData(&progress);
+  onProgress->SetCallback(&strata_cli::ProgressBar::Callback);
+  onProgress->SetClientData(&bar);
   writer->AddObserver(vtkCommand::ProgressEvent, onProgress);
 
   const auto start = std::chrono::steady_clock::now();
   const bool ok = writer->Write();
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (progress.Last >= 0)
-  {
-    std::fprintf(stderr, "\n");
-  }
+  bar.Finish();
   if (!ok)
   {
     return Die("conversion of \"" + input + "\" failed; no output written");
   }
-  std::printf("%s: %lld bytes, %lld pages (%s), %.2f s\n", output.c_str(),
-    static_cast<long long>(writer->GetFileSize()), static_cast<long long>(writer->GetNumberOfPages()),
-    compress ? "zstd" : "raw", seconds);
+  std::printf("%s: %lld bytes, %lld pages (%s), %.2f s\n",
+    output.c_str(),
+    static_cast<long long>(writer->GetFileSize()),
+    static_cast<long long>(writer->GetNumberOfPages()),
+    compress ? "zstd" : "raw",
+    seconds);
   return 0;
 }
