@@ -399,11 +399,6 @@ int vtkVolumeCut::Update(const Camera& camera)
   while (!in.Splits.empty())
   {
     const auto [priority, v, n] = *in.Splits.rbegin();
-    if (!in.ChildrenAvailable(v, n))
-    {
-      in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
-      continue;
-    }
     const int children = in.VisibleChildren(v, n);
     // The bound stops refinement after the first split that reaches it: a split larger than
     // the bound must still happen, or the cut would never refine past it.
@@ -434,7 +429,10 @@ int vtkVolumeCut::Update(const Camera& camera)
       }
     }
     const int moves = static_cast<int>(payers.size()) / 2;
-    if (freed < need || (bound > 0 && added > 0 && added + children + moves > bound))
+    // Data last: only a split that fits asks for its children's pages, so a paging renderer
+    // never loads what the budget would not let it show.
+    if (freed < need || (bound > 0 && added > 0 && added + children + moves > bound) ||
+      !in.ChildrenAvailable(v, n))
     {
       in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
       continue;

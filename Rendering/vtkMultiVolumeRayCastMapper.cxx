@@ -538,6 +538,7 @@ public:
   std::mutex PoolsMutex;
   std::map<int, std::shared_ptr<vtkPagePoolFile>> PoolsByPort;
   vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
+  int RequestLimit = 256; ///< page requests per frame: 4 x PagesPerFrame
 
   void Release(vtkWindow* window)
   {
@@ -1218,7 +1219,10 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
             tex->Held[node] = page;
             return true;
           }
-          internals->Cache.Request(key, priority);
+          // Ask for no more than a few frames' worth of uploads at a time: a longer queue
+          // would load pages the cache evicts again before the cut can use them.
+          if (internals->Paging.MissesThisFrame < internals->RequestLimit)
+            internals->Cache.Request(key, priority);
           ++internals->Paging.MissesThisFrame;
           return false;
         });
@@ -1263,6 +1267,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     cutCamera.UseFrustum = true;
     camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
     in.Paging.MissesThisFrame = 0;
+    in.RequestLimit = 4 * this->PagesPerFrame;
     const int entered = in.Cut.Update(cutCamera);
     if (anyPooled)
     {
@@ -1288,6 +1293,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           it = keep ? std::next(it) : tex.Held.erase(it);
         }
       }
+      // Requests this frame's cut did not renew are for views gone by: drop them.
+      in.Cache.CancelStale(in.Cache.GetFrame());
       for (const auto& failure : in.Cache.TakeNewFailures())
       {
         vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page << " of the volume on port "

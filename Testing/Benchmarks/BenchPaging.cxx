@@ -301,7 +301,7 @@ int Accuracy(const std::string& dir)
     }
     const auto err = strata_test::ImageError(strata_test::ReadRGB(win), ref);
     std::printf("accuracy-512,%g,%.4f,%.1f,%.1f,%d,%.2f,%d bricks resident; converged after %d frames; %.1f MB uploaded "
-                "in all; reference: in-core, every brick (%dx%d, sample distance 1 voxel)\n",
+                "in all; reference: in-core with every brick (%dx%d; sample distance 1 voxel)\n",
       atlasMB, err.Rms, err.Max, Percentile(ms, 0.5), frames, up / frames, paged->GetNumberOfResidentBricks(), frames, up,
       Size, Size);
     std::fflush(stdout);
