@@ -11,7 +11,6 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -526,26 +525,7 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       if (shaded)
       {
         std::vector<float> lightDirections, lightColors;
-        vtkLightCollection* lights = ren->GetLights();
-        vtkCollectionSimpleIterator it;
-        lights->InitTraversal(it);
-        while (vtkLight* light = lights->GetNextLight(it))
-        {
-          if (!light->GetSwitch() || lightDirections.size() >= 24)
-            continue;
-          double pos[3], fp[3];
-          light->GetTransformedPosition(pos);
-          light->GetTransformedFocalPoint(fp);
-          const double l[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
-          const double len = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-          if (len <= 0.0)
-            continue;
-          for (int a = 0; a < 3; ++a)
-          {
-            lightDirections.push_back(static_cast<float>(l[a] / len));
-            lightColors.push_back(static_cast<float>(light->GetDiffuseColor()[a] * light->GetIntensity()));
-          }
-        }
+        vtkMultiVolumeRayCastMapper::GetLights(ren, lightDirections, lightColors);
         program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
         if (!lightDirections.empty())
         {

@@ -739,6 +739,34 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->Superclass::Render(ren, vol);
 }
 
+void vtkMultiVolumeRayCastMapper::GetLights(
+  vtkRenderer* ren, std::vector<float>& lightDirections, std::vector<float>& lightColors)
+{
+  lightDirections.clear();
+  lightColors.clear();
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator lit_it;
+  lights->InitTraversal(lit_it);
+  while (vtkLight* light = lights->GetNextLight(lit_it))
+  {
+    if (!light->GetSwitch() || lightDirections.size() >= 24)
+      continue;
+    double pos[3], fp[3];
+    light->GetTransformedPosition(pos);
+    light->GetTransformedFocalPoint(fp);
+    double dir[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (len <= 0.0)
+      continue;
+    const double* c = light->GetDiffuseColor();
+    for (int a = 0; a < 3; ++a)
+    {
+      lightDirections.push_back(static_cast<float>(dir[a] / len));
+      lightColors.push_back(static_cast<float>(c[a] * light->GetIntensity()));
+    }
+  }
+}
+
 vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -1506,30 +1534,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
     }
   }
-  // Lights: directions towards each switched-on light (a positional light counts as directional
-  // from its position to its focal point) and colour times intensity; at most 8.
   std::vector<float> lightDirections, lightColors;
-  vtkLightCollection* lights = ren->GetLights();
-  vtkCollectionSimpleIterator lit_it;
-  lights->InitTraversal(lit_it);
-  while (vtkLight* light = lights->GetNextLight(lit_it))
-  {
-    if (!light->GetSwitch() || lightDirections.size() >= 24)
-      continue;
-    double pos[3], fp[3];
-    light->GetTransformedPosition(pos);
-    light->GetTransformedFocalPoint(fp);
-    double dir[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
-    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    if (len <= 0.0)
-      continue;
-    const double* c = light->GetDiffuseColor();
-    for (int a = 0; a < 3; ++a)
-    {
-      lightDirections.push_back(static_cast<float>(dir[a] / len));
-      lightColors.push_back(static_cast<float>(c[a] * light->GetIntensity()));
-    }
-  }
+  GetLights(ren, lightDirections, lightColors);
   const bool lit = ren->GetLights()->GetNumberOfItems() > 0;
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   in.Sources.clear();

@@ -212,6 +212,13 @@ public:
   static void TabulateExtinction(vtkVolumeProperty* property, int size, double range[2],
     std::vector<float>& rgbTau, std::vector<float>& opacity);
 
+  /**
+   * The scene's lights as the shaders use them: directions towards each switched-on light (a
+   * positional light counts as directional from its position to its focal point) and colour
+   * times intensity, 3 floats each, at most 8.
+   */
+  static void GetLights(vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors);
+
   /// Entries of the tables the mapper builds (TabulateTransferFunction's size).
   static constexpr int TransferTableSize = 1024;
 
