@@ -198,6 +198,7 @@ int TestMultiVolumePaging(int, char*[])
       for (int i = 0; i < 3; ++i)
         dwin->Render();
       const auto incoreDemo = ReadRGB(dwin);
+      // One volume paged and the others in core (one atlas, one brick size), then all paged.
       std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
       for (size_t i = 0; i < inputs.size(); ++i)
       {
@@ -209,27 +210,32 @@ int TestMultiVolumePaging(int, char*[])
         writer->Write();
         auto r = vtkSmartPointer<vtkPagePoolReader>::New();
         r->SetFileName(path.c_str());
-        demoMapper->SetInputConnection(static_cast<int>(i), r->GetOutputPort());
         readers.push_back(r);
       }
-      int frames = 0;
-      std::vector<unsigned char> last;
-      for (; frames < 400; ++frames)
+      for (size_t paged = 1; paged <= inputs.size(); paged += inputs.size() - 1)
       {
-        dwin->Render();
-        last = ReadRGB(dwin);
-        if (demoMapper->GetPagingStatistics().Converged)
-          break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        for (size_t i = 0; i < paged; ++i)
+          demoMapper->SetInputConnection(static_cast<int>(i), readers[i]->GetOutputPort());
+        int frames = 0;
+        std::vector<unsigned char> last;
+        for (; frames < 400; ++frames)
+        {
+          dwin->Render();
+          last = ReadRGB(dwin);
+          if (demoMapper->GetPagingStatistics().Converged)
+            break;
+          std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        const double rms = Rms(last, incoreDemo);
+        const int mx = MaxDifference(last, incoreDemo);
+        std::cout << "Paging: demo volume scene, " << paged << " of " << inputs.size()
+                  << " volumes paged: converged after " << frames + 1 << " frames; RMS " << rms
+                  << ", max difference " << mx << " to the in-core scene\n";
+        // Integer volumes: the pool rounds coarse levels to the type, the in-core tree keeps
+        // them in float; a coarse brick can differ by half a data unit.
+        Check(frames < 400 && rms <= 0.25 && mx <= 2,
+          "the paged demo scene equals the in-core one (" + std::to_string(paged) + " paged; RMS <= 0.25, max <= 2)");
       }
-      const double rms = Rms(last, incoreDemo);
-      const int mx = MaxDifference(last, incoreDemo);
-      std::cout << "Paging: demo volume scene, " << inputs.size() << " pools: converged after " << frames + 1
-                << " frames; RMS " << rms << ", max difference " << mx << " to the in-core scene ("
-                << demoMapper->GetPagingStatistics().RootPagesRead << " root pages read)\n";
-      // Integer volumes: the pool rounds coarse levels to the type, the in-core tree keeps them
-      // in float; a coarse brick can differ by half a data unit.
-      Check(frames < 400 && rms <= 0.25 && mx <= 2, "the paged demo scene equals the in-core one (RMS <= 0.25, max <= 2)");
       for (size_t i = 0; i < inputs.size(); ++i)
         std::remove((dir + "/paging-demo-" + std::to_string(i) + ".spp").c_str());
     }
