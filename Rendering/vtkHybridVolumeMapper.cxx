@@ -5,7 +5,6 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -18,7 +17,6 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
@@ -338,28 +336,12 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // --- The transfer table of the volume property, as the ray caster samples it.
-  vtkMTimeType tfTime = property->GetMTime();
-  tfTime = std::max(tfTime, property->GetScalarOpacity(0)->GetMTime());
-  tfTime = std::max(tfTime, property->GetRGBTransferFunction(0)->GetMTime());
+  const vtkMTimeType tfTime = vtkMultiVolumeRayCastMapper::GetTransferFunctionMTime(property);
   if (!in.Transfer || in.TransferProperty != property || in.TransferTime < tfTime)
   {
-    const int n = vtkMultiVolumeRayCastMapper::TransferTableSize;
     double range[2];
     std::vector<float> table, alpha;
-    vtkMultiVolumeRayCastMapper::TabulateExtinction(property, n, range, table, alpha);
-    if (!in.Transfer)
-      in.Transfer = vtkSmartPointer<vtkTextureObject>::New();
-    in.Transfer->SetContext(renWin);
-    in.Transfer->ReleaseGraphicsResources(renWin);
-    in.Transfer->SetContext(renWin);
-    in.Transfer->Create2DFromRaw(n, 1, 4, VTK_FLOAT, table.data());
-    in.Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.Transfer->SetWrapT(vtkTextureObject::ClampToEdge);
-    in.Transfer->SetMinificationFilter(vtkTextureObject::Linear);
-    in.Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
-    in.TableRange[0] = range[0];
-    in.TableRange[1] = (n - 1.0) / (n * (range[1] - range[0]));
-    in.TableRange[2] = 0.5 / n;
+    vtkMultiVolumeRayCastMapper::UploadTransferTable(renWin, property, in.Transfer, in.TableRange, range, table, alpha);
     in.TransferProperty = property;
     in.TransferTime = tfTime;
   }

@@ -11,7 +11,6 @@
 #include "vtkVolumeSkipGrid.h"
 #include "vtkVolumeBSPTree.h"
 
-#include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -597,6 +596,36 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
 
+vtkMTimeType vtkMultiVolumeRayCastMapper::GetTransferFunctionMTime(vtkVolumeProperty* property)
+{
+  // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
+  const bool rgb = property->GetColorChannels(0) == 3;
+  const vtkMTimeType color =
+    rgb ? property->GetRGBTransferFunction(0)->GetMTime() : property->GetGrayTransferFunction(0)->GetMTime();
+  return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
+}
+
+void vtkMultiVolumeRayCastMapper::UploadTransferTable(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
+  vtkSmartPointer<vtkTextureObject>& texture, double tableRange[3], double range[2], std::vector<float>& rgbTau,
+  std::vector<float>& opacity)
+{
+  TabulateExtinction(property, TransferTableSize, range, rgbTau, opacity);
+  if (!texture)
+    texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(renWin);
+  texture->ReleaseGraphicsResources(renWin);
+  texture->SetContext(renWin);
+  texture->Create2DFromRaw(TransferTableSize, 1, 4, VTK_FLOAT, rgbTau.data());
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) / N.
+  tableRange[0] = range[0];
+  tableRange[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
+  tableRange[2] = 0.5 / TransferTableSize;
+}
+
 void vtkMultiVolumeRayCastMapper::TabulateExtinction(
   vtkVolumeProperty* property, int size, double range[2], std::vector<float>& rgbTau, std::vector<float>& opacity)
 {
@@ -731,10 +760,7 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->GetInputAlgorithm(port, 0)->UpdateInformation();
     vtkInformation* info = this->GetInputInformation(port, 0);
     if (info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
-    {
       info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-      this->GetInputAlgorithm(port, 0)->Update(this->GetInputConnection(port, 0)->GetIndex());
-    }
   }
   this->Superclass::Render(ren, vol);
 }
@@ -1035,34 +1061,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Data->SetMinificationFilter(vtkTextureObject::Linear);
       tex.Data->SetMagnificationFilter(vtkTextureObject::Linear);
     }
-    // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
-    const bool rgb = e.Property->GetColorChannels(0) == 3;
-    vtkColorTransferFunction* color = rgb ? e.Property->GetRGBTransferFunction(0) : nullptr;
-    vtkPiecewiseFunction* gray = rgb ? nullptr : e.Property->GetGrayTransferFunction(0);
-    vtkPiecewiseFunction* opacity = e.Property->GetScalarOpacity(0);
-    vtkMTimeType tfTime = std::max(e.Property->GetMTime(), opacity->GetMTime());
-    tfTime = std::max(tfTime, rgb ? color->GetMTime() : gray->GetMTime());
+    const vtkMTimeType tfTime = GetTransferFunctionMTime(e.Property);
     if (!tex.Transfer || tex.TransferTime < tfTime)
     {
       double range[2];
       std::vector<float> alpha, table;
-      TabulateExtinction(e.Property, TransferTableSize, range, table, alpha);
-      if (!tex.Transfer)
-      {
-        tex.Transfer = vtkSmartPointer<vtkTextureObject>::New();
-      }
-      tex.Transfer->SetContext(renWin);
-      tex.Transfer->ReleaseGraphicsResources(renWin);
-      tex.Transfer->SetContext(renWin);
-      tex.Transfer->Create2DFromRaw(TransferTableSize, 1, 4, VTK_FLOAT, table.data());
-      tex.Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
-      tex.Transfer->SetWrapT(vtkTextureObject::ClampToEdge);
-      tex.Transfer->SetMinificationFilter(vtkTextureObject::Linear);
-      tex.Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
-      // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) / N.
-      tex.Range[0] = range[0];
-      tex.Range[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
-      tex.Range[2] = 0.5 / TransferTableSize;
+      UploadTransferTable(renWin, e.Property, tex.Transfer, tex.Range, range, table, alpha);
       tex.ScalarRange[0] = range[0];
       tex.ScalarRange[1] = range[1];
       std::vector<double> rgbD(3 * TransferTableSize), tauD(TransferTableSize);
@@ -1283,7 +1287,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         }
         tex.Held[root] = page;
         ++in.Paging.RootPagesRead;
-        in.Paging.BytesRead += static_cast<long long>(page->size());
       }
     }
     vtkVolumeCut::Camera cutCamera;
@@ -1332,8 +1335,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
       const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
       in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
-      in.Paging.BytesRead = stats.BytesRead + in.Paging.RootPagesRead * static_cast<long long>(
-        std::pow(double(brickSize), 3) * sizeof(float));
+      // The cache's reads plus the root pages read here, one page of floats each.
+      in.Paging.BytesRead =
+        stats.BytesRead + in.Paging.RootPagesRead * static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
       in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
       in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0;
     }

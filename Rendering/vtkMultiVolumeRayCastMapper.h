@@ -31,11 +31,14 @@
 
 #include "StrataModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkSmartPointer.h" // For UploadTransferTable
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
 
@@ -211,6 +214,18 @@ public:
    */
   static void TabulateExtinction(vtkVolumeProperty* property, int size, double range[2],
     std::vector<float>& rgbTau, std::vector<float>& opacity);
+
+  /**
+   * TabulateExtinction's table of `property` uploaded into `texture` (created if null; RGBA32F,
+   * linear, clamped), as the shaders sample it: `tableRange` maps a scalar s to its texture
+   * coordinate (s - tableRange[0]) * tableRange[1] + tableRange[2]; `range` is the table's
+   * scalar range, `rgbTau` and `opacity` the table itself.
+   */
+  static void UploadTransferTable(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
+    vtkSmartPointer<vtkTextureObject>& texture, double tableRange[3], double range[2],
+    std::vector<float>& rgbTau, std::vector<float>& opacity);
+  /// When `property`'s transfer functions last changed (those of its colour kind only).
+  static vtkMTimeType GetTransferFunctionMTime(vtkVolumeProperty* property);
 
   /**
    * The scene's lights as the shaders use them: directions towards each switched-on light (a

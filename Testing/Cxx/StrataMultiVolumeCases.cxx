@@ -553,9 +553,7 @@ int RunMultiVolumeCase(const std::string& name)
     s.Mapper->UseBrickAtlasOn();
     s.Win->Render();
     const auto bricked = ReadRGB(s.Win);
-    int mx = 0;
-    for (size_t i = 0; i < plain.size(); ++i)
-      mx = std::max(mx, std::abs(int(plain[i]) - int(bricked[i])));
+    const int mx = static_cast<int>(ImageError(bricked, plain).Max);
     std::cout << "Atlas: " << s.Mapper->GetNumberOfResidentBricks() << " resident bricks of "
               << s.Mapper->GetNumberOfAtlasSlots() << " slots; max difference to plain textures " << mx << "\n";
     Check(mx <= 1, "the bricked image equals the plain one (max difference <= 1)");
@@ -567,7 +565,7 @@ int RunMultiVolumeCase(const std::string& name)
     s.Mapper->SetAtlasBudget(4 * 16.0 * 16 * 16 * 4 / (1024.0 * 1024.0));
     s.Win->Render();
     const auto coarse = ReadRGB(s.Win);
-    const double coarseRms = ImageError(coarse, std::vector<double>(plain.begin(), plain.end())).Rms;
+    const double coarseRms = ImageError(coarse, plain).Rms;
     std::cout << "Atlas with 4 slots: " << s.Mapper->GetNumberOfResidentBricks() << " resident; RMS to full resolution "
               << coarseRms << "\n";
     Check(s.Mapper->GetNumberOfAtlasSlots() == 4 && s.Mapper->GetNumberOfResidentBricks() <= 4,
@@ -618,13 +616,8 @@ int RunMultiVolumeCase(const std::string& name)
           s.Mapper->EmptySpaceSkippingOn();
           s.Win->Render();
           const auto skipped = ReadRGB(s.Win);
-          int mx = 0;
-          long covered = 0;
-          for (size_t i = 0; i < plain.size(); ++i)
-          {
-            mx = std::max(mx, std::abs(int(plain[i]) - int(skipped[i])));
-            covered += plain[i] > 0;
-          }
+          const int mx = static_cast<int>(ImageError(skipped, plain).Max);
+          const long covered = static_cast<long>(std::count_if(plain.begin(), plain.end(), [](unsigned char c) { return c > 0; }));
           worst = std::max(worst, mx);
           const std::string what = std::string(c == C::PostClassification ? "post" : "pre") +
             (o == O::FrontToBack ? ", front to back" : ", back to front") + (atlas ? ", atlas" : ", plain");

@@ -204,6 +204,11 @@ ChannelError ImageError(const std::vector<unsigned char>& image, const std::vect
   return e;
 }
 
+ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected)
+{
+  return ImageError(image, std::vector<double>(expected.begin(), expected.end()));
+}
+
 vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs)
 {

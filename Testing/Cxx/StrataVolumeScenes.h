@@ -58,6 +58,8 @@ struct ChannelError
   double Max = 0.0;
 };
 ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected);
+/// Two 8-bit images against each other.
+ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected);
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with

@@ -105,18 +105,6 @@ struct Scene
   }
 };
 
-double Rms(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  return ImageError(a, std::vector<double>(b.begin(), b.end())).Rms;
-}
-
-int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  int mx = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    mx = std::max(mx, std::abs(int(a[i]) - int(b[i])));
-  return mx;
-}
 }
 
 int TestHybridVolumeMapper(int, char*[])
@@ -160,7 +148,7 @@ int TestHybridVolumeMapper(int, char*[])
   const auto splats = scene.Render(hybrid);
   const std::string splatFS = hybrid->GetPointFragmentShaderSource();
 
-  const double lowRms = Rms(lowImage, full), squareRms = Rms(squares, full), splatRms = Rms(splats, full);
+  const double lowRms = ImageError(lowImage, full).Rms, squareRms = ImageError(squares, full).Rms, splatRms = ImageError(splats, full).Rms;
   std::cout << "Hybrid: RMS against full resolution: low-resolution alone " << lowRms << ", squares " << squareRms
             << ", splats " << splatRms << " (" << drawn << " points drawn)\n";
   Check(points->GetNumberOfPoints() > 100 && drawn == points->GetNumberOfPoints(), "points were made and all drawn");
@@ -216,9 +204,9 @@ int TestHybridVolumeMapper(int, char*[])
     hybrid->SetInputData(wl);
     hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::Squares);
     hybrid->SetPointsInputData(wp);
-    const double weightedRms = Rms(scene.Render(hybrid), platedFull);
+    const double weightedRms = ImageError(scene.Render(hybrid), platedFull).Rms;
     hybrid->SetPointsInputData(byError->GetPointsOutput());
-    const double errorRms = Rms(scene.Render(hybrid), platedFull);
+    const double errorRms = ImageError(scene.Render(hybrid), platedFull).Rms;
     std::cout << "Hybrid: " << n << " points: RMS ranked by missing opacity " << weightedRms << ", by |error| "
               << errorRms << "\n";
     Check(weightedRms < errorRms - 1.0, "with as many points, ranking by missing opacity gives the closer image (by > 1 RMS level)");
@@ -238,7 +226,7 @@ int TestHybridVolumeMapper(int, char*[])
   for (int slabs : { 1, 4, 16 })
   {
     hybrid->SetNumberOfSlabs(slabs);
-    const int mx = MaxDifference(scene.Render(hybrid), lowImage);
+    const int mx = static_cast<int>(ImageError(scene.Render(hybrid), lowImage).Max);
     std::cout << "Hybrid: " << slabs << " slabs, points adding nothing: max difference to the low-resolution image " << mx << "\n";
     Check(mx <= std::max(1, slabs / 4), "depth slabs recompose the low-resolution image (" + std::to_string(slabs) +
         " slabs: max difference <= " + std::to_string(std::max(1, slabs / 4)) + " of 255)");
@@ -259,7 +247,7 @@ int TestHybridVolumeMapper(int, char*[])
   const auto flatHybrid = scene.Render(hybrid);
   lowMapper->SetInputData(flatLow);
   const auto flatPlain = scene.Render(lowMapper);
-  const int flatDiff = MaxDifference(flatHybrid, flatPlain);
+  const int flatDiff = static_cast<int>(ImageError(flatHybrid, flatPlain).Max);
   std::cout << "Hybrid: constant volume: " << flat->GetPointsOutput()->GetNumberOfPoints()
             << " points; max difference to the low-resolution rendering " << flatDiff << "\n";
   Check(flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff == 0,
@@ -274,7 +262,7 @@ int TestHybridVolumeMapper(int, char*[])
   hybrid->SetInputData(low);
   hybrid->SetPointsInputData(points);
   const auto shadedImage = scene.Render(hybrid);
-  const double shadedRms = Rms(shadedImage, splats);
+  const double shadedRms = ImageError(shadedImage, splats).Rms;
   std::cout << "Hybrid: shaded, RMS to the unshaded image " << shadedRms << "\n";
   Check(has(hybrid->GetPointVertexShaderSource(), "pointNormal") && shadedRms > 0.5,
     "shading on: the points are lit with their normals");

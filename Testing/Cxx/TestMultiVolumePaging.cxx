@@ -40,19 +40,6 @@ namespace
 const int Size = 128;
 const int Page = 16;
 
-double Rms(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  return ImageError(a, std::vector<double>(b.begin(), b.end())).Rms;
-}
-
-int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  int mx = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    mx = std::max(mx, std::abs(int(a[i]) - int(b[i])));
-  return mx;
-}
-
 struct Scene
 {
   vtkSmartPointer<vtkRenderWindow> Win;
@@ -151,18 +138,18 @@ int TestMultiVolumePaging(int, char*[])
     for (int i = 0; i < 3; ++i)
       full = s.Render(incore);
     root = s.Render(coarse);
-    const double rootRms = Rms(root, full);
+    const double rootRms = ImageError(root, full).Rms;
     int intermediate = 0;
     double worst = 0.0;
     std::vector<unsigned char> last;
     const int frames = RenderUntilConverged(s, paged, 400, [&](const std::vector<unsigned char>& img) {
-      const double rms = Rms(img, full);
+      const double rms = ImageError(img, full).Rms;
       worst = std::max(worst, rms);
       worstExcess = std::max(worstExcess, rms - rootRms);
       intermediate += rms > 0.0 ? 1 : 0;
       last = img;
     });
-    const int mx = MaxDifference(last, full);
+    const int mx = static_cast<int>(ImageError(last, full).Max);
     worstMax = std::max(worstMax, mx);
     pathFrames += std::max(frames, 0);
     std::cout << "Paging: azimuth " << azimuth << ": converged after " << frames << " frames (" << intermediate
@@ -226,8 +213,8 @@ int TestMultiVolumePaging(int, char*[])
             break;
           std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
-        const double rms = Rms(last, incoreDemo);
-        const int mx = MaxDifference(last, incoreDemo);
+        const double rms = ImageError(last, incoreDemo).Rms;
+        const int mx = static_cast<int>(ImageError(last, incoreDemo).Max);
         std::cout << "Paging: demo volume scene, " << paged << " of " << inputs.size()
                   << " volumes paged: converged after " << frames + 1 << " frames; RMS " << rms
                   << ", max difference " << mx << " to the in-core scene\n";
@@ -280,17 +267,17 @@ int TestMultiVolumePaging(int, char*[])
     for (int f = 0; f < 60; ++f)
     {
       last = s.Render(m);
-      worst = std::max(worst, Rms(last, full));
+      worst = std::max(worst, ImageError(last, full).Rms);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     const bool named = errors->First.find("failed to load") != std::string::npos &&
       errors->First.find("checksum") != std::string::npos;
     std::cout << "Paging: corrupt page: " << m->GetPagingStatistics().Failures << " failed page(s), "
-              << errors->Errors << " VTK error(s): \"" << errors->First << "\"; RMS to in-core " << Rms(last, full)
-              << " (root-only " << Rms(rootImage, full) << ")\n";
+              << errors->Errors << " VTK error(s): \"" << errors->First << "\"; RMS to in-core " << ImageError(last, full).Rms
+              << " (root-only " << ImageError(rootImage, full).Rms << ")\n";
     Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named,
       "a corrupt page: one clear error naming the failed load");
-    Check(worst <= Rms(rootImage, full) + 0.5, "with a corrupt page the volume stays a valid coarser rendering");
+    Check(worst <= ImageError(rootImage, full).Rms + 0.5, "with a corrupt page the volume stays a valid coarser rendering");
   }
 
   // A pool truncated while it is being rendered: reads past the end fail, coarse bricks stay.
@@ -321,14 +308,14 @@ int TestMultiVolumePaging(int, char*[])
     double worst = 0.0;
     for (int f = 0; f < 40; ++f)
     {
-      worst = std::max(worst, Rms(s.Render(m), full));
+      worst = std::max(worst, ImageError(s.Render(m), full).Rms);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     std::cout << "Paging: pool truncated while rendering: " << m->GetPagingStatistics().Failures << " failed pages, "
               << errors->Errors << " VTK errors; worst RMS " << worst << "\n";
     Check(m->GetPagingStatistics().Failures > 0 && errors->Errors == m->GetPagingStatistics().Failures,
       "read errors while rendering: one VTK error per failed page");
-    Check(worst <= Rms(rootImage, full) + 0.5, "after read errors the volume keeps its coarser bricks");
+    Check(worst <= ImageError(rootImage, full).Rms + 0.5, "after read errors the volume keeps its coarser bricks");
   }
 
   // A truncated pool and a missing file: errors from the reader, nothing drawn, no crash.
