@@ -76,6 +76,18 @@ inline bool TakePositional(const std::string& a,
   return true;
 }
 
+/// After the arguments: both paths given and the input a file. Empty when so, else what is
+/// wrong ("" with `usage` true when a path is missing, so the caller prints its usage).
+inline std::string CheckPaths(const std::string& input, const std::string& output, bool& usage)
+{
+  usage = input.empty() || output.empty();
+  if (usage)
+    return "an input and an output are needed";
+  if (!vtksys::SystemTools::FileExists(input, true))
+    return "input \"" + input + "\" does not exist or is not a file";
+  return std::string();
+}
+
 /// The raw-volume options: --raw DIMX DIMY DIMZ uint8|uint16|int16|float, --spacing sx sy sz,
 /// --little | --big, --header-size BYTES.
 struct RawVolumeOptions

@@ -163,15 +163,12 @@ int main(int argc, char* argv[])
       return Die(error);
     }
   }
-  if (input.empty() || output.empty())
-  {
+  bool usage = false;
+  const std::string pathError = strata_cli::CheckPaths(input, output, usage);
+  if (usage)
     Usage(std::cerr);
-    return 1;
-  }
-  if (!vtksys::SystemTools::FileExists(input, true))
-  {
-    return Die("input \"" + input + "\" does not exist or is not a file");
-  }
+  if (!pathError.empty())
+    return Die(pathError);
   strata_cli::PlainOutputWindow::Install();
 
   const std::string ext =
