@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -82,6 +83,7 @@ int PageOf(int p, int stride, int pages)
 
 //------------------------------------------------------------------------------
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_FILE_NAME, String);
+vtkInformationKeyMacro(vtkPagePoolReader, POOL_LAYER, Integer);
 
 //------------------------------------------------------------------------------
 vtkInformationDoubleKey* vtkPagePoolReader::UPDATE_RESOLUTION()
@@ -175,6 +177,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   {
     ClearOutput(outInfo);
     outInfo->Remove(POOL_FILE_NAME());
+    outInfo->Remove(POOL_LAYER());
     vtkErrorMacro("Cannot read page pool \"" << (this->FileName ? this->FileName : "")
                                              << "\": "
                                              << (this->FileName && *this->FileName
@@ -194,6 +197,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::DIRECTION(), h.Direction, 9);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   outInfo->Set(POOL_FILE_NAME(), this->FileName);
+  outInfo->Set(POOL_LAYER(), this->IsTilePool ? this->Layer : 0);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), 1);
   return 1;
 }

@@ -42,6 +42,8 @@
 #include "StrataModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
+class vtkInformationIntegerKey;
+
 #include "vtkSmartPointer.h" // For LastOutput
 
 #include <memory> // For std::unique_ptr
@@ -90,6 +92,10 @@ public:
    * pool behind their input and page from it directly instead of using the (coarse) image.
    */
   static vtkInformationStringKey* POOL_FILE_NAME();
+
+  /// The tile pool layer the output shows (Layer), set beside POOL_FILE_NAME: a height-field
+  /// mapper pages that layer of the pool.
+  static vtkInformationIntegerKey* POOL_LAYER();
 
   static vtkInformationDoubleKey* UPDATE_RESOLUTION();
 

@@ -12,7 +12,14 @@ namespace
 constexpr float Inf = std::numeric_limits<float>::infinity();
 }
 
-void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
+std::array<int, 2> vtkMinMaxQuadtree::GetLeafCount(int nx, int ny, int tileSize)
+{
+  const int T = std::max(1, tileSize);
+  // Tiles cover cells: nx-1 of them in x.
+  return { std::max(1, (nx - 1 + T - 1) / T), std::max(1, (ny - 1 + T - 1) / T) };
+}
+
+void vtkMinMaxQuadtree::BuildLevels(int nx, int ny, int tileSize)
 {
   this->TileSize = std::max(1, tileSize);
   this->LevelDims.clear();
@@ -20,14 +27,9 @@ void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
   this->Nodes.clear();
   this->Intervals.clear();
   this->LayerLists.clear();
-
-  const int nx = stack.GetNX();
-  const int ny = stack.GetNY();
-  const int layers = stack.GetNumberOfLayers();
-  const int T = this->TileSize;
-  // Tiles cover cells: nx-1 of them in x.
-  int tx = std::max(1, (nx - 1 + T - 1) / T);
-  int ty = std::max(1, (ny - 1 + T - 1) / T);
+  auto leaves = GetLeafCount(nx, ny, this->TileSize);
+  int tx = leaves[0];
+  int ty = leaves[1];
   for (;;)
   {
     this->LevelOffsets.push_back(static_cast<int>(
@@ -40,13 +42,21 @@ void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
     tx = (tx + 1) / 2;
     ty = (ty + 1) / 2;
   }
-  const int levels = static_cast<int>(this->LevelDims.size());
-  const int total = this->LevelOffsets.back() + 1;
-  this->Nodes.resize(total);
+  this->Nodes.resize(this->LevelOffsets.back() + 1);
+}
+
+void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
+{
+  const int nx = stack.GetNX();
+  const int ny = stack.GetNY();
+  const int layers = stack.GetNumberOfLayers();
+  this->BuildLevels(nx, ny, tileSize);
+  const int T = this->TileSize;
+  const size_t total = this->Nodes.size();
 
   // Per node and layer ranges; layer-major within a node.
-  std::vector<float> lmin(static_cast<size_t>(total) * layers, Inf);
-  std::vector<float> lmax(static_cast<size_t>(total) * layers, -Inf);
+  std::vector<float> lmin(total * layers, Inf);
+  std::vector<float> lmax(total * layers, -Inf);
 
   // Leaves: one pass over each layer, point (i, j) feeding every tile whose closed footprint
   // holds it (a point on a tile boundary belongs to up to four tiles).
@@ -82,6 +92,27 @@ void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
       }
     }
   }
+  this->BuildUpperLevels(layers, lmin, lmax);
+}
+
+void vtkMinMaxQuadtree::BuildFromLeafRanges(int nx, int ny, int layers, int tileSize,
+  const std::vector<float>& leafMin, const std::vector<float>& leafMax)
+{
+  this->BuildLevels(nx, ny, tileSize);
+  const size_t total = this->Nodes.size();
+  const size_t leafValues = static_cast<size_t>(this->LevelDims[0][0]) * this->LevelDims[0][1] * layers;
+  std::vector<float> lmin(total * layers, Inf);
+  std::vector<float> lmax(total * layers, -Inf);
+  const size_t given = std::min({ leafValues, leafMin.size(), leafMax.size() });
+  std::copy_n(leafMin.begin(), given, lmin.begin());
+  std::copy_n(leafMax.begin(), given, lmax.begin());
+  this->BuildUpperLevels(layers, lmin, lmax);
+}
+
+void vtkMinMaxQuadtree::BuildUpperLevels(int layers, std::vector<float>& lmin, std::vector<float>& lmax)
+{
+  const int levels = static_cast<int>(this->LevelDims.size());
+  const int total = static_cast<int>(this->Nodes.size());
   // Coarser levels: union of the children.
   for (int l = 1; l < levels; ++l)
   {

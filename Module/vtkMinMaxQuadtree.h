@@ -53,6 +53,20 @@ public:
    */
   void Build(const vtkHeightFieldStack& stack, int tileSize);
 
+  /**
+   * Builds the tree from given leaf ranges instead of heights: `leafMin`/`leafMax` hold, per
+   * level-0 tile (x fastest, GetLeafCount() of them) and layer (layer fastest within a tile),
+   * a bound of that layer's heights over the tile (min > max: no data there). A paging
+   * renderer passes the ranges of the data it actually samples under the current cut, so
+   * coarse pages get coarse but valid bounds; ranges computed from full-resolution heights
+   * give exactly the tree Build() makes.
+   */
+  void BuildFromLeafRanges(int nx, int ny, int layers, int tileSize,
+    const std::vector<float>& leafMin, const std::vector<float>& leafMax);
+
+  /// Level-0 tiles (leaves) in x and y of a grid of nx x ny points with the given tile size.
+  static std::array<int, 2> GetLeafCount(int nx, int ny, int tileSize);
+
   int GetTileSize() const { return this->TileSize; }
   int GetNumberOfLevels() const { return static_cast<int>(this->LevelDims.size()); }
   /// Nodes of level l in x and y; level 0 are the tiles, the last level is the single root.
@@ -71,6 +85,8 @@ public:
   size_t GetMemorySize() const;
 
 private:
+  void BuildLevels(int nx, int ny, int tileSize);
+  void BuildUpperLevels(int layers, std::vector<float>& lmin, std::vector<float>& lmax);
   void BuildIntervals(const std::vector<float>& layerMin, const std::vector<float>& layerMax,
     int layers, Node& node);
 

@@ -7,9 +7,13 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
+#include "vtkHeightFieldPager.h"
 #include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerKey.h"
+#include "vtkInformationStringKey.h"
+#include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMinMaxQuadtree.h"
@@ -19,17 +23,21 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
+#include "vtkPagePoolReader.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
+#include "vtkVolumeCut.h"
 #include "vtk_glew.h"
 
 #include "vtkStackedHeightFieldFS.h"
+#include "vtkStackedHeightFieldPagedLookup.h"
 #include "vtkStackedHeightFieldVS.h"
 
 #include <algorithm>
@@ -92,6 +100,21 @@ public:
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   std::map<int, std::array<double, 3>> HorizonColors;
   vtkSmartPointer<vtkScalarsToColors> Lut;
+  // What the renderer draws, in core or paged: grid size, horizons, value range, holes.
+  int NX = 0, NY = 0, Layers = 0;
+  double ZRange[2] = { 0.0, -1.0 };
+  bool Holes = false;
+
+  // Paging (tile pools behind the inputs): the pager, the readers' coarsest levels as roots,
+  // the tile atlas and page table on the GPU.
+  bool Paged = false;
+  vtkHeightFieldPager Pager;
+  std::vector<std::vector<float>> RootValues;
+  unsigned int AtlasTexture = 0;
+  unsigned int PageTableTexture = 0;
+  int AtlasSlots = 0;
+  vtkStackedHeightFieldMapper::PagingStatistics Paging;
+  bool TreeDirty = true;
 
   // GPU side
   unsigned int HeightTexture = 0;
@@ -175,7 +198,7 @@ void vtkStackedHeightFieldMapper::GetGridToWorld(double m[16])
 
 const vtkHeightFieldStack* vtkStackedHeightFieldMapper::GetStack()
 {
-  return this->UpdateStack() ? &this->Internals->Stack : nullptr;
+  return this->UpdateStack() && !this->Internals->Paged ? &this->Internals->Stack : nullptr;
 }
 
 bool vtkStackedHeightFieldMapper::UpdateStack()
@@ -187,6 +210,7 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     in.Valid = false;
     return false;
   }
+  this->SetPooledInputsToCoarsest();
   this->GetExecutive()->Update();
   vtkMTimeType newest = this->GetMTime();
   std::vector<vtkImageData*> images;
@@ -209,6 +233,22 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   in.BuildTime = newest;
   in.Valid = false;
   in.Arrays.clear();
+  int pooled = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    vtkInformation* info = this->GetInputInformation(0, i);
+    pooled += info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()) ? 1 : 0;
+  }
+  if (pooled > 0 && pooled < n)
+  {
+    vtkErrorMacro(<< pooled << " of " << n << " horizons come from page pools: page all horizons of a stack or none.");
+    return false;
+  }
+  in.Paged = pooled > 0;
+  if (in.Paged)
+  {
+    return this->UpdatePagedStack(images);
+  }
 
   int dims[3];
   images[0]->GetDimensions(dims);
@@ -282,6 +322,11 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     }
   }
   in.Tree.Build(in.Stack, this->TileSize);
+  in.NX = in.Stack.GetNX();
+  in.NY = in.Stack.GetNY();
+  in.Layers = in.Stack.GetNumberOfLayers();
+  in.Stack.GetZRange(in.ZRange);
+  in.Holes = in.Stack.HasHoles();
 
   // Grid space (x, y in cells of the effective grid, z = value) to world: image index
   // i = x + offset, then origin + D diag(sx, sy, HeightScale) (i, j, z).
@@ -298,8 +343,15 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     in.GridToWorld->SetElement(r, 3,
       origin[r] + dir[3 * r] * scale[0] * offset[0] + dir[3 * r + 1] * scale[1] * offset[1]);
   }
-  double zr[2];
-  in.Stack.GetZRange(zr);
+  this->ComputeBounds();
+  in.Valid = true;
+  return true;
+}
+
+void vtkStackedHeightFieldMapper::ComputeBounds()
+{
+  vtkInternals& in = *this->Internals;
+  double zr[2] = { in.ZRange[0], in.ZRange[1] };
   if (zr[0] > zr[1])
   {
     zr[0] = zr[1] = 0.0;
@@ -307,8 +359,8 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   vtkMath::UninitializeBounds(in.Bounds);
   for (int corner = 0; corner < 8; ++corner)
   {
-    const double p[4] = { (corner & 1) ? in.Stack.GetNX() - 1.0 : 0.0,
-      (corner & 2) ? in.Stack.GetNY() - 1.0 : 0.0, (corner & 4) ? zr[1] : zr[0], 1.0 };
+    const double p[4] = { (corner & 1) ? in.NX - 1.0 : 0.0,
+      (corner & 2) ? in.NY - 1.0 : 0.0, (corner & 4) ? zr[1] : zr[0], 1.0 };
     double w[4];
     in.GridToWorld->MultiplyPoint(p, w);
     for (int a = 0; a < 3; ++a)
@@ -319,8 +371,237 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
         in.Bounds[2 * a + 1] = w[a];
     }
   }
+}
+
+void vtkStackedHeightFieldMapper::SetPooledInputsToCoarsest()
+{
+  // A tile pool's reader serves its coarsest level only: the tiles are paged, not read
+  // through the pipeline.
+  for (int i = 0; i < this->GetNumberOfInputConnections(0); ++i)
+  {
+    this->GetInputAlgorithm(0, i)->UpdateInformation();
+    vtkInformation* info = this->GetInputInformation(0, i);
+    if (info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+    {
+      info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+    }
+  }
+}
+
+vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
+  // level only.
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    for (int c = 0; c < inputVector[0]->GetNumberOfInformationObjects(); ++c)
+    {
+      vtkInformation* info = inputVector[0]->GetInformationObject(c);
+      if (info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+      {
+        info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+      }
+    }
+  }
+  return result;
+}
+
+bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageData*>& images)
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<vtkHeightFieldPager::Source> sources(images.size());
+  in.RootValues.resize(images.size());
+  for (size_t i = 0; i < images.size(); ++i)
+  {
+    vtkInformation* info = this->GetInputInformation(0, static_cast<int>(i));
+    sources[i].FileName = info->Get(vtkPagePoolReader::POOL_FILE_NAME());
+    sources[i].Layer = info->Has(vtkPagePoolReader::POOL_LAYER()) ? info->Get(vtkPagePoolReader::POOL_LAYER()) : 0;
+    // The reader's coarsest level is the root tile: the pager starts from it without a read.
+    vtkDataArray* array = images[i]->GetPointData()->GetScalars();
+    int d[3];
+    images[i]->GetDimensions(d);
+    if (array && array->GetNumberOfComponents() == 1 && d[2] == 1 &&
+      array->GetNumberOfTuples() == static_cast<vtkIdType>(d[0]) * d[1])
+    {
+      in.RootValues[i].resize(static_cast<size_t>(d[0]) * d[1]);
+      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+      {
+        in.RootValues[i][t] = static_cast<float>(array->GetTuple1(t));
+      }
+      sources[i].RootValues = in.RootValues[i].data();
+      sources[i].RootDims[0] = d[0];
+      sources[i].RootDims[1] = d[1];
+    }
+  }
+  if (!in.Pager.Open(sources))
+  {
+    vtkErrorMacro("Cannot page the horizons: " << in.Pager.GetErrorMessage() << ".");
+    return false;
+  }
+  in.Pager.SetTileSize(this->TileSize);
+  in.NX = in.Pager.GetNX();
+  in.NY = in.Pager.GetNY();
+  in.Layers = in.Pager.GetNumberOfHorizons();
+  in.Pager.GetValueRange(in.ZRange);
+  // Holes may appear under paging (empty or missing tiles) whatever the data.
+  in.Holes = true;
+  double origin[3], spacing[3], dir[9];
+  in.Pager.GetOrigin(origin);
+  in.Pager.GetSpacing(spacing);
+  in.Pager.GetDirection(dir);
+  const double scale[3] = { spacing[0], spacing[1], this->HeightScale };
+  in.GridToWorld->Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      in.GridToWorld->SetElement(r, c, dir[3 * r + c] * scale[c]);
+    }
+    in.GridToWorld->SetElement(r, 3, origin[r]);
+  }
+  this->ComputeBounds();
   in.Valid = true;
   return true;
+}
+
+bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
+{
+  vtkInternals& in = *this->Internals;
+  const int B = in.Pager.GetPageSize();
+  // The atlas: as many B x B float tiles as the budget holds, within the GPU's layer limit.
+  GLint maxLayers = 0, maxSize = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  const double tileBytes = double(B) * B * sizeof(float);
+  const int slots = static_cast<int>(std::min<double>(maxLayers, std::floor(this->AtlasBudget * 1048576.0 / tileBytes)));
+  if (slots < 1 || B > maxSize)
+  {
+    vtkErrorMacro("An atlas of " << this->AtlasBudget << " MiB holds no tile of " << B << " x " << B
+                                 << " heights: raise AtlasBudget.");
+    return false;
+  }
+  if (slots != in.AtlasSlots || !in.AtlasTexture)
+  {
+    if (!in.AtlasTexture)
+    {
+      glGenTextures(1, &in.AtlasTexture);
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, B, B, slots, 0, GL_RED, GL_FLOAT, nullptr);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    if (glGetError() != GL_NO_ERROR)
+    {
+      vtkErrorMacro("Could not allocate a tile atlas of " << slots << " tiles of " << B << " x " << B
+                                                         << " (out of GPU memory?): lower AtlasBudget.");
+      return false;
+    }
+    in.AtlasSlots = slots;
+    in.Pager.SetAtlasSlots(slots);
+    in.Pager.InvalidateAtlas();
+  }
+  in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
+  in.Pager.SetPagesPerFrame(this->PagesPerFrame);
+
+  // The cut refines by the size of a tile's points on screen, under this camera.
+  vtkCamera* camera = ren->GetActiveCamera();
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkVolumeCut::Camera cutCamera;
+  camera->GetPosition(cutCamera.Position);
+  if (camera->GetParallelProjection())
+  {
+    cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
+  }
+  else
+  {
+    cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
+  }
+  cutCamera.UseFrustum = true;
+  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+  vtkNew<vtkMatrix4x4> modelGrid;
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
+  std::vector<vtkHeightFieldPager::Upload> uploads;
+  const bool changed = in.Pager.Update(cutCamera, modelGrid->GetData(), uploads);
+
+  in.Paging.BytesUploaded = 0;
+  if (!uploads.empty())
+  {
+    std::vector<float> values;
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (const auto& u : uploads)
+    {
+      in.Pager.GetUploadValues(u, values);
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, B, 1, GL_RED, GL_FLOAT, values.data());
+      in.Paging.BytesUploaded += static_cast<long long>(values.size() * sizeof(float));
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  }
+  if (changed || !in.PageTableTexture)
+  {
+    const std::vector<uint16_t>& table = in.Pager.GetPageTable();
+    const int* tiles = in.Pager.GetTiles();
+    if (!in.PageTableTexture)
+    {
+      glGenTextures(1, &in.PageTableTexture);
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.PageTableTexture);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA16UI, tiles[0], tiles[1], in.Layers, 0, GL_RGBA_INTEGER,
+      GL_UNSIGNED_SHORT, table.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    in.TreeDirty = true;
+  }
+  for (const std::string& failure : in.Pager.TakeNewFailures())
+  {
+    vtkErrorMacro("Could not load " << failure << "; showing the coarser level.");
+  }
+  const vtkHeightFieldPager::Statistics stats = in.Pager.GetStatistics();
+  in.Paging.Paged = true;
+  in.Paging.Converged = stats.Converged;
+  in.Paging.PendingPages = stats.PendingPages;
+  in.Paging.MissesThisFrame = stats.MissesThisFrame;
+  in.Paging.Entered = stats.Entered;
+  in.Paging.CutTiles = stats.CutTiles;
+  in.Paging.FinestTiles = stats.FinestTiles;
+  in.Paging.AtlasSlots = in.AtlasSlots;
+  in.Paging.RootPagesRead = stats.RootPagesRead;
+  in.Paging.Failures = stats.Failures;
+  in.Paging.BytesRead = stats.BytesRead;
+  in.Paging.CacheBytes = stats.CacheBytes;
+  return true;
+}
+
+vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPagingStatistics() const
+{
+  return this->Internals->Paging;
+}
+
+void vtkStackedHeightFieldMapper::RetryFailedPages()
+{
+  this->Internals->Pager.RetryFailedPages();
+}
+
+bool vtkStackedHeightFieldMapper::WaitForPages(double seconds)
+{
+  return this->Internals->Pager.WaitForIdle(seconds);
+}
+
+bool vtkStackedHeightFieldMapper::GetPaged() const
+{
+  return this->Internals->Paged;
+}
+
+const vtkHeightFieldPager* vtkStackedHeightFieldMapper::GetPager() const
+{
+  return &this->Internals->Pager;
 }
 
 double* vtkStackedHeightFieldMapper::GetBounds()
@@ -337,11 +618,15 @@ double* vtkStackedHeightFieldMapper::GetBounds()
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
-  if (in.HeightTexture)
+  for (unsigned int* texture : { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture })
   {
-    glDeleteTextures(1, &in.HeightTexture);
-    in.HeightTexture = 0;
+    if (*texture)
+    {
+      glDeleteTextures(1, texture);
+      *texture = 0;
+    }
   }
+  in.AtlasSlots = 0;
   for (auto* t : { in.NodeTexture.Get(), in.IntervalTexture.Get(), in.LayerListTexture.Get(),
          in.ColorTexture.Get() })
   {
@@ -366,7 +651,7 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
 {
   vtkInternals& in = *this->Internals;
-  if (!this->UpdateStack() || in.Stack.GetNumberOfLayers() == 0)
+  if (!this->UpdateStack() || in.Layers == 0)
   {
     return;
   }
@@ -379,12 +664,81 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   vtkOpenGLState* state = renWin->GetState();
   vtkOpenGLClearErrorMacro();
-  const int nx = in.Stack.GetNX();
-  const int ny = in.Stack.GetNY();
-  const int layers = in.Stack.GetNumberOfLayers();
+  const int nx = in.NX;
+  const int ny = in.NY;
+  const int layers = in.Layers;
 
+  auto uploadBuffer = [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex,
+                        const std::vector<float>& data, int comps) {
+    tex->SetContext(renWin);
+    bo->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
+    tex->CreateTextureBuffer(static_cast<unsigned int>(data.size() / comps), comps, VTK_FLOAT, bo);
+  };
+  auto uploadTree = [&](const vtkMinMaxQuadtree& tree) {
+    // Ints stored as floats are exact below 2^24, far above any tree built here.
+    std::vector<float> nodes, intervals, lists;
+    for (const auto& node : tree.GetNodes())
+    {
+      nodes.insert(nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
+    }
+    for (const auto& iv : tree.GetIntervals())
+    {
+      intervals.insert(intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
+    }
+    for (int id : tree.GetLayerLists())
+    {
+      lists.push_back(float(id));
+    }
+    if (intervals.empty())
+    {
+      intervals.assign(4, 0.0f);
+    }
+    if (lists.empty())
+    {
+      lists.assign(1, 0.0f);
+    }
+    uploadBuffer(in.NodeBuffer, in.NodeTexture, nodes, 4);
+    uploadBuffer(in.IntervalBuffer, in.IntervalTexture, intervals, 4);
+    uploadBuffer(in.LayerListBuffer, in.LayerListTexture, lists, 1);
+  };
+  auto uploadBox = [&]() {
+    // Proxy box, slightly taller than the data so that flat stacks still have back faces.
+    double zr[2] = { in.ZRange[0], in.ZRange[1] };
+    if (zr[0] > zr[1])
+    {
+      zr[0] = zr[1] = 0.0;
+    }
+    const double pad = std::max(1e-3, 1e-3 * (zr[1] - zr[0]));
+    const float x1 = float(nx - 1), y1 = float(ny - 1);
+    const float z0 = float(zr[0] - pad), z1 = float(zr[1] + pad);
+    const std::vector<float> verts = { 0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1,
+      0, z1, 0, y1, z1, x1, y1, z1 };
+    const std::vector<unsigned int> faces = { 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5,
+      4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5 };
+    in.BoxVertices->Upload(verts, vtkOpenGLBufferObject::ArrayBuffer);
+    in.BoxIndices->Upload(faces, vtkOpenGLBufferObject::ElementArrayBuffer);
+    in.LastProgram = nullptr; // attribute bindings must be redone
+  };
+
+  if (in.Paged)
+  {
+    if (!this->UpdatePages(ren, actor))
+    {
+      return;
+    }
+    if (in.UploadTime < in.BuildTime)
+    {
+      uploadBox();
+      in.UploadTime = in.BuildTime;
+    }
+    if (in.TreeDirty)
+    {
+      uploadTree(in.Pager.GetTree());
+      in.TreeDirty = false;
+    }
+  }
   // --- Upload the stack and the tree when they changed.
-  if (in.UploadTime < in.BuildTime || !in.HeightTexture)
+  else if (in.UploadTime < in.BuildTime || !in.HeightTexture)
   {
     GLint maxSize = 0, maxLayers = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -422,59 +776,16 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
       return;
     }
 
-    // Tree: ints stored as floats are exact below 2^24, far above any tree built here.
-    std::vector<float> nodes, intervals, lists;
-    for (const auto& node : in.Tree.GetNodes())
-    {
-      nodes.insert(nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
-    }
-    for (const auto& iv : in.Tree.GetIntervals())
-    {
-      intervals.insert(intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
-    }
-    for (int id : in.Tree.GetLayerLists())
-    {
-      lists.push_back(float(id));
-    }
-    if (intervals.empty())
-    {
-      intervals.assign(4, 0.0f);
-    }
-    if (lists.empty())
-    {
-      lists.assign(1, 0.0f);
-    }
-    auto uploadBuffer = [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex,
-                          const std::vector<float>& data, int comps) {
-      tex->SetContext(renWin);
-      bo->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
-      tex->CreateTextureBuffer(static_cast<unsigned int>(data.size() / comps), comps, VTK_FLOAT, bo);
-    };
-    uploadBuffer(in.NodeBuffer, in.NodeTexture, nodes, 4);
-    uploadBuffer(in.IntervalBuffer, in.IntervalTexture, intervals, 4);
-    uploadBuffer(in.LayerListBuffer, in.LayerListTexture, lists, 1);
-
-    // Proxy box, slightly taller than the data so that flat stacks still have back faces.
-    double zr[2];
-    in.Stack.GetZRange(zr);
-    const double pad = std::max(1e-3, 1e-3 * (zr[1] - zr[0]));
-    const float x1 = float(nx - 1), y1 = float(ny - 1);
-    const float z0 = float(zr[0] - pad), z1 = float(zr[1] + pad);
-    const std::vector<float> verts = { 0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1,
-      0, z1, 0, y1, z1, x1, y1, z1 };
-    const std::vector<unsigned int> faces = { 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5,
-      4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5 };
-    in.BoxVertices->Upload(verts, vtkOpenGLBufferObject::ArrayBuffer);
-    in.BoxIndices->Upload(faces, vtkOpenGLBufferObject::ElementArrayBuffer);
-    in.LastProgram = nullptr; // attribute bindings must be redone
+    uploadTree(in.Tree);
+    uploadBox();
     in.UploadTime = in.BuildTime;
   }
+  const vtkMinMaxQuadtree& tree = in.Paged ? in.Pager.GetTree() : in.Tree;
 
   // --- Colours: per-horizon table or lookup table over height.
   const bool shaded = this->OutputMode == OutputModes::Shaded;
   const bool useLut = shaded && this->ColorMode == ColorModes::LookupTable;
-  double lutRange[2];
-  in.Stack.GetZRange(lutRange);
+  double lutRange[2] = { in.ZRange[0], in.ZRange[1] };
   if (in.Lut && useLut)
   {
     const double* r = in.Lut->GetRange();
@@ -533,14 +844,16 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   vtkProperty* prop = actor->GetProperty();
   const int complexity = oglRen->GetLightingComplexity();
   const bool lit = shaded && prop->GetLighting() && complexity > 0;
-  const bool holes = in.Stack.HasHoles();
+  const bool holes = in.Holes;
   std::string vs = vtkStackedHeightFieldVS;
   std::string fs = vtkStackedHeightFieldFS;
   // Data lookup: one function, so that paging can swap in a virtual-texture lookup.
-  Replace(fs, "//STRATA::HeightLookup::Dec",
+  Replace(fs, "//STRATA::HeightLookup::Dec", in.Paged ? vtkStackedHeightFieldPagedLookup : 
     "uniform sampler2DArray uHeights;\n"
     "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; }");
-  Replace(fs, "//STRATA::Hole::Impl", holes ? "valid = !any(isnan(h));" : "");
+  // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
+  Replace(fs, "//STRATA::Hole::Impl",
+    !holes ? "" : in.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));" : "valid = !any(isnan(h));");
   if (!shaded)
   {
     Replace(fs, "//STRATA::Color::Dec", "");
@@ -673,8 +986,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   program->SetUniform4f("uViewport", viewport);
   const float gridMax[2] = { float(nx - 1), float(ny - 1) };
   program->SetUniform2f("uGridMax", gridMax);
-  double zr[2];
-  in.Stack.GetZRange(zr);
+  const double zr[2] = { in.ZRange[0] <= in.ZRange[1] ? in.ZRange[0] : 0.0, in.ZRange[0] <= in.ZRange[1] ? in.ZRange[1] : 0.0 };
   const float zRange[2] = { float(zr[0]), float(zr[1]) };
   program->SetUniform2f("uZRange", zRange);
   // Bilinear interpolation in float is within a few ulps of the corner range; 1e-5 relative
@@ -683,8 +995,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   program->SetUniformf("uStep", float(this->LinearSearchStep));
   // Ties: hits closer than 1e-6 of the near-to-far segment (t spans [0, 1]) are one hit.
   program->SetUniformf("uTieEps", 1e-6f);
-  program->SetUniformi("uTileSize", in.Tree.GetTileSize());
-  const int levels = in.Tree.GetNumberOfLevels();
+  program->SetUniformi("uTileSize", tree.GetTileSize());
+  const int levels = tree.GetNumberOfLevels();
   if (levels > 16)
   {
     vtkErrorMacro("Quadtree of " << levels << " levels: raise TileSize.");
@@ -695,9 +1007,9 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   int levelDims[32] = { 0 };
   for (int l = 0; l < levels; ++l)
   {
-    offsets[l] = in.Tree.GetLevelOffset(l);
-    levelDims[2 * l] = in.Tree.GetLevelNX(l);
-    levelDims[2 * l + 1] = in.Tree.GetLevelNY(l);
+    offsets[l] = tree.GetLevelOffset(l);
+    levelDims[2 * l] = tree.GetLevelNX(l);
+    levelDims[2 * l + 1] = tree.GetLevelNY(l);
   }
   program->SetUniform1iv("uLevelOffset", 16, offsets);
   glUniform2iv(program->FindUniform("uLevelDims"), 16, levelDims);
@@ -731,9 +1043,24 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   // --- Textures.
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   const int heightUnit = units->Allocate();
+  const int tableUnit = in.Paged ? units->Allocate() : -1;
   state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
-  program->SetUniformi("uHeights", heightUnit);
+  if (in.Paged)
+  {
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
+    program->SetUniformi("uAtlas", heightUnit);
+    state->vtkglActiveTexture(GL_TEXTURE0 + tableUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.PageTableTexture);
+    program->SetUniformi("uPageTable", tableUnit);
+    program->SetUniformi("uPageStride", in.Pager.GetPageSize() - 1);
+    const int* tiles = in.Pager.GetTiles();
+    glUniform2i(program->FindUniform("uPageTiles"), tiles[0], tiles[1]);
+  }
+  else
+  {
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
+    program->SetUniformi("uHeights", heightUnit);
+  }
   in.NodeTexture->Activate();
   program->SetUniformi("uNodes", in.NodeTexture->GetTextureUnit());
   in.IntervalTexture->Activate();
@@ -774,6 +1101,12 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
   units->Free(heightUnit);
+  if (tableUnit >= 0)
+  {
+    state->vtkglActiveTexture(GL_TEXTURE0 + tableUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    units->Free(tableUnit);
+  }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
 }
 

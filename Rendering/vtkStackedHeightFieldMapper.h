@@ -18,6 +18,13 @@
  * ordinary VTK geometry occlude each other in one scene, and lights like any VTK surface using
  * the actor's vtkProperty (ambient, diffuse, specular) and the renderer's lights.
  *
+ * Out of core: when the inputs are vtkPagePoolReader outputs of tile pools, the mapper pages
+ * the horizons itself (vtkHeightFieldPager): the readers only serve their coarsest level, a
+ * RAM cache filled by worker threads (PageCacheBudget) feeds a GPU atlas of tiles
+ * (AtlasBudget, PagesPerFrame uploads per frame), the shader reads heights through a page
+ * table, and the quadtree describes the resident data. Every frame shows a complete, coarser
+ * surface until the cut settles; converged, the image equals the in-core one.
+ *
  * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
  * table code with solid colours, no hole test when no horizon has holes. GetFragmentShaderSource
  * returns the source last used.
@@ -42,7 +49,9 @@
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
+#include <vector> // For std::vector
 
+class vtkHeightFieldPager;
 class vtkHeightFieldStack;
 class vtkImageData;
 class vtkMatrix4x4;
@@ -137,6 +146,49 @@ public:
    */
   void SetHeightLookupTable(vtkScalarsToColors* lut);
 
+  ///@{
+  /**
+   * Paging budgets, used when the inputs are tile pools: RAM page cache in MiB (default 256),
+   * GPU tile atlas in MiB (default 128, floats) and tiles uploaded per frame (default 64).
+   */
+  vtkSetClampMacro(PageCacheBudget, double, 1.0, 1.0e6);
+  vtkGetMacro(PageCacheBudget, double);
+  vtkSetClampMacro(AtlasBudget, double, 1.0, 1.0e6);
+  vtkGetMacro(AtlasBudget, double);
+  vtkSetClampMacro(PagesPerFrame, int, 1, 65536);
+  vtkGetMacro(PagesPerFrame, int);
+  ///@}
+
+  /// What paging did in the last frame (all zero when the inputs are in core).
+  struct PagingStatistics
+  {
+    bool Paged = false;
+    bool Converged = false;      ///< cut settled, nothing missing or pending
+    int PendingPages = 0;        ///< queued or loading
+    int MissesThisFrame = 0;     ///< splits that waited for a page
+    int Entered = 0;             ///< tiles that entered the cut
+    int CutTiles = 0;            ///< resident tiles over all horizons
+    int FinestTiles = 0;         ///< of which level 0
+    int AtlasSlots = 0;          ///< tiles the atlas holds
+    int RootPagesRead = 0;       ///< roots read on the render thread (0 when the readers gave them)
+    int Failures = 0;            ///< failed page loads since the pools were opened
+    long long BytesRead = 0;     ///< by the cache's workers since the pools were opened
+    long long BytesUploaded = 0; ///< this frame
+    long long CacheBytes = 0;
+  };
+  PagingStatistics GetPagingStatistics() const;
+  /// Forgets failed page loads so that they are tried again.
+  void RetryFailedPages();
+  /// Waits (tests, benchmarks) until no page load is queued or running.
+  bool WaitForPages(double seconds);
+  /// True when the inputs are paged from tile pools (after a render or GetBounds).
+  bool GetPaged() const;
+  /// The pager (cut, page table, CPU reference of the lookup); meaningful when GetPaged().
+  const vtkHeightFieldPager* GetPager() const;
+
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
   /// The fragment shader source of the last render (empty before).
   std::string GetFragmentShaderSource() const;
 
@@ -167,6 +219,10 @@ private:
   void operator=(const vtkStackedHeightFieldMapper&) = delete;
 
   bool UpdateStack();
+  bool UpdatePagedStack(const std::vector<vtkImageData*>& images);
+  void SetPooledInputsToCoarsest();
+  void ComputeBounds();
+  bool UpdatePages(vtkRenderer* ren, vtkActor* actor);
 
   int TileSize = 64;
   double LinearSearchStep = 0.5;
@@ -174,6 +230,9 @@ private:
   double NullValue = -999.25;
   bool UseNullValue = false;
   std::string HeightArrayName;
+  double PageCacheBudget = 256.0;
+  double AtlasBudget = 128.0;
+  int PagesPerFrame = 64;
   ColorModes ColorMode = ColorModes::Solid;
   OutputModes OutputMode = OutputModes::Shaded;
 

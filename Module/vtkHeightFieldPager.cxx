@@ -1,0 +1,741 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkHeightFieldPager.h"
+
+#include "vtkBrickAtlasAllocator.h"
+#include "vtkMinMaxQuadtree.h"
+#include "vtkPageCache.h"
+#include "vtkPagePoolFile.h"
+#include "vtkVolumeBrickTree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+namespace
+{
+constexpr float Inf = std::numeric_limits<float>::infinity();
+}
+
+class vtkHeightFieldPager::vtkInternals
+{
+public:
+  struct Pool
+  {
+    std::shared_ptr<vtkPagePoolFile> File;
+    std::string Name;
+    vtkVolumeBrickTree Tree; ///< structure only: the pool's quadtree of tiles
+  };
+  /// A page kept in RAM for the cut (or an ancestor of it), with its leaf ranges once needed.
+  struct Held
+  {
+    vtkPageCache::Page Data;
+    size_t Offset = 0; ///< first value of the horizon's layer in Data (floats)
+    std::vector<float> LeafMin, LeafMax;
+  };
+  struct Horizon
+  {
+    int PoolIndex = 0;
+    int Layer = 0;
+    std::map<int, Held> Pages; ///< by tree node id
+  };
+
+  std::vector<std::unique_ptr<Pool>> Pools;
+  std::vector<Horizon> Horizons;
+  std::vector<std::pair<std::string, int>> OpenedSources;
+  std::mutex PoolsMutex; ///< guards PoolFiles against the cache's workers
+  std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
+  vtkPageCache Cache;
+  vtkVolumeCut Cut;
+  vtkBrickAtlasAllocator Atlas;
+  vtkMinMaxQuadtree Tree;
+  std::vector<uint16_t> Table;
+  std::vector<uint16_t> TableLevels; ///< the level column of Table, what the quadtree depends on
+  std::string Error;
+  bool Open = false;
+  int NX = 0, NY = 0, B = 0, S = 0;
+  int Tiles[2] = { 0, 0 };
+  int AtlasSlots = 512;
+  int InitializedSlots = -1;
+  double CacheMiB = 256.0;
+  int PagesPerFrame = 64;
+  int TileSize = 64;
+  int Leaf = 64;
+  double ValueRange[2] = { 0.0, -1.0 };
+  bool Holes = false;
+  bool HasNoData = false;
+  double NoData = 0.0;
+  vtkPagePoolFile::Header Header;
+  vtkHeightFieldPager::Statistics Stats;
+  int RequestLimit = 256;
+
+  vtkInternals()
+  {
+    this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
+      std::shared_ptr<vtkPagePoolFile> file;
+      {
+        std::lock_guard<std::mutex> lock(this->PoolsMutex);
+        if (key.Dataset >= 0 && key.Dataset < static_cast<int>(this->PoolFiles.size()))
+          file = this->PoolFiles[key.Dataset];
+      }
+      if (!file)
+      {
+        error = "no tile pool " + std::to_string(key.Dataset);
+        return false;
+      }
+      out.resize(file->GetPageValues() * sizeof(float));
+      return file->ReadPage(key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
+    });
+  }
+
+  bool IsHole(float v) const { return std::isnan(v) || (this->HasNoData && v == static_cast<float>(this->NoData)); }
+
+  void ComputeLeaves(int h, int node, Held& held) const
+  {
+    const Horizon& hz = this->Horizons[h];
+    const vtkVolumeBrickTree& tree = this->Pools[hz.PoolIndex]->Tree;
+    const auto& n = tree.GetNode(node);
+    const int l = n.Level;
+    const int R = this->S / this->Leaf;
+    const auto leaves = vtkMinMaxQuadtree::GetLeafCount(this->NX, this->NY, this->Leaf);
+    int a0[2], a1[2];
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      a0[axis] = std::min((n.Index[axis] << l) * R, leaves[axis]);
+      a1[axis] = std::min(((n.Index[axis] + 1) << l) * R, leaves[axis]);
+    }
+    const int na = a1[0] - a0[0];
+    const int nb = a1[1] - a0[1];
+    held.LeafMin.assign(static_cast<size_t>(std::max(0, na)) * std::max(0, nb), Inf);
+    held.LeafMax.assign(held.LeafMin.size(), -Inf);
+    const float* values = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
+    const int last[2] = { this->NX - 1, this->NY - 1 };
+    const int step = (1 << l) - 1;
+    for (int b = a0[1]; b < a1[1]; ++b)
+    {
+      const int y0 = b * this->Leaf, y1 = std::min((b + 1) * this->Leaf, last[1]);
+      const int qy0 = std::max(0, (y0 >> l) - n.Index[1] * this->S);
+      const int qy1 = std::min(this->B - 1, ((y1 + step) >> l) - n.Index[1] * this->S);
+      for (int a = a0[0]; a < a1[0]; ++a)
+      {
+        const int x0 = a * this->Leaf, x1 = std::min((a + 1) * this->Leaf, last[0]);
+        const int qx0 = std::max(0, (x0 >> l) - n.Index[0] * this->S);
+        const int qx1 = std::min(this->B - 1, ((x1 + step) >> l) - n.Index[0] * this->S);
+        float lo = Inf, hi = -Inf;
+        for (int qy = qy0; qy <= qy1; ++qy)
+        {
+          const float* row = values + static_cast<size_t>(qy) * this->B;
+          for (int qx = qx0; qx <= qx1; ++qx)
+          {
+            const float v = row[qx];
+            if (!this->IsHole(v))
+            {
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+          }
+        }
+        const size_t k = static_cast<size_t>(b - a0[1]) * na + (a - a0[0]);
+        held.LeafMin[k] = lo;
+        held.LeafMax[k] = hi;
+      }
+    }
+  }
+
+  /// The cut node covering level-0 tile (tx, ty) of horizon h per the table, -1 when none.
+  int NodeOfTile(int h, int tx, int ty, int& level) const
+  {
+    const size_t e = ((static_cast<size_t>(h) * this->Tiles[1] + ty) * this->Tiles[0] + tx) * 4;
+    level = this->Table[e + 3];
+    if (level >= vtkVolumeCut::MissingLevel)
+      return -1;
+    const vtkVolumeBrickTree& tree = this->Pools[this->Horizons[h].PoolIndex]->Tree;
+    const int* bricks = tree.GetLevelBricks(level);
+    return tree.GetLevelOffset(level) + (ty >> level) * bricks[0] + (tx >> level);
+  }
+
+  void RebuildTree()
+  {
+    const int H = static_cast<int>(this->Horizons.size());
+    const auto leaves = vtkMinMaxQuadtree::GetLeafCount(this->NX, this->NY, this->Leaf);
+    const int R = this->S / this->Leaf;
+    std::vector<float> lmin(static_cast<size_t>(leaves[0]) * leaves[1] * H, Inf);
+    std::vector<float> lmax(lmin.size(), -Inf);
+    for (int h = 0; h < H; ++h)
+    {
+      Horizon& hz = this->Horizons[h];
+      for (int b = 0; b < leaves[1]; ++b)
+      {
+        for (int a = 0; a < leaves[0]; ++a)
+        {
+          int level = 0;
+          const int node = this->NodeOfTile(h, std::min(a / R, this->Tiles[0] - 1), std::min(b / R, this->Tiles[1] - 1), level);
+          auto it = node >= 0 ? hz.Pages.find(node) : hz.Pages.end();
+          if (it == hz.Pages.end())
+            continue; // empty or without a slot: a hole, nothing to bound
+          Held& held = it->second;
+          if (held.LeafMin.empty())
+            this->ComputeLeaves(h, node, held);
+          const auto& n = this->Pools[hz.PoolIndex]->Tree.GetNode(node);
+          const int la = a - ((n.Index[0] << level) * R);
+          const int lb = b - ((n.Index[1] << level) * R);
+          const int na = std::min(((n.Index[0] + 1) << level) * R, leaves[0]) - ((n.Index[0] << level) * R);
+          const size_t k = static_cast<size_t>(lb) * na + la;
+          if (k < held.LeafMin.size())
+          {
+            const size_t out = (static_cast<size_t>(b) * leaves[0] + a) * H + h;
+            lmin[out] = held.LeafMin[k];
+            lmax[out] = held.LeafMax[k];
+          }
+        }
+      }
+    }
+    this->Tree.BuildFromLeafRanges(this->NX, this->NY, H, this->Leaf, lmin, lmax);
+  }
+
+  void Close()
+  {
+    this->Cache.Stop();
+    this->Cache.EvictAll();
+    {
+      std::lock_guard<std::mutex> lock(this->PoolsMutex);
+      this->PoolFiles.clear();
+    }
+    this->Pools.clear();
+    this->Horizons.clear();
+    this->OpenedSources.clear();
+    this->Cut.RemoveAllVolumes();
+    this->Atlas.Clear();
+    this->InitializedSlots = -1;
+    this->Table.clear();
+    this->TableLevels.clear();
+    this->Open = false;
+    this->Stats = vtkHeightFieldPager::Statistics();
+  }
+};
+
+vtkHeightFieldPager::vtkHeightFieldPager()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkHeightFieldPager::~vtkHeightFieldPager()
+{
+  this->Internals->Cache.Stop();
+}
+
+bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<std::pair<std::string, int>> wanted;
+  for (const auto& s : sources)
+    wanted.emplace_back(s.FileName, s.Layer);
+  if (in.Open && wanted == in.OpenedSources)
+    return true;
+  in.Close();
+  in.Error.clear();
+  auto fail = [&](const std::string& message) {
+    in.Error = message;
+    in.Close();
+    return false;
+  };
+  if (sources.empty())
+    return fail("no horizons");
+  if (static_cast<int>(sources.size()) > 2047)
+    return fail("too many horizons");
+  std::map<std::string, int> poolOf;
+  for (size_t h = 0; h < sources.size(); ++h)
+  {
+    const Source& src = sources[h];
+    auto found = poolOf.find(src.FileName);
+    int p;
+    if (found == poolOf.end())
+    {
+      auto pool = std::make_unique<vtkInternals::Pool>();
+      pool->File = std::make_shared<vtkPagePoolFile>();
+      pool->Name = src.FileName;
+      if (!pool->File->Open(src.FileName))
+        return fail("cannot open \"" + src.FileName + "\": " + pool->File->GetErrorMessage());
+      const auto& header = pool->File->GetHeader();
+      if (header.PoolKind != vtkPagePoolFormat::Kind::TilePool)
+        return fail("\"" + src.FileName + "\" is a brick pool, not a tile pool of horizons");
+      if (in.Pools.empty())
+      {
+        in.Header = header;
+      }
+      else
+      {
+        const auto& h0 = in.Header;
+        bool same = header.Dimensions[0] == h0.Dimensions[0] && header.Dimensions[1] == h0.Dimensions[1] &&
+          header.PageSize == h0.PageSize;
+        for (int a = 0; a < 3 && same; ++a)
+          same = std::abs(header.Spacing[a] - h0.Spacing[a]) <= 1e-9 * std::abs(h0.Spacing[a]) &&
+            std::abs(header.Origin[a] - h0.Origin[a]) <= 1e-6 * std::max(1.0, std::abs(h0.Spacing[a]));
+        for (int a = 0; a < 9 && same; ++a)
+          same = std::abs(header.Direction[a] - h0.Direction[a]) <= 1e-9;
+        if (!same)
+          return fail("\"" + src.FileName + "\" lies on another grid than \"" + in.Pools[0]->Name +
+            "\" (dimensions, page size, spacing, origin or direction differ)");
+      }
+      // The pool's quadtree, its ranges straight from the page table: nothing is read.
+      const uint64_t pages = pool->File->GetNumberOfPages();
+      std::vector<float> mins(pages), maxs(pages);
+      for (uint64_t id = 0; id < pages; ++id)
+      {
+        const auto& e = pool->File->GetPageEntry(id);
+        mins[id] = e.Min;
+        maxs[id] = e.Max;
+      }
+      const int dims[3] = { header.Dimensions[0], header.Dimensions[1], 1 };
+      if (dims[0] < 2 || dims[1] < 2)
+        return fail("\"" + src.FileName + "\" is a line of points; paging needs at least 2 x 2");
+      if (!pool->Tree.BuildStructure(dims, header.PageSize, mins.data(), maxs.data()) ||
+        pool->Tree.GetNumberOfNodes() != static_cast<int>(pages))
+        return fail("\"" + src.FileName + "\": its tiles do not form the expected quadtree");
+      p = static_cast<int>(in.Pools.size());
+      poolOf[src.FileName] = p;
+      in.Pools.push_back(std::move(pool));
+    }
+    else
+    {
+      p = found->second;
+    }
+    const int layers = in.Pools[p]->File->GetHeader().Dimensions[2];
+    if (src.Layer < 0 || src.Layer >= layers)
+    {
+      std::ostringstream msg;
+      msg << "horizon " << h << ": layer " << src.Layer << " out of range [0, " << layers - 1 << "] of \""
+          << src.FileName << "\"";
+      return fail(msg.str());
+    }
+    vtkInternals::Horizon hz;
+    hz.PoolIndex = p;
+    hz.Layer = src.Layer;
+    in.Horizons.push_back(std::move(hz));
+  }
+  {
+    std::lock_guard<std::mutex> lock(in.PoolsMutex);
+    for (const auto& pool : in.Pools)
+      in.PoolFiles.push_back(pool->File);
+  }
+  in.NX = in.Header.Dimensions[0];
+  in.NY = in.Header.Dimensions[1];
+  in.B = in.Header.PageSize;
+  in.S = in.B - 1;
+  const int* tiles = in.Pools[0]->Tree.GetLevelBricks(0);
+  in.Tiles[0] = tiles[0];
+  in.Tiles[1] = tiles[1];
+  in.HasNoData = in.Header.HasNoDataValue;
+  in.NoData = in.Header.NoDataValue;
+  in.ValueRange[0] = 0.0;
+  in.ValueRange[1] = -1.0;
+  in.Holes = false;
+  for (const auto& pool : in.Pools)
+  {
+    const auto& header = pool->File->GetHeader();
+    if (header.ValueRange[0] <= header.ValueRange[1])
+    {
+      if (in.ValueRange[0] > in.ValueRange[1])
+      {
+        in.ValueRange[0] = header.ValueRange[0];
+        in.ValueRange[1] = header.ValueRange[1];
+      }
+      in.ValueRange[0] = std::min(in.ValueRange[0], header.ValueRange[0]);
+      in.ValueRange[1] = std::max(in.ValueRange[1], header.ValueRange[1]);
+    }
+    in.Holes = in.Holes || header.HasNoDataValue || header.Type == vtkPagePoolFormat::ScalarType::Float32;
+    const auto& t = pool->Tree;
+    for (int n = 0; n < t.GetNumberOfNodes() && !in.Holes; ++n)
+      in.Holes = !(t.GetNode(n).Min <= t.GetNode(n).Max);
+  }
+  this->SetTileSize(in.TileSize);
+
+  // Cut: one quadtree per horizon under one budget; a tile is visible when it has data.
+  for (size_t h = 0; h < in.Horizons.size(); ++h)
+  {
+    const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const int v = in.Cut.AddVolume(&in.Pools[in.Horizons[h].PoolIndex]->Tree, identity);
+    in.Cut.SetVolumeOpacity(v, [](double lo, double hi) { return lo <= hi ? 1.0 : 0.0; });
+    vtkInternals* internals = &in;
+    const int hi = static_cast<int>(h);
+    in.Cut.SetVolumeAvailability(v, [internals, hi](int node, double priority) {
+      vtkInternals::Horizon& hz = internals->Horizons[hi];
+      if (hz.Pages.count(node))
+        return true;
+      const vtkVolumeBrickTree& tree = internals->Pools[hz.PoolIndex]->Tree;
+      const auto& n = tree.GetNode(node);
+      vtkPageCache::Key key;
+      key.Dataset = hz.PoolIndex;
+      key.Level = n.Level;
+      key.Page = node - tree.GetLevelOffset(n.Level);
+      if (vtkPageCache::Page page = internals->Cache.Find(key))
+      {
+        vtkInternals::Held held;
+        held.Data = page;
+        held.Offset = static_cast<size_t>(hz.Layer) * internals->B * internals->B;
+        hz.Pages[node] = std::move(held);
+        return true;
+      }
+      // No more than a few frames' worth of uploads queued: a longer queue would load pages
+      // that the cache evicts again before the cut can use them.
+      if (internals->Stats.MissesThisFrame < internals->RequestLimit)
+        internals->Cache.Request(key, priority);
+      ++internals->Stats.MissesThisFrame;
+      return false;
+    });
+  }
+
+  // Roots: given by the caller (the reader's coarsest level) or read here, once.
+  for (size_t h = 0; h < in.Horizons.size(); ++h)
+  {
+    vtkInternals::Horizon& hz = in.Horizons[h];
+    vtkInternals::Pool& pool = *in.Pools[hz.PoolIndex];
+    const int root = pool.Tree.GetRootId();
+    const int rootLevel = pool.Tree.GetNode(root).Level;
+    const int* rootDims = pool.Tree.GetLevelDimensions(rootLevel);
+    const Source& src = sources[h];
+    vtkInternals::Held held;
+    if (src.RootValues && src.RootDims[0] == rootDims[0] && src.RootDims[1] == rootDims[1])
+    {
+      // The page repeats the level's last point beyond it, as the writer pads.
+      auto page = std::make_shared<std::vector<uint8_t>>(static_cast<size_t>(in.B) * in.B * sizeof(float));
+      float* out = reinterpret_cast<float*>(page->data());
+      for (int y = 0; y < in.B; ++y)
+        for (int x = 0; x < in.B; ++x)
+          out[static_cast<size_t>(y) * in.B + x] =
+            src.RootValues[static_cast<size_t>(std::min(y, rootDims[1] - 1)) * rootDims[0] + std::min(x, rootDims[0] - 1)];
+      held.Data = page;
+      held.Offset = 0;
+    }
+    else
+    {
+      auto page = std::make_shared<std::vector<uint8_t>>(pool.File->GetPageValues() * sizeof(float));
+      std::string error;
+      if (!pool.File->ReadPage(rootLevel, 0, reinterpret_cast<float*>(page->data()), &error))
+        return fail("cannot read the root tile of \"" + pool.Name + "\": " + error);
+      held.Data = page;
+      held.Offset = static_cast<size_t>(hz.Layer) * in.B * in.B;
+      ++in.Stats.RootPagesRead;
+    }
+    hz.Pages[root] = std::move(held);
+  }
+  in.OpenedSources = wanted;
+  in.Open = true;
+  return true;
+}
+
+bool vtkHeightFieldPager::IsOpen() const
+{
+  return this->Internals->Open;
+}
+
+const std::string& vtkHeightFieldPager::GetErrorMessage() const
+{
+  return this->Internals->Error;
+}
+
+int vtkHeightFieldPager::GetNX() const
+{
+  return this->Internals->NX;
+}
+
+int vtkHeightFieldPager::GetNY() const
+{
+  return this->Internals->NY;
+}
+
+int vtkHeightFieldPager::GetNumberOfHorizons() const
+{
+  return static_cast<int>(this->Internals->Horizons.size());
+}
+
+int vtkHeightFieldPager::GetPageSize() const
+{
+  return this->Internals->B;
+}
+
+const int* vtkHeightFieldPager::GetTiles() const
+{
+  return this->Internals->Tiles;
+}
+
+void vtkHeightFieldPager::GetSpacing(double spacing[3]) const
+{
+  std::copy_n(this->Internals->Header.Spacing, 3, spacing);
+}
+
+void vtkHeightFieldPager::GetOrigin(double origin[3]) const
+{
+  std::copy_n(this->Internals->Header.Origin, 3, origin);
+}
+
+void vtkHeightFieldPager::GetDirection(double direction[9]) const
+{
+  std::copy_n(this->Internals->Header.Direction, 9, direction);
+}
+
+void vtkHeightFieldPager::GetValueRange(double range[2]) const
+{
+  range[0] = this->Internals->ValueRange[0];
+  range[1] = this->Internals->ValueRange[1];
+}
+
+bool vtkHeightFieldPager::MayHaveHoles() const
+{
+  return this->Internals->Holes;
+}
+
+void vtkHeightFieldPager::SetAtlasSlots(int slots)
+{
+  this->Internals->AtlasSlots = std::max(1, slots);
+}
+
+int vtkHeightFieldPager::GetAtlasSlots() const
+{
+  return this->Internals->AtlasSlots;
+}
+
+void vtkHeightFieldPager::InvalidateAtlas()
+{
+  this->Internals->InitializedSlots = -1;
+}
+
+void vtkHeightFieldPager::SetCacheBudgetMiB(double mib)
+{
+  this->Internals->CacheMiB = std::max(1.0, mib);
+}
+
+void vtkHeightFieldPager::SetPagesPerFrame(int pages)
+{
+  this->Internals->PagesPerFrame = std::max(1, pages);
+}
+
+void vtkHeightFieldPager::SetTileSize(int tileSize)
+{
+  vtkInternals& in = *this->Internals;
+  in.TileSize = std::max(1, tileSize);
+  if (in.S > 0)
+  {
+    int leaf = std::min(in.TileSize, in.S);
+    while (in.S % leaf != 0)
+      --leaf;
+    if (leaf != in.Leaf)
+      in.TableLevels.clear(); // the quadtree must be rebuilt
+    in.Leaf = leaf;
+    for (auto& hz : in.Horizons)
+      for (auto& page : hz.Pages)
+        page.second.LeafMin.clear();
+  }
+}
+
+int vtkHeightFieldPager::GetLeafSize() const
+{
+  return this->Internals->Leaf;
+}
+
+bool vtkHeightFieldPager::Update(
+  const vtkVolumeCut::Camera& camera, const double gridToWorld[16], std::vector<Upload>& uploads)
+{
+  vtkInternals& in = *this->Internals;
+  uploads.clear();
+  if (!in.Open)
+    return false;
+  if (in.InitializedSlots != in.AtlasSlots)
+  {
+    in.Atlas.Initialize(1, 1, in.AtlasSlots, in.B);
+    in.Cut.SetBudget(in.AtlasSlots);
+    in.InitializedSlots = in.AtlasSlots;
+    in.TableLevels.clear();
+  }
+  in.Cache.SetBudgetMiB(in.CacheMiB);
+  in.Cache.Start();
+  in.Cache.BeginFrame();
+
+  // The tree's index space is (x, y, 0): place it at the middle of the value range, where
+  // the screen-space error of a tile is best estimated without its heights.
+  const double zMid = in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[0] + in.ValueRange[1]) : 0.0;
+  double m[16];
+  std::copy_n(gridToWorld, 16, m);
+  for (int r = 0; r < 4; ++r)
+    m[4 * r + 3] += gridToWorld[4 * r + 2] * zMid;
+  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
+    in.Cut.SetVolumeMatrix(h, m);
+  // The cut sees each tile as a flat rectangle at zMid; its heights span the value range
+  // around it. Moving each frustum plane out by the half-span along its normal keeps every
+  // tile whose heights can be in view (the Minkowski sum of rectangle and span).
+  vtkVolumeCut::Camera cutCamera = camera;
+  if (cutCamera.UseFrustum)
+  {
+    const double half = in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[1] - in.ValueRange[0]) : 0.0;
+    const double span[3] = { gridToWorld[2] * half, gridToWorld[6] * half, gridToWorld[10] * half };
+    for (int q = 0; q < 6; ++q)
+    {
+      double* pl = cutCamera.FrustumPlanes + 4 * q;
+      pl[3] += std::abs(pl[0] * span[0] + pl[1] * span[1] + pl[2] * span[2]);
+    }
+  }
+  in.Stats.MissesThisFrame = 0;
+  in.RequestLimit = 4 * in.PagesPerFrame;
+  in.Cut.SetMaxNewBricksPerUpdate(in.PagesPerFrame);
+  const int entered = in.Cut.Update(cutCamera);
+
+  // Keep the pages of the cut and of its ancestors (for collapses), release the rest.
+  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
+  {
+    vtkInternals::Horizon& hz = in.Horizons[h];
+    const vtkVolumeBrickTree& tree = in.Pools[hz.PoolIndex]->Tree;
+    // Ancestors are numbered after their descendants: walk from the finest level up.
+    for (auto it = hz.Pages.begin(); it != hz.Pages.end();)
+    {
+      const int n = it->first;
+      bool keep = n == tree.GetRootId() || in.Cut.IsInCut(h, n);
+      if (!keep && tree.GetNode(n).Level > 0)
+      {
+        int children[8];
+        const int count = tree.GetChildren(n, children);
+        for (int c = 0; c < count && !keep; ++c)
+          keep = in.Cut.IsInCut(h, children[c]) || hz.Pages.count(children[c]);
+      }
+      it = keep ? std::next(it) : hz.Pages.erase(it);
+    }
+  }
+  in.Cache.CancelStale(in.Cache.GetFrame());
+
+  in.Atlas.BeginFrame();
+  std::vector<vtkVolumeCut::Upload> cutUploads;
+  in.Cut.AssignSlots(in.Atlas, cutUploads);
+  for (const auto& u : cutUploads)
+    uploads.push_back({ u.Volume, u.Node, u.Slot });
+
+  std::vector<uint16_t> table, one;
+  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
+  {
+    in.Cut.BuildIndexTable(h, in.Atlas, one);
+    table.insert(table.end(), one.begin(), one.end());
+  }
+  const bool tableChanged = table != in.Table;
+  in.Table.swap(table);
+  std::vector<uint16_t> levels(in.Table.size() / 4);
+  for (size_t e = 0; e < levels.size(); ++e)
+    levels[e] = in.Table[4 * e + 3];
+  const bool treeChanged = levels != in.TableLevels;
+  if (treeChanged)
+  {
+    in.TableLevels.swap(levels);
+    in.RebuildTree();
+  }
+
+  const vtkPageCache::Statistics cs = in.Cache.GetStatistics();
+  in.Stats.PendingPages = static_cast<int>(cs.QueueLength + cs.InFlight);
+  in.Stats.BytesRead = cs.BytesRead;
+  in.Stats.CacheBytes = static_cast<long long>(cs.CurrentBytes);
+  in.Stats.Entered = entered;
+  in.Stats.CutTiles = in.Cut.GetCost();
+  in.Stats.FinestTiles = 0;
+  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
+  {
+    const vtkVolumeBrickTree& tree = in.Pools[in.Horizons[h].PoolIndex]->Tree;
+    for (int n : in.Cut.GetCutNodes(h))
+      if (tree.GetNode(n).Level == 0 && !in.Cut.IsEmpty(h, n))
+        ++in.Stats.FinestTiles;
+  }
+  in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0;
+  return tableChanged || treeChanged;
+}
+
+void vtkHeightFieldPager::GetUploadValues(const Upload& upload, std::vector<float>& values) const
+{
+  const vtkInternals& in = *this->Internals;
+  const size_t count = static_cast<size_t>(in.B) * in.B;
+  values.assign(count, std::numeric_limits<float>::quiet_NaN());
+  if (upload.Horizon < 0 || upload.Horizon >= static_cast<int>(in.Horizons.size()))
+    return;
+  const auto& pages = in.Horizons[upload.Horizon].Pages;
+  auto it = pages.find(upload.Node);
+  if (it == pages.end())
+    return; // cannot happen: the cut holds only tiles whose pages are held
+  const float* src = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
+  for (size_t k = 0; k < count; ++k)
+    values[k] = in.IsHole(src[k]) ? std::numeric_limits<float>::quiet_NaN() : src[k];
+}
+
+const std::vector<uint16_t>& vtkHeightFieldPager::GetPageTable() const
+{
+  return this->Internals->Table;
+}
+
+const vtkMinMaxQuadtree& vtkHeightFieldPager::GetTree() const
+{
+  return this->Internals->Tree;
+}
+
+std::vector<std::string> vtkHeightFieldPager::TakeNewFailures()
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<std::string> messages;
+  for (const auto& f : in.Cache.TakeNewFailures())
+  {
+    std::ostringstream msg;
+    const std::string name = f.PageKey.Dataset >= 0 && f.PageKey.Dataset < static_cast<int>(in.Pools.size())
+      ? in.Pools[f.PageKey.Dataset]->Name
+      : std::string("?");
+    msg << "tile " << f.PageKey.Page << " of level " << f.PageKey.Level << " of \"" << name << "\": " << f.Error;
+    messages.push_back(msg.str());
+    ++in.Stats.Failures;
+  }
+  return messages;
+}
+
+void vtkHeightFieldPager::RetryFailedPages()
+{
+  this->Internals->Cache.RetryAll();
+}
+
+vtkHeightFieldPager::Statistics vtkHeightFieldPager::GetStatistics() const
+{
+  return this->Internals->Stats;
+}
+
+bool vtkHeightFieldPager::WaitForIdle(double seconds)
+{
+  return this->Internals->Cache.WaitForIdle(seconds);
+}
+
+float vtkHeightFieldPager::GetHeight(int horizon, int i, int j) const
+{
+  const vtkInternals& in = *this->Internals;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty())
+    return nan;
+  i = std::min(std::max(i, 0), in.NX - 1);
+  j = std::min(std::max(j, 0), in.NY - 1);
+  const int tx = std::min(i / in.S, in.Tiles[0] - 1);
+  const int ty = std::min(j / in.S, in.Tiles[1] - 1);
+  int level = 0;
+  const int node = in.NodeOfTile(horizon, tx, ty, level);
+  const auto& pages = in.Horizons[horizon].Pages;
+  auto it = node >= 0 ? pages.find(node) : pages.end();
+  if (it == pages.end())
+    return nan;
+  const float* v = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
+  // Level l holds every 2^l-th point: p / 2^l, bilinear, relative to the tile's first point.
+  const int qx = (i >> level) - (tx >> level) * in.S;
+  const int qy = (j >> level) - (ty >> level) * in.S;
+  const int rx = i & ((1 << level) - 1);
+  const int ry = j & ((1 << level) - 1);
+  auto at = [&](int x, int y) {
+    const float h = v[static_cast<size_t>(y) * in.B + x];
+    return in.IsHole(h) ? nan : h;
+  };
+  const float h00 = at(qx, qy);
+  const float h10 = rx ? at(qx + 1, qy) : h00;
+  const float h01 = ry ? at(qx, qy + 1) : h00;
+  const float h11 = rx && ry ? at(qx + 1, qy + 1) : (rx ? h10 : h01);
+  const float fx = static_cast<float>(rx) / static_cast<float>(1 << level);
+  const float fy = static_cast<float>(ry) / static_cast<float>(1 << level);
+  const float a = h00 * (1.0f - fx) + h10 * fx;
+  const float b = h01 * (1.0f - fx) + h11 * fx;
+  return a * (1.0f - fy) + b * fy;
+}

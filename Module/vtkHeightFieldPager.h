@@ -1,0 +1,161 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkHeightFieldPager
+ * @brief   Pages a stack of horizons from tile pools: cut, RAM cache, atlas slots, leaf ranges.
+ *
+ * The out-of-core half of the stacked height-field ray caster (Lux and Froehlich, stacked
+ * height-field ray casting 3.1-3.3), without any OpenGL: the mapper asks it each frame what to
+ * upload and gets back the page table and the min-max quadtree that describe exactly the data
+ * on the GPU.
+ *
+ * - Each horizon is one layer of a tile pool (vtkPagePoolFormat TilePool); all share one grid
+ *   (dimensions, page size, geometry). A pool with several layers is read once per page and
+ *   shared by its horizons (one cache key per pool page).
+ * - The cut is a vtkVolumeCut over each horizon's tile quadtree (a brick tree one point thick),
+ *   all horizons under one atlas budget, refined greedily by screen-space error; a tile enters
+ *   the cut only once its page is in RAM (vtkPageCache, worker threads), so the render thread
+ *   never reads a file. Roots are the pages a frame can always show: they come with Open()
+ *   (the reader's coarsest level, already read by the pipeline) or are read there once.
+ * - The page table has one entry per level-0 tile and horizon: (slot x, slot y, slot z,
+ *   level) as vtkVolumeCut::BuildIndexTable writes it. The shader maps level-0 grid point p to
+ *   the resident tile of level l covering it and interpolates that level bilinearly at
+ *   p / 2^l, so any cut is one continuous surface (each point has one value): no cracks
+ *   between tiles of different levels, and converged (all level 0) it is the data itself.
+ * - The min-max quadtree (vtkMinMaxQuadtree) is rebuilt from leaf ranges whenever the cut
+ *   changes: a leaf's range is that of the page points its cells interpolate under the cut,
+ *   computed once per resident page from its data. At level 0 that is exactly the in-core
+ *   tree's range, so a converged paged rendering equals the in-core one. Leaves never straddle
+ *   pages: the leaf size is the largest divisor of the page stride B - 1 not above the
+ *   requested tile size.
+ *
+ * @sa vtkStackedHeightFieldMapper vtkVolumeCut vtkPageCache vtkMinMaxQuadtree
+ */
+#ifndef vtkHeightFieldPager_h
+#define vtkHeightFieldPager_h
+
+#include "StrataModule.h" // For export macro
+#include "vtkVolumeCut.h" // For vtkVolumeCut::Camera
+
+#include <cstdint> // For uint16_t
+#include <memory>  // For std::unique_ptr
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkMinMaxQuadtree;
+
+class STRATA_EXPORT vtkHeightFieldPager
+{
+public:
+  /// One horizon: a layer of a tile pool and, optionally, its coarsest level already read.
+  struct Source
+  {
+    std::string FileName;
+    int Layer = 0;
+    /// Values of the pool's coarsest level (RootDims points, x fastest); null: read it here.
+    const float* RootValues = nullptr;
+    int RootDims[2] = { 0, 0 };
+  };
+
+  /// A page that entered the atlas this frame.
+  struct Upload
+  {
+    int Horizon;
+    int Node;
+    int Slot;
+  };
+
+  struct Statistics
+  {
+    int PendingPages = 0;        ///< queued or loading in the cache
+    int MissesThisFrame = 0;     ///< cut splits that waited for a page this frame
+    bool Converged = false;      ///< cut settled, nothing missing or pending
+    long long BytesRead = 0;     ///< by the cache's workers, since Open()
+    long long CacheBytes = 0;    ///< resident in RAM now
+    int RootPagesRead = 0;       ///< roots this object read itself (no RootValues given)
+    int Failures = 0;            ///< pages whose load failed, since Open()
+    int CutTiles = 0;            ///< resident cut tiles over all horizons
+    int FinestTiles = 0;         ///< of which level 0
+    int Entered = 0;             ///< tiles that entered the cut this frame
+  };
+
+  vtkHeightFieldPager();
+  ~vtkHeightFieldPager();
+  vtkHeightFieldPager(const vtkHeightFieldPager&) = delete;
+  vtkHeightFieldPager& operator=(const vtkHeightFieldPager&) = delete;
+
+  /**
+   * Opens the pools of all horizons and checks that they form one stack (tile pools, same
+   * grid, page size and geometry, layer in range, at least 2 x 2 points). Returns false with
+   * GetErrorMessage() saying why; the pager is then empty. Re-opening the same sources keeps
+   * the cache.
+   */
+  bool Open(const std::vector<Source>& sources);
+  bool IsOpen() const;
+  const std::string& GetErrorMessage() const;
+
+  ///@{
+  /// Geometry of the stack (valid after Open()).
+  int GetNX() const;
+  int GetNY() const;
+  int GetNumberOfHorizons() const;
+  int GetPageSize() const;
+  /// Level-0 tiles per axis: the page table's size.
+  const int* GetTiles() const;
+  void GetSpacing(double spacing[3]) const;
+  void GetOrigin(double origin[3]) const;
+  void GetDirection(double direction[9]) const;
+  /// Union of the pools' level-0 value ranges: every level lies inside it.
+  void GetValueRange(double range[2]) const;
+  /// Whether a sample can be a hole (float pools, no-data values, empty tiles).
+  bool MayHaveHoles() const;
+  ///@}
+
+  ///@{
+  /// Budgets. The atlas is counted in slots of B x B floats; cache in MiB; uploads per frame.
+  void SetAtlasSlots(int slots);
+  int GetAtlasSlots() const;
+  void SetCacheBudgetMiB(double mib);
+  void SetPagesPerFrame(int pages);
+  /// Forgets what the atlas holds (its texture was lost): the next Update() uploads all again.
+  void InvalidateAtlas();
+  /// Requested quadtree leaf size; the effective one divides B - 1 (see GetLeafSize()).
+  void SetTileSize(int tileSize);
+  int GetLeafSize() const;
+  ///@}
+
+  /**
+   * One frame: refines the cut for `camera` (gridToWorld[h] maps horizon h's grid space,
+   * x and y in points and z the height, to world, row-major), assigns atlas slots and fills
+   * `uploads` with the pages the caller must upload before drawing. Returns true when the page
+   * table or the quadtree changed (upload them again).
+   */
+  bool Update(const vtkVolumeCut::Camera& camera, const double gridToWorld[16], std::vector<Upload>& uploads);
+
+  /// B x B heights of an upload, no-data values as NaN.
+  void GetUploadValues(const Upload& upload, std::vector<float>& values) const;
+
+  /// Page table after Update(): tilesX x tilesY x horizons entries of 4 uint16 (see above).
+  const std::vector<uint16_t>& GetPageTable() const;
+  /// Quadtree over the current cut after Update().
+  const vtkMinMaxQuadtree& GetTree() const;
+
+  /// Load failures since the last call, as messages naming the pool and page.
+  std::vector<std::string> TakeNewFailures();
+  /// Forgets failed loads so that they are tried again.
+  void RetryFailedPages();
+  Statistics GetStatistics() const;
+  /// Waits (tests, benchmarks) until the cache has no queued or running load.
+  bool WaitForIdle(double seconds);
+
+  /**
+   * CPU reference of the shader's lookup: the height of horizon h at level-0 point (i, j)
+   * under the current cut; NaN for a hole.
+   */
+  float GetHeight(int horizon, int i, int j) const;
+
+private:
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,386 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// The stacked height-field mapper paging the demo's horizons from tile pools (one
+// vtkPagePoolReader per horizon in front of vtkStackedHeightFieldMapper):
+//  1. every frame of a scripted camera path before the cache settles is a valid coarser
+//     rendering: it equals (within a stated bound) the in-core rendering of exactly the
+//     heights the cut holds (the pager's CPU lookup), so there are no holes and no garbage
+//     tiles; and the first frame already covers what the full data covers;
+//  2. converged, the paged image equals the in-core image of the same data, shaded and in
+//     horizon ids, and out-of-view tiles stay coarse when zoomed in;
+//  3. faults: a corrupt tile, a pool truncated while rendering, a truncated pool and a missing
+//     file give VTK errors and no crash; the horizons keep their coarser tiles.
+#include "StrataDemoScene.h"
+#include "StrataHeightFieldScenes.h"
+#include "StrataTestHelpers.h"
+#include "StrataVolumeScenes.h" // For ImageError
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkHeightFieldPager.h"
+#include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkNew.h"
+#include "vtkPagePoolFile.h"
+#include "vtkPagePoolReader.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkStackedHeightFieldMapper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <thread>
+#include <unistd.h>
+
+using namespace strata_test;
+
+namespace
+{
+const int Page = 33; // stride 32: the quadtree's 32-cell leaves never straddle tiles
+
+// The heights the paged mapper's cut holds now, as in-core images (its CPU reference lookup).
+std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(
+  vtkStackedHeightFieldMapper* paged, const std::vector<vtkSmartPointer<vtkImageData>>& full)
+{
+  const vtkHeightFieldPager* pager = paged->GetPager();
+  std::vector<vtkSmartPointer<vtkImageData>> out;
+  for (size_t k = 0; k < full.size(); ++k)
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->CopyStructure(full[k]);
+    vtkNew<vtkFloatArray> h;
+    h->SetNumberOfTuples(static_cast<vtkIdType>(pager->GetNX()) * pager->GetNY());
+    for (int j = 0; j < pager->GetNY(); ++j)
+      for (int i = 0; i < pager->GetNX(); ++i)
+      {
+        const float v = pager->GetHeight(static_cast<int>(k), i, j);
+        h->SetValue(static_cast<vtkIdType>(j) * pager->GetNX() + i,
+          std::abs(v) < 1e30f ? v : std::numeric_limits<float>::quiet_NaN());
+      }
+    image->GetPointData()->SetScalars(h);
+    out.push_back(image);
+  }
+  return out;
+}
+
+struct Difference
+{
+  long Differing = 0; ///< pixels with any channel off by more than 8/255
+  int Max = 0;
+  long Covered = 0; ///< pixels that are not background in the reference
+};
+
+Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
+  const std::vector<unsigned char>& background)
+{
+  Difference d;
+  for (size_t p = 0; p + 2 < a.size(); p += 3)
+  {
+    int m = 0;
+    for (int c = 0; c < 3; ++c)
+      m = std::max(m, std::abs(int(a[p + c]) - int(b[p + c])));
+    d.Max = std::max(d.Max, m);
+    d.Differing += m > 8 ? 1 : 0;
+    d.Covered += (b[p] != background[p] || b[p + 1] != background[p + 1] || b[p + 2] != background[p + 2]) ? 1 : 0;
+  }
+  return d;
+}
+}
+
+int TestHeightFieldPaging(int, char*[])
+{
+  const std::string dir = OutputDirectory();
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  const int w = 200, h = 150;
+  MakeWindow(win, ren, w, h);
+  DemoScene scene = AddDemoScene(ren);
+  scene.Well->VisibilityOff();
+  scene.Target->VisibilityOff();
+  ren->GradientBackgroundOff();
+  vtkCamera* cam = ren->GetActiveCamera();
+  vtkNew<vtkCamera> home;
+  home->DeepCopy(cam);
+
+  // One tile pool per horizon.
+  std::vector<std::string> pools;
+  for (size_t k = 0; k < scene.Horizons.size(); ++k)
+  {
+    const std::string pool = dir + "/hf-paging-" + std::to_string(k) + ".spp";
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputData(scene.Horizons[k]);
+    writer->SetFileName(pool.c_str());
+    writer->SetPageSize(Page);
+    Check(writer->Write(), "tile pool written");
+    pools.push_back(pool);
+  }
+  vtkPagePoolFile probe;
+  probe.Open(pools[0]);
+  std::cout << "HFPaging: " << scene.Horizons.size() << " pools of " << probe.GetNumberOfPages() << " tiles in "
+            << probe.GetNumberOfLevels() << " levels\n";
+  probe.Close();
+
+  // In-core references: the demo mapper as is, and a twin that draws whatever heights it gets.
+  vtkStackedHeightFieldMapper* incore = scene.Mapper;
+  incore->SetTileSize(32);
+  vtkNew<vtkStackedHeightFieldMapper> coarse;
+  coarse->SetTileSize(32);
+  vtkNew<vtkStackedHeightFieldMapper> paged;
+  paged->SetTileSize(32);
+  paged->SetPagesPerFrame(3);
+  std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+  for (const auto& pool : pools)
+  {
+    auto r = vtkSmartPointer<vtkPagePoolReader>::New();
+    r->SetFileName(pool.c_str());
+    paged->AddInputConnection(r->GetOutputPort());
+    readers.push_back(r);
+  }
+  auto render = [&](vtkStackedHeightFieldMapper* m) {
+    scene.Stack->SetMapper(m);
+    win->Render();
+    return ReadRGB(win);
+  };
+  auto renderCoarse = [&]() {
+    coarse->RemoveAllInputConnections(0);
+    for (const auto& image : CutAsImages(paged, scene.Horizons))
+      coarse->AddInputDataObject(image);
+    return render(coarse);
+  };
+  std::vector<unsigned char> background(size_t(w) * h * 3);
+  {
+    scene.Stack->VisibilityOff();
+    background = render(incore);
+    scene.Stack->VisibilityOn();
+  }
+
+  // 1. A camera path: orbit and dolly while the cache fills; each frame against the in-core
+  // rendering of its own cut.
+  const auto fullFirst = render(incore);
+  const long coveredFull = Compare(fullFirst, fullFirst, background).Covered;
+  Difference worst;
+  long worstCoverageLoss = 0, comparedFrames = 0, smallestCovered = 1L << 30;
+  int frames = 0, converged = -1;
+  for (int f = 0; f < 200 && converged < 0; ++f)
+  {
+    if (f < 12)
+    {
+      cam->Azimuth(f < 6 ? 6.0 : -4.0);
+      cam->Dolly(f < 6 ? 1.06 : 0.97);
+      ren->ResetCameraClippingRange();
+    }
+    const auto image = render(paged);
+    ++frames;
+    const auto st = paged->GetPagingStatistics();
+    if (f == 0)
+    {
+      Check(paged->GetPaged() && st.RootPagesRead == 0,
+        "paged from the pools; the roots came from the readers' coarsest levels (no read on the render thread)");
+      const long covered = Compare(image, image, background).Covered;
+      std::cout << "HFPaging: first frame (roots only): " << covered << " covered pixels, in-core " << coveredFull << "\n";
+    }
+    if (f < 40 || st.Converged)
+    {
+      const auto reference = renderCoarse();
+      const Difference d = Compare(image, reference, background);
+      const long coverageLoss = Compare(reference, reference, background).Covered - Compare(image, image, background).Covered;
+      worstCoverageLoss = std::max(worstCoverageLoss, std::abs(coverageLoss));
+      ++comparedFrames;
+      smallestCovered = std::min(smallestCovered, d.Covered);
+      if (d.Differing > worst.Differing || comparedFrames == 1)
+        worst = d;
+      if (std::getenv("STRATA_DEBUG_PAGING"))
+        std::cout << "  frame " << f << ": tiles " << st.CutTiles << " (finest " << st.FinestTiles << "), pending "
+                  << st.PendingPages << ", entered " << st.Entered << ", differing " << d.Differing << ", max " << d.Max
+                  << "\n";
+    }
+    if (st.Converged && f >= 12)
+      converged = f;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::cout << "HFPaging: converged after " << frames << " frames; " << comparedFrames
+            << " frames compared with the rendering of their own cut (each >= " << smallestCovered
+            << " covered pixels); worst: " << worst.Differing << " of " << worst.Covered << " covered pixels differ by more than 8/255 (max " << worst.Max
+            << "); coverage differs by at most " << worstCoverageLoss << " pixels\n";
+  Check(converged > 0, "the paged horizons converge");
+  Check(worst.Differing <= std::max(10L, worst.Covered / 200), "every intermediate frame is the rendering of its cut (<= 0.5 % of pixels)");
+  Check(worstCoverageLoss <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
+  Check(comparedFrames >= 20 && smallestCovered > 5000, "the path's frames were compared and show the horizons");
+
+  // 2. Converged: the in-core image, shaded and in ids.
+  {
+    const auto st = paged->GetPagingStatistics();
+    const auto full = render(incore);
+    const auto mine = render(paged);
+    const Difference d = Compare(mine, full, background);
+    std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered << " covered pixels; "
+              << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles << "; " << st.BytesRead / 1024
+              << " KiB read\n";
+    Check(d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
+    incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
+    paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
+    const Difference ids = Compare(render(paged), render(incore), background);
+    std::cout << "HFPaging: converged, horizon ids: max difference " << ids.Max << "\n";
+    Check(ids.Max == 0, "converged paged rendering equals the in-core one (ids)");
+    incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
+    paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
+  }
+  {
+    // Zoomed into a corner: tiles out of view are never refined.
+    cam->DeepCopy(home);
+    cam->Dolly(10.0);
+    ren->ResetCameraClippingRange();
+    vtkNew<vtkStackedHeightFieldMapper> zoomed;
+    zoomed->SetTileSize(32);
+    for (const auto& r : readers)
+      zoomed->AddInputConnection(r->GetOutputPort());
+    for (int f = 0; f < 200 && !zoomed->GetPagingStatistics().Converged; ++f)
+    {
+      render(zoomed);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const auto st = zoomed->GetPagingStatistics();
+    const int* tiles = zoomed->GetPager()->GetTiles();
+    const int all = tiles[0] * tiles[1] * static_cast<int>(pools.size());
+    const Difference d = Compare(render(zoomed), render(incore), background);
+    std::cout << "HFPaging: zoomed in: " << st.FinestTiles << " of " << all << " level-0 tiles resident; max difference "
+              << d.Max << " to in-core\n";
+    Check(st.Converged && st.FinestTiles < all / 2, "tiles out of view stay coarse");
+    Check(d.Max == 0, "zoomed in, converged paged rendering equals the in-core one");
+  }
+
+  // 3. Faults.
+  cam->DeepCopy(home);
+  ren->ResetCameraClippingRange();
+  const auto full = render(incore);
+  auto pagedWith = [&](const std::vector<std::string>& files, vtkStackedHeightFieldMapper* m,
+                     std::vector<vtkSmartPointer<vtkPagePoolReader>>& rs) {
+    for (const auto& file : files)
+    {
+      auto r = vtkSmartPointer<vtkPagePoolReader>::New();
+      r->SetFileName(file.c_str());
+      m->AddInputConnection(r->GetOutputPort());
+      rs.push_back(r);
+    }
+  };
+  // The error of the root-only rendering: what "coarser" may cost at most.
+  double rootError = 0.0;
+  {
+    vtkNew<vtkStackedHeightFieldMapper> m;
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
+    pagedWith(pools, m, rs);
+    m->SetAtlasBudget(1.0); // 240 tiles: ample
+    m->SetPagesPerFrame(1);
+    rootError = ImageError(render(m), full).Rms;
+  }
+  const std::string corrupt = dir + "/hf-paging-corrupt.spp";
+  {
+    std::ifstream in(pools[1], std::ios::binary);
+    std::ofstream out(corrupt, std::ios::binary);
+    out << in.rdbuf();
+  }
+  {
+    vtkPagePoolFile file;
+    file.Open(corrupt);
+    const auto entry = file.GetPageEntry(40); // a level-0 tile in view
+    file.Close();
+    std::fstream f(corrupt, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekg(static_cast<std::streamoff>(entry.Offset + 9));
+    char c = 0;
+    f.read(&c, 1);
+    c = static_cast<char>(c ^ 0x5A);
+    f.seekp(static_cast<std::streamoff>(entry.Offset + 9));
+    f.write(&c, 1);
+  }
+  {
+    vtkNew<vtkStackedHeightFieldMapper> m;
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
+    pagedWith({ pools[0], corrupt, pools[2] }, m, rs);
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(m);
+    for (auto& r : rs)
+      errors->Watch(r);
+    double worstRms = 0.0;
+    std::vector<unsigned char> last;
+    for (int f = 0; f < 80; ++f)
+    {
+      last = render(m);
+      worstRms = std::max(worstRms, ImageError(last, full).Rms);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const bool named = errors->First.find("checksum") != std::string::npos && errors->First.find("coarser") != std::string::npos;
+    std::cout << "HFPaging: corrupt tile: " << m->GetPagingStatistics().Failures << " failed, " << errors->Errors
+              << " VTK error(s): \"" << errors->First << "\"; RMS to in-core: worst " << worstRms << ", last "
+              << ImageError(last, full).Rms << " (roots only " << rootError << ")\n";
+    Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named, "a corrupt tile: one clear error");
+    Check(worstRms <= rootError + 0.5, "with a corrupt tile the horizons stay a valid coarser rendering");
+  }
+  const std::string shrinking = dir + "/hf-paging-shrinking.spp";
+  {
+    std::ifstream in(pools[0], std::ios::binary);
+    std::ofstream out(shrinking, std::ios::binary);
+    out << in.rdbuf();
+  }
+  {
+    vtkNew<vtkStackedHeightFieldMapper> m;
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
+    pagedWith({ shrinking, pools[1], pools[2] }, m, rs);
+    m->SetPagesPerFrame(1);
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(m);
+    for (auto& r : rs)
+      errors->Watch(r);
+    render(m);
+    {
+      vtkPagePoolFile file;
+      file.Open(shrinking);
+      const auto firstPage = file.GetPageEntry(0).Offset;
+      file.Close();
+      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0, "pool truncated behind the reader's back");
+    }
+    double worstRms = 0.0;
+    for (int f = 0; f < 40; ++f)
+    {
+      worstRms = std::max(worstRms, ImageError(render(m), full).Rms);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const int failures = m->GetPagingStatistics().Failures;
+    std::cout << "HFPaging: pool truncated while rendering: " << failures << " failed tiles, " << errors->Errors
+              << " VTK errors; worst RMS " << worstRms << "\n";
+    Check(failures > 0 && errors->Errors == failures, "read errors while rendering: one VTK error per failed tile");
+    Check(worstRms <= rootError + 0.5, "after read errors the horizons keep their coarser tiles");
+  }
+  for (const std::string& bad : { dir + "/hf-paging-truncated.spp", dir + "/hf-no-such-pool.spp" })
+  {
+    if (bad.find("truncated") != std::string::npos)
+    {
+      std::ifstream in(pools[0], std::ios::binary);
+      std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      std::ofstream(bad, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+    }
+    vtkNew<vtkStackedHeightFieldMapper> m;
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
+    pagedWith({ bad, pools[1], pools[2] }, m, rs);
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(m);
+    for (auto& r : rs)
+      errors->Watch(r);
+    render(m);
+    std::cout << "HFPaging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors << " VTK error(s): \""
+              << errors->First << "\"\n";
+    Check(errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
+  }
+  for (const auto& pool : pools)
+    std::remove(pool.c_str());
+  std::remove(corrupt.c_str());
+  std::remove(shrinking.c_str());
+  return Failures() == 0 ? 0 : 1;
+}
