@@ -1,0 +1,263 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// Out-of-core horizons: the stack of the paper's size (3 horizons of 6870 x 14300 points,
+// 16-bit) as tile pools generated once (streamed row slab by row slab through
+// vtkImageToPagePoolWriter, never held whole), then a scripted fly-through with the
+// vtkStackedHeightFieldMapper paging them under a page cache and an atlas budget. Prints one
+// row of bench-results/paging.csv.
+//
+//   BenchPagingHorizons generate <dir>
+//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB>
+#include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkImageAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPNGWriter.h"
+#include "vtkPagePoolReader.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkStackedHeightFieldMapper.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedShortArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const int NX = 6870;
+const int NY = 14300;
+const double Spacing = 12.5;
+const int Size = 256;
+
+/// Horizon k of the stack, computed for exactly the rows asked for: uint16 depths in
+/// decimetres, a regional dip plus fractal relief, the three horizons 300-900 m apart.
+class HorizonSource : public vtkImageAlgorithm
+{
+public:
+  static HorizonSource* New();
+  vtkTypeMacro(HorizonSource, vtkImageAlgorithm);
+  int Horizon = 0;
+
+protected:
+  HorizonSource() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    const int extent[6] = { 0, NX - 1, 0, NY - 1, 0, 0 };
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    const double spacing[3] = { Spacing, Spacing, 1.0 };
+    const double origin[3] = { 420000.0, 6500000.0, 0.0 };
+    info->Set(vtkDataObject::SPACING(), spacing, 3);
+    info->Set(vtkDataObject::ORIGIN(), origin, 3);
+    info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+    vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_SHORT, 1);
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    auto* image = vtkImageData::GetData(info);
+    int extent[6];
+    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+    image->SetExtent(extent);
+    image->AllocateScalars(VTK_UNSIGNED_SHORT, 1);
+    auto* values = static_cast<unsigned short*>(image->GetScalarPointer());
+    const int k = this->Horizon;
+    size_t n = 0;
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        const double u = double(i) / (NX - 1), v = double(j) / (NY - 1);
+        const double metres = 1200.0 + 600.0 * k + 900.0 * u + 500.0 * v +
+          (180.0 + 40.0 * k) * strata_test::FractalNoise(12 * u + 3.1 * k, 25 * v + 1.7 * k, 31 + k, 7);
+        values[n++] = static_cast<unsigned short>(std::min(65535.0, std::max(0.0, std::round(metres * 10.0))));
+      }
+    }
+    return 1;
+  }
+};
+vtkStandardNewMacro(HorizonSource);
+
+double PeakRssMB()
+{
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+std::string PoolPath(const std::string& dir, int k)
+{
+  return dir + "/paging-horizon-" + std::to_string(k) + ".spp";
+}
+
+bool Exists(const std::string& path)
+{
+  return static_cast<bool>(std::ifstream(path));
+}
+
+double Percentile(std::vector<double> v, double q)
+{
+  if (v.empty())
+    return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
+}
+
+int Generate(const std::string& dir)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const std::string path = PoolPath(dir, k);
+    if (Exists(path))
+    {
+      std::cerr << path << " exists\n";
+      continue;
+    }
+    vtkNew<HorizonSource> source;
+    source->Horizon = k;
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputConnection(source->GetOutputPort());
+    writer->SetFileName(path.c_str());
+    writer->SetPageSize(257);
+    writer->SetMemoryLimit(256);
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = writer->Write();
+    std::cerr << path << ": " << (ok ? "written" : "FAILED") << ", " << writer->GetFileSize() / 1048576.0 << " MB, "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, peak RSS "
+              << PeakRssMB() << " MB\n";
+    if (!ok)
+      return 1;
+  }
+  return 0;
+}
+
+int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!Exists(PoolPath(dir, k)))
+    {
+      std::printf("flythrough-horizons-3x6870x14300,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n",
+        cacheMB + atlasMB, PoolPath(dir, k).c_str());
+      return 1;
+    }
+  }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, Size, Size);
+  vtkNew<vtkStackedHeightFieldMapper> mapper;
+  mapper->SetHeightScale(-0.1); // decimetres, depth downwards
+  mapper->SetPageCacheBudget(cacheMB);
+  mapper->SetAtlasBudget(atlasMB);
+  mapper->SetPagesPerFrame(32);
+  mapper->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+  std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+  for (int k = 0; k < 3; ++k)
+  {
+    auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+    reader->SetFileName(PoolPath(dir, k).c_str());
+    mapper->AddInputConnection(reader->GetOutputPort());
+    readers.push_back(reader);
+  }
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetScale(1, 1, 8); // relief of a few hundred metres over 170 km, exaggerated
+  ren->AddActor(actor);
+  // Opening the data, as any VTK application does before its first frame: the readers'
+  // pipeline update reads the coarsest level (the three root tiles). Frames never read.
+  mapper->GetBounds();
+  double b[6];
+  actor->GetBounds(b);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetViewAngle(40);
+  cam->SetViewUp(0, 0, 1);
+  const double cx = 0.5 * (b[0] + b[1]), lx = b[1] - b[0], ly = b[3] - b[2];
+  // The path: a low oblique pass from the south end to two thirds up the survey, turning.
+  auto pose = [&](double s) {
+    const double y = b[2] + (0.05 + 0.6 * s) * ly;
+    const double x = cx + 0.25 * lx * std::sin(3.0 * s);
+    cam->SetFocalPoint(x, y + 0.3 * ly, b[4]);
+    cam->SetPosition(x - 0.1 * lx, y - 0.05 * ly, b[5] + 0.04 * ly);
+    ren->ResetCameraClippingRange(b);
+  };
+  const int moving = 48;
+  std::vector<double> ms, uploaded;
+  int waits = 0, converged = -1, frames = 0, lastRoots = 0;
+  const auto start = std::chrono::steady_clock::now();
+  double lastRead = 0.0;
+  for (int f = 0; f < moving + 400 && converged < 0; ++f)
+  {
+    pose(std::min(1.0, double(f) / (moving - 1)));
+    const auto t0 = std::chrono::steady_clock::now();
+    win->Render();
+    win->WaitForCompletion();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    const auto st = mapper->GetPagingStatistics();
+    uploaded.push_back(st.BytesUploaded / 1048576.0);
+    waits += st.RootPagesRead > lastRoots ? 1 : 0; // tiles read on this thread (roots without a reader)
+    lastRoots = st.RootPagesRead;
+    lastRead = st.BytesRead / 1048576.0;
+    ++frames;
+    if (f >= moving && st.Converged)
+      converged = f - moving + 1;
+    if (f % 16 == 0)
+      std::cerr << "  frame " << f << ": " << ms.back() << " ms, " << st.CutTiles << " tiles (" << st.FinestTiles
+                << " level 0), " << st.PendingPages << " pending, " << lastRead << " MB read, RSS " << PeakRssMB()
+                << " MB\n";
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double upTotal = 0.0;
+  for (double u : uploaded)
+    upTotal += u;
+  const auto st = mapper->GetPagingStatistics();
+  std::printf("flythrough-horizons-3x6870x14300,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
+              "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; "
+              "the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
+              "render thread read tiles itself; %d failed tiles; %dx%d\n",
+    cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
+    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, st.Failures, Size, Size);
+  if (const char* png = std::getenv("STRATA_BENCH_PNG"))
+  {
+    // The converged last pose, for a look.
+    win->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(win);
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->SetFileName(png);
+    writer->Write();
+  }
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "generate" && argc > 2)
+    return Generate(argv[2]);
+  if (mode == "flythrough" && argc > 4)
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]));
+  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB>\n";
+  return 2;
+}
