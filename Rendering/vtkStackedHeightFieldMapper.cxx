@@ -851,6 +851,28 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   Replace(fs, "//STRATA::HeightLookup::Dec", in.Paged ? vtkStackedHeightFieldPagedLookup : 
     "uniform sampler2DArray uHeights;\n"
     "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; }");
+  if (in.Paged)
+  {
+    Replace(fs, "//STRATA::CellCorners::Dec",
+      "vec4 strataCellCorners(int layer, ivec2 c)\n"
+      "{\n"
+      "  ivec2 q = c - gPageBase;\n"
+      "  return vec4(strataTexel(gPageSlot, q), strataTexel(gPageSlot, q + ivec2(1, 0)),\n"
+      "    strataTexel(gPageSlot, q + ivec2(0, 1)), strataTexel(gPageSlot, q + ivec2(1, 1)));\n"
+      "}");
+    Replace(fs, "//STRATA::SearchLevel::Impl",
+      "lv = strataLeafPage(layer, cLo0);\n"
+      "  if (lv < 0)\n"
+      "  {\n"
+      "    return BIG; // an empty tile, or one without a slot: a hole\n"
+      "  }");
+  }
+  else
+  {
+    Replace(fs, "//STRATA::CellCorners::Dec",
+      "vec4 strataCellCorners(int layer, ivec2 c) { return strataCorners(layer, c); }");
+    Replace(fs, "//STRATA::SearchLevel::Impl", "");
+  }
   // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
   Replace(fs, "//STRATA::Hole::Impl",
     !holes ? "" : in.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));" : "valid = !any(isnan(h));");

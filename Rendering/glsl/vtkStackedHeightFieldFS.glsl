@@ -45,14 +45,27 @@ vec4 strataCorners(int layer, ivec2 c)
     strataHeight(layer, c + ivec2(0, 1)), strataHeight(layer, c + ivec2(1, 1)));
 }
 
+// The cells a layer's search walks inside one leaf: level-0 cells in core; under paging, the
+// cells of the level the leaf's tile is resident at (one bilinear patch each, the same surface
+// as its level-0 sub-cells interpolated, walked 2^l times faster).
+//STRATA::CellCorners::Dec
+
 // First crossing of `layer` for t in [ta, tb], in the cells [cLo, cHi] of one leaf: a walk over
 // the cells the ray crosses, samples no further apart than uStep cells inside each, a sign change
 // between consecutive samples (also across a cell boundary) refined by bisection and a final
 // secant step. Cells are stepped as integers (no position is re-derived from t), so float
 // rounding far from the grid origin cannot stall or skip the walk. Returns BIG when there is none.
-float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, ivec2 cLo, ivec2 cHi, out ivec2 hitCell)
+float strataSearchLayer(int layer, vec3 o0, vec3 d0, float ta, float tb, ivec2 cLo0, ivec2 cHi0, out ivec2 hitCell)
 {
   hitCell = ivec2(0);
+  int lv = 0;
+  //STRATA::SearchLevel::Impl
+  // The ray in cells of level lv (t unchanged; exact: a power-of-two scale).
+  float cellScale = float(1 << lv);
+  vec3 o = vec3(o0.xy / cellScale, o0.z);
+  vec3 d = vec3(d0.xy / cellScale, d0.z);
+  ivec2 cLo = cLo0 >> lv;
+  ivec2 cHi = cHi0 >> lv;
   ivec2 c = clamp(ivec2(floor((o + ta * d).xy)), cLo, cHi);
   ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
   float lateral = length(d.xy);
@@ -65,7 +78,7 @@ float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, ivec2 cLo
     float tx = d.x > 0.0 ? (float(c.x + 1) - o.x) / d.x : (d.x < 0.0 ? (float(c.x) - o.x) / d.x : BIG);
     float ty = d.y > 0.0 ? (float(c.y + 1) - o.y) / d.y : (d.y < 0.0 ? (float(c.y) - o.y) / d.y : BIG);
     float tEnd = min(min(tx, ty), tb);
-    vec4 h = strataCorners(layer, c);
+    vec4 h = strataCellCorners(layer, c);
     bool valid = true;
     //STRATA::Hole::Impl
     if (valid && tEnd >= t)
@@ -79,7 +92,7 @@ float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, ivec2 cLo
         float fc = strataF(o, d, tc, c, h);
         if (fc == 0.0)
         {
-          hitCell = c;
+          hitCell = clamp(ivec2(floor((o0 + tc * d0).xy)), cLo0, cHi0);
           return tc;
         }
         if (havePrev && (fc > 0.0) != (fPrev > 0.0))
@@ -100,8 +113,9 @@ float strataSearchLayer(int layer, vec3 o, vec3 d, float ta, float tb, ivec2 cLo
               fb = fm;
             }
           }
-          hitCell = c;
-          return fa != fb ? a + (b - a) * fa / (fa - fb) : b;
+          float tHitLayer = fa != fb ? a + (b - a) * fa / (fa - fb) : b;
+          hitCell = lv == 0 ? c : clamp(ivec2(floor((o0 + tHitLayer * d0).xy)), cLo0, cHi0);
+          return tHitLayer;
         }
         tPrev = tc;
         fPrev = fc;

@@ -37,3 +37,21 @@ float strataHeight(int layer, ivec2 p)
   vec2 f = vec2(r) / float(1 << l);
   return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
+
+// The page of the leaf whose first cell is `cell` (a leaf never straddles tiles): sets the
+// slot and first point used by strataCellCorners and returns the level, -1 for a hole.
+int gPageSlot = 0;
+ivec2 gPageBase = ivec2(0);
+int strataLeafPage(int layer, ivec2 cell)
+{
+  ivec2 tile = min(cell / uPageStride, uPageTiles - 1);
+  uvec4 entry = texelFetch(uPageTable, ivec3(tile, layer), 0);
+  if (entry.w >= 65534u)
+  {
+    return -1;
+  }
+  int l = int(entry.w);
+  gPageSlot = int(entry.z);
+  gPageBase = (tile >> l) * uPageStride;
+  return l;
+}
