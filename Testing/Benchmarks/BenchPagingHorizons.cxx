@@ -6,9 +6,11 @@
 // vtkStackedHeightFieldMapper paging them under a page cache and an atlas budget. Prints one
 // row of bench-results/paging.csv.
 //
-//   BenchPagingHorizons generate <dir>
+//   BenchPagingHorizons generate <dir>      (also a 3 x 2049^2 stack for the accuracy rows)
 //   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB>
+//   BenchPagingHorizons accuracy <dir>      (rows of bench-results/paging-accuracy.csv)
 #include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
+#include "StrataTestHelpers.h"       // For ReadRGB
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -56,15 +58,16 @@ public:
   static HorizonSource* New();
   vtkTypeMacro(HorizonSource, vtkImageAlgorithm);
   int Horizon = 0;
+  int Nx = NX, Ny = NY; ///< the same horizons sampled on a coarser grid when smaller
 
 protected:
   HorizonSource() { this->SetNumberOfInputPorts(0); }
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
   {
     vtkInformation* info = out->GetInformationObject(0);
-    const int extent[6] = { 0, NX - 1, 0, NY - 1, 0, 0 };
+    const int extent[6] = { 0, this->Nx - 1, 0, this->Ny - 1, 0, 0 };
     info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    const double spacing[3] = { Spacing, Spacing, 1.0 };
+    const double spacing[3] = { Spacing * (NX - 1) / (this->Nx - 1), Spacing * (NY - 1) / (this->Ny - 1), 1.0 };
     const double origin[3] = { 420000.0, 6500000.0, 0.0 };
     info->Set(vtkDataObject::SPACING(), spacing, 3);
     info->Set(vtkDataObject::ORIGIN(), origin, 3);
@@ -87,7 +90,7 @@ protected:
     {
       for (int i = extent[0]; i <= extent[1]; ++i)
       {
-        const double u = double(i) / (NX - 1), v = double(j) / (NY - 1);
+        const double u = double(i) / (this->Nx - 1), v = double(j) / (this->Ny - 1);
         const double metres = 1200.0 + 600.0 * k + 900.0 * u + 500.0 * v +
           (180.0 + 40.0 * k) * strata_test::FractalNoise(12 * u + 3.1 * k, 25 * v + 1.7 * k, 31 + k, 7);
         values[n++] = static_cast<unsigned short>(std::min(65535.0, std::max(0.0, std::round(metres * 10.0))));
@@ -105,10 +108,13 @@ double PeakRssMB()
   return usage.ru_maxrss / 1024.0;
 }
 
-std::string PoolPath(const std::string& dir, int k)
+std::string PoolPath(const std::string& dir, int k, bool small = false)
 {
-  return dir + "/paging-horizon-" + std::to_string(k) + ".spp";
+  return dir + (small ? "/paging-horizon-small-" : "/paging-horizon-") + std::to_string(k) + ".spp";
 }
+
+const int SmallN = 2049;    // points per axis of the accuracy stack
+const int SmallPage = 129; // its tile size
 
 bool Exists(const std::string& path)
 {
@@ -125,20 +131,23 @@ double Percentile(std::vector<double> v, double q)
 
 int Generate(const std::string& dir)
 {
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 6; ++k)
   {
-    const std::string path = PoolPath(dir, k);
+    const bool small = k >= 3;
+    const std::string path = PoolPath(dir, k % 3, small);
     if (Exists(path))
     {
       std::cerr << path << " exists\n";
       continue;
     }
     vtkNew<HorizonSource> source;
-    source->Horizon = k;
+    source->Horizon = k % 3;
+    if (small)
+      source->Nx = source->Ny = SmallN;
     vtkNew<vtkImageToPagePoolWriter> writer;
     writer->SetInputConnection(source->GetOutputPort());
     writer->SetFileName(path.c_str());
-    writer->SetPageSize(257);
+    writer->SetPageSize(small ? SmallPage : 257);
     writer->SetMemoryLimit(256);
     const auto t0 = std::chrono::steady_clock::now();
     const bool ok = writer->Write();
@@ -251,11 +260,112 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
 }
 }
 
+// The converged view at several atlas budgets against the in-core rendering of the full data.
+int Accuracy(const std::string& dir)
+{
+  std::vector<vtkSmartPointer<vtkImageData>> full;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (!Exists(PoolPath(dir, k, true)))
+    {
+      std::printf("accuracy-horizons-%d,,,,,,,missing %s: run BenchPagingHorizons generate first\n", SmallN,
+        PoolPath(dir, k, true).c_str());
+      return 1;
+    }
+    vtkNew<vtkPagePoolReader> reader; // resolution 1: the finest level, read whole
+    reader->SetFileName(PoolPath(dir, k, true).c_str());
+    reader->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(reader->GetOutput());
+    full.push_back(image);
+  }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, Size, Size);
+  vtkNew<vtkActor> actor;
+  actor->SetScale(1, 1, 8);
+  ren->AddActor(actor);
+  auto setUp = [&](vtkStackedHeightFieldMapper* m) {
+    m->SetHeightScale(-0.1);
+    m->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+    actor->SetMapper(m);
+  };
+  vtkNew<vtkStackedHeightFieldMapper> incore;
+  setUp(incore);
+  for (auto& image : full)
+    incore->AddInputDataObject(image);
+  double b[6];
+  actor->GetBounds(b);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetViewAngle(40);
+  cam->SetViewUp(0, 0, 1);
+  const double lx = b[1] - b[0], ly = b[3] - b[2];
+  cam->SetFocalPoint(b[0] + 0.5 * lx, b[2] + 0.6 * ly, b[4]);
+  cam->SetPosition(b[0] + 0.4 * lx, b[2] - 0.1 * ly, b[5] + 0.15 * ly);
+  ren->ResetCameraClippingRange(b);
+  win->Render();
+  const auto reference = strata_test::ReadRGB(win);
+  for (double atlasMB : { 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0 })
+  {
+    vtkNew<vtkStackedHeightFieldMapper> paged;
+    setUp(paged);
+    paged->SetAtlasBudget(atlasMB);
+    paged->SetPagesPerFrame(32);
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+    for (int k = 0; k < 3; ++k)
+    {
+      auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+      reader->SetFileName(PoolPath(dir, k, true).c_str());
+      paged->AddInputConnection(reader->GetOutputPort());
+      readers.push_back(reader);
+    }
+    int frames = 0;
+    double uploaded = 0.0;
+    for (; frames < 400; ++frames)
+    {
+      win->Render();
+      const auto st = paged->GetPagingStatistics();
+      uploaded += st.BytesUploaded / 1048576.0;
+      if (st.Converged)
+        break;
+      paged->WaitForPages(1.0);
+    }
+    std::vector<double> ms;
+    for (int f = 0; f < 5; ++f)
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      win->Render();
+      win->WaitForCompletion();
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    const auto image = strata_test::ReadRGB(win);
+    double sum = 0.0;
+    int worst = 0;
+    long differing = 0;
+    for (size_t p = 0; p < image.size(); ++p)
+    {
+      const int e = std::abs(int(image[p]) - int(reference[p]));
+      sum += double(e) * e;
+      worst = std::max(worst, e);
+    }
+    for (size_t p = 0; p + 2 < image.size(); p += 3)
+      differing += (image[p] != reference[p] || image[p + 1] != reference[p + 1] || image[p + 2] != reference[p + 2]) ? 1 : 0;
+    const auto st = paged->GetPagingStatistics();
+    std::printf("accuracy-horizons-%d,%g,%.4f,%d,%.1f,%d,%.2f,%d tiles of %dx%d resident (%d at level 0); %.1f %% of "
+                "pixels differ; %.1f MB uploaded in all; reference: in-core, every point (%dx%d)\n",
+      SmallN, atlasMB, std::sqrt(sum / image.size()), worst, Percentile(ms, 0.5), frames + 1, uploaded / (frames + 1),
+      st.CutTiles, SmallPage, SmallPage, st.FinestTiles, 100.0 * differing / (image.size() / 3), uploaded, Size, Size);
+  }
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "generate" && argc > 2)
     return Generate(argv[2]);
+  if (mode == "accuracy" && argc > 2)
+    return Accuracy(argv[2]);
   if (mode == "flythrough" && argc > 4)
     return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]));
   std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB>\n";
