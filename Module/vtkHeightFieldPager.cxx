@@ -2,6 +2,7 @@
 #include "vtkHeightFieldPager.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkFeedbackReduction.h"
 #include "vtkMinMaxQuadtree.h"
 #include "vtkPageCache.h"
 #include "vtkPagePoolFile.h"
@@ -12,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <unordered_map>
 #include <sstream>
 
 namespace
@@ -70,6 +72,38 @@ public:
   vtkPagePoolFile::Header Header;
   vtkHeightFieldPager::Statistics Stats;
   int RequestLimit = 256;
+
+  // Feedback: page id -> (coverage, frame last asked for); per horizon, the requests summed
+  // over each node's subtree.
+  bool UseFeedback = false;
+  int64_t FeedbackFrame = 0;
+  int FeedbackCycle = 1;
+  int64_t CycleStart = 0;
+  std::unordered_map<uint32_t, std::pair<uint32_t, int64_t>> Requests;
+  std::vector<std::vector<double>> SubtreeRequests;
+
+  void SumRequests()
+  {
+    this->SubtreeRequests.assign(this->Horizons.size(), std::vector<double>());
+    for (size_t h = 0; h < this->Horizons.size(); ++h)
+      this->SubtreeRequests[h].assign(this->Pools[this->Horizons[h].PoolIndex]->Tree.GetNumberOfNodes(), 0.0);
+    for (const auto& r : this->Requests)
+    {
+      const int h = vtkFeedbackReduction::GetDataSet(r.first);
+      const int level = vtkFeedbackReduction::GetLevel(r.first);
+      if (h < 0 || h >= static_cast<int>(this->Horizons.size()))
+        continue;
+      const vtkVolumeBrickTree& tree = this->Pools[this->Horizons[h].PoolIndex]->Tree;
+      if (level >= tree.GetNumberOfLevels())
+        continue;
+      const int* bricks = tree.GetLevelBricks(level);
+      const int64_t index = vtkFeedbackReduction::GetPageIndex(r.first);
+      if (index >= static_cast<int64_t>(bricks[0]) * bricks[1])
+        continue;
+      for (int n = tree.GetLevelOffset(level) + static_cast<int>(index); n >= 0; n = tree.GetParent(n))
+        this->SubtreeRequests[h][n] += r.second.first;
+    }
+  }
 
   vtkInternals()
   {
@@ -197,6 +231,9 @@ public:
 
   void Close()
   {
+    this->UseFeedback = false;
+    this->Requests.clear();
+    this->SubtreeRequests.clear();
     this->Cache.Stop();
     this->Cache.EvictAll();
     {
@@ -576,6 +613,25 @@ bool vtkHeightFieldPager::Update(
       pl[3] += std::abs(pl[0] * span[0] + pl[1] * span[1] + pl[2] * span[2]);
     }
   }
+  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
+  {
+    if (!in.UseFeedback)
+    {
+      in.Cut.SetVolumePriority(h, nullptr);
+      continue;
+    }
+    // Split a tile when rays asked for tiles below it: the pixels that did are its priority.
+    vtkInternals* internals = &in;
+    const vtkVolumeBrickTree* tree = &in.Pools[in.Horizons[h].PoolIndex]->Tree;
+    in.Cut.SetVolumePriority(h, [internals, tree, h](int node, double) {
+      int children[8];
+      const int count = tree->GetChildren(node, children);
+      double asked = 0.0;
+      for (int c = 0; c < count; ++c)
+        asked += internals->SubtreeRequests[h][children[c]];
+      return asked;
+    });
+  }
   in.Stats.MissesThisFrame = 0;
   in.RequestLimit = 4 * in.PagesPerFrame;
   in.Cut.SetMaxNewBricksPerUpdate(in.PagesPerFrame);
@@ -641,8 +697,49 @@ bool vtkHeightFieldPager::Update(
       if (tree.GetNode(n).Level == 0 && !in.Cut.IsEmpty(h, n))
         ++in.Stats.FinestTiles;
   }
-  in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0;
+  in.Stats.FeedbackPages = static_cast<int>(in.Requests.size());
+  // With feedback, settled also means every pixel of the lattice was sampled since the view
+  // last changed.
+  const bool cycled = !in.UseFeedback || in.FeedbackFrame - in.CycleStart >= in.FeedbackCycle;
+  in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0 && cycled;
   return tableChanged || treeChanged;
+}
+
+void vtkHeightFieldPager::SetFeedback(
+  const std::vector<uint32_t>& pages, const std::vector<uint32_t>& coverage, int cycleFrames, bool viewChanged)
+{
+  vtkInternals& in = *this->Internals;
+  ++in.FeedbackFrame;
+  in.FeedbackCycle = std::max(1, cycleFrames);
+  if (viewChanged || !in.UseFeedback)
+  {
+    in.CycleStart = in.FeedbackFrame;
+  }
+  in.UseFeedback = true;
+  for (size_t e = 0; e < pages.size() && e < coverage.size(); ++e)
+    in.Requests[pages[e]] = { coverage[e], in.FeedbackFrame };
+  // Requests older than a cycle were for pixels that have been sampled again since.
+  for (auto it = in.Requests.begin(); it != in.Requests.end();)
+    it = in.FeedbackFrame - it->second.second >= in.FeedbackCycle ? in.Requests.erase(it) : std::next(it);
+  in.SumRequests();
+}
+
+void vtkHeightFieldPager::ClearFeedback()
+{
+  vtkInternals& in = *this->Internals;
+  in.UseFeedback = false;
+  in.Requests.clear();
+  in.SubtreeRequests.clear();
+}
+
+const int* vtkHeightFieldPager::GetLevelTiles(int level) const
+{
+  return this->Internals->Pools[0]->Tree.GetLevelBricks(level);
+}
+
+int vtkHeightFieldPager::GetNumberOfLevels() const
+{
+  return this->Internals->Pools.empty() ? 0 : this->Internals->Pools[0]->Tree.GetNumberOfLevels();
 }
 
 void vtkHeightFieldPager::GetUploadValues(const Upload& upload, std::vector<float>& values) const

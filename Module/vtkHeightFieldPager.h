@@ -36,7 +36,7 @@
 #include "StrataModule.h" // For export macro
 #include "vtkVolumeCut.h" // For vtkVolumeCut::Camera
 
-#include <cstdint> // For uint16_t
+#include <cstdint> // For uint16_t, uint32_t
 #include <memory>  // For std::unique_ptr
 #include <string>  // For std::string
 #include <vector>  // For std::vector
@@ -76,6 +76,7 @@ public:
     int CutTiles = 0;            ///< resident cut tiles over all horizons
     int FinestTiles = 0;         ///< of which level 0
     int Entered = 0;             ///< tiles that entered the cut this frame
+    int FeedbackPages = 0;       ///< distinct tiles the feedback asked for (last cycle)
   };
 
   vtkHeightFieldPager();
@@ -130,6 +131,23 @@ public:
    * table or the quadtree changed (upload them again).
    */
   bool Update(const vtkVolumeCut::Camera& camera, const double gridToWorld[16], std::vector<Upload>& uploads);
+
+  /**
+   * Level-of-detail feedback of the last frame: (page, coverage) entries as
+   * vtkFeedbackReduction makes them (data set = horizon, level, tile index in the level),
+   * the tile each sampled ray hit at the level its footprint wants. A ray samples one pixel
+   * of each cycleFrames-pixel lattice cell per frame, so requests are kept for that many
+   * frames. Once feedback arrives the cut splits only tiles with requested tiles below them
+   * (priority: the pixels asking), so hidden and out-of-view parts stay coarse; without it
+   * the screen-space error of every tile rules. `viewChanged` restarts the cycle.
+   */
+  void SetFeedback(const std::vector<uint32_t>& pages, const std::vector<uint32_t>& coverage, int cycleFrames,
+    bool viewChanged);
+  /// Back to screen-space error priorities (feedback off).
+  void ClearFeedback();
+  /// Tiles per axis of level l (what the shader needs to number the tiles it asks for).
+  const int* GetLevelTiles(int level) const;
+  int GetNumberOfLevels() const;
 
   /// B x B heights of an upload, no-data values as NaN.
   void GetUploadValues(const Upload& upload, std::vector<float>& values) const;

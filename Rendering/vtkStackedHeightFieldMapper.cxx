@@ -7,6 +7,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
+#include "vtkFeedbackReduction.h"
 #include "vtkHeightFieldPager.h"
 #include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
@@ -43,7 +44,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <chrono>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -69,6 +72,38 @@ void DefaultDepthColor(double s, double rgb[3])
     rgb[c] = stops[k][c] * (1.0 - f) + stops[k + 1][c] * f;
   }
 }
+
+// One reduction for every mapper of the process: its OpenCL set-up (context, program build)
+// is paid once, not per mapper.
+vtkFeedbackReduction& SharedReduction(std::unique_lock<std::mutex>& lock)
+{
+  static vtkFeedbackReduction reduction;
+  static std::mutex mutex;
+  lock = std::unique_lock<std::mutex>(mutex);
+  return reduction;
+}
+
+// The feedback write (paged horizons): one pixel per FeedbackScale^2 lattice cell asks for the
+// tile its hit lies in, at the level whose cells cover about uLodScale pixels' worth of the
+// pixel's footprint (one pixel unprojected at the hit's depth, in level-0 cells).
+const char* FeedbackDeclarations = R"(layout(r32ui) uniform uimage2D uFeedback;
+uniform int uFeedbackScale;
+uniform ivec2 uFeedbackOffset;
+uniform float uLodScale;
+uniform int uPageLevels;
+uniform int uLevelTilesX[32];
+)";
+const char* FeedbackWrite = R"(if (all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, uFeedbackOffset)))
+  {
+    vec3 n0 = clip.xyz / clip.w;
+    vec4 gx = uClipToGrid * vec4(n0 + vec3(2.0 / uViewport.z, 0.0, 0.0), 1.0);
+    vec4 gy = uClipToGrid * vec4(n0 + vec3(0.0, 2.0 / uViewport.w, 0.0), 1.0);
+    float footprint = max(length(gx.xy / gx.w - pGrid.xy), length(gy.xy / gy.w - pGrid.xy)) * uLodScale;
+    int want = footprint >= 2.0 ? min(int(floor(log2(footprint))), uPageLevels - 1) : 0;
+    ivec2 tile = min(max(ivec2(floor(pGrid.xy)), ivec2(0)) / uPageStride, uPageTiles - 1) >> want;
+    uint id = strataPackPage(uint(hitLayer), uint(want), uint(tile.y * uLevelTilesX[want] + tile.x));
+    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(id, 0u, 0u, 0u));
+  })";
 
 void Replace(std::string& source, const std::string& tag, const std::string& code)
 {
@@ -113,6 +148,13 @@ public:
   unsigned int AtlasTexture = 0;
   unsigned int PageTableTexture = 0;
   int AtlasSlots = 0;
+  // Level-of-detail feedback: the buffer, the lattice phase and the view it was written from.
+  unsigned int FeedbackTexture = 0;
+  int FeedbackSize[2] = { 0, 0 };
+  int64_t FeedbackFrame = 0;
+  bool FeedbackActive = false; ///< this frame's shader writes the buffer
+  bool FeedbackUnsupportedWarned = false;
+  std::array<double, 16> LastView{};
   vtkStackedHeightFieldMapper::PagingStatistics Paging;
   bool TreeDirty = true;
 
@@ -576,6 +618,8 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   in.Paging.Failures = stats.Failures;
   in.Paging.BytesRead = stats.BytesRead;
   in.Paging.CacheBytes = stats.CacheBytes;
+  in.Paging.FeedbackUsed = in.FeedbackActive;
+  in.Paging.FeedbackPages = stats.FeedbackPages;
   return true;
 }
 
@@ -618,7 +662,7 @@ double* vtkStackedHeightFieldMapper::GetBounds()
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
-  for (unsigned int* texture : { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture })
+  for (unsigned int* texture : { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture, &in.FeedbackTexture })
   {
     if (*texture)
     {
@@ -627,6 +671,7 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
     }
   }
   in.AtlasSlots = 0;
+  in.FeedbackSize[0] = in.FeedbackSize[1] = 0;
   for (auto* t : { in.NodeTexture.Get(), in.IntervalTexture.Get(), in.LayerListTexture.Get(),
          in.ColorTexture.Get() })
   {
@@ -851,6 +896,31 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   Replace(fs, "//STRATA::HeightLookup::Dec", in.Paged ? vtkStackedHeightFieldPagedLookup : 
     "uniform sampler2DArray uHeights;\n"
     "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; }");
+  // Feedback: image load/store (GL 4.2 or the ARB extension), at most 63 horizons (page ids).
+  bool feedback = in.Paged && this->Feedback && layers <= vtkFeedbackReduction::MaxDataSets;
+  if (feedback)
+  {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 42)
+    {
+      if (!in.FeedbackUnsupportedWarned)
+      {
+        vtkWarningMacro("OpenGL " << major << "." << minor << " has no image load/store: paging without feedback.");
+        in.FeedbackUnsupportedWarned = true;
+      }
+      feedback = false;
+    }
+  }
+  in.FeedbackActive = feedback;
+  if (!feedback)
+  {
+    in.Pager.ClearFeedback();
+  }
+  Replace(fs, "//STRATA::Extensions::Dec", feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  Replace(fs, "//STRATA::Feedback::Dec", feedback ? std::string(FeedbackDeclarations) + vtkFeedbackReduction::GetGLSLPackFunction() : "");
+  Replace(fs, "//STRATA::Feedback::Impl", feedback ? FeedbackWrite : "");
   if (in.Paged)
   {
     Replace(fs, "//STRATA::CellCorners::Dec",
@@ -1100,6 +1170,45 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     }
   }
 
+  if (feedback)
+  {
+    const int s = this->FeedbackScale;
+    const int fw = (vp[2] + s - 1) / s, fh = (vp[3] + s - 1) / s;
+    if (!in.FeedbackTexture || fw != in.FeedbackSize[0] || fh != in.FeedbackSize[1])
+    {
+      if (!in.FeedbackTexture)
+      {
+        glGenTextures(1, &in.FeedbackTexture);
+      }
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      in.FeedbackSize[0] = fw;
+      in.FeedbackSize[1] = fh;
+    }
+    const std::vector<uint32_t> zeros(size_t(fw) * fh, 0u);
+    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindImageTexture(0, in.FeedbackTexture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    program->SetUniformi("uFeedback", 0);
+    program->SetUniformi("uFeedbackScale", s);
+    // The lattice phase cycles so that every pixel asks once per s^2 frames.
+    const int phase = static_cast<int>(in.FeedbackFrame % (s * s));
+    glUniform2i(program->FindUniform("uFeedbackOffset"), phase % s, phase / s);
+    program->SetUniformf("uLodScale", float(this->LevelOfDetailThreshold));
+    const int levelsPaged = std::min(in.Pager.GetNumberOfLevels(), vtkFeedbackReduction::MaxLevels);
+    program->SetUniformi("uPageLevels", levelsPaged);
+    int tilesX[32] = { 0 };
+    for (int l = 0; l < levelsPaged; ++l)
+    {
+      tilesX[l] = in.Pager.GetLevelTiles(l)[0];
+    }
+    program->SetUniform1iv("uLevelTilesX", 32, tilesX);
+  }
+
   // --- Draw the box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
   vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
   state->vtkglEnable(GL_CULL_FACE);
@@ -1129,7 +1238,42 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     units->Free(tableUnit);
   }
+  if (feedback)
+  {
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    std::array<double, 16> view;
+    std::copy_n(gridToClip->GetData(), 16, view.begin());
+    this->ReadFeedback(view != in.LastView);
+    in.LastView = view;
+  }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
+}
+
+void vtkStackedHeightFieldMapper::ReadFeedback(bool viewChanged)
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<uint32_t> ids(size_t(in.FeedbackSize[0]) * in.FeedbackSize[1]);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  // Timed from here: the read-back above waits for the frame to finish drawing.
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<vtkFeedbackReduction::Entry> list;
+  {
+    std::unique_lock<std::mutex> lock;
+    SharedReduction(lock).Reduce(ids.data(), ids.size(), list);
+  }
+  std::vector<uint32_t> pages(list.size()), coverage(list.size());
+  for (size_t e = 0; e < list.size(); ++e)
+  {
+    pages[e] = list[e].Page;
+    coverage[e] = list[e].Coverage;
+  }
+  in.Pager.SetFeedback(pages, coverage, this->FeedbackScale * this->FeedbackScale, viewChanged);
+  ++in.FeedbackFrame;
+  in.Paging.FeedbackSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)

@@ -159,6 +159,31 @@ public:
   vtkGetMacro(PagesPerFrame, int);
   ///@}
 
+  ///@{
+  /**
+   * Level-of-detail feedback while paging (default on): the ray caster writes the tile each
+   * sampled ray hit, at the level its pixel footprint wants, into a buffer of 1/FeedbackScale
+   * of the viewport per axis (default 4; one pixel of each lattice cell per frame, cycling),
+   * reduced to a (tile, pixels) list that drives the cut, so tiles hidden under other horizons
+   * or out of view stay coarse. Off: every tile is refined by its screen-space error.
+   */
+  vtkSetMacro(Feedback, bool);
+  vtkGetMacro(Feedback, bool);
+  vtkBooleanMacro(Feedback, bool);
+  vtkSetClampMacro(FeedbackScale, int, 1, 16);
+  vtkGetMacro(FeedbackScale, int);
+  ///@}
+
+  ///@{
+  /**
+   * Pixels a cell may cover before feedback asks for a finer level; 0 (default) asks for the
+   * finest level wherever a ray hits, so the converged image is the in-core one. 1 stops at
+   * about one cell per pixel, saving the I/O of sub-pixel detail.
+   */
+  vtkSetClampMacro(LevelOfDetailThreshold, double, 0.0, 1.0e3);
+  vtkGetMacro(LevelOfDetailThreshold, double);
+  ///@}
+
   /// What paging did in the last frame (all zero when the inputs are in core).
   struct PagingStatistics
   {
@@ -175,6 +200,9 @@ public:
     long long BytesRead = 0;     ///< by the cache's workers since the pools were opened
     long long BytesUploaded = 0; ///< this frame
     long long CacheBytes = 0;
+    bool FeedbackUsed = false;   ///< the cut was driven by feedback this frame
+    int FeedbackPages = 0;       ///< distinct tiles asked for over the last cycle
+    double FeedbackSeconds = 0;  ///< reduction of the last buffer (not its read-back)
   };
   PagingStatistics GetPagingStatistics() const;
   /// Forgets failed page loads so that they are tried again.
@@ -223,6 +251,7 @@ private:
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
   bool UpdatePages(vtkRenderer* ren, vtkActor* actor);
+  void ReadFeedback(bool viewChanged);
 
   int TileSize = 64;
   double LinearSearchStep = 0.5;
@@ -233,6 +262,9 @@ private:
   double PageCacheBudget = 256.0;
   double AtlasBudget = 128.0;
   int PagesPerFrame = 64;
+  bool Feedback = true;
+  int FeedbackScale = 4;
+  double LevelOfDetailThreshold = 0.0;
   ColorModes ColorMode = ColorModes::Solid;
   OutputModes OutputMode = OutputModes::Shaded;
 

@@ -1,4 +1,5 @@
 //VTK::System::Dec
+//STRATA::Extensions::Dec
 // Strata stacked height-field ray caster (Lux & Froehlich, section 4): one pass, global
 // min-max quadtree traversed top-down, per-leaf sorted depth intervals evaluated in ray order,
 // linear search per layer with binary refinement. Tags are filled per scene by
@@ -23,6 +24,8 @@ uniform samplerBuffer uIntervals;  // zmin, zmax, layer offset, layer count
 uniform samplerBuffer uLayerLists; // layer ids
 
 //STRATA::HeightLookup::Dec
+
+//STRATA::Feedback::Dec
 
 //STRATA::Color::Dec
 
@@ -286,6 +289,8 @@ void main()
   vec4 clip = uGridToClip * vec4(pGrid, 1.0);
   float ndcDepth = clip.z / clip.w;
   gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+
+  //STRATA::Feedback::Impl
 
   //STRATA::Color::Impl
 

@@ -7,7 +7,9 @@
 //     heights the cut holds (the pager's CPU lookup), so there are no holes and no garbage
 //     tiles; and the first frame already covers what the full data covers;
 //  2. converged, the paged image equals the in-core image of the same data, shaded and in
-//     horizon ids, and out-of-view tiles stay coarse when zoomed in;
+//     horizon ids, with level-of-detail feedback (the default) and without; with feedback the
+//     tiles hidden under other horizons stay coarse, and out-of-view tiles stay coarse when
+//     zoomed in;
 //  3. faults: a corrupt tile, a pool truncated while rendering, a truncated pool and a missing
 //     file give VTK errors and no crash; the horizons keep their coarser tiles.
 #include "StrataDemoScene.h"
@@ -232,6 +234,28 @@ int TestHeightFieldPaging(int, char*[])
     Check(ids.Max == 0, "converged paged rendering equals the in-core one (ids)");
     incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
     paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
+
+    // Without feedback every tile in view is refined by its screen-space error; with it only
+    // the tiles rays hit, so the parts of the lower horizons hidden under the upper ones stay
+    // coarse: fewer level-0 tiles, the same image.
+    vtkNew<vtkStackedHeightFieldMapper> blind;
+    blind->SetTileSize(32);
+    blind->FeedbackOff();
+    for (const auto& r : readers)
+      blind->AddInputConnection(r->GetOutputPort());
+    for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)
+    {
+      render(blind);
+      blind->WaitForPages(1.0);
+    }
+    const auto sb = blind->GetPagingStatistics();
+    const Difference db = Compare(render(blind), full, background);
+    std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " (" << st.FeedbackPages
+              << " tiles asked for), without " << sb.FinestTiles << "; without feedback max difference " << db.Max
+              << "; feedback read-back and reduction " << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
+    Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
+    Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
+    Check(st.FinestTiles < sb.FinestTiles, "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
   }
   {
     // Zoomed into a corner: tiles out of view are never refined.
