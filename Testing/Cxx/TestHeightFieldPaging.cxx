@@ -252,7 +252,7 @@ int TestHeightFieldPaging(int, char*[])
     const Difference db = Compare(render(blind), full, background);
     std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " (" << st.FeedbackPages
               << " tiles asked for), without " << sb.FinestTiles << "; without feedback max difference " << db.Max
-              << "; feedback read-back and reduction " << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
+              << "; feedback reduction " << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
     Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
     Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
     Check(st.FinestTiles < sb.FinestTiles, "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
