@@ -179,6 +179,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   mapper->SetPageCacheBudget(cacheMB);
   mapper->SetAtlasBudget(atlasMB);
   mapper->SetPagesPerFrame(32);
+  mapper->SetLevelOfDetailThreshold(1.0); // about a cell per pixel: no I/O for sub-pixel detail
   mapper->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   for (int k = 0; k < 3; ++k)
@@ -241,7 +242,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   const auto st = mapper->GetPagingStatistics();
   std::printf("flythrough-horizons-3x6870x14300,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
               "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; "
-              "the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
+              "feedback 1/4, level of detail 1 cell per pixel; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
               "render thread read tiles itself; %d failed tiles; %dx%d\n",
     cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
     upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, st.Failures, Size, Size);
