@@ -32,6 +32,7 @@ public:
     double Matrix[16];
     OpacityRangeFunction Opacity;
     AvailabilityFunction Available;
+    PriorityFunction Rank;
     double VoxelSize = 1.0; ///< world length of the longest level-0 voxel edge
     std::vector<uint8_t> State;
     std::vector<uint8_t> Empty;
@@ -243,6 +244,11 @@ void vtkVolumeCut::SetVolumeAvailability(int volume, AvailabilityFunction availa
   this->Internals->Volumes[volume].Available = std::move(available);
 }
 
+void vtkVolumeCut::SetVolumePriority(int volume, PriorityFunction priority)
+{
+  this->Internals->Volumes[volume].Rank = std::move(priority);
+}
+
 void vtkVolumeCut::SetVolumeOpacity(int volume, OpacityRangeFunction maxOpacity)
 {
   this->Internals->Volumes[volume].Opacity = std::move(maxOpacity);
@@ -348,6 +354,10 @@ int vtkVolumeCut::Update(const Camera& camera)
       }
       vol.Empty[n] = opacity <= 0.0;
       double priority = vol.Empty[n] ? 0.0 : this->ComputeScreenSpaceError(v, n, camera);
+      if (vol.Rank && !vol.Empty[n])
+      {
+        priority = vol.Rank(n, priority);
+      }
       if (this->OpacityWeighting)
       {
         priority *= std::min(1.0, opacity);

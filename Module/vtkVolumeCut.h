@@ -105,6 +105,17 @@ public:
    */
   using AvailabilityFunction = std::function<bool(int node, double priority)>;
   void SetVolumeAvailability(int volume, AvailabilityFunction available);
+  /**
+   * Replaces the screen-space error as the volume's split priority. A renderer with
+   * level-of-detail feedback ranks a node by the pixels whose rays asked for detail below it,
+   * so bricks no ray reaches (hidden behind opaque material, outside the view) get priority 0
+   * and are never split, while one priority scale still orders the nodes of all volumes for
+   * the shared budget. `priority(node, screenSpaceError)` is asked once per node and Update();
+   * opacity weighting and the error threshold apply to its result. Empty function (default):
+   * the screen-space error.
+   */
+  using PriorityFunction = std::function<double(int node, double screenSpaceError)>;
+  void SetVolumePriority(int volume, PriorityFunction priority);
   void RemoveAllVolumes();
   int GetNumberOfVolumes() const;
   const vtkVolumeBrickTree* GetTree(int volume) const;

@@ -2,6 +2,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkFeedbackReduction.h"
 #include "vtkPageCache.h"
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
@@ -51,10 +52,11 @@
 #include "vtkMultiVolumeFragmentVS.h"
 
 #include <algorithm>
-#include <mutex>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -87,11 +89,89 @@ void Translation(vtkMatrix4x4* m, const std::array<double, 3>& t)
     m->SetElement(i, 3, t[i]);
 }
 
+constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
+
+// The root page of a pool from the image its reader produced at the coarsest level (`dims`
+// points): the page is B^3 values, x fastest, and repeats the level's last point beyond it
+// (vtkPagePoolFormat), converted to float like vtkPagePoolFile::ReadPage. False when the image
+// is not that level.
+bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
+{
+  int d[3];
+  image->GetDimensions(d);
+  vtkDataArray* scalars = image->GetPointData() ? image->GetPointData()->GetScalars() : nullptr;
+  if (!scalars || d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2] || d[0] > B || d[1] > B || d[2] > B ||
+    scalars->GetNumberOfTuples() != vtkIdType(d[0]) * d[1] * d[2])
+  {
+    return false;
+  }
+  for (int k = 0; k < B; ++k)
+    for (int j = 0; j < B; ++j)
+      for (int i = 0; i < B; ++i)
+      {
+        const vtkIdType at = (vtkIdType(std::min(k, d[2] - 1)) * d[1] + std::min(j, d[1] - 1)) * d[0] + std::min(i, d[0] - 1);
+        page[(size_t(k) * B + j) * B + i] = static_cast<float>(scalars->GetComponent(at, 0));
+      }
+  return true;
+}
+
+// Level-of-detail feedback (paged scenes only): strataLacking(p) is the packed page id of the
+// brick a ray needs at p when the cut holds it coarser than the footprint asks for, 0 when it
+// holds it fine enough or the brick is transparent. Volume i of the fragment is data set
+// uFeedbackSet<i>; uLevelBricks<i> holds the bricks per axis of each level, so that the
+// level-l brick over level-0 brick b is b >> l (vtkVolumeCut::MapToAtlas) with index
+// (z ny + y) nx + x, the tree's node order.
+std::string FeedbackDeclarations(int k)
+{
+  std::ostringstream dec;
+  dec << "// Level-of-detail feedback: the first lacking brick of the centre ray of every\n"
+      << "// uFeedbackScale-th pixel per axis, one texel each.\n"
+      << "layout(r32ui) uniform uimage2D uFeedback;\n"
+      << "uniform int uFeedbackScale;\n"
+      << "uniform vec3 uFeedbackEye; // local frame\n"
+      << "uniform vec2 uFeedbackFootprint; // error threshold x pixel size = x + y * distance\n"
+      << "uint gLacking = 0u;\n"
+      << "bool gFeedbackRay = false;\n"
+      << vtkFeedbackReduction::GetGLSLPackFunction()
+      << "// The coarsest level whose voxels (level-0 size lod.x) cover at most the threshold in\n"
+      << "// pixels at p, clamped to the levels [0, lod.y].\n"
+      << "int strataWantedLevel(vec3 p, vec2 lod)\n{\n"
+      << "  float pixel = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(p, uFeedbackEye);\n"
+      << "  return int(clamp(floor(log2(max(pixel / lod.x, 1.0e-30))), 0.0, lod.y));\n}\n";
+  for (int i = 0; i < k; ++i)
+  {
+    const std::string n = std::to_string(i);
+    dec << "uniform int uFeedbackSet" << n << ";\n"
+        << "uniform int uLevelBricks" << n << "[" << 3 * FeedbackLevels << "];\n"
+        << "uniform vec2 uFeedbackLod" << n << "; // level-0 voxel size (local units), coarsest level\n"
+        << "uint strataLacking" << n << "(vec3 p)\n{\n"
+        << "  float S = uBrickSize - 1.0;\n"
+        << "  vec3 idx = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
+        << "  vec3 x = clamp(mix(idx, floor(idx + 0.5), uNearest" << n << "), vec3(0.0), uTableDims" << n << " * S);\n"
+        << "  ivec3 b = min(ivec3(floor(x / S)), ivec3(uTableDims" << n << ") - 1);\n"
+        << "  uint have = texelFetch(uIndex" << n << ", b, 0).w;\n"
+        << "  int want = strataWantedLevel(p, uFeedbackLod" << n << ");\n"
+        << "  if (have == 65535u || have <= uint(want))\n  {\n    return 0u;\n  }\n"
+        << "  ivec3 w = b >> want;\n"
+        << "  int g = 3 * want;\n"
+        << "  return strataPackPage(uint(uFeedbackSet" << n << "), uint(want), uint((w.z * uLevelBricks" << n
+        << "[g + 1] + w.y) * uLevelBricks" << n << "[g] + w.x));\n}\n";
+  }
+  dec << "uint strataLacking(vec3 p)\n{\n  uint id;\n";
+  for (int i = 0; i < k; ++i)
+  {
+    dec << "  id = strataLacking" << i << "(p);\n"
+        << "  if (id != 0u)\n  {\n    return id;\n  }\n";
+  }
+  dec << "  return 0u;\n}\n";
+  return dec.str();
+}
+
 // The fragment shader for k volumes: one unrolled block per volume, the classification's segment
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
   bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded,
-  bool atlas, bool skipping)
+  bool atlas, bool skipping, bool feedback)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -297,7 +377,9 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     }
     seg << "  return t + dir * until;\n}\n";
   }
-  Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str());
+  Replace(fs, "//STRATA::Extensions::Dec",
+    feedback ? "#extension GL_ARB_shader_image_load_store : require\n" : "");
+  Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str() + (feedback ? FeedbackDeclarations(k) : ""));
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
   if (frontToBack)
   {
@@ -331,8 +413,12 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     pixel << "gl_FragCoord.xy + vec2(" << offset[0] << ", " << offset[1] << ")";
     if (r == 0)
     {
+      if (feedback)
+        raysCode << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, ivec2(uFeedbackScale / 2)));\n";
       raysCode << "  gl_FragData[0] = strataCastRay(" << (rays > 1 ? pixel.str() : "gl_FragCoord.xy") << ", 0.0, " << prior
                << ", 0.0, tFirst0, inside0);\n";
+      if (feedback)
+        raysCode << "  gFeedbackRay = false;\n";
       if (rays > 1)
         raysCode << "  float tFirst;\n  bool inside;\n";
       if (rays > 1 && coherence)
@@ -347,6 +433,18 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       raysCode << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", " << phase.str()
                << ", " << prior << ", " << (coherence ? "tStart" : "0.0") << ", tFirst, inside);\n";
     }
+  }
+  if (feedback && frontToBack)
+  {
+    // Fragments are drawn nearest first: the first one that found a lacking brick keeps it.
+    raysCode << "  if (gLacking != 0u)\n  {\n"
+             << "    imageAtomicCompSwap(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, 0u, gLacking);\n  }\n";
+  }
+  else if (feedback)
+  {
+    // Farthest first: a nearer fragment's report replaces a farther one's.
+    raysCode << "  if (gLacking != 0u)\n  {\n"
+             << "    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(gLacking, 0u, 0u, 0u));\n  }\n";
   }
   Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
@@ -378,6 +476,17 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      continue;\n    }\n";
     }
     loop << "    if (b > a)\n    {\n";
+    if (feedback)
+    {
+      // The samples of this step, before it is composited (it may be the one that ends the ray).
+      loop << "      if (gFeedbackRay && gLacking == 0u)\n      {\n";
+      if (pre)
+        loop << "        gLacking = strataLacking(o + a * d);\n"
+             << "        gLacking = gLacking != 0u ? gLacking : strataLacking(o + b * d);\n";
+      else
+        loop << "        gLacking = strataLacking(o + 0.5 * (a + b) * d);\n";
+      loop << "      }\n";
+    }
     if (pre)
       loop << "      strataSampleAll(o + b * d, sB);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -412,6 +521,18 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      continue;\n    }\n";
     }
     loop << "    if (b > a)\n    {\n";
+    if (feedback)
+    {
+      // Nearer samples come later and replace what was found behind them.
+      loop << "      if (gFeedbackRay)\n      {\n";
+      if (pre)
+        loop << "        uint lack = strataLacking(o + b * d);\n"
+             << "        gLacking = lack != 0u ? lack : gLacking;\n"
+             << "        lack = strataLacking(o + a * d);\n";
+      else
+        loop << "        uint lack = strataLacking(o + 0.5 * (a + b) * d);\n";
+      loop << "        gLacking = lack != 0u ? lack : gLacking;\n      }\n";
+    }
     if (pre)
       loop << "      strataSampleAll(o + a * d, sA);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -539,6 +660,99 @@ public:
   vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
   int RequestLimit = 256; ///< page requests per frame: 4 x PagesPerFrame
 
+  // Level-of-detail feedback: the texture the rays write, the pixel buffer it is read into
+  // after the frame (mapped at the next one), and per cut volume and node the pixels that
+  // asked for detail below the node (the split priority).
+  using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
+  unsigned int FeedbackTexture = 0;
+  unsigned int FeedbackBuffer = 0;
+  int FeedbackSize[2] = { 0, 0 };
+  bool FeedbackPending = false; ///< the buffer holds a frame not reduced yet
+  ViewKey FeedbackView{};       ///< the view that frame was rendered from
+  ViewKey LastView{};           ///< the view of the last frame
+  vtkFeedbackReduction Reduction;
+  std::vector<std::vector<double>> Demand;
+  bool FeedbackUnsupportedWarned = false;
+
+  /// Node of the cut volume that a packed page id names, -1 if none.
+  int NodeOf(uint32_t page, int& volume) const
+  {
+    volume = vtkFeedbackReduction::GetDataSet(page);
+    if (volume < 0 || volume >= static_cast<int>(this->CutVolumes.size()))
+      return -1;
+    const vtkVolumeBrickTree* tree = this->CutVolumes[volume].second;
+    const int level = vtkFeedbackReduction::GetLevel(page);
+    if (level >= tree->GetNumberOfLevels())
+      return -1;
+    const int* b = tree->GetLevelBricks(level);
+    const uint32_t index = vtkFeedbackReduction::GetPageIndex(page);
+    if (index >= static_cast<uint32_t>(b[0]) * b[1] * b[2])
+      return -1;
+    return tree->GetLevelOffset(level) + static_cast<int>(index);
+  }
+
+  /**
+   * Maps the pixel buffer of the last frame's feedback, reduces it and raises each node's
+   * demand to the pixels that asked for a page strictly below it (PropagateToAncestors less
+   * the node's own requests). Returns false when no feedback was pending.
+   */
+  bool TakeFeedback(bool openCL)
+  {
+    if (!this->FeedbackPending || !this->FeedbackBuffer)
+      return false;
+    this->FeedbackPending = false;
+    const auto start = std::chrono::steady_clock::now();
+    const size_t count = static_cast<size_t>(this->FeedbackSize[0]) * this->FeedbackSize[1];
+    std::vector<vtkFeedbackReduction::Entry> asked;
+    bool usedOpenCL = false;
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, this->FeedbackBuffer);
+    const auto* ids = static_cast<const uint32_t*>(
+      glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
+    if (ids)
+    {
+      usedOpenCL = openCL && this->Reduction.ReduceOpenCL(ids, count, asked);
+      if (!usedOpenCL)
+        this->Reduction.ReduceCPU(ids, count, asked);
+      glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+    }
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    std::vector<vtkFeedbackReduction::Entry> below = asked;
+    vtkFeedbackReduction::PropagateToAncestors(below, [this](uint32_t page) {
+      int v = -1;
+      const int node = this->NodeOf(page, v);
+      const int parent = node < 0 ? -1 : this->CutVolumes[v].second->GetParent(node);
+      if (parent < 0)
+        return vtkFeedbackReduction::NoPage;
+      const vtkVolumeBrickTree* tree = this->CutVolumes[v].second;
+      const int level = tree->GetNode(parent).Level;
+      return vtkFeedbackReduction::PackPage(v, level, static_cast<uint32_t>(parent - tree->GetLevelOffset(level)));
+    });
+    // Both lists are sorted by page id: one merge subtracts the node's own requests.
+    auto own = asked.begin();
+    long long pixels = 0;
+    for (const auto& e : below)
+    {
+      while (own != asked.end() && own->Page < e.Page)
+        ++own;
+      const uint32_t self = own != asked.end() && own->Page == e.Page ? own->Coverage : 0;
+      int v = -1;
+      const int node = this->NodeOf(e.Page, v);
+      if (node >= 0 && v < static_cast<int>(this->Demand.size()))
+      {
+        double& d = this->Demand[v][node];
+        d = std::max(d, static_cast<double>(e.Coverage - self));
+      }
+    }
+    for (const auto& e : asked)
+      pixels += e.Coverage;
+    this->Paging.FeedbackPages = static_cast<int>(asked.size());
+    this->Paging.FeedbackPixels = static_cast<int>(pixels);
+    this->Paging.FeedbackOpenCL = usedOpenCL;
+    this->Paging.FeedbackMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return true;
+  }
+
   void Release(vtkWindow* window)
   {
     for (auto& t : this->Textures)
@@ -550,7 +764,6 @@ public:
       if (t.second.PreTable)
         t.second.PreTable->ReleaseGraphicsResources(window);
     }
-    this->Textures.clear();
     for (auto& a : this->Accumulation)
       a->ReleaseGraphicsResources(window);
     if (this->SceneDepth)
@@ -570,6 +783,14 @@ public:
     if (this->AtlasTexture)
       glDeleteTextures(1, &this->AtlasTexture);
     this->AtlasTexture = 0;
+    if (this->FeedbackTexture)
+      glDeleteTextures(1, &this->FeedbackTexture);
+    if (this->FeedbackBuffer)
+      glDeleteBuffers(1, &this->FeedbackBuffer);
+    this->FeedbackTexture = this->FeedbackBuffer = 0;
+    this->FeedbackSize[0] = this->FeedbackSize[1] = 0;
+    this->FeedbackPending = false;
+    this->Demand.clear();
     this->CutVolumes.clear();
     this->Textures.clear();
     if (this->FragmentVAO)
@@ -720,6 +941,22 @@ void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
 int vtkMultiVolumeRayCastMapper::GetNumberOfResidentBricks() const
 {
   return this->Internals->ResidentBricks;
+}
+
+std::vector<int> vtkMultiVolumeRayCastMapper::GetResidentBricksPerLevel(int port) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<int> counts;
+  for (size_t v = 0; v < in.CutVolumes.size(); ++v)
+  {
+    if (in.CutVolumes[v].first != port || static_cast<int>(v) >= in.Cut.GetNumberOfVolumes())
+      continue;
+    const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
+    counts.assign(tree->GetNumberOfLevels(), 0);
+    for (int n : in.Cut.GetCutNodes(static_cast<int>(v)))
+      counts[tree->GetNode(n).Level] += in.Cut.IsEmpty(static_cast<int>(v), n) ? 0 : 1;
+  }
+  return counts;
 }
 
 int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
@@ -924,6 +1161,14 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
+  // Feedback ranks the bricks of every volume while any is paged; it needs image load/store.
+  const bool imageStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
+  if (anyPooled && this->LevelOfDetailFeedback && !imageStore && !in.FeedbackUnsupportedWarned)
+  {
+    vtkWarningMacro("No image load/store (OpenGL 4.2): paging without level-of-detail feedback.");
+    in.FeedbackUnsupportedWarned = true;
+  }
+  const bool feedback = anyPooled && this->LevelOfDetailFeedback && imageStore;
 
   // --- BSP over the boxes (index range [0, n-1], or one spacing thick for n == 1).
   std::vector<vtkVolumeBSPTree::Box> boxes;
@@ -1168,6 +1413,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       clipPlanes.push_back(static_cast<float>(w));
     }
   }
+  vtkInternals::ViewKey view;
+  std::copy(worldToClip->GetData(), worldToClip->GetData() + 16, view.begin());
+  view[16] = width;
+  view[17] = height;
+  const bool moved = view != in.LastView;
+  in.LastView = view;
   for (auto& e : volumes)
   {
     // local -> index: IndexToWorld^-1 (local + origin), once per frame for all fragments.
@@ -1226,12 +1477,49 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       for (auto& t : in.Textures)
         t.second.Held.clear(); // a new cut starts from the roots
       in.AtlasBudget = this->AtlasBudget;
+      in.Demand.clear();
     }
+    // Feedback: the last frame's buffer raises the demand of the nodes its rays asked below;
+    // demand is kept while the camera is still and halves each frame it moves.
+    bool feedbackCurrent = false;
+    if (feedback)
+    {
+      if (in.Demand.size() != volumes.size())
+      {
+        in.Demand.resize(volumes.size());
+        for (size_t v = 0; v < volumes.size(); ++v)
+          in.Demand[v].assign(in.CutVolumes[v].second->GetNumberOfNodes(), 0.0);
+        in.FeedbackPending = false; // written for another cut
+      }
+      if (moved)
+      {
+        for (auto& d : in.Demand)
+          for (double& x : d)
+            x *= 0.5;
+      }
+      const bool sameView = in.FeedbackView == view;
+      feedbackCurrent = in.TakeFeedback(this->FeedbackOpenCL) && sameView;
+    }
+    else
+    {
+      in.Demand.clear();
+      in.FeedbackPending = false;
+    }
+    in.Cut.SetErrorThreshold(feedback ? 0.0 : this->ErrorThreshold);
     for (size_t v = 0; v < volumes.size(); ++v)
     {
       in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
       StrataVolumeTextures* tex = &in.Textures[ports[v]];
       in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
+      if (feedback)
+      {
+        const std::vector<double>* demand = &in.Demand[v];
+        in.Cut.SetVolumePriority(static_cast<int>(v), [demand](int node, double) { return (*demand)[node]; });
+      }
+      else
+      {
+        in.Cut.SetVolumePriority(static_cast<int>(v), nullptr);
+      }
       if (volumes[v].Pooled)
       {
         // A brick may enter the cut only with its page in RAM: found now (and pinned for this
@@ -1270,7 +1558,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       in.Cache.SetBudgetMiB(this->PageCacheBudget);
       in.Cache.Start();
       in.Cache.BeginFrame();
-      // Roots first, on this thread: one page per pool, once, so that a volume is never a hole.
+      // Roots first, so that a volume is never a hole. The reader was asked for its coarsest
+      // level, which is the root page: taken from the input image, no read here. Only an input
+      // of other dimensions (a filter between reader and mapper) makes this thread read it.
       for (size_t v = 0; v < volumes.size(); ++v)
       {
         StrataVolumeTextures& tex = in.Textures[ports[v]];
@@ -1278,15 +1568,23 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         if (root < 0 || tex.Held.count(root))
           continue;
         auto page = std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
-        std::string error;
         const int level = tex.Tree->GetNode(root).Level;
-        if (!tex.Pool->ReadPage(level, 0, reinterpret_cast<float*>(page->data()), &error))
+        if (RootFromImage(volumes[v].Input, tex.Tree->GetLevelDimensions(level), brickSize,
+              reinterpret_cast<float*>(page->data())))
         {
-          vtkErrorMacro("Cannot read the root page of \"" << tex.PoolName << "\": " << error);
-          return;
+          ++in.Paging.RootPagesFromPipeline;
+        }
+        else
+        {
+          std::string error;
+          if (!tex.Pool->ReadPage(level, 0, reinterpret_cast<float*>(page->data()), &error))
+          {
+            vtkErrorMacro("Cannot read the root page of \"" << tex.PoolName << "\": " << error);
+            return;
+          }
+          ++in.Paging.RootPagesRead;
         }
         tex.Held[root] = page;
-        ++in.Paging.RootPagesRead;
       }
     }
     vtkVolumeCut::Camera cutCamera;
@@ -1335,11 +1633,13 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
       const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
       in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
-      // The cache's reads plus the root pages read here, one page of floats each.
-      in.Paging.BytesRead =
-        stats.BytesRead + in.Paging.RootPagesRead * static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
+      // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
+      in.Paging.BytesRead = stats.BytesRead +
+        (in.Paging.RootPagesRead + in.Paging.RootPagesFromPipeline) *
+          static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
       in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
-      in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0;
+      in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0 &&
+        (!feedback || feedbackCurrent);
     }
     in.Atlas.BeginFrame();
     std::vector<vtkVolumeCut::Upload> uploads;
@@ -1544,6 +1844,80 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   in.Sources.clear();
   in.LastFragments = 0;
+
+  // Feedback: one R32UI texel per FeedbackScale x FeedbackScale pixels, cleared to 0 (no page),
+  // on image unit 0 for the whole frame; its pixel buffer is read at the next frame.
+  const int feedbackScale = this->FeedbackScale;
+  float feedbackFootprint[2] = { 0.f, 0.f };
+  float feedbackEye[3] = { 0.f, 0.f, 0.f };
+  std::vector<std::array<float, 2>> feedbackLod(volumes.size());
+  std::vector<std::vector<int>> levelBricks(volumes.size());
+  if (feedback)
+  {
+    const int fw = (width + feedbackScale - 1) / feedbackScale;
+    const int fh = (height + feedbackScale - 1) / feedbackScale;
+    const int unit = units->Allocate();
+    state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+    if (!in.FeedbackTexture || in.FeedbackSize[0] != fw || in.FeedbackSize[1] != fh)
+    {
+      if (!in.FeedbackTexture)
+        glGenTextures(1, &in.FeedbackTexture);
+      if (!in.FeedbackBuffer)
+        glGenBuffers(1, &in.FeedbackBuffer);
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
+      glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(fw) * fh * sizeof(uint32_t), nullptr, GL_STREAM_READ);
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+      in.FeedbackSize[0] = fw;
+      in.FeedbackSize[1] = fh;
+      in.FeedbackPending = false;
+    }
+    const GLuint zero = 0;
+    if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
+    {
+      glClearTexImage(in.FeedbackTexture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
+    else
+    {
+      const std::vector<GLuint> zeros(static_cast<size_t>(fw) * fh, 0u);
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+    units->Free(unit);
+    glBindImageTexture(0, in.FeedbackTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    // The size of one pixel at distance r from the eye, times the error threshold: what a
+    // voxel of the wanted level may cover.
+    const double tau = this->ErrorThreshold;
+    if (camera->GetParallelProjection())
+      feedbackFootprint[0] = static_cast<float>(tau * 2.0 * camera->GetParallelScale() / height);
+    else
+      feedbackFootprint[1] = static_cast<float>(tau / vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle()));
+    for (int c = 0; c < 3; ++c)
+      feedbackEye[c] = static_cast<float>(eye[c] - origin[c]);
+    for (size_t v = 0; v < volumes.size(); ++v)
+    {
+      const vtkVolumeBrickTree* tree = in.Textures[ports[v]].Tree.get();
+      // The longest level-0 voxel edge over the axes with voxels (vtkVolumeCut's voxel size).
+      double longest = 0.0, any = 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double edge = std::sqrt(std::pow(volumes[v].IndexToWorld->GetElement(0, a), 2) +
+          std::pow(volumes[v].IndexToWorld->GetElement(1, a), 2) + std::pow(volumes[v].IndexToWorld->GetElement(2, a), 2));
+        any = std::max(any, edge);
+        longest = volumes[v].Dims[a] > 1 ? std::max(longest, edge) : longest;
+      }
+      feedbackLod[v] = { static_cast<float>(longest > 0.0 ? longest : (any > 0.0 ? any : 1.0)),
+        static_cast<float>(std::min(tree->GetNumberOfLevels(), FeedbackLevels) - 1) };
+      levelBricks[v].assign(3 * FeedbackLevels, 1);
+      for (int l = 0; l < tree->GetNumberOfLevels() && l < FeedbackLevels; ++l)
+        std::copy(tree->GetLevelBricks(l), tree->GetLevelBricks(l) + 3, levelBricks[v].begin() + 3 * l);
+    }
+  }
   for (int f : order)
   {
     const auto& frag = in.Tree.GetFragment(f);
@@ -1569,7 +1943,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     const bool coherent = this->RayCoherence && rays > 1;
     std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
       (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
-      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-");
+      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-") + (feedback ? "F" : "-");
     for (bool sh : shaded)
       key += sh ? 's' : '-';
     std::string& fs = in.ShaderSources[key];
@@ -1577,7 +1951,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       fs = BuildFragmentShader(
         k, this->Classification, frontToBack, barrier, rays, coherent, shaded, atlas,
-        this->EmptySpaceSkipping);
+        this->EmptySpaceSkipping, feedback);
     }
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
@@ -1616,6 +1990,21 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     // them also along edges that are not perpendicular to the direction from the centre.
     program->SetUniformf("uDilate", rays > 1 ? 1.5f : 0.0f);
     program->SetUniformf("uSampleDistance", static_cast<float>(sampleDistance));
+    if (feedback)
+    {
+      program->SetUniformi("uFeedback", 0);
+      program->SetUniformi("uFeedbackScale", feedbackScale);
+      program->SetUniform3f("uFeedbackEye", feedbackEye);
+      program->SetUniform2f("uFeedbackFootprint", feedbackFootprint);
+      for (int i = 0; i < k; ++i)
+      {
+        const int v = frag.BoxIndices[i];
+        const std::string n = std::to_string(i);
+        program->SetUniformi(("uFeedbackSet" + n).c_str(), v);
+        program->SetUniform1iv(("uLevelBricks" + n).c_str(), 3 * FeedbackLevels, levelBricks[v].data());
+        program->SetUniform2f(("uFeedbackLod" + n).c_str(), feedbackLod[v].data());
+      }
+    }
     if (anyShaded)
     {
       program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
@@ -1724,6 +2113,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
     }
     glDrawArrays(GL_TRIANGLES, in.FragmentFirst[f], in.FragmentCount[f]);
+    if (feedback)
+    {
+      // The next fragment's compare-and-swap must see this one's reports.
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
     if (barrier)
     {
       if (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier)
@@ -1758,6 +2152,23 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   glDisable(GL_DEPTH_CLAMP);
   state->vtkglCullFace(GL_BACK);
   state->PopFramebufferBindings();
+  if (feedback)
+  {
+    // Copied into the pixel buffer now, mapped at the next frame: no wait for the GPU here.
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    const int unit = units->Allocate();
+    state->vtkglActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    units->Free(unit);
+    in.FeedbackPending = true;
+    in.FeedbackView = view;
+  }
 
   // --- Blend the integration buffer over the scene.
   // The pixel is the mean of its rays' composites.
@@ -1815,5 +2226,13 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RaysPerPixel: " << this->RaysPerPixel << "\n";
   os << indent << "RayCoherence: " << this->RayCoherence << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "SkipCellSize: " << this->SkipCellSize << "\n";
+  os << indent << "PageCacheBudget: " << this->PageCacheBudget << " MB\n";
+  os << indent << "PagesPerFrame: " << this->PagesPerFrame << "\n";
+  os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << "\n";
+  os << indent << "FeedbackScale: " << this->FeedbackScale << "\n";
+  os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";
+  os << indent << "ErrorThreshold: " << this->ErrorThreshold << " pixels\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

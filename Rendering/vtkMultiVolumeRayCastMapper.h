@@ -122,9 +122,11 @@ public:
    * reader is asked for its coarsest level only, and the bricks are paged from the pool. The
    * cut (shared with in-core volumes, under AtlasBudget) may split a brick only when its
    * children's pages are in the RAM page cache (PageCacheBudget MB, LRU, worker threads); the
-   * missing ones are queued at the brick's screen-space priority and the cut refines in later
-   * frames, at most PagesPerFrame new bricks per frame. The render thread reads one page per
-   * pool (its root, when the pool is first seen) and never waits for any other. Pages that
+   * missing ones are queued at the brick's priority and the cut refines in later frames, at
+   * most PagesPerFrame new bricks per frame. The render thread reads no page itself: each
+   * pool's root (its coarsest level, one page) is the image the reader produced for the
+   * pipeline, so a volume is drawn from the first frame on; only an input that is not that
+   * image (another filter in between) makes the render thread read the root once. Pages that
    * fail to load give one VTK error each and the volume keeps its coarser bricks there. The
    * brick size is the pool's page size (all pools of a scene must share it).
    */
@@ -134,16 +136,68 @@ public:
   vtkGetMacro(PagesPerFrame, int);
   ///@}
 
+  ///@{
+  /**
+   * Level-of-detail feedback (default on), used while any input is paged; it then ranks the
+   * bricks of every volume in the scene. The ray caster reports the detail it lacks, in the
+   * same pass: the centre ray of every FeedbackScale-th pixel per axis (default 4, a buffer of
+   * 1/4 x 1/4 of the viewport) writes, with image load/store into an R32UI texture, the packed
+   * id (vtkFeedbackReduction: volume, level, brick) of the first brick it samples, before it
+   * terminates, whose cut level is coarser than the level its footprint asks for (see
+   * ErrorThreshold). Why the first lacking brick rather than a fixed sample (say where the
+   * opacity crosses 1/2): the report moves on as the cut refines, so over a few frames a ray
+   * walks its bricks front to back and every brick it samples before it is opaque reaches the
+   * wanted level - the converged image along those rays is exactly the image with every brick
+   * at that level - while one id per pixel suffices; and a brick behind opaque material or
+   * outside the view is never asked for, so it stays coarse.
+   *
+   * The buffer is read back through a pixel buffer object at the next frame (the GPU is not
+   * waited on), reduced to (page, pixels) by vtkFeedbackReduction (OpenCL when FeedbackOpenCL
+   * is on and a device is found, else on the CPU), the pixels are added to every ancestor
+   * (PropagateToAncestors), and a node's split priority is the number of feedback pixels that
+   * asked for detail below it. Satisfied rays stop asking, so a node keeps the largest
+   * priority it had while the camera is still (the cut settles) and half of it for each frame
+   * the camera moves. Back to front, rays know no opacity in front of a sample: they report
+   * the nearest lacking brick and occlusion plays no part.
+   */
+  vtkSetMacro(LevelOfDetailFeedback, bool);
+  vtkGetMacro(LevelOfDetailFeedback, bool);
+  vtkBooleanMacro(LevelOfDetailFeedback, bool);
+  vtkSetClampMacro(FeedbackScale, int, 1, 64);
+  vtkGetMacro(FeedbackScale, int);
+  vtkSetMacro(FeedbackOpenCL, bool);
+  vtkGetMacro(FeedbackOpenCL, bool);
+  vtkBooleanMacro(FeedbackOpenCL, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The detail the cut aims for, in pixels per voxel (default 0: the finest level the atlas
+   * budget allows). Without feedback a node whose voxels cover at most this many pixels is not
+   * split; with feedback a ray asks for the coarsest level whose voxels cover at most this
+   * many pixels at the sample (level 0 when 0).
+   */
+  vtkSetClampMacro(ErrorThreshold, double, 0.0, 1.0e6);
+  vtkGetMacro(ErrorThreshold, double);
+  ///@}
+
   struct PagingStatistics
   {
     int PendingPages = 0;        ///< queued or loading after the last frame
-    bool Converged = false;      ///< the last frame's cut did not change and nothing is pending
+    /// The last frame's cut did not change, nothing is pending, and (with feedback) the
+    /// feedback it used was rendered from the same view and cut.
+    bool Converged = false;
     long long BytesRead = 0;     ///< in all, root pages included
     long long BytesUploaded = 0; ///< to the atlas in the last frame (paged or not)
     long long CacheBytes = 0;    ///< resident in the page cache
-    int RootPagesRead = 0;       ///< pages the render thread read itself (one per pool)
+    int RootPagesRead = 0;       ///< pages the render thread read itself (roots not in the input)
+    int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest-level images
     int Failures = 0;            ///< pages that failed to load
     int MissesThisFrame = 0;     ///< bricks the last frame's cut wanted but had no page for
+    int FeedbackPages = 0;       ///< distinct pages in the last feedback buffer reduced
+    int FeedbackPixels = 0;      ///< its pixels that asked for a page
+    double FeedbackMilliseconds = 0.0; ///< its read-back and reduction (propagation included)
+    bool FeedbackOpenCL = false; ///< whether OpenCL reduced it (else the CPU)
   };
   PagingStatistics GetPagingStatistics() const;
   /// Loads failed pages again (after a transient error).
@@ -151,6 +205,8 @@ public:
 
   /// Bricks resident in the atlas after the last frame, and atlas slots.
   int GetNumberOfResidentBricks() const;
+  /// Resident (non-empty) cut bricks of the volume on input port `port`, counted by level.
+  std::vector<int> GetResidentBricksPerLevel(int port) const;
   int GetNumberOfAtlasSlots() const;
 
   ///@{
@@ -276,6 +332,10 @@ protected:
   int SkipCellSize = 8;
   bool RayCoherence = false;
   double TerminationOpacity = 0.999;
+  bool LevelOfDetailFeedback = true;
+  int FeedbackScale = 4;
+  bool FeedbackOpenCL = true;
+  double ErrorThreshold = 0.0;
 
 private:
   vtkMultiVolumeRayCastMapper(const vtkMultiVolumeRayCastMapper&) = delete;

@@ -1,4 +1,5 @@
 //VTK::System::Dec
+//STRATA::Extensions::Dec
 // Strata multi-volume ray caster (Lux & Froehlich, multi-volume multi-resolution ray casting,
 // section 3.4): one pass per convex BSP fragment, for exactly the volumes that cover it. The
 // fragment's back faces are drawn; the ray's entry and exit come from the fragment's planes, so
@@ -8,7 +9,8 @@
 // Tags are filled by vtkMultiVolumeRayCastMapper for the fragment's volume count and the scene's
 // options; what a fragment does not use leaves no code here. With R rays per pixel, ray r writes
 // gl_FragData[r], its own integration buffer, so each ray composites through all fragments on
-// its own and the pixel is their mean.
+// its own and the pixel is their mean. Paged scenes add level-of-detail feedback: the
+// extension tag above, the lookups of lacking bricks and the report at the end of main.
 
 //VTK::Output::Dec
 

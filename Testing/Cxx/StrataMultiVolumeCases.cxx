@@ -21,6 +21,7 @@
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiVolume.h"
@@ -30,6 +31,7 @@
 #include "vtkFloatArray.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -39,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 namespace strata_test
@@ -713,6 +716,46 @@ int RunMultiVolumeCase(const std::string& name)
     const std::string pre = s.Mapper->GetFragmentShaderSource(1);
     Check(has(pre, "uPreTable0") && !has(pre, "uTransfer0"), "pre-integrated shader reads the table, not the TF");
     Check(!has(pre, "uTerminationOpacity"), "back-to-front: no early termination code");
+    // Level-of-detail feedback exists only where something is paged: in-core scenes carry no
+    // image load/store, no extension line and no feedback lookups.
+    for (const std::string* src : { &one, &two, &pre })
+      Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "strataLacking") &&
+          !has(*src, "imageAtomic") && !has(*src, "imageStore"),
+        "in core: no feedback code");
+    // The same two volumes paged from pools: the shaders write the first lacking brick of
+    // the feedback rays (front to back: compare-and-swap, the nearest fragment wins).
+    std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+    for (int i = 0; i < 2; ++i)
+    {
+      const std::string pool = OutputDirectory() + "/shader-source-" + std::to_string(i) + ".spp";
+      vtkNew<vtkImageToPagePoolWriter> writer;
+      writer->SetInputData(s.Images[i]);
+      writer->SetFileName(pool.c_str());
+      writer->SetPageSize(8);
+      writer->Write();
+      readers.push_back(vtkSmartPointer<vtkPagePoolReader>::New());
+      readers.back()->SetFileName(pool.c_str());
+      s.Mapper->SetInputConnection(i, readers.back()->GetOutputPort());
+    }
+    s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PostClassification);
+    s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
+    s.Win->Render();
+    const std::string paged = s.Mapper->GetFragmentShaderSource(2);
+    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "strataLacking1") &&
+        !has(paged, "strataLacking2") && has(paged, "imageAtomicCompSwap(uFeedback") && has(paged, "strataPackPage"),
+      "paged: the 2-volume shader reports lacking bricks of both volumes into the feedback image");
+    s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
+    s.Win->Render();
+    const std::string pagedBack = s.Mapper->GetFragmentShaderSource(1);
+    Check(has(pagedBack, "imageStore(uFeedback") && !has(pagedBack, "imageAtomic"),
+      "paged, back to front: the nearest report overwrites (no compare-and-swap)");
+    s.Mapper->LevelOfDetailFeedbackOff();
+    s.Win->Render();
+    const std::string pagedOff = s.Mapper->GetFragmentShaderSource(1);
+    Check(!pagedOff.empty() && !has(pagedOff, "#extension") && !has(pagedOff, "uFeedback"),
+      "paged with feedback off: no feedback code");
+    for (int i = 0; i < 2; ++i)
+      std::remove((OutputDirectory() + "/shader-source-" + std::to_string(i) + ".spp").c_str());
     ok = Failures() == 0;
   }
   else if (name == "Demo")

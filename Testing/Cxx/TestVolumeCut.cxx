@@ -602,5 +602,46 @@ int TestVolumeCut(int, char*[])
         " evictions; tables and samples still exact");
   }
 
+  // --- A priority function (what a renderer with level-of-detail feedback gives): rays asked
+  // for the level-0 bricks of the slab i == 0 only; a node's priority is the number of asked
+  // bricks strictly below it. Exactly the nodes with demand are split, nothing else.
+  {
+    vtkVolumeCut cut;
+    cut.AddVolume(&tree, identity);
+    cut.SetBudget(tree.GetNumberOfNodes());
+    std::vector<double> demand(tree.GetNumberOfNodes(), 0.0);
+    const int* nb = tree.GetLevelBricks(0);
+    std::vector<int> asked;
+    for (int k = 0; k < nb[2]; ++k)
+      for (int j = 0; j < nb[1]; ++j)
+      {
+        asked.push_back(tree.GetNodeId(0, 0, j, k));
+        for (int n = tree.GetParent(asked.back()); n >= 0; n = tree.GetParent(n))
+          demand[n] += 1.0;
+      }
+    cut.SetVolumePriority(0, [&demand](int n, double) { return demand[n]; });
+    int updates = 0;
+    while (cut.Update(camera) > 0 && updates < 100)
+      ++updates;
+    bool askedFinest = true;
+    for (int id : asked)
+      askedFinest = askedFinest && cut.IsInCut(0, id);
+    bool exact = true; // a cut node has no demand of its own, and its parent had some
+    for (int n : cut.GetCutNodes(0))
+    {
+      const int parent = tree.GetParent(n);
+      exact = exact && demand[n] == 0.0 && (parent < 0 || demand[parent] > 0.0);
+    }
+    // The slab's 64 bricks and their 64 siblings (i == 1) at level 0, then 16 level-1 and 4
+    // level-2 nodes beside them.
+    std::cout << "Priority function: " << asked.size() << " bricks asked for, cut of " << cut.GetCost()
+              << " bricks after " << updates << " updates\n";
+    Check(askedFinest && exact && CoversOnce(cut, 0) && cut.GetCost() == 2 * 64 + 16 + 4,
+      "a priority function: only nodes with demand split; the asked bricks finest, the rest coarse");
+    cut.SetVolumePriority(0, nullptr);
+    cut.Update(camera);
+    Check(cut.GetCost() > 2 * 64 + 16 + 4, "without it the screen-space error refines the rest again");
+  }
+
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
