@@ -115,53 +115,69 @@ bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
   return true;
 }
 
-// Level-of-detail feedback (paged scenes only): strataLacking(p) is the packed page id of the
-// brick a ray needs at p when the cut holds it coarser than the footprint asks for, 0 when it
-// holds it fine enough or the brick is transparent. Volume i of the fragment is data set
-// uFeedbackSet<i>; uLevelBricks<i> holds the bricks per axis of each level, so that the
-// level-l brick over level-0 brick b is b >> l (vtkVolumeCut::MapToAtlas) with index
-// (z ny + y) nx + x, the tree's node order.
-std::string FeedbackDeclarations(int k)
+// Level-of-detail feedback (paged scenes only). Every data fetch of a feedback ray checks the
+// cut level of its brick (the index entry it reads anyway) against the level the footprint
+// asks for and remembers the first lacking one (front to back; the last, i.e. the nearest, back
+// to front): the level-0 brick, the wanted level and the fragment's volume. Only registers are
+// written per fetch - llvmpipe executes both sides of every branch, so the per-sample cost must
+// stay a compare and a few selects - and the page id is packed once, after the ray: volume i of
+// the fragment is data set uFeedbackSet<i>, uLevelBricks<i> holds the bricks per axis of each
+// level, and the level-l brick over level-0 brick b is b >> l (vtkVolumeCut::MapToAtlas), with
+// index (z ny + y) nx + x, the tree's node order. `footprint`: the wanted level follows the
+// pixel footprint (ErrorThreshold > 0); otherwise level 0 is wanted and no footprint code exists.
+std::string FeedbackGlobals(bool footprint)
 {
   std::ostringstream dec;
   dec << "// Level-of-detail feedback: the first lacking brick of the centre ray of every\n"
       << "// uFeedbackScale-th pixel per axis, one texel each.\n"
       << "layout(r32ui) uniform uimage2D uFeedback;\n"
       << "uniform int uFeedbackScale;\n"
-      << "uniform vec3 uFeedbackEye; // local frame\n"
-      << "uniform vec2 uFeedbackFootprint; // error threshold x pixel size = x + y * distance\n"
-      << "uint gLacking = 0u;\n"
       << "bool gFeedbackRay = false;\n"
-      << vtkFeedbackReduction::GetGLSLPackFunction()
-      << "// The coarsest level whose voxels (level-0 size lod.x) cover at most the threshold in\n"
-      << "// pixels at p, clamped to the levels [0, lod.y].\n"
-      << "int strataWantedLevel(vec3 p, vec2 lod)\n{\n"
-      << "  float pixel = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(p, uFeedbackEye);\n"
-      << "  return int(clamp(floor(log2(max(pixel / lod.x, 1.0e-30))), 0.0, lod.y));\n}\n";
+      << "bool gLackFound = false;\n"
+      << "ivec4 gLack = ivec4(0); // level-0 brick, wanted level\n"
+      << "int gLackVolume = 0;\n";
+  if (footprint)
+    dec << "uniform vec3 uFeedbackEye; // local frame\n"
+        << "uniform vec2 uFeedbackFootprint; // threshold x pixel size = x + y * distance\n"
+        << "float gFootprint = 0.0; // at the current step\n";
+  return dec.str();
+}
+
+std::string FeedbackVolumeUniforms(const std::string& n, bool footprint)
+{
+  return "uniform int uFeedbackSet" + n + ";\nuniform int uLevelBricks" + n + "[" + std::to_string(3 * FeedbackLevels) +
+    "];\n" + (footprint ? "uniform vec2 uFeedbackLod" + n + "; // 1 / level-0 voxel size, coarsest level\n" : "");
+}
+
+// Inside strataScalarAt<n>, after the index entry e of level-0 brick b was fetched.
+std::string FeedbackFetchCheck(const std::string& n, bool frontToBack, bool footprint)
+{
+  std::string code = std::string("  if (gFeedbackRay") + (frontToBack ? " && !gLackFound" : "") + ")\n  {\n";
+  if (footprint)
+    code += "    int want = int(clamp(floor(log2(max(gFootprint * uFeedbackLod" + n + ".x, 1.0e-30))), 0.0, uFeedbackLod" + n +
+      ".y));\n";
+  else
+    code += "    int want = 0;\n";
+  code += "    bool lacking = e.w != 65535u && e.w > uint(want);\n"
+          "    gLackFound = gLackFound || lacking;\n"
+          "    gLack = lacking ? ivec4(b, want) : gLack;\n"
+          "    gLackVolume = lacking ? " + n + " : gLackVolume;\n  }\n";
+  return code;
+}
+
+std::string FeedbackPacking(int k)
+{
+  std::ostringstream dec;
+  dec << vtkFeedbackReduction::GetGLSLPackFunction()
+      << "uint strataLackingPage()\n{\n"
+      << "  ivec3 w = gLack.xyz >> gLack.w;\n"
+      << "  int g = 3 * gLack.w;\n";
   for (int i = 0; i < k; ++i)
   {
     const std::string n = std::to_string(i);
-    dec << "uniform int uFeedbackSet" << n << ";\n"
-        << "uniform int uLevelBricks" << n << "[" << 3 * FeedbackLevels << "];\n"
-        << "uniform vec2 uFeedbackLod" << n << "; // level-0 voxel size (local units), coarsest level\n"
-        << "uint strataLacking" << n << "(vec3 p)\n{\n"
-        << "  float S = uBrickSize - 1.0;\n"
-        << "  vec3 idx = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
-        << "  vec3 x = clamp(mix(idx, floor(idx + 0.5), uNearest" << n << "), vec3(0.0), uTableDims" << n << " * S);\n"
-        << "  ivec3 b = min(ivec3(floor(x / S)), ivec3(uTableDims" << n << ") - 1);\n"
-        << "  uint have = texelFetch(uIndex" << n << ", b, 0).w;\n"
-        << "  int want = strataWantedLevel(p, uFeedbackLod" << n << ");\n"
-        << "  if (have == 65535u || have <= uint(want))\n  {\n    return 0u;\n  }\n"
-        << "  ivec3 w = b >> want;\n"
-        << "  int g = 3 * want;\n"
-        << "  return strataPackPage(uint(uFeedbackSet" << n << "), uint(want), uint((w.z * uLevelBricks" << n
-        << "[g + 1] + w.y) * uLevelBricks" << n << "[g] + w.x));\n}\n";
-  }
-  dec << "uint strataLacking(vec3 p)\n{\n  uint id;\n";
-  for (int i = 0; i < k; ++i)
-  {
-    dec << "  id = strataLacking" << i << "(p);\n"
-        << "  if (id != 0u)\n  {\n    return id;\n  }\n";
+    dec << "  if (gLackVolume == " << n << ")\n  {\n"
+        << "    return strataPackPage(uint(uFeedbackSet" << n << "), uint(gLack.w), uint((w.z * uLevelBricks" << n
+        << "[g + 1] + w.y) * uLevelBricks" << n << "[g] + w.x));\n  }\n";
   }
   dec << "  return 0u;\n}\n";
   return dec.str();
@@ -171,7 +187,7 @@ std::string FeedbackDeclarations(int k)
 // code and the compositing loop of the order; nothing a fragment does not use.
 std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
   bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded,
-  bool atlas, bool skipping, bool feedback)
+  bool atlas, bool skipping, bool feedback, bool footprint)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -188,7 +204,11 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       {
         dec << "uniform sampler3D uAtlas;\nuniform vec3 uAtlasSize; // texels\n"
             << "uniform float uBrickSize;\n";
+        if (feedback)
+          dec << FeedbackGlobals(footprint);
       }
+      if (feedback)
+        dec << FeedbackVolumeUniforms(n, footprint);
       dec << "uniform usampler3D uIndex" << n << ";\n"
           << "uniform vec3 uTableDims" << n << ";\n"
           << "uniform float uEmptyScalar" << n << "; // a value the transfer function makes transparent\n"
@@ -197,6 +217,7 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
           << "  vec3 x = clamp(idx, vec3(0.0), uTableDims" << n << " * S);\n"
           << "  ivec3 b = min(ivec3(floor(x / S)), ivec3(uTableDims" << n << ") - 1);\n"
           << "  uvec4 e = texelFetch(uIndex" << n << ", b, 0);\n"
+          << (feedback ? FeedbackFetchCheck(n, frontToBack, footprint) : std::string())
           << "  if (e.w >= 65534u)\n  {\n    return uEmptyScalar" << n << ";\n  }\n"
           << "  vec3 t = vec3(e.xyz) * uBrickSize + x * exp2(-float(e.w)) - vec3(b >> int(e.w)) * S + 0.5;\n"
           << "  return texture(uAtlas, t / uAtlasSize).r;\n}\n";
@@ -379,7 +400,7 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   }
   Replace(fs, "//STRATA::Extensions::Dec",
     feedback ? "#extension GL_ARB_shader_image_load_store : require\n" : "");
-  Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str() + (feedback ? FeedbackDeclarations(k) : ""));
+  Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str() + (feedback ? FeedbackPacking(k) : ""));
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
   if (frontToBack)
   {
@@ -437,14 +458,14 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   if (feedback && frontToBack)
   {
     // Fragments are drawn nearest first: the first one that found a lacking brick keeps it.
-    raysCode << "  if (gLacking != 0u)\n  {\n"
-             << "    imageAtomicCompSwap(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, 0u, gLacking);\n  }\n";
+    raysCode << "  if (gLackFound)\n  {\n"
+             << "    imageAtomicCompSwap(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, 0u, strataLackingPage());\n  }\n";
   }
   else if (feedback)
   {
     // Farthest first: a nearer fragment's report replaces a farther one's.
-    raysCode << "  if (gLacking != 0u)\n  {\n"
-             << "    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(gLacking, 0u, 0u, 0u));\n  }\n";
+    raysCode << "  if (gLackFound)\n  {\n"
+             << "    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(strataLackingPage(), 0u, 0u, 0u));\n  }\n";
   }
   Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
@@ -476,17 +497,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      continue;\n    }\n";
     }
     loop << "    if (b > a)\n    {\n";
-    if (feedback)
-    {
-      // The samples of this step, before it is composited (it may be the one that ends the ray).
-      loop << "      if (gFeedbackRay && gLacking == 0u)\n      {\n";
-      if (pre)
-        loop << "        gLacking = strataLacking(o + a * d);\n"
-             << "        gLacking = gLacking != 0u ? gLacking : strataLacking(o + b * d);\n";
-      else
-        loop << "        gLacking = strataLacking(o + 0.5 * (a + b) * d);\n";
-      loop << "      }\n";
-    }
+    if (footprint)
+      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * d, uFeedbackEye);\n";
     if (pre)
       loop << "      strataSampleAll(o + b * d, sB);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -521,18 +533,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      continue;\n    }\n";
     }
     loop << "    if (b > a)\n    {\n";
-    if (feedback)
-    {
-      // Nearer samples come later and replace what was found behind them.
-      loop << "      if (gFeedbackRay)\n      {\n";
-      if (pre)
-        loop << "        uint lack = strataLacking(o + b * d);\n"
-             << "        gLacking = lack != 0u ? lack : gLacking;\n"
-             << "        lack = strataLacking(o + a * d);\n";
-      else
-        loop << "        uint lack = strataLacking(o + 0.5 * (a + b) * d);\n";
-      loop << "        gLacking = lack != 0u ? lack : gLacking;\n      }\n";
-    }
+    if (footprint)
+      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * d, uFeedbackEye);\n";
     if (pre)
       loop << "      strataSampleAll(o + a * d, sA);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -1848,6 +1850,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   // Feedback: one R32UI texel per FeedbackScale x FeedbackScale pixels, cleared to 0 (no page),
   // on image unit 0 for the whole frame; its pixel buffer is read at the next frame.
   const int feedbackScale = this->FeedbackScale;
+  const bool footprint = feedback && this->ErrorThreshold > 0.0;
   float feedbackFootprint[2] = { 0.f, 0.f };
   float feedbackEye[3] = { 0.f, 0.f, 0.f };
   std::vector<std::array<float, 2>> feedbackLod(volumes.size());
@@ -1911,7 +1914,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         any = std::max(any, edge);
         longest = volumes[v].Dims[a] > 1 ? std::max(longest, edge) : longest;
       }
-      feedbackLod[v] = { static_cast<float>(longest > 0.0 ? longest : (any > 0.0 ? any : 1.0)),
+      feedbackLod[v] = { static_cast<float>(1.0 / (longest > 0.0 ? longest : (any > 0.0 ? any : 1.0))),
         static_cast<float>(std::min(tree->GetNumberOfLevels(), FeedbackLevels) - 1) };
       levelBricks[v].assign(3 * FeedbackLevels, 1);
       for (int l = 0; l < tree->GetNumberOfLevels() && l < FeedbackLevels; ++l)
@@ -1943,7 +1946,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     const bool coherent = this->RayCoherence && rays > 1;
     std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
       (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
-      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-") + (feedback ? "F" : "-");
+      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-") + (feedback ? (footprint ? "P" : "F") : "-");
     for (bool sh : shaded)
       key += sh ? 's' : '-';
     std::string& fs = in.ShaderSources[key];
@@ -1951,7 +1954,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       fs = BuildFragmentShader(
         k, this->Classification, frontToBack, barrier, rays, coherent, shaded, atlas,
-        this->EmptySpaceSkipping, feedback);
+        this->EmptySpaceSkipping, feedback, footprint);
     }
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");

@@ -719,11 +719,12 @@ int RunMultiVolumeCase(const std::string& name)
     // Level-of-detail feedback exists only where something is paged: in-core scenes carry no
     // image load/store, no extension line and no feedback lookups.
     for (const std::string* src : { &one, &two, &pre })
-      Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "strataLacking") &&
+      Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "gLack") &&
           !has(*src, "imageAtomic") && !has(*src, "imageStore"),
         "in core: no feedback code");
     // The same two volumes paged from pools: the shaders write the first lacking brick of
-    // the feedback rays (front to back: compare-and-swap, the nearest fragment wins).
+    // the feedback rays (front to back: compare-and-swap, the nearest fragment wins); with
+    // ErrorThreshold 0 level 0 is wanted everywhere, so there is no footprint code.
     std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
     for (int i = 0; i < 2; ++i)
     {
@@ -741,8 +742,9 @@ int RunMultiVolumeCase(const std::string& name)
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
     s.Win->Render();
     const std::string paged = s.Mapper->GetFragmentShaderSource(2);
-    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "strataLacking1") &&
-        !has(paged, "strataLacking2") && has(paged, "imageAtomicCompSwap(uFeedback") && has(paged, "strataPackPage"),
+    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "gLackVolume = lacking ? 1") &&
+        !has(paged, "uFeedbackSet2") && has(paged, "imageAtomicCompSwap(uFeedback") && has(paged, "strataPackPage") &&
+        !has(paged, "gFootprint"),
       "paged: the 2-volume shader reports lacking bricks of both volumes into the feedback image");
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
     s.Win->Render();
