@@ -142,14 +142,16 @@ public:
    * bricks of every volume in the scene. The ray caster reports the detail it lacks, in the
    * same pass: the centre ray of every FeedbackScale-th pixel per axis (default 4, a buffer of
    * 1/4 x 1/4 of the viewport) writes, with image load/store into an R32UI texture, the packed
-   * id (vtkFeedbackReduction: volume, level, brick) of the first brick it samples, before it
-   * terminates, whose cut level is coarser than the level its footprint asks for (see
-   * ErrorThreshold). Why the first lacking brick rather than a fixed sample (say where the
-   * opacity crosses 1/2): the report moves on as the cut refines, so over a few frames a ray
-   * walks its bricks front to back and every brick it samples before it is opaque reaches the
-   * wanted level - the converged image along those rays is exactly the image with every brick
-   * at that level - while one id per pixel suffices; and a brick behind opaque material or
-   * outside the view is never asked for, so it stays coarse.
+   * id (vtkFeedbackReduction: volume, level, brick) of the first brick it reads data from
+   * (samples and gradient taps), before it terminates, whose cut level is coarser than the
+   * level its footprint asks for (see ErrorThreshold). Why the first lacking brick rather than
+   * a fixed sample (say where the opacity crosses 1/2): the report moves on as the cut
+   * refines, so over a few frames a ray walks its bricks front to back and every brick it reads
+   * before it is opaque reaches the wanted level - the converged image along those rays is
+   * exactly the image with every brick at that level - while one id per pixel suffices; and a
+   * brick behind opaque material or outside the view is never asked for, so it stays coarse.
+   * The price: convergence takes a frame or two per brick a ray crosses, where the
+   * screen-space cut asks for all at once.
    *
    * The buffer is read back through a pixel buffer object at the next frame (the GPU is not
    * waited on), reduced to (page, pixels) by vtkFeedbackReduction (OpenCL when FeedbackOpenCL

@@ -7,26 +7,42 @@
 //                                     512^3 accuracy volume as page pools in <dir>, each made
 //                                     once (streamed slab by slab from vtkRTAnalyticSource)
 //   BenchPaging header             -> the CSV header of `flythrough`
-//   BenchPaging flythrough <dir> <cache MB> <atlas MB>
-//                                  -> one row: the nine volumes in a 3 x 3 grid, a scripted
-//                                     fly-through (48 moving frames), then still until
-//                                     converged; peak RSS, frames to converge, ms per frame,
-//                                     MB read and uploaded per frame, frames that read on the
-//                                     render thread
+//   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback]
+//                                  -> one row: the nine volumes in a 3 x 3 grid, opened (the
+//                                     readers' pipeline update: header, page table, coarsest
+//                                     level), then a scripted fly-through (48 moving frames),
+//                                     then still until converged; peak RSS, frames to converge,
+//                                     ms per frame, MB read and uploaded per frame, frames in
+//                                     which the render thread read pages (the mapper itself or
+//                                     a reader's pipeline update); level-of-detail feedback at
+//                                     1/4 unless no-feedback
 //   BenchPaging feedback           -> the feedback reduction (vtkFeedbackReduction) on buffers
 //                                     of 1/2, 1/4 and 1/8 of a 1920 x 1080 viewport: CPU and
 //                                     OpenCL times and whether their lists are identical
+//   BenchPaging accuracy-header    -> the CSV header of `accuracy`
 //   BenchPaging accuracy <dir>     -> rows of the converged accuracy view at atlas budgets of
-//                                     16 to 128 MB against the in-core rendering at full
-//                                     resolution: RMS error, ms per frame, MB uploaded
+//                                     16 to 128 MB, without feedback and with feedback buffers
+//                                     of 1/2, 1/4 and 1/8 of the viewport, against the in-core
+//                                     rendering at full resolution: RMS error, ms per frame,
+//                                     MB uploaded
+//   BenchPaging report <csv> <png> -> the accuracy rows (any case in the CSV, e.g. horizons)
+//                                     as RMS error against atlas budget
 // Rendering at 256 x 256 on whatever OpenGL the EGL window finds (llvmpipe here).
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
+#include "vtkAxis.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkFeedbackReduction.h"
+#include "vtkChartLegend.h"
+#include "vtkChartXY.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkContextScene.h"
+#include "vtkContextView.h"
+#include "vtkDoubleArray.h"
+#include "vtkFeedbackReduction.h"
+#include "vtkGenericRenderWindowInteractor.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
@@ -34,14 +50,20 @@
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlotLine.h"
+#include "vtkPlotPoints.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <sys/resource.h>
 
@@ -51,6 +73,8 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -144,13 +168,25 @@ double Percentile(std::vector<double> v, double q)
   return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
 }
 
-int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
+// Pages the readers read in their pipeline updates: the pages of each RequestData (0 when it
+// answered from its last output), summed at its EndEvent.
+struct PageReads
 {
+  long long Pages = 0;
+  static void Count(vtkObject* caller, unsigned long, void* self, void*)
+  {
+    static_cast<PageReads*>(self)->Pages += static_cast<vtkPagePoolReader*>(caller)->GetNumberOfPagesRead();
+  }
+};
+
+int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feedback)
+{
+  const std::string name = feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback";
   for (int i = 0; i < 9; ++i)
   {
     if (!Exists(PoolPath(dir, i)))
     {
-      std::printf("flythrough-9x1024,%g,,,,,,,,missing %s: run BenchPaging generate first\n", cacheMB + atlasMB,
+      std::printf("%s,%g,,,,,,,,missing %s: run BenchPaging generate first\n", name.c_str(), cacheMB + atlasMB,
         PoolPath(dir, i).c_str());
       return 1;
     }
@@ -163,15 +199,21 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   mapper->SetAtlasBudget(atlasMB);
   mapper->SetPageCacheBudget(cacheMB);
   mapper->SetPagesPerFrame(64);
+  mapper->SetLevelOfDetailFeedback(feedback);
   vtkNew<vtkMultiVolume> multi;
   multi->SetMapper(mapper);
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   std::vector<vtkSmartPointer<vtkVolume>> volumes;
   auto property = Property();
+  PageReads pipelineReads;
+  vtkNew<vtkCallbackCommand> counter;
+  counter->SetCallback(&PageReads::Count);
+  counter->SetClientData(&pipelineReads);
   for (int i = 0; i < 9; ++i)
   {
     auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
     reader->SetFileName(PoolPath(dir, i).c_str());
+    reader->AddObserver(vtkCommand::EndEvent, counter);
     mapper->SetInputConnection(i, reader->GetOutputPort());
     auto v = vtkSmartPointer<vtkVolume>::New();
     v->SetProperty(property);
@@ -183,6 +225,12 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
     volumes.push_back(v);
   }
   ren->AddVolume(multi);
+  // Opening the data, as an application does when it loads a scene: the readers' pipeline
+  // update reads the page tables and the coarsest level (the roots the mapper draws first).
+  const auto open0 = std::chrono::steady_clock::now();
+  mapper->Update();
+  const double openMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - open0).count();
+  const long long openPages = pipelineReads.Pages;
   vtkCamera* cam = ren->GetActiveCamera();
   cam->SetViewAngle(35);
   cam->SetViewUp(0, 0, 1);
@@ -196,10 +244,10 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
     ren->ResetCameraClippingRange(0, 3.3 * Edge, 0, 3.3 * Edge, 0, Edge);
   };
   const int moving = 48;
-  std::vector<double> ms;
+  std::vector<double> ms, feedbackMs;
   std::vector<double> uploaded;
   int waits = 0, converged = -1, frames = 0;
-  long long lastRoots = 0;
+  long long lastRoots = 0, lastPipeline = pipelineReads.Pages;
   double lastRead = 0.0;
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < moving + 400 && converged < 0; ++f)
@@ -211,8 +259,13 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     const auto st = mapper->GetPagingStatistics();
     uploaded.push_back(st.BytesUploaded / 1048576.0);
-    waits += st.RootPagesRead > lastRoots ? 1 : 0;
+    if (feedback && st.FeedbackPages + st.FeedbackPixels > 0)
+      feedbackMs.push_back(st.FeedbackMilliseconds);
+    // A frame waited on I/O if the render thread read a page: the mapper itself (a root it
+    // could not take from its input) or a reader in a pipeline update.
+    waits += st.RootPagesRead > lastRoots || pipelineReads.Pages > lastPipeline ? 1 : 0;
     lastRoots = st.RootPagesRead;
+    lastPipeline = pipelineReads.Pages;
     lastRead = st.BytesRead / 1048576.0;
     ++frames;
     if (f >= moving && st.Converged)
@@ -226,13 +279,82 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   for (double u : uploaded)
     upTotal += u;
   const auto st = mapper->GetPagingStatistics();
-  std::printf("flythrough-9x1024,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
-              "(9.66 GB of voxels) in 32^3 bricks; %d frames (%d moving) in %.0f s; io_wait_frames counts frames in "
-              "which the render thread read pages itself (the 9 root pages when the pools were opened); %d failed pages; "
-              "sample distance 2 voxels; %dx%d\n",
-    cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
-    upTotal / frames, cacheMB, atlasMB, frames, moving, seconds, st.Failures, Size, Size);
+  std::ostringstream fb;
+  if (feedback)
+    fb << "level-of-detail feedback at 1/4 (64x64 ids), read back and reduced in " << Percentile(feedbackMs, 0.5)
+       << " ms median (" << (st.FeedbackOpenCL ? "OpenCL" : "CPU") << ")";
+  else
+    fb << "no feedback (screen-space cut)";
+  std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
+              "(9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages from the readers' "
+              "pipeline update%s); %d frames (%d moving) in %.0f s; io_wait_frames counts frames in which the render "
+              "thread read a page (%d roots read by the mapper itself); %d failed pages; sample distance 2 voxels; "
+              "%dx%d\n",
+    name.c_str(), cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99),
+    lastRead / frames, upTotal / frames, cacheMB, atlasMB, fb.str().c_str(), openMs, openPages,
+    st.RootPagesFromPipeline == 9 ? ", taken as the volumes' roots" : ", NOT all used as roots", frames, moving,
+    seconds, st.RootPagesRead, st.Failures, Size, Size);
   return 0;
+}
+
+const char* const AccuracyHeader =
+  "case,atlas_mb,rms_error,max_error,ms_per_frame,frames_to_converge,mb_uploaded_per_frame,note";
+
+// One accuracy row: the accuracy volume paged under `atlasMB`, rendered until converged, then
+// timed and compared with `reference`. feedbackScale 0: no feedback (the screen-space cut).
+void AccuracyRow(vtkRenderWindow* win, vtkVolume* volume, const std::string& path, double atlasMB, int feedbackScale,
+  const std::vector<double>& reference)
+{
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(path.c_str());
+  vtkNew<vtkMultiVolumeRayCastMapper> paged;
+  paged->SetInputConnection(reader->GetOutputPort());
+  paged->SetSampleDistance(1.0);
+  paged->SetAtlasBudget(atlasMB);
+  paged->SetPageCacheBudget(256);
+  paged->SetPagesPerFrame(256);
+  paged->SetLevelOfDetailFeedback(feedbackScale > 0);
+  paged->SetFeedbackScale(std::max(feedbackScale, 1));
+  volume->SetMapper(paged);
+  int frames = 0;
+  double up = 0.0;
+  while (frames < 400)
+  {
+    win->Render();
+    ++frames;
+    up += paged->GetPagingStatistics().BytesUploaded / 1048576.0;
+    if (paged->GetPagingStatistics().Converged)
+      break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::vector<double> ms;
+  for (int i = 0; i < 3; ++i)
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    win->Render();
+    win->WaitForCompletion();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  const auto err = strata_test::ImageError(strata_test::ReadRGB(win), reference);
+  const auto st = paged->GetPagingStatistics();
+  const auto levels = paged->GetResidentBricksPerLevel(0);
+  std::ostringstream note;
+  note << paged->GetNumberOfResidentBricks() << " bricks resident (per level";
+  for (int c : levels)
+    note << " " << c;
+  note << "); converged after " << frames << " frames; " << up << " MB uploaded in all; ";
+  if (feedbackScale > 0)
+    note << "feedback buffer 1/" << feedbackScale << " of the viewport (" << (Size + feedbackScale - 1) / feedbackScale
+         << "^2 ids), its read-back and reduction " << st.FeedbackMilliseconds << " ms ("
+         << (st.FeedbackOpenCL ? "OpenCL" : "CPU") << ") in the last frame";
+  else
+    note << "no feedback: screen-space cut";
+  note << "; reference: in-core, every brick (" << Size << "x" << Size << "; sample distance 1 voxel)";
+  const std::string name =
+    feedbackScale > 0 ? "accuracy-512-feedback-1/" + std::to_string(feedbackScale) : std::string("accuracy-512-no-feedback");
+  std::printf("%s,%g,%.4f,%.1f,%.1f,%d,%.2f,%s\n", name.c_str(), atlasMB, err.Rms, err.Max, Percentile(ms, 0.5), frames,
+    up / frames, note.str().c_str());
+  std::fflush(stdout);
 }
 
 int Accuracy(const std::string& dir)
@@ -240,7 +362,7 @@ int Accuracy(const std::string& dir)
   const std::string path = PoolPath(dir, 9);
   if (!Exists(path))
   {
-    std::printf("accuracy-512,,,,,,missing %s: run BenchPaging generate first\n", path.c_str());
+    std::printf("accuracy-512,,,,,,,missing %s: run BenchPaging generate first\n", path.c_str());
     return 1;
   }
   vtkSmartPointer<vtkRenderWindow> win;
@@ -269,43 +391,124 @@ int Accuracy(const std::string& dir)
     win->Render();
   const auto reference = strata_test::ReadRGB(win);
   const std::vector<double> ref(reference.begin(), reference.end());
-  for (double atlasMB : { 16.0, 32.0, 64.0, 128.0 })
+  // Atlas budgets without feedback and with feedback buffers of 1/2, 1/4 and 1/8.
+  for (int scale : { 0, 2, 4, 8 })
+    for (double atlasMB : { 16.0, 32.0, 64.0, 128.0 })
+      AccuracyRow(win, volume, path, atlasMB, scale, ref);
+  return 0;
+}
+
+// --- Report -----------------------------------------------------------------------------------
+
+std::vector<std::map<std::string, std::string>> ReadCsv(const std::string& path)
+{
+  std::vector<std::map<std::string, std::string>> rows;
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> keys;
+  while (std::getline(in, line))
   {
-    vtkNew<vtkPagePoolReader> reader;
-    reader->SetFileName(path.c_str());
-    vtkNew<vtkMultiVolumeRayCastMapper> paged;
-    paged->SetInputConnection(reader->GetOutputPort());
-    paged->SetSampleDistance(1.0);
-    paged->SetAtlasBudget(atlasMB);
-    paged->SetPageCacheBudget(256);
-    paged->SetPagesPerFrame(256);
-    volume->SetMapper(paged);
-    int frames = 0;
-    double up = 0.0;
-    while (frames < 400)
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ','))
+      cells.push_back(cell);
+    if (keys.empty())
     {
-      win->Render();
-      ++frames;
-      up += paged->GetPagingStatistics().BytesUploaded / 1048576.0;
-      if (paged->GetPagingStatistics().Converged)
-        break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      keys = cells;
+      continue;
     }
-    std::vector<double> ms;
-    for (int i = 0; i < 3; ++i)
-    {
-      const auto t0 = std::chrono::steady_clock::now();
-      win->Render();
-      win->WaitForCompletion();
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    const auto err = strata_test::ImageError(strata_test::ReadRGB(win), ref);
-    std::printf("accuracy-512,%g,%.4f,%.1f,%.1f,%d,%.2f,%d bricks resident; converged after %d frames; %.1f MB uploaded "
-                "in all; reference: in-core with every brick (%dx%d; sample distance 1 voxel)\n",
-      atlasMB, err.Rms, err.Max, Percentile(ms, 0.5), frames, up / frames, paged->GetNumberOfResidentBricks(), frames, up,
-      Size, Size);
-    std::fflush(stdout);
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < keys.size() && i < cells.size(); ++i)
+      row[keys[i]] = cells[i];
+    rows.push_back(row);
   }
+  return rows;
+}
+
+// RMS error against atlas budget, one line per case of the accuracy CSV (the volume with and
+// without feedback at each buffer scale, and whatever other cases the CSV holds).
+int Report(const std::string& csv, const std::string& png)
+{
+  const auto rows = ReadCsv(csv);
+  std::vector<std::string> cases;
+  for (const auto& r : rows)
+  {
+    const auto c = r.find("case");
+    if (c != r.end() && r.count("atlas_mb") && !r.at("atlas_mb").empty() &&
+      std::find(cases.begin(), cases.end(), c->second) == cases.end())
+      cases.push_back(c->second);
+  }
+  vtkNew<vtkContextView> view;
+  vtkNew<vtkGenericRenderWindowInteractor> interactor;
+  view->SetInteractor(interactor);
+  view->GetRenderWindow()->SetSize(1000, 650);
+  view->GetRenderWindow()->SetMultiSamples(0);
+  view->GetRenderer()->SetBackground(1, 1, 1);
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetTitle("Paging on llvmpipe: converged RMS error against the in-core rendering vs atlas budget "
+                  "(legend: ms per frame; RMS 0 drawn at 0.001)");
+  chart->GetTitleProperties()->SetFontSize(15);
+  chart->SetShowLegend(true);
+  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("atlas budget, MB (log)");
+  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error, 8-bit units (log)");
+  chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+  const unsigned char colours[6][3] = { { 0, 0, 0 }, { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 },
+    { 204, 121, 167 }, { 230, 159, 0 } };
+  std::vector<vtkSmartPointer<vtkTable>> tables;
+  std::printf("%-34s %8s %10s %10s %12s\n", "case", "atlas MB", "RMS", "ms/frame", "MB up/frame");
+  for (size_t c = 0; c < cases.size(); ++c)
+  {
+    std::vector<std::pair<double, double>> pts;
+    double msLo = 1e300, msHi = 0.0;
+    for (const auto& r : rows)
+    {
+      if (r.at("case") != cases[c] || !r.count("rms_error") || r.at("rms_error").empty())
+        continue;
+      pts.emplace_back(std::atof(r.at("atlas_mb").c_str()), std::max(std::atof(r.at("rms_error").c_str()), 1e-3));
+      const double ms = r.count("ms_per_frame") ? std::atof(r.at("ms_per_frame").c_str()) : 0.0;
+      msLo = std::min(msLo, ms);
+      msHi = std::max(msHi, ms);
+      std::printf("%-34s %8s %10s %10s %12s\n", cases[c].c_str(), r.at("atlas_mb").c_str(), r.at("rms_error").c_str(),
+        r.count("ms_per_frame") ? r.at("ms_per_frame").c_str() : "", r.count("mb_uploaded_per_frame") ? r.at("mb_uploaded_per_frame").c_str() : "");
+    }
+    if (pts.empty())
+      continue;
+    std::sort(pts.begin(), pts.end());
+    vtkNew<vtkDoubleArray> x, y;
+    x->SetName(("atlas MB " + cases[c]).c_str());
+    y->SetName(cases[c].c_str());
+    for (const auto& p : pts)
+    {
+      x->InsertNextValue(p.first);
+      y->InsertNextValue(p.second);
+    }
+    auto table = vtkSmartPointer<vtkTable>::New();
+    table->AddColumn(x);
+    table->AddColumn(y);
+    tables.push_back(table);
+    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
+    plot->SetInputData(table, 0, 1);
+    plot->SetColor(colours[c % 6][0], colours[c % 6][1], colours[c % 6][2], 255);
+    plot->SetWidth(2.0);
+    std::ostringstream label;
+    label << cases[c] << " (" << std::lround(msLo) << "-" << std::lround(msHi) << " ms)";
+    plot->SetLabel(label.str());
+    if (auto* line = vtkPlotLine::SafeDownCast(plot))
+      line->SetMarkerStyle(c % 2 ? vtkPlotPoints::CIRCLE : vtkPlotPoints::SQUARE);
+  }
+  view->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view->GetRenderWindow());
+  grab->ReadFrontBufferOff();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(png.c_str());
+  writer->Write();
   return 0;
 }
 }
@@ -369,11 +572,19 @@ int main(int argc, char* argv[])
     return 0;
   }
   if (mode == "flythrough" && argc > 4)
-    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]));
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), !(argc > 5 && std::string(argv[5]) == "no-feedback"));
   if (mode == "feedback")
     return Feedback();
+  if (mode == "accuracy-header")
+  {
+    std::printf("%s\n", AccuracyHeader);
+    return 0;
+  }
   if (mode == "accuracy" && argc > 2)
     return Accuracy(argv[2]);
-  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> | accuracy <dir>\n";
+  if (mode == "report" && argc > 3)
+    return Report(argv[2], argv[3]);
+  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] | "
+               "feedback | accuracy-header | accuracy <dir> | report <csv> <png>\n";
   return 2;
 }
