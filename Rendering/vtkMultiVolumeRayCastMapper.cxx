@@ -117,23 +117,28 @@ bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
 
 // Level-of-detail feedback (paged scenes only). Every data fetch of a feedback ray checks the
 // cut level of its brick (the index entry it reads anyway) against the level the footprint
-// asks for and remembers the first lacking one (front to back; the last, i.e. the nearest, back
-// to front): the level-0 brick, the wanted level and the fragment's volume. Only registers are
-// written per fetch - llvmpipe executes both sides of every branch, so the per-sample cost must
-// stay a compare and a few selects - and the page id is packed once, after the ray: volume i of
-// the fragment is data set uFeedbackSet<i>, uLevelBricks<i> holds the bricks per axis of each
-// level, and the level-l brick over level-0 brick b is b >> l (vtkVolumeCut::MapToAtlas), with
-// index (z ny + y) nx + x, the tree's node order. `footprint`: the wanted level follows the
-// pixel footprint (ErrorThreshold > 0); otherwise level 0 is wanted and no footprint code exists.
+// asks for, and the ray keeps the lacking brick that costs it most: the transmittance in front
+// of the sample times 2^(levels too coarse), a first-order bound of what the brick's coarseness
+// can change in the pixel. Only registers are written per fetch - llvmpipe executes both sides
+// of every branch, so the per-sample cost must stay a few selects - and the page id is packed
+// once, after the ray: volume i of the fragment is data set uFeedbackSet<i>, uLevelBricks<i>
+// holds the bricks per axis of each level, and the level-l brick over level-0 brick b is b >> l
+// (vtkVolumeCut::MapToAtlas), with index (z ny + y) nx + x, the tree's node order. Fragments
+// compare their best with the texel's through a second (score) image. `footprint`: the wanted
+// level follows the pixel footprint (ErrorThreshold > 0); otherwise level 0 is wanted and no
+// footprint code exists.
 std::string FeedbackGlobals(bool footprint)
 {
   std::ostringstream dec;
-  dec << "// Level-of-detail feedback: the first lacking brick of the centre ray of every\n"
+  dec << "// Level-of-detail feedback: the costliest lacking brick of the centre ray of every\n"
       << "// uFeedbackScale-th pixel per axis, one texel each.\n"
       << "layout(r32ui) uniform uimage2D uFeedback;\n"
       << "uniform int uFeedbackScale;\n"
+      << "layout(r32f) uniform image2D uFeedbackScore; // the reported brick's cost\n"
       << "bool gFeedbackRay = false;\n"
       << "bool gLackFound = false;\n"
+      << "float gLackScore = 0.0;\n"
+      << "float gTransmittance = 1.0; // in front of the current step\n"
       << "ivec4 gLack = ivec4(0); // level-0 brick, wanted level\n"
       << "int gLackVolume = 0;\n";
   if (footprint)
@@ -149,19 +154,22 @@ std::string FeedbackVolumeUniforms(const std::string& n, bool footprint)
     "];\n" + (footprint ? "uniform vec2 uFeedbackLod" + n + "; // 1 / level-0 voxel size, coarsest level\n" : "");
 }
 
-// Inside strataScalarAt<n>, after the index entry e of level-0 brick b was fetched.
+// Inside strataScalarAt<n>, after the index entry e of level-0 brick b was fetched. Among
+// equal costs the nearer brick wins: the first one front to back, the last one back to front.
 std::string FeedbackFetchCheck(const std::string& n, bool frontToBack, bool footprint)
 {
-  std::string code = std::string("  if (gFeedbackRay") + (frontToBack ? " && !gLackFound" : "") + ")\n  {\n";
+  std::string code = "  if (gFeedbackRay)\n  {\n";
   if (footprint)
     code += "    int want = int(clamp(floor(log2(max(gFootprint * uFeedbackLod" + n + ".x, 1.0e-30))), 0.0, uFeedbackLod" + n +
       ".y));\n";
   else
     code += "    int want = 0;\n";
-  code += "    bool lacking = e.w != 65535u && e.w > uint(want);\n"
-          "    gLackFound = gLackFound || lacking;\n"
-          "    gLack = lacking ? ivec4(b, want) : gLack;\n"
-          "    gLackVolume = lacking ? " + n + " : gLackVolume;\n  }\n";
+  code += "    float score = e.w != 65535u && e.w > uint(want) ? gTransmittance * exp2(float(min(int(e.w) - want, 16))) : 0.0;\n"
+          "    bool better = score " + std::string(frontToBack ? ">" : ">=") + " gLackScore && score > 0.0;\n"
+          "    gLackFound = gLackFound || better;\n"
+          "    gLackScore = better ? score : gLackScore;\n"
+          "    gLack = better ? ivec4(b, want) : gLack;\n"
+          "    gLackVolume = better ? " + n + " : gLackVolume;\n  }\n";
   return code;
 }
 
@@ -455,17 +463,15 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
                << ", " << prior << ", " << (coherence ? "tStart" : "0.0") << ", tFirst, inside);\n";
     }
   }
-  if (feedback && frontToBack)
+  if (feedback)
   {
-    // Fragments are drawn nearest first: the first one that found a lacking brick keeps it.
+    // The fragment's costliest lacking brick replaces the texel's if it costs more (fragments
+    // are drawn one after another with a barrier between; on a tie the nearer one wins).
     raysCode << "  if (gLackFound)\n  {\n"
-             << "    imageAtomicCompSwap(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, 0u, strataLackingPage());\n  }\n";
-  }
-  else if (feedback)
-  {
-    // Farthest first: a nearer fragment's report replaces a farther one's.
-    raysCode << "  if (gLackFound)\n  {\n"
-             << "    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(strataLackingPage(), 0u, 0u, 0u));\n  }\n";
+             << "    ivec2 texel = ivec2(gl_FragCoord.xy) / uFeedbackScale;\n"
+             << "    if (gLackScore " << (frontToBack ? ">" : ">=") << " imageLoad(uFeedbackScore, texel).r)\n    {\n"
+             << "      imageStore(uFeedbackScore, texel, vec4(gLackScore));\n"
+             << "      imageStore(uFeedback, texel, uvec4(strataLackingPage(), 0u, 0u, 0u));\n    }\n  }\n";
   }
   Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
@@ -477,6 +483,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   if (frontToBack)
   {
     loop << "float kk = floor(tEnter / dt - phase);\n";
+    if (feedback)
+      loop << "  gTransmittance = 1.0 - prior;\n";
     if (skipping)
       loop << "  bool probe = true; // look for empty space: at the start and after transparent steps\n";
     if (pre)
@@ -497,6 +505,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       loop << "      continue;\n    }\n";
     }
     loop << "    if (b > a)\n    {\n";
+    if (feedback)
+      loop << "      gTransmittance = (1.0 - prior) * (1.0 - acc.a);\n";
     if (footprint)
       loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * d, uFeedbackEye);\n";
     if (pre)
@@ -667,6 +677,7 @@ public:
   // asked for detail below the node (the split priority).
   using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
   unsigned int FeedbackTexture = 0;
+  unsigned int FeedbackScoreTexture = 0; ///< R32F: the cost of the brick each texel reports
   unsigned int FeedbackBuffer = 0;
   int FeedbackSize[2] = { 0, 0 };
   bool FeedbackPending = false; ///< the buffer holds a frame not reduced yet
@@ -787,6 +798,9 @@ public:
     this->AtlasTexture = 0;
     if (this->FeedbackTexture)
       glDeleteTextures(1, &this->FeedbackTexture);
+    if (this->FeedbackScoreTexture)
+      glDeleteTextures(1, &this->FeedbackScoreTexture);
+    this->FeedbackScoreTexture = 0;
     if (this->FeedbackBuffer)
       glDeleteBuffers(1, &this->FeedbackBuffer);
     this->FeedbackTexture = this->FeedbackBuffer = 0;
@@ -1848,7 +1862,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   in.LastFragments = 0;
 
   // Feedback: one R32UI texel per FeedbackScale x FeedbackScale pixels, cleared to 0 (no page),
-  // on image unit 0 for the whole frame; its pixel buffer is read at the next frame.
+  // and its R32F cost, on image units 0 and 1 for the whole frame; the ids' pixel buffer is
+  // read at the next frame.
   const int feedbackScale = this->FeedbackScale;
   const bool footprint = feedback && this->ErrorThreshold > 0.0;
   float feedbackFootprint[2] = { 0.f, 0.f };
@@ -1865,10 +1880,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     {
       if (!in.FeedbackTexture)
         glGenTextures(1, &in.FeedbackTexture);
+      if (!in.FeedbackScoreTexture)
+        glGenTextures(1, &in.FeedbackScoreTexture);
       if (!in.FeedbackBuffer)
         glGenBuffers(1, &in.FeedbackBuffer);
       glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackScoreTexture);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, fw, fh, 0, GL_RED, GL_FLOAT, nullptr);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
@@ -1879,20 +1900,26 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       in.FeedbackPending = false;
     }
     const GLuint zero = 0;
+    const GLfloat zeroScore = 0.f;
     if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
     {
       glClearTexImage(in.FeedbackTexture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glClearTexImage(in.FeedbackScoreTexture, 0, GL_RED, GL_FLOAT, &zeroScore);
     }
     else
     {
+      // All-zero bits are 0u and 0.0f alike.
       const std::vector<GLuint> zeros(static_cast<size_t>(fw) * fh, 0u);
-      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
       glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
+      glBindTexture(GL_TEXTURE_2D, in.FeedbackScoreTexture);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED, GL_FLOAT, zeros.data());
     }
     glBindTexture(GL_TEXTURE_2D, 0);
     units->Free(unit);
     glBindImageTexture(0, in.FeedbackTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(1, in.FeedbackScoreTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     // The size of one pixel at distance r from the eye, times the error threshold: what a
     // voxel of the wanted level may cover.
     const double tau = this->ErrorThreshold;
@@ -1996,6 +2023,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     if (feedback)
     {
       program->SetUniformi("uFeedback", 0);
+      program->SetUniformi("uFeedbackScore", 1);
       program->SetUniformi("uFeedbackScale", feedbackScale);
       program->SetUniform3f("uFeedbackEye", feedbackEye);
       program->SetUniform2f("uFeedbackFootprint", feedbackFootprint);
@@ -2118,7 +2146,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     glDrawArrays(GL_TRIANGLES, in.FragmentFirst[f], in.FragmentCount[f]);
     if (feedback)
     {
-      // The next fragment's compare-and-swap must see this one's reports.
+      // The next fragment's comparison must see this one's reports.
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     if (barrier)
@@ -2159,6 +2187,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     // Copied into the pixel buffer now, mapped at the next frame: no wait for the GPU here.
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
     const int unit = units->Allocate();
     state->vtkglActiveTexture(GL_TEXTURE0 + unit);

@@ -142,16 +142,20 @@ public:
    * bricks of every volume in the scene. The ray caster reports the detail it lacks, in the
    * same pass: the centre ray of every FeedbackScale-th pixel per axis (default 4, a buffer of
    * 1/4 x 1/4 of the viewport) writes, with image load/store into an R32UI texture, the packed
-   * id (vtkFeedbackReduction: volume, level, brick) of the first brick it reads data from
-   * (samples and gradient taps), before it terminates, whose cut level is coarser than the
-   * level its footprint asks for (see ErrorThreshold). Why the first lacking brick rather than
-   * a fixed sample (say where the opacity crosses 1/2): the report moves on as the cut
-   * refines, so over a few frames a ray walks its bricks front to back and every brick it reads
-   * before it is opaque reaches the wanted level - the converged image along those rays is
-   * exactly the image with every brick at that level - while one id per pixel suffices; and a
-   * brick behind opaque material or outside the view is never asked for, so it stays coarse.
-   * The price: convergence takes a frame or two per brick a ray crosses, where the
-   * screen-space cut asks for all at once.
+   * id (vtkFeedbackReduction: volume, level, brick) of one brick it reads data from (samples
+   * and gradient taps) before it terminates whose cut level is coarser than the level its
+   * footprint asks for (see ErrorThreshold): the one that costs the ray most, the transmittance
+   * in front of the sample times 2^(levels too coarse), nearest first on ties. Why a lacking
+   * brick rather than a fixed sample (say where the opacity crosses 1/2): the report moves on
+   * as the cut refines, so over a few frames a ray walks all its bricks and every brick it
+   * reads before it is opaque reaches the wanted level - the converged image along those rays
+   * is exactly the image with every brick at that level - while one id per pixel suffices;
+   * a brick behind opaque material or outside the view is never asked for, so it stays
+   * coarse. Why the costliest one rather than the first: under a tight atlas a ray would keep
+   * asking for a near brick the budget cannot give and never for the coarse ones behind it; by
+   * cost the budget goes where coarseness shows (bench: lower error than the screen-space cut
+   * at every atlas budget). The price: convergence takes a frame or two per brick a ray
+   * crosses, where the screen-space cut asks for all at once.
    *
    * The buffer is read back through a pixel buffer object at the next frame (the GPU is not
    * waited on), reduced to (page, pixels) by vtkFeedbackReduction (OpenCL when FeedbackOpenCL
@@ -159,8 +163,8 @@ public:
    * (PropagateToAncestors), and a node's split priority is the number of feedback pixels that
    * asked for detail below it. Satisfied rays stop asking, so a node keeps the largest
    * priority it had while the camera is still (the cut settles) and half of it for each frame
-   * the camera moves. Back to front, rays know no opacity in front of a sample: they report
-   * the nearest lacking brick and occlusion plays no part.
+   * the camera moves. Back to front, rays know no opacity in front of a sample: the cost is
+   * 2^(levels too coarse) alone and occlusion plays no part.
    */
   vtkSetMacro(LevelOfDetailFeedback, bool);
   vtkGetMacro(LevelOfDetailFeedback, bool);

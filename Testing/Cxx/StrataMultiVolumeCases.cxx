@@ -722,9 +722,10 @@ int RunMultiVolumeCase(const std::string& name)
       Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "gLack") &&
           !has(*src, "imageAtomic") && !has(*src, "imageStore"),
         "in core: no feedback code");
-    // The same two volumes paged from pools: the shaders write the first lacking brick of
-    // the feedback rays (front to back: compare-and-swap, the nearest fragment wins); with
-    // ErrorThreshold 0 level 0 is wanted everywhere, so there is no footprint code.
+    // The same two volumes paged from pools: the shaders report the costliest lacking brick
+    // of the feedback rays (fragments compare through the score image; front to back the
+    // nearer wins a tie); with ErrorThreshold 0 level 0 is wanted everywhere, so there is no
+    // footprint code.
     std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
     for (int i = 0; i < 2; ++i)
     {
@@ -742,15 +743,15 @@ int RunMultiVolumeCase(const std::string& name)
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
     s.Win->Render();
     const std::string paged = s.Mapper->GetFragmentShaderSource(2);
-    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "gLackVolume = lacking ? 1") &&
-        !has(paged, "uFeedbackSet2") && has(paged, "imageAtomicCompSwap(uFeedback") && has(paged, "strataPackPage") &&
-        !has(paged, "gFootprint"),
+    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "gLackVolume = better ? 1") &&
+        !has(paged, "uFeedbackSet2") && has(paged, "gLackScore > imageLoad(uFeedbackScore") &&
+        has(paged, "imageStore(uFeedback, texel") && has(paged, "strataPackPage") && !has(paged, "gFootprint"),
       "paged: the 2-volume shader reports lacking bricks of both volumes into the feedback image");
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
     s.Win->Render();
     const std::string pagedBack = s.Mapper->GetFragmentShaderSource(1);
-    Check(has(pagedBack, "imageStore(uFeedback") && !has(pagedBack, "imageAtomic"),
-      "paged, back to front: the nearest report overwrites (no compare-and-swap)");
+    Check(has(pagedBack, "gLackScore >= imageLoad(uFeedbackScore") && !has(pagedBack, "gTransmittance = (1.0 - prior)"),
+      "paged, back to front: on equal cost the nearer (later) report wins; no transmittance is known");
     s.Mapper->LevelOfDetailFeedbackOff();
     s.Win->Render();
     const std::string pagedOff = s.Mapper->GetFragmentShaderSource(1);
