@@ -52,6 +52,7 @@
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPagePoolReader.h"
+#include "vtkPen.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlotLine.h"
 #include "vtkPlotPoints.h"
@@ -457,8 +458,9 @@ int Report(const std::string& csv, const std::string& png)
   chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error, 8-bit units (log)");
   chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
-  const unsigned char colours[6][3] = { { 0, 0, 0 }, { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 },
-    { 204, 121, 167 }, { 230, 159, 0 } };
+  // Okabe-Ito: eight colours told apart also with colour-blind eyes.
+  const unsigned char colours[8][3] = { { 0, 0, 0 }, { 230, 159, 0 }, { 86, 180, 233 }, { 0, 158, 115 },
+    { 240, 228, 66 }, { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 } };
   std::vector<vtkSmartPointer<vtkTable>> tables;
   std::printf("%-34s %8s %10s %10s %12s\n", "case", "atlas MB", "RMS", "ms/frame", "MB up/frame");
   for (size_t c = 0; c < cases.size(); ++c)
@@ -493,13 +495,15 @@ int Report(const std::string& csv, const std::string& png)
     tables.push_back(table);
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
     plot->SetInputData(table, 0, 1);
-    plot->SetColor(colours[c % 6][0], colours[c % 6][1], colours[c % 6][2], 255);
+    plot->SetColor(colours[c % 8][0], colours[c % 8][1], colours[c % 8][2], 255);
     plot->SetWidth(2.0);
+    if (cases[c].find("horizon") != std::string::npos)
+      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
     std::ostringstream label;
     label << cases[c] << " (" << std::lround(msLo) << "-" << std::lround(msHi) << " ms)";
     plot->SetLabel(label.str());
     if (auto* line = vtkPlotLine::SafeDownCast(plot))
-      line->SetMarkerStyle(c % 2 ? vtkPlotPoints::CIRCLE : vtkPlotPoints::SQUARE);
+      line->SetMarkerStyle(cases[c].find("horizon") != std::string::npos ? vtkPlotPoints::CIRCLE : vtkPlotPoints::SQUARE);
   }
   view->Render();
   vtkNew<vtkWindowToImageFilter> grab;
