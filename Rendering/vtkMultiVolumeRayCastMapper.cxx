@@ -1177,14 +1177,25 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  // Feedback ranks the bricks of every volume while any is paged; it needs image load/store.
-  const bool imageStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
-  if (anyPooled && this->LevelOfDetailFeedback && !imageStore && !in.FeedbackUnsupportedWarned)
+  // Feedback ranks the bricks of every volume while any is paged. It needs image load/store,
+  // and page ids of 32 bits: at most 62 volumes and 2^21 bricks per level (vtkFeedbackReduction).
+  bool idsFit = static_cast<int>(volumes.size()) <= vtkFeedbackReduction::MaxDataSets;
+  for (const auto& e : volumes)
   {
-    vtkWarningMacro("No image load/store (OpenGL 4.2): paging without level-of-detail feedback.");
+    uint64_t bricks = 1;
+    for (int a = 0; a < 3; ++a)
+      bricks *= e.Dims[a] <= 1 ? 1 : (static_cast<uint64_t>(e.Dims[a]) - 1 + brickSize - 2) / (brickSize - 1);
+    idsFit = idsFit && bricks <= vtkFeedbackReduction::MaxPagesPerLevel;
+  }
+  const bool imageStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
+  if (anyPooled && this->LevelOfDetailFeedback && (!imageStore || !idsFit) && !in.FeedbackUnsupportedWarned)
+  {
+    vtkWarningMacro(<< (imageStore ? "More than 62 volumes or 2^21 bricks in a level"
+                                   : "No image load/store (OpenGL 4.2)")
+                    << ": paging without level-of-detail feedback (the screen-space cut).");
     in.FeedbackUnsupportedWarned = true;
   }
-  const bool feedback = anyPooled && this->LevelOfDetailFeedback && imageStore;
+  const bool feedback = anyPooled && this->LevelOfDetailFeedback && imageStore && idsFit;
 
   // --- BSP over the boxes (index range [0, n-1], or one spacing thick for n == 1).
   std::vector<vtkVolumeBSPTree::Box> boxes;
