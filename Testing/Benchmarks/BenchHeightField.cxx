@@ -31,26 +31,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <string>
 
+using strata_test::PeakRssMB;
+
 namespace
 {
-double PeakRssMB()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind("VmHWM:", 0) == 0)
-    {
-      return std::stod(line.substr(6)) / 1024.0;
-    }
-  }
-  return 0.0;
-}
-
 // The user's mesh: points (x, y, z) and two triangles per valid cell, as vtkPolyData.
 vtkSmartPointer<vtkPolyData> MeshOf(vtkImageData* image)
 {

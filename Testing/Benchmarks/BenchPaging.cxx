@@ -66,8 +66,6 @@
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -80,23 +78,15 @@
 #include <thread>
 #include <vector>
 
+using strata_test::PeakRssMB;
+using strata_test::FileExists;
+using strata_test::Percentile;
+
 namespace
 {
 const int Size = 256;
 const int Edge = 1024; // voxels per axis of the fly-through volumes
 const int Small = 512; // of the accuracy volume
-
-double PeakRssMB()
-{
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0; // kilobytes on Linux
-}
-
-bool Exists(const std::string& path)
-{
-  return static_cast<bool>(std::ifstream(path));
-}
 
 std::string PoolPath(const std::string& dir, int i)
 {
@@ -106,7 +96,7 @@ std::string PoolPath(const std::string& dir, int i)
 // Volume i: the analytic wavelet with its own centre and frequencies, scaled to uint8.
 bool Generate(const std::string& path, int edge, int i)
 {
-  if (Exists(path))
+  if (FileExists(path))
   {
     std::cerr << path << " exists\n";
     return true;
@@ -161,14 +151,6 @@ vtkSmartPointer<vtkVolumeProperty> Property()
   return p;
 }
 
-double Percentile(std::vector<double> v, double q)
-{
-  if (v.empty())
-    return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-
 // Pages the readers read in their pipeline updates: the pages of each RequestData (0 when it
 // answered from its last output), summed at its EndEvent.
 struct PageReads
@@ -185,7 +167,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
   const std::string name = feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback";
   for (int i = 0; i < 9; ++i)
   {
-    if (!Exists(PoolPath(dir, i)))
+    if (!FileExists(PoolPath(dir, i)))
     {
       std::printf("%s,%g,,,,,,,,missing %s: run BenchPaging generate first\n", name.c_str(), cacheMB + atlasMB,
         PoolPath(dir, i).c_str());
@@ -361,7 +343,7 @@ void AccuracyRow(vtkRenderWindow* win, vtkVolume* volume, const std::string& pat
 int Accuracy(const std::string& dir)
 {
   const std::string path = PoolPath(dir, 9);
-  if (!Exists(path))
+  if (!FileExists(path))
   {
     std::printf("accuracy-512,,,,,,,missing %s: run BenchPaging generate first\n", path.c_str());
     return 1;

@@ -31,17 +31,18 @@
 #include "vtkUnsignedShortArray.h"
 #include "vtkWindowToImageFilter.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
+
+using strata_test::PeakRssMB;
+using strata_test::FileExists;
+using strata_test::Percentile;
 
 namespace
 {
@@ -101,13 +102,6 @@ protected:
 };
 vtkStandardNewMacro(HorizonSource);
 
-double PeakRssMB()
-{
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;
-}
-
 std::string PoolPath(const std::string& dir, int k, bool small = false)
 {
   return dir + (small ? "/paging-horizon-small-" : "/paging-horizon-") + std::to_string(k) + ".spp";
@@ -116,26 +110,13 @@ std::string PoolPath(const std::string& dir, int k, bool small = false)
 const int SmallN = 2049;    // points per axis of the accuracy stack
 const int SmallPage = 129; // its tile size
 
-bool Exists(const std::string& path)
-{
-  return static_cast<bool>(std::ifstream(path));
-}
-
-double Percentile(std::vector<double> v, double q)
-{
-  if (v.empty())
-    return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-
 int Generate(const std::string& dir)
 {
   for (int k = 0; k < 6; ++k)
   {
     const bool small = k >= 3;
     const std::string path = PoolPath(dir, k % 3, small);
-    if (Exists(path))
+    if (FileExists(path))
     {
       std::cerr << path << " exists\n";
       continue;
@@ -164,7 +145,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
 {
   for (int k = 0; k < 3; ++k)
   {
-    if (!Exists(PoolPath(dir, k)))
+    if (!FileExists(PoolPath(dir, k)))
     {
       std::printf("flythrough-horizons-3x6870x14300,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n",
         cacheMB + atlasMB, PoolPath(dir, k).c_str());
@@ -267,7 +248,7 @@ int Accuracy(const std::string& dir)
   std::vector<vtkSmartPointer<vtkImageData>> full;
   for (int k = 0; k < 3; ++k)
   {
-    if (!Exists(PoolPath(dir, k, true)))
+    if (!FileExists(PoolPath(dir, k, true)))
     {
       std::printf("accuracy-horizons-%d,,,,,,,missing %s: run BenchPagingHorizons generate first\n", SmallN,
         PoolPath(dir, k, true).c_str());

@@ -81,6 +81,8 @@
 #include <string>
 #include <vector>
 
+using strata_test::PeakRssMB;
+
 namespace
 {
 using Clock = std::chrono::steady_clock;
@@ -153,20 +155,6 @@ struct Row
 void Emit(const Row& row)
 {
   std::cout << row.Csv() << std::endl;
-}
-
-double PeakRssMB()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind("VmHWM:", 0) == 0)
-    {
-      return std::stod(line.substr(6)) / 1024.0;
-    }
-  }
-  return NaN;
 }
 
 /// The 1-minute load average: this machine's 2 cores are shared, and the timings show it.

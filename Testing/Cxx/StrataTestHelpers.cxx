@@ -6,11 +6,17 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPagePoolFile.h"
 #include "vtkPNGWriter.h"
 #include "vtkRenderWindow.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 
 namespace strata_test
@@ -206,5 +212,57 @@ std::string SharedDataDirectory()
 {
   const char* d = std::getenv("STRATA_SHARED_DATA");
   return d && *d ? d : "";
+}
+}
+
+namespace strata_test
+{
+bool CopyFile(const std::string& from, const std::string& to, double fraction)
+{
+  std::ifstream in(from, std::ios::binary);
+  if (!in)
+    return false;
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t count = fraction >= 1.0 ? bytes.size() : static_cast<size_t>(bytes.size() * std::max(0.0, fraction));
+  std::ofstream out(to, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(count));
+  return static_cast<bool>(out);
+}
+
+bool CorruptPage(const std::string& pool, uint64_t page, int offset)
+{
+  vtkPagePoolFile file;
+  if (!file.Open(pool) || page >= file.GetNumberOfPages())
+    return false;
+  const auto position = static_cast<std::streamoff>(file.GetPageEntry(page).Offset + offset);
+  file.Close();
+  std::fstream f(pool, std::ios::binary | std::ios::in | std::ios::out);
+  char c = 0;
+  f.seekg(position);
+  f.read(&c, 1);
+  c = static_cast<char>(c ^ 0x5A);
+  f.seekp(position);
+  f.write(&c, 1);
+  return static_cast<bool>(f);
+}
+
+double PeakRssMB()
+{
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0; // kilobytes on Linux
+}
+
+bool FileExists(const std::string& path)
+{
+  return static_cast<bool>(std::ifstream(path));
+}
+
+double Percentile(std::vector<double> values, double q)
+{
+  if (values.empty())
+    return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5))];
 }
 }

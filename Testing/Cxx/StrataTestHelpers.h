@@ -92,6 +92,17 @@ std::string OutputDirectory();
 std::string TestDataDirectory();
 /// ../shared/data ($STRATA_SHARED_DATA); empty when not set.
 std::string SharedDataDirectory();
+
+/// Copies a file; with `fraction` < 1 only its first fraction of bytes (a truncated file).
+bool CopyFile(const std::string& from, const std::string& to, double fraction = 1.0);
+/// Flips the bits of the stored byte `offset` bytes into page `page` of a page pool (a
+/// corrupt page, which its checksum must catch).
+bool CorruptPage(const std::string& pool, uint64_t page, int offset);
+
+/// Benchmarks: peak resident set of this process in MB, file existence, the q-quantile.
+double PeakRssMB();
+bool FileExists(const std::string& path);
+double Percentile(std::vector<double> values, double q);
 }
 
 #endif

@@ -306,24 +306,7 @@ int TestHeightFieldPaging(int, char*[])
     rootError = ImageError(render(m), full).Rms;
   }
   const std::string corrupt = dir + "/hf-paging-corrupt.spp";
-  {
-    std::ifstream in(pools[1], std::ios::binary);
-    std::ofstream out(corrupt, std::ios::binary);
-    out << in.rdbuf();
-  }
-  {
-    vtkPagePoolFile file;
-    file.Open(corrupt);
-    const auto entry = file.GetPageEntry(40); // a level-0 tile in view
-    file.Close();
-    std::fstream f(corrupt, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekg(static_cast<std::streamoff>(entry.Offset + 9));
-    char c = 0;
-    f.read(&c, 1);
-    c = static_cast<char>(c ^ 0x5A);
-    f.seekp(static_cast<std::streamoff>(entry.Offset + 9));
-    f.write(&c, 1);
-  }
+  Check(CopyFile(pools[1], corrupt) && CorruptPage(corrupt, 40, 9), "page 40 corrupted"); // a level-0 tile in view
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
@@ -348,11 +331,7 @@ int TestHeightFieldPaging(int, char*[])
     Check(worstRms <= rootError + 0.5, "with a corrupt tile the horizons stay a valid coarser rendering");
   }
   const std::string shrinking = dir + "/hf-paging-shrinking.spp";
-  {
-    std::ifstream in(pools[0], std::ios::binary);
-    std::ofstream out(shrinking, std::ios::binary);
-    out << in.rdbuf();
-  }
+  Check(CopyFile(pools[0], shrinking), "pool copied");
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
@@ -385,11 +364,7 @@ int TestHeightFieldPaging(int, char*[])
   for (const std::string& bad : { dir + "/hf-paging-truncated.spp", dir + "/hf-no-such-pool.spp" })
   {
     if (bad.find("truncated") != std::string::npos)
-    {
-      std::ifstream in(pools[0], std::ios::binary);
-      std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      std::ofstream(bad, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
-    }
+      Check(CopyFile(pools[0], bad, 0.5), "truncated copy written");
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
     pagedWith({ bad, pools[1], pools[2] }, m, rs);

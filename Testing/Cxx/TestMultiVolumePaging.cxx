@@ -293,24 +293,7 @@ int TestMultiVolumePaging(int, char*[])
 
   // --- Faults. A corrupt level-0 page (one stored byte flipped): one error, the rest converges.
   const std::string corrupt = dir + "/paging-corrupt.spp";
-  {
-    std::ifstream in(pool, std::ios::binary);
-    std::ofstream out(corrupt, std::ios::binary);
-    out << in.rdbuf();
-  }
-  {
-    vtkPagePoolFile file;
-    file.Open(corrupt);
-    const auto entry = file.GetPageEntry(7); // a level-0 page
-    file.Close();
-    std::fstream f(corrupt, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekg(static_cast<std::streamoff>(entry.Offset + 5));
-    char c = 0;
-    f.read(&c, 1);
-    c = static_cast<char>(c ^ 0x5A);
-    f.seekp(static_cast<std::streamoff>(entry.Offset + 5));
-    f.write(&c, 1);
-  }
+  Check(CopyFile(pool, corrupt) && CorruptPage(corrupt, 7, 5), "page 7 corrupted"); // a level-0 page
   s.Camera(-60.0);
   std::vector<unsigned char> full;
   for (int i = 0; i < 3; ++i)
@@ -345,11 +328,7 @@ int TestMultiVolumePaging(int, char*[])
 
   // A pool truncated while it is being rendered: reads past the end fail, coarse bricks stay.
   const std::string shrinking = dir + "/paging-shrinking.spp";
-  {
-    std::ifstream in(pool, std::ios::binary);
-    std::ofstream out(shrinking, std::ios::binary);
-    out << in.rdbuf();
-  }
+  Check(CopyFile(pool, shrinking), "pool copied");
   {
     vtkNew<vtkPagePoolReader> r;
     r->SetFileName(shrinking.c_str());
@@ -385,11 +364,7 @@ int TestMultiVolumePaging(int, char*[])
   for (const std::string& bad : { dir + "/paging-truncated.spp", dir + "/no-such-pool.spp" })
   {
     if (bad.find("truncated") != std::string::npos)
-    {
-      std::ifstream in(pool, std::ios::binary);
-      std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      std::ofstream(bad, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
-    }
+      Check(CopyFile(pool, bad, 0.5), "truncated copy written");
     vtkNew<vtkPagePoolReader> r;
     r->SetFileName(bad.c_str());
     vtkNew<vtkMultiVolumeRayCastMapper> m;
