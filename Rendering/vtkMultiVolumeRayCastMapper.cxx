@@ -1018,6 +1018,22 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->Superclass::Render(ren, vol);
 }
 
+vtkVolumeCut::Camera vtkMultiVolumeRayCastMapper::GetCutCamera(vtkRenderer* ren)
+{
+  vtkCamera* camera = ren->GetActiveCamera();
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkVolumeCut::Camera cutCamera;
+  camera->GetPosition(cutCamera.Position);
+  if (camera->GetParallelProjection())
+    cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
+  else
+    cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
+  cutCamera.UseFrustum = true;
+  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+  return cutCamera;
+}
+
 void vtkMultiVolumeRayCastMapper::GetLights(
   vtkRenderer* ren, std::vector<float>& lightDirections, std::vector<float>& lightColors)
 {
@@ -1614,14 +1630,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         tex.Held[root] = page;
       }
     }
-    vtkVolumeCut::Camera cutCamera;
-    camera->GetPosition(cutCamera.Position);
-    if (camera->GetParallelProjection())
-      cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
-    else
-      cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
-    cutCamera.UseFrustum = true;
-    camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+    const vtkVolumeCut::Camera cutCamera = GetCutCamera(ren);
     in.Paging.MissesThisFrame = 0;
     in.RequestLimit = 4 * this->PagesPerFrame;
     const int entered = in.Cut.Update(cutCamera);

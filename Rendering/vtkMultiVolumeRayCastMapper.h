@@ -32,6 +32,7 @@
 #include "StrataModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkSmartPointer.h" // For UploadTransferTable
+#include "vtkVolumeCut.h"     // For vtkVolumeCut::Camera
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -295,6 +296,13 @@ public:
    * times intensity, 3 floats each, at most 8.
    */
   static void GetLights(vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors);
+
+  /**
+   * The renderer's active camera as vtkVolumeCut sees it: eye, pixels per radian (or per
+   * world unit in parallel projection) for the tiled viewport's height, and the frustum
+   * planes. Shared by every mapper that pages through a cut.
+   */
+  static vtkVolumeCut::Camera GetCutCamera(vtkRenderer* ren);
 
   /// Entries of the tables the mapper builds (TabulateTransferFunction's size).
   static constexpr int TransferTableSize = 1024;

@@ -18,6 +18,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMinMaxQuadtree.h"
+#include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLError.h"
@@ -549,21 +550,7 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   in.Pager.SetPagesPerFrame(this->PagesPerFrame);
 
   // The cut refines by the size of a tile's points on screen, under this camera.
-  vtkCamera* camera = ren->GetActiveCamera();
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkVolumeCut::Camera cutCamera;
-  camera->GetPosition(cutCamera.Position);
-  if (camera->GetParallelProjection())
-  {
-    cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
-  }
-  else
-  {
-    cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
-  }
-  cutCamera.UseFrustum = true;
-  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+  const vtkVolumeCut::Camera cutCamera = vtkMultiVolumeRayCastMapper::GetCutCamera(ren);
   vtkNew<vtkMatrix4x4> modelGrid;
   vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
   std::vector<vtkHeightFieldPager::Upload> uploads;
