@@ -397,6 +397,19 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
     in.Cut.SetVolumeOpacity(v, [](double lo, double hi) { return lo <= hi ? 1.0 : 0.0; });
     vtkInternals* internals = &in;
     const int hi = static_cast<int>(h);
+    // With feedback, split a tile when rays asked for tiles below it: the pixels that did are
+    // its priority. Without, its screen-space error.
+    const vtkVolumeBrickTree* tree = &in.Pools[in.Horizons[h].PoolIndex]->Tree;
+    in.Cut.SetVolumePriority(v, [internals, tree, hi](int node, double screenSpaceError) {
+      if (!internals->UseFeedback)
+        return screenSpaceError;
+      int children[8];
+      const int count = tree->GetChildren(node, children);
+      double asked = 0.0;
+      for (int c = 0; c < count; ++c)
+        asked += internals->SubtreeRequests[hi][children[c]];
+      return asked;
+    });
     in.Cut.SetVolumeAvailability(v, [internals, hi](int node, double priority) {
       vtkInternals::Horizon& hz = internals->Horizons[hi];
       if (hz.Pages.count(node))
@@ -613,25 +626,6 @@ bool vtkHeightFieldPager::Update(
       pl[3] += std::abs(pl[0] * span[0] + pl[1] * span[1] + pl[2] * span[2]);
     }
   }
-  for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
-  {
-    if (!in.UseFeedback)
-    {
-      in.Cut.SetVolumePriority(h, nullptr);
-      continue;
-    }
-    // Split a tile when rays asked for tiles below it: the pixels that did are its priority.
-    vtkInternals* internals = &in;
-    const vtkVolumeBrickTree* tree = &in.Pools[in.Horizons[h].PoolIndex]->Tree;
-    in.Cut.SetVolumePriority(h, [internals, tree, h](int node, double) {
-      int children[8];
-      const int count = tree->GetChildren(node, children);
-      double asked = 0.0;
-      for (int c = 0; c < count; ++c)
-        asked += internals->SubtreeRequests[h][children[c]];
-      return asked;
-    });
-  }
   in.Stats.MissesThisFrame = 0;
   in.RequestLimit = 4 * in.PagesPerFrame;
   in.Cut.SetMaxNewBricksPerUpdate(in.PagesPerFrame);
@@ -727,6 +721,8 @@ void vtkHeightFieldPager::SetFeedback(
 void vtkHeightFieldPager::ClearFeedback()
 {
   vtkInternals& in = *this->Internals;
+  if (!in.UseFeedback)
+    return;
   in.UseFeedback = false;
   in.Requests.clear();
   in.SubtreeRequests.clear();
