@@ -687,6 +687,12 @@ public:
   std::vector<std::vector<double>> Demand;
   bool FeedbackUnsupportedWarned = false;
 
+  // Fixed cuts by port ((level, index) per brick), and whether they changed since the cut last
+  // followed them; HeldValid: the cut, atlas and index textures are complete for HoldCut.
+  std::map<int, std::vector<std::array<int, 2>>> FixedCuts;
+  bool FixedCutsChanged = false;
+  bool HeldValid = false;
+
   /// Node of the cut volume that a packed page id names, -1 if none.
   int NodeOf(uint32_t page, int& volume) const
   {
@@ -978,6 +984,40 @@ std::vector<int> vtkMultiVolumeRayCastMapper::GetResidentBricksPerLevel(int port
 int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
 {
   return this->Internals->Atlas.GetNumberOfSlots();
+}
+
+std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int port) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<std::array<int, 2>> bricks;
+  for (size_t v = 0; v < in.CutVolumes.size(); ++v)
+  {
+    if (in.CutVolumes[v].first != port || static_cast<int>(v) >= in.Cut.GetNumberOfVolumes())
+      continue;
+    const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
+    for (int n : in.Cut.GetCutNodes(static_cast<int>(v)))
+    {
+      const int level = tree->GetNode(n).Level;
+      bricks.push_back({ level, n - tree->GetLevelOffset(level) });
+    }
+  }
+  return bricks;
+}
+
+void vtkMultiVolumeRayCastMapper::SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks)
+{
+  this->Internals->FixedCuts[port] = bricks;
+  this->Internals->FixedCutsChanged = true;
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::RemoveAllFixedCuts()
+{
+  if (this->Internals->FixedCuts.empty())
+    return;
+  this->Internals->FixedCuts.clear();
+  this->Internals->FixedCutsChanged = true;
+  this->Modified();
 }
 
 int vtkMultiVolumeRayCastMapper::GetNumberOfFragments() const
@@ -1473,6 +1513,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 
   // --- Brick atlas: the cut through all volumes' octrees for this camera, bricks uploaded
   // into the shared atlas, one index texture per volume.
+  bool hold = false;
   if (atlas)
   {
     bool rebuild = in.CutVolumes.size() != volumes.size() || in.AtlasBrickSize != brickSize ||
@@ -1522,217 +1563,247 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       in.AtlasBudget = this->AtlasBudget;
       in.Demand.clear();
     }
-    // Feedback: the last frame's buffer raises the demand of the nodes its rays asked below;
-    // demand is kept while the camera is still and halves each frame it moves.
-    bool feedbackCurrent = false;
-    if (feedback)
+    // Held (HoldCut): the last render's cut, atlas and index textures as they are.
+    hold = this->HoldCut && in.HeldValid && !rebuild;
+    if (!hold)
     {
-      if (in.Demand.size() != volumes.size())
-      {
-        in.Demand.resize(volumes.size());
-        for (size_t v = 0; v < volumes.size(); ++v)
-          in.Demand[v].assign(in.CutVolumes[v].second->GetNumberOfNodes(), 0.0);
-        in.FeedbackPending = false; // written for another cut
-      }
-      if (moved)
-      {
-        for (auto& d : in.Demand)
-          for (double& x : d)
-            x *= 0.5;
-      }
-      const bool sameView = in.FeedbackView == view;
-      feedbackCurrent = in.TakeFeedback(this->FeedbackOpenCL) && sameView;
-    }
-    else
-    {
-      in.Demand.clear();
-      in.FeedbackPending = false;
-    }
-    in.Cut.SetErrorThreshold(feedback ? 0.0 : this->ErrorThreshold);
-    for (size_t v = 0; v < volumes.size(); ++v)
-    {
-      in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
-      StrataVolumeTextures* tex = &in.Textures[ports[v]];
-      in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
+      in.HeldValid = false;
+      // Feedback: the last frame's buffer raises the demand of the nodes its rays asked below;
+      // demand is kept while the camera is still and halves each frame it moves.
+      bool feedbackCurrent = false;
       if (feedback)
       {
-        const std::vector<double>* demand = &in.Demand[v];
-        in.Cut.SetVolumePriority(static_cast<int>(v), [demand](int node, double) { return (*demand)[node]; });
+        if (in.Demand.size() != volumes.size())
+        {
+          in.Demand.resize(volumes.size());
+          for (size_t v = 0; v < volumes.size(); ++v)
+            in.Demand[v].assign(in.CutVolumes[v].second->GetNumberOfNodes(), 0.0);
+          in.FeedbackPending = false; // written for another cut
+        }
+        if (moved)
+        {
+          for (auto& d : in.Demand)
+            for (double& x : d)
+              x *= 0.5;
+        }
+        const bool sameView = in.FeedbackView == view;
+        feedbackCurrent = in.TakeFeedback(this->FeedbackOpenCL) && sameView;
       }
       else
       {
-        in.Cut.SetVolumePriority(static_cast<int>(v), nullptr);
+        in.Demand.clear();
+        in.FeedbackPending = false;
       }
-      if (volumes[v].Pooled)
-      {
-        // A brick may enter the cut only with its page in RAM: found now (and pinned for this
-        // frame), or queued at the parent's screen-space priority for a later frame.
-        const int port = ports[v];
-        vtkInternals* internals = &in;
-        in.Cut.SetVolumeAvailability(static_cast<int>(v), [tex, port, internals](int node, double priority) {
-          if (tex->Held.count(node))
-            return true;
-          const auto& n = tex->Tree->GetNode(node);
-          vtkPageCache::Key key;
-          key.Dataset = port;
-          key.Level = n.Level;
-          key.Page = node - tex->Tree->GetLevelOffset(n.Level);
-          if (vtkPageCache::Page page = internals->Cache.Find(key))
-          {
-            tex->Held[node] = page;
-            return true;
-          }
-          // Ask for no more than a few frames' worth of uploads at a time: a longer queue
-          // would load pages the cache evicts again before the cut can use them.
-          if (internals->Paging.MissesThisFrame < internals->RequestLimit)
-            internals->Cache.Request(key, priority);
-          ++internals->Paging.MissesThisFrame;
-          return false;
-        });
-      }
-      else
-      {
-        in.Cut.SetVolumeAvailability(static_cast<int>(v), nullptr);
-      }
-    }
-    in.Cut.SetMaxNewBricksPerUpdate(anyPooled ? this->PagesPerFrame : 0);
-    if (anyPooled)
-    {
-      in.Cache.SetBudgetMiB(this->PageCacheBudget);
-      in.Cache.Start();
-      in.Cache.BeginFrame();
-      // Roots first, so that a volume is never a hole. The reader was asked for its coarsest
-      // level, which is the root page: taken from the input image, no read here. Only an input
-      // of other dimensions (a filter between reader and mapper) makes this thread read it.
+      in.Cut.SetErrorThreshold(feedback ? 0.0 : this->ErrorThreshold);
       for (size_t v = 0; v < volumes.size(); ++v)
       {
-        StrataVolumeTextures& tex = in.Textures[ports[v]];
-        const int root = volumes[v].Pooled ? tex.Tree->GetRootId() : -1;
-        if (root < 0 || tex.Held.count(root))
-          continue;
-        auto page = std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
-        const int level = tex.Tree->GetNode(root).Level;
-        if (RootFromImage(volumes[v].Input, tex.Tree->GetLevelDimensions(level), brickSize,
-              reinterpret_cast<float*>(page->data())))
+        in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
+        StrataVolumeTextures* tex = &in.Textures[ports[v]];
+        in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
+        if (feedback)
         {
-          ++in.Paging.RootPagesFromPipeline;
+          const std::vector<double>* demand = &in.Demand[v];
+          in.Cut.SetVolumePriority(static_cast<int>(v), [demand](int node, double) { return (*demand)[node]; });
         }
         else
         {
-          std::string error;
-          if (!tex.Pool->ReadPage(level, 0, reinterpret_cast<float*>(page->data()), &error))
+          in.Cut.SetVolumePriority(static_cast<int>(v), nullptr);
+        }
+        // A fixed cut: split exactly the strict ancestors of its bricks, first of all.
+        const auto fixed = in.FixedCuts.find(ports[v]);
+        if (fixed != in.FixedCuts.end())
+        {
+          const vtkVolumeBrickTree* tree = tex->Tree.get();
+          auto split = std::make_shared<std::vector<char>>(tree->GetNumberOfNodes(), 0);
+          for (const auto& b : fixed->second)
           {
-            vtkErrorMacro("Cannot read the root page of \"" << tex.PoolName << "\": " << error);
-            return;
+            if (b[0] < 0 || b[0] >= tree->GetNumberOfLevels() || b[1] < 0)
+              continue;
+            const int* n = tree->GetLevelBricks(b[0]);
+            if (b[1] >= n[0] * n[1] * n[2])
+              continue;
+            for (int a = tree->GetParent(tree->GetLevelOffset(b[0]) + b[1]); a >= 0 && !(*split)[a]; a = tree->GetParent(a))
+              (*split)[a] = 1;
           }
-          ++in.Paging.RootPagesRead;
+          in.Cut.SetVolumePriority(static_cast<int>(v), [split](int node, double) { return (*split)[node] ? 1e30 : 0.0; });
         }
-        tex.Held[root] = page;
-      }
-    }
-    const vtkVolumeCut::Camera cutCamera = GetCutCamera(ren);
-    in.Paging.MissesThisFrame = 0;
-    in.RequestLimit = 4 * this->PagesPerFrame;
-    const int entered = in.Cut.Update(cutCamera);
-    if (anyPooled)
-    {
-      // Keep the pages of the cut and of its ancestors (for collapses), release the rest.
-      for (size_t v = 0; v < volumes.size(); ++v)
-      {
-        if (!volumes[v].Pooled)
-          continue;
-        StrataVolumeTextures& tex = in.Textures[ports[v]];
-        for (auto it = tex.Held.begin(); it != tex.Held.end();)
+        if (volumes[v].Pooled)
         {
-          const int n = it->first;
-          const bool keep = n == tex.Tree->GetRootId() || in.Cut.IsInCut(static_cast<int>(v), n) ||
-            (tex.Tree->GetParent(n) >= 0 && !in.Cut.IsInCut(static_cast<int>(v), n) && [&] {
-              // an ancestor of the cut: some child is in the cut or is itself kept
-              int children[8];
-              const int count = tex.Tree->GetChildren(n, children);
-              for (int c = 0; c < count; ++c)
-                if (in.Cut.IsInCut(static_cast<int>(v), children[c]) || tex.Held.count(children[c]))
-                  return true;
-              return false;
-            }());
-          it = keep ? std::next(it) : tex.Held.erase(it);
-        }
-      }
-      // Requests this frame's cut did not renew are for views gone by: drop them.
-      in.Cache.CancelStale(in.Cache.GetFrame());
-      for (const auto& failure : in.Cache.TakeNewFailures())
-      {
-        vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page << " of the volume on port "
-                              << failure.PageKey.Dataset << " failed to load (" << failure.Error
-                              << "); showing the coarser level.");
-        ++in.Paging.Failures;
-      }
-      const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
-      in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
-      // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
-      in.Paging.BytesRead = stats.BytesRead +
-        (in.Paging.RootPagesRead + in.Paging.RootPagesFromPipeline) *
-          static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
-      in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
-      in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0 &&
-        (!feedback || feedbackCurrent);
-    }
-    in.Atlas.BeginFrame();
-    std::vector<vtkVolumeCut::Upload> uploads;
-    const int missing = in.Cut.AssignSlots(in.Atlas, uploads);
-    if (missing > 0)
-    {
-      vtkWarningMacro(<< missing << " bricks found no atlas slot: raise AtlasBudget.");
-    }
-    const int B = brickSize;
-    std::vector<float> brick(size_t(B) * B * B);
-    glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    in.Paging.BytesUploaded = 0;
-    for (const auto& u : uploads)
-    {
-      const float* data = brick.data();
-      const StrataVolumeTextures& tex = in.Textures[in.CutVolumes[u.Volume].first];
-      if (tex.Tree->HasData())
-      {
-        tex.Tree->ExtractBrick(u.Node, brick.data());
-      }
-      else
-      {
-        // Paged: the cut only holds bricks whose pages are held (see the availability).
-        auto it = tex.Held.find(u.Node);
-        if (it == tex.Held.end())
-        {
-          vtkErrorMacro("Brick " << u.Node << " entered the cut without its page.");
-          std::fill(brick.begin(), brick.end(), static_cast<float>(tex.EmptyScalar));
+          // A brick may enter the cut only with its page in RAM: found now (and pinned for this
+          // frame), or queued at the parent's screen-space priority for a later frame.
+          const int port = ports[v];
+          vtkInternals* internals = &in;
+          in.Cut.SetVolumeAvailability(static_cast<int>(v), [tex, port, internals](int node, double priority) {
+            if (tex->Held.count(node))
+              return true;
+            const auto& n = tex->Tree->GetNode(node);
+            vtkPageCache::Key key;
+            key.Dataset = port;
+            key.Level = n.Level;
+            key.Page = node - tex->Tree->GetLevelOffset(n.Level);
+            if (vtkPageCache::Page page = internals->Cache.Find(key))
+            {
+              tex->Held[node] = page;
+              return true;
+            }
+            // Ask for no more than a few frames' worth of uploads at a time: a longer queue
+            // would load pages the cache evicts again before the cut can use them.
+            if (internals->Paging.MissesThisFrame < internals->RequestLimit)
+              internals->Cache.Request(key, priority);
+            ++internals->Paging.MissesThisFrame;
+            return false;
+          });
         }
         else
         {
-          data = reinterpret_cast<const float*>(it->second->data());
+          in.Cut.SetVolumeAvailability(static_cast<int>(v), nullptr);
         }
       }
-      const auto pos = in.Atlas.GetSlotPosition(u.Slot);
-      glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, data);
-      in.Paging.BytesUploaded += static_cast<long long>(brick.size() * sizeof(float));
-    }
-    glBindTexture(GL_TEXTURE_3D, 0);
-    for (size_t v = 0; v < volumes.size(); ++v)
-    {
-      StrataVolumeTextures& tex = in.Textures[ports[v]];
-      std::vector<uint16_t> table;
-      in.Cut.BuildIndexTable(static_cast<int>(v), in.Atlas, table);
-      const int* dims = tex.Tree->GetLevelBricks(0);
-      if (!tex.IndexTexture)
-        glGenTextures(1, &tex.IndexTexture);
-      glBindTexture(GL_TEXTURE_3D, tex.IndexTexture);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16UI, dims[0], dims[1], dims[2], 0, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, table.data());
-      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glBindTexture(GL_TEXTURE_3D, 0);
+      in.Cut.SetMaxNewBricksPerUpdate(anyPooled ? this->PagesPerFrame : 0);
+      if (anyPooled)
+      {
+        in.Cache.SetBudgetMiB(this->PageCacheBudget);
+        in.Cache.Start();
+        in.Cache.BeginFrame();
+        // Roots first, so that a volume is never a hole. The reader was asked for its coarsest
+        // level, which is the root page: taken from the input image, no read here. Only an input
+        // of other dimensions (a filter between reader and mapper) makes this thread read it.
+        for (size_t v = 0; v < volumes.size(); ++v)
+        {
+          StrataVolumeTextures& tex = in.Textures[ports[v]];
+          const int root = volumes[v].Pooled ? tex.Tree->GetRootId() : -1;
+          if (root < 0 || tex.Held.count(root))
+            continue;
+          auto page = std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
+          const int level = tex.Tree->GetNode(root).Level;
+          if (RootFromImage(volumes[v].Input, tex.Tree->GetLevelDimensions(level), brickSize,
+                reinterpret_cast<float*>(page->data())))
+          {
+            ++in.Paging.RootPagesFromPipeline;
+          }
+          else
+          {
+            std::string error;
+            if (!tex.Pool->ReadPage(level, 0, reinterpret_cast<float*>(page->data()), &error))
+            {
+              vtkErrorMacro("Cannot read the root page of \"" << tex.PoolName << "\": " << error);
+              return;
+            }
+            ++in.Paging.RootPagesRead;
+          }
+          tex.Held[root] = page;
+        }
+      }
+      const vtkVolumeCut::Camera cutCamera = GetCutCamera(ren);
+      in.Paging.MissesThisFrame = 0;
+      in.RequestLimit = 4 * this->PagesPerFrame;
+      if (in.FixedCutsChanged)
+      {
+        in.Cut.Reset(); // a fixed cut may be coarser than the cut: start from the roots
+        in.FixedCutsChanged = false;
+      }
+      const int entered = in.Cut.Update(cutCamera);
+      if (anyPooled)
+      {
+        // Keep the pages of the cut and of its ancestors (for collapses), release the rest.
+        for (size_t v = 0; v < volumes.size(); ++v)
+        {
+          if (!volumes[v].Pooled)
+            continue;
+          StrataVolumeTextures& tex = in.Textures[ports[v]];
+          for (auto it = tex.Held.begin(); it != tex.Held.end();)
+          {
+            const int n = it->first;
+            const bool keep = n == tex.Tree->GetRootId() || in.Cut.IsInCut(static_cast<int>(v), n) ||
+              (tex.Tree->GetParent(n) >= 0 && !in.Cut.IsInCut(static_cast<int>(v), n) && [&] {
+                // an ancestor of the cut: some child is in the cut or is itself kept
+                int children[8];
+                const int count = tex.Tree->GetChildren(n, children);
+                for (int c = 0; c < count; ++c)
+                  if (in.Cut.IsInCut(static_cast<int>(v), children[c]) || tex.Held.count(children[c]))
+                    return true;
+                return false;
+              }());
+            it = keep ? std::next(it) : tex.Held.erase(it);
+          }
+        }
+        // Requests this frame's cut did not renew are for views gone by: drop them.
+        in.Cache.CancelStale(in.Cache.GetFrame());
+        for (const auto& failure : in.Cache.TakeNewFailures())
+        {
+          vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page << " of the volume on port "
+                                << failure.PageKey.Dataset << " failed to load (" << failure.Error
+                                << "); showing the coarser level.");
+          ++in.Paging.Failures;
+        }
+        const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
+        in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
+        // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
+        in.Paging.BytesRead = stats.BytesRead +
+          (in.Paging.RootPagesRead + in.Paging.RootPagesFromPipeline) *
+            static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
+        in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
+        in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0 &&
+          (!feedback || feedbackCurrent);
+      }
+      in.Atlas.BeginFrame();
+      std::vector<vtkVolumeCut::Upload> uploads;
+      const int missing = in.Cut.AssignSlots(in.Atlas, uploads);
+      if (missing > 0)
+      {
+        vtkWarningMacro(<< missing << " bricks found no atlas slot: raise AtlasBudget.");
+      }
+      const int B = brickSize;
+      std::vector<float> brick(size_t(B) * B * B);
+      glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      in.Paging.BytesUploaded = 0;
+      for (const auto& u : uploads)
+      {
+        const float* data = brick.data();
+        const StrataVolumeTextures& tex = in.Textures[in.CutVolumes[u.Volume].first];
+        if (tex.Tree->HasData())
+        {
+          tex.Tree->ExtractBrick(u.Node, brick.data());
+        }
+        else
+        {
+          // Paged: the cut only holds bricks whose pages are held (see the availability).
+          auto it = tex.Held.find(u.Node);
+          if (it == tex.Held.end())
+          {
+            vtkErrorMacro("Brick " << u.Node << " entered the cut without its page.");
+            std::fill(brick.begin(), brick.end(), static_cast<float>(tex.EmptyScalar));
+          }
+          else
+          {
+            data = reinterpret_cast<const float*>(it->second->data());
+          }
+        }
+        const auto pos = in.Atlas.GetSlotPosition(u.Slot);
+        glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, data);
+        in.Paging.BytesUploaded += static_cast<long long>(brick.size() * sizeof(float));
+      }
+      glBindTexture(GL_TEXTURE_3D, 0);
+      for (size_t v = 0; v < volumes.size(); ++v)
+      {
+        StrataVolumeTextures& tex = in.Textures[ports[v]];
+        std::vector<uint16_t> table;
+        in.Cut.BuildIndexTable(static_cast<int>(v), in.Atlas, table);
+        const int* dims = tex.Tree->GetLevelBricks(0);
+        if (!tex.IndexTexture)
+          glGenTextures(1, &tex.IndexTexture);
+        glBindTexture(GL_TEXTURE_3D, tex.IndexTexture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+        glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16UI, dims[0], dims[1], dims[2], 0, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, table.data());
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glBindTexture(GL_TEXTURE_3D, 0);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      }
+      in.ResidentBricks = in.Atlas.GetNumberOfUsedSlots();
+      in.HeldValid = true;
     }
-    in.ResidentBricks = in.Atlas.GetNumberOfUsedSlots();
   }
 
   // --- Integration buffer and the scene's depth.
@@ -1921,7 +1992,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     }
     const GLuint zero = 0;
     const GLfloat zeroScore = 0.f;
-    if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
+    if (hold)
+    {
+      // Held: add to what the frame's earlier passes wrote.
+    }
+    else if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
     {
       glClearTexImage(in.FeedbackTexture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
       glClearTexImage(in.FeedbackScoreTexture, 0, GL_RED, GL_FLOAT, &zeroScore);

@@ -34,6 +34,7 @@
 #include "vtkSmartPointer.h" // For UploadTransferTable
 #include "vtkVolumeCut.h"     // For vtkVolumeCut::Camera
 
+#include <array>  // For std::array
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
@@ -218,6 +219,36 @@ public:
 
   ///@{
   /**
+   * The cut of the volume on input port `port` as the last frame drew it: one (level, brick
+   * index within the level, x fastest) per cut brick, transparent ones included, finest level
+   * first. SetFixedCut makes the mapper draw that volume with exactly such a cut (paged or in
+   * core; the atlas budget must hold it, paged bricks still arrive at PagesPerFrame a frame)
+   * instead of choosing one, until RemoveAllFixedCuts. Why: the in-core rendering of a paged
+   * frame's cut is the image that frame must be, so tests and bug reports can check any
+   * intermediate frame of a paged fly-through, not only the converged one. Bricks that name no
+   * node of the volume's tree are ignored.
+   */
+  std::vector<std::array<int, 2>> GetCutBricks(int port) const;
+  void SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks);
+  void RemoveAllFixedCuts();
+  ///@}
+
+  ///@{
+  /**
+   * Hold the cut (default off): while on, a render reuses the cut, atlas and index textures of
+   * the render before it (no cut update, page load or upload, no feedback read) and feedback
+   * rays add to the buffer the last unheld render cleared, keeping the costliest lacking brick
+   * per texel over all held renders. For callers that draw one frame in several passes, such as
+   * vtkHybridVolumeMapper's depth slabs: the frame shows one cut, and its feedback covers every
+   * pass. Has no effect on the first render or after the volumes, brick size or budget change.
+   */
+  vtkSetMacro(HoldCut, bool);
+  vtkGetMacro(HoldCut, bool);
+  vtkBooleanMacro(HoldCut, bool);
+  ///@}
+
+  ///@{
+  /**
    * Rays per pixel, 1 to 8 (default 1): anti-aliasing. Ray r starts at a sub-pixel position of a
    * fixed pattern and at a lattice phase staggered by r / R of the sample distance; the pixel is
    * the mean of its rays, each composited through all fragments on its own.
@@ -350,6 +381,7 @@ protected:
   int FeedbackScale = 4;
   bool FeedbackOpenCL = true;
   double ErrorThreshold = 0.0;
+  bool HoldCut = false;
 
 private:
   vtkMultiVolumeRayCastMapper(const vtkMultiVolumeRayCastMapper&) = delete;

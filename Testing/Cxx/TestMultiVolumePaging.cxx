@@ -87,6 +87,29 @@ std::string Levels(const std::vector<int>& counts)
   return text;
 }
 
+struct CutDifference
+{
+  int Differing = 0; ///< pixels with a channel off by more than 8/255
+  double Rms = 0.0;
+  double Max = 0.0;
+};
+
+CutDifference CompareWithCut(const std::vector<unsigned char>& image, const std::vector<unsigned char>& ofCut)
+{
+  CutDifference d;
+  const ChannelError e = ImageError(image, ofCut);
+  d.Rms = e.Rms;
+  d.Max = e.Max;
+  for (size_t p = 0; p + 2 < image.size(); p += 3)
+  {
+    int m = 0;
+    for (int c = 0; c < 3; ++c)
+      m = std::max(m, std::abs(int(image[p + c]) - int(ofCut[p + c])));
+    d.Differing += m > 8 ? 1 : 0;
+  }
+  return d;
+}
+
 // Renders the paged mapper until it reports convergence (at most `frames`), letting the
 // workers load between frames; returns the frames and calls `each` on every image.
 template <typename F>
@@ -132,13 +155,16 @@ int TestMultiVolumePaging(int, char*[])
   const double atlasMB = 48.0 * brickMB;
   const double allMB = 143.0 * brickMB;
   Scene s(property);
-  vtkNew<vtkMultiVolumeRayCastMapper> incore, incoreAll, coarse;
+  vtkNew<vtkMultiVolumeRayCastMapper> incore, incoreAll, coarse, ofCut;
   incore->SetInputData(image);
   Configure(incore, atlasMB);
   incoreAll->SetInputData(image);
   Configure(incoreAll, allMB);
   coarse->SetInputData(image);
   Configure(coarse, brickMB); // the root alone
+  // The in-core rendering of a paged frame's own cut (SetFixedCut): what that frame must be.
+  ofCut->SetInputData(image);
+  Configure(ofCut, allMB);
 
   // Three paged mappers on one scripted path. The screen-space cut (feedback off) under the
   // small atlas must equal the in-core cut exactly: the same greedy on the same priorities.
@@ -149,8 +175,10 @@ int TestMultiVolumePaging(int, char*[])
   // page by page sit in other atlas slots than the in-core upload puts them, which moves a few
   // pixels by 1 of 255 (as much without feedback). With feedback under the small atlas the cut
   // spends it on the bricks the rays ask for, so it converges to another valid image. Every
-  // frame of all three must be a valid coarser rendering: no further from the in-core image
-  // than the root-only one (+0.5 RMS).
+  // frame of all three must be a valid coarser rendering: each of the first frames of every
+  // path segment is the in-core rendering of exactly its own cut (no hole, no garbage brick:
+  // no pixel off by more than 2/255, the atlas slots' rounding), and every frame is no further
+  // from the in-core image than the root-only one (+0.5 RMS).
   struct Mode
   {
     std::string Name;
@@ -183,14 +211,24 @@ int TestMultiVolumePaging(int, char*[])
         full = s.Render(mode.Reference);
       root = s.Render(coarse);
       const double rootRms = ImageError(root, full).Rms;
-      int intermediate = 0;
+      int intermediate = 0, ofCutFrames = 0;
       double worst = 0.0;
+      CutDifference worstOfCut;
       std::vector<unsigned char> last;
       const int frames = RenderUntilConverged(s, paged, 400, [&](const std::vector<unsigned char>& img) {
         const double rms = ImageError(img, full).Rms;
         worst = std::max(worst, rms);
         intermediate += rms > 0.0 ? 1 : 0;
         last = img;
+        if (ofCutFrames < 25)
+        {
+          ofCut->SetFixedCut(0, paged->GetCutBricks(0));
+          const CutDifference d = CompareWithCut(img, s.Render(ofCut));
+          if (ofCutFrames == 0 || d.Differing > worstOfCut.Differing || d.Rms > worstOfCut.Rms)
+            worstOfCut = d;
+          ++ofCutFrames;
+          Check(ofCut->GetCutBricks(0) == paged->GetCutBricks(0), "the in-core twin draws the paged frame's cut");
+        }
       });
       const ChannelError converged = ImageError(last, full);
       pathFrames += std::max(frames, 0);
@@ -199,7 +237,12 @@ int TestMultiVolumePaging(int, char*[])
                 << " differing from the in-core image), worst RMS " << worst << " vs root-only RMS " << rootRms
                 << "; converged RMS " << converged.Rms << ", max difference " << converged.Max << "; resident "
                 << paged->GetNumberOfResidentBricks() << " bricks\n";
+      std::cout << "Paging (" << at << "): " << ofCutFrames << " frames against the in-core rendering of their own cut: worst "
+                << worstOfCut.Differing << " of " << Size * Size << " pixels off by more than 8/255, RMS " << worstOfCut.Rms
+                << ", max " << worstOfCut.Max << "\n";
       Check(frames > 0, "the paged view converges (" + at + ")");
+      Check(ofCutFrames >= std::min(frames, 25) && worstOfCut.Max <= 2,
+        "every intermediate frame is the in-core rendering of its own cut (" + at + ")");
       Check(worst <= rootRms + 0.5, "every frame is at least as close as the root-only rendering (+0.5 RMS; " + at + ")");
       if (exact || !mode.Feedback)
         Check(converged.Max == 0, "converged: the paged image equals the in-core one (" + at + ")");
@@ -324,6 +367,10 @@ int TestMultiVolumePaging(int, char*[])
     Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named,
       "a corrupt page: one clear error naming the failed load");
     Check(worst <= ImageError(rootImage, full).Rms + 0.5, "with a corrupt page the volume stays a valid coarser rendering");
+    ofCut->SetFixedCut(0, m->GetCutBricks(0));
+    const ChannelError e = ImageError(last, s.Render(ofCut));
+    std::cout << "Paging: corrupt page: the last frame against the in-core rendering of its cut: max difference " << e.Max << "\n";
+    Check(e.Max <= 2, "with a corrupt page the last frame is the rendering of its cut (the coarser brick stays)");
   }
 
   // A pool truncated while it is being rendered: reads past the end fail, coarse bricks stay.
@@ -347,14 +394,19 @@ int TestMultiVolumePaging(int, char*[])
       file.Close();
       Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0, "pool truncated behind the reader's back");
     }
-    double worst = 0.0;
+    double worst = 0.0, worstOfCut = 0.0;
     for (int f = 0; f < 40; ++f)
     {
-      worst = std::max(worst, ImageError(s.Render(m), full).Rms);
+      const auto img = s.Render(m);
+      worst = std::max(worst, ImageError(img, full).Rms);
+      ofCut->SetFixedCut(0, m->GetCutBricks(0));
+      worstOfCut = std::max(worstOfCut, ImageError(img, s.Render(ofCut)).Max);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     std::cout << "Paging: pool truncated while rendering: " << m->GetPagingStatistics().Failures << " failed pages, "
-              << errors->Errors << " VTK errors; worst RMS " << worst << "\n";
+              << errors->Errors << " VTK errors; worst RMS " << worst << "; worst max difference to the rendering of its cut "
+              << worstOfCut << "\n";
+    Check(worstOfCut <= 2, "after read errors every frame is the rendering of its cut");
     Check(m->GetPagingStatistics().Failures > 0 && errors->Errors == m->GetPagingStatistics().Failures,
       "read errors while rendering: one VTK error per failed page");
     Check(worst <= ImageError(rootImage, full).Rms + 0.5, "after read errors the volume keeps its coarser bricks");
