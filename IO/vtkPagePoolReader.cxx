@@ -121,6 +121,14 @@ void vtkPagePoolReader::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+bool vtkPagePoolReader::RequestCoarsestLevel(vtkInformation* inputInfo)
+{
+  if (!inputInfo || !inputInfo->Has(POOL_FILE_NAME()))
+    return false;
+  inputInfo->Set(UPDATE_RESOLUTION(), 0.0);
+  return true;
+}
+
 int vtkPagePoolReader::ResolutionToLevel(double r, int levels)
 {
   if (levels <= 1)

@@ -101,6 +101,13 @@ public:
 
   /// Level that resolution `r` selects in a pool of `levels` levels.
   static int ResolutionToLevel(double r, int levels);
+  /**
+   * For a consumer that pages from the pool itself (the Strata mappers): if `inputInfo` (a
+   * consumer's input information) has a pool behind it, asks for the coarsest level (one page)
+   * and returns true. Call it before updating the input and in the consumer's
+   * REQUEST_UPDATE_EXTENT, so that no update (a render, GetBounds) reads the whole pool.
+   */
+  static bool RequestCoarsestLevel(vtkInformation* inputInfo);
 
   /// True when the file starts with a valid page pool header (magic, version, checksum).
   static bool CanReadFile(const char* fileName);

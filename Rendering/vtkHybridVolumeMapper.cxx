@@ -10,6 +10,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -17,12 +18,14 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -185,6 +188,20 @@ int vtkHybridVolumeMapper::FillInputPortInformation(int port, vtkInformation* in
   return 1;
 }
 
+vtkTypeBool vtkHybridVolumeMapper::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // Whatever updates the input (GetBounds, the render), a pool's reader serves its coarsest
+  // level only: the bricks are paged by the volume mapper.
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    for (int c = 0; c < inputVector[0]->GetNumberOfInformationObjects(); ++c)
+      vtkPagePoolReader::RequestCoarsestLevel(inputVector[0]->GetInformationObject(c));
+  }
+  return result;
+}
+
 void vtkHybridVolumeMapper::SetPointShape(PointShapes shape)
 {
   if (this->PointShape != shape)
@@ -242,8 +259,11 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   for (int port = 0; port < 2; ++port)
   {
-    if (this->GetNumberOfInputConnections(port) > 0)
-      this->GetInputAlgorithm(port, 0)->Update();
+    if (this->GetNumberOfInputConnections(port) == 0)
+      continue;
+    this->GetInputAlgorithm(port, 0)->UpdateInformation();
+    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
+    this->GetInputAlgorithm(port, 0)->Update();
   }
   auto* low = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
   vtkPolyData* points =
@@ -253,10 +273,18 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("No low-resolution volume on input 0.");
     return;
   }
-  if (in.Volume->GetInput() != low)
+  // A page pool behind input 0: the volume mapper pages it from the reader's output port.
+  vtkInformation* lowInfo = this->GetInputInformation(0, 0);
+  if (lowInfo && lowInfo->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+  {
+    if (in.Volume->GetInputConnection(0, 0) != this->GetInputConnection(0, 0))
+      in.Volume->SetInputConnection(this->GetInputConnection(0, 0));
+  }
+  else if (in.Volume->GetInput() != low)
   {
     in.Volume->SetInputData(low);
   }
+  in.Volume->HoldCutOff();
   // The user's clipping planes apply to the volume and, through the slabs, to nothing else:
   // points are dropped by the depth sort only.
   vtkNew<vtkPlaneCollection> planes;
@@ -457,6 +485,7 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     in.Volume->SetClippingPlanes(slabPlanes);
     in.Volume->Render(ren, vol);
+    in.Volume->HoldCutOn(); // one cut for the whole frame
 
     // Then the slab's points, far to near, over it.
     const size_t first = start[size_t(S - 1 - s) * SubBuckets];

@@ -22,6 +22,12 @@
  * with opacity reduced by the area ratio. Only what is used is compiled: no kernel code for
  * squares, no normals unless the volume property asks for shading. With no points the result is
  * exactly the low-resolution volume's rendering.
+ *
+ * Out of core: input 0 may be a vtkPagePoolReader of a brick pool of the low-resolution volume;
+ * the internal mapper then pages it (see vtkMultiVolumeRayCastMapper's PageCacheBudget and
+ * level-of-detail feedback, set on GetVolumeMapper()). One frame keeps one cut for all its slabs
+ * (the first slab chooses it, the others hold it), and the feedback of every slab ranks the
+ * bricks for the next frame.
  */
 #ifndef vtkHybridVolumeMapper_h
 #define vtkHybridVolumeMapper_h
@@ -84,6 +90,9 @@ public:
   std::string GetPointFragmentShaderSource() const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  /// Asks a page-pool reader on input 0 for its coarsest level (the volume mapper pages it).
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:

@@ -1051,9 +1051,7 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (this->GetNumberOfInputConnections(port) == 0)
       continue;
     this->GetInputAlgorithm(port, 0)->UpdateInformation();
-    vtkInformation* info = this->GetInputInformation(port, 0);
-    if (info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
-      info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
   }
   this->Superclass::Render(ren, vol);
 }
@@ -1113,11 +1111,7 @@ vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
     for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
     {
       for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-      {
-        vtkInformation* info = inputVector[port]->GetInformationObject(c);
-        if (info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
-          info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-      }
+        vtkPagePoolReader::RequestCoarsestLevel(inputVector[port]->GetInformationObject(c));
     }
   }
   return result;

@@ -240,7 +240,8 @@ public:
    * rays add to the buffer the last unheld render cleared, keeping the costliest lacking brick
    * per texel over all held renders. For callers that draw one frame in several passes, such as
    * vtkHybridVolumeMapper's depth slabs: the frame shows one cut, and its feedback covers every
-   * pass. Has no effect on the first render or after the volumes, brick size or budget change.
+   * pass; GetPagingStatistics() stays that of the last unheld render, the frame's. Has no
+   * effect on the first render or after the volumes, brick size or budget change.
    */
   vtkSetMacro(HoldCut, bool);
   vtkGetMacro(HoldCut, bool);

@@ -423,11 +423,7 @@ void vtkStackedHeightFieldMapper::SetPooledInputsToCoarsest()
   for (int i = 0; i < this->GetNumberOfInputConnections(0); ++i)
   {
     this->GetInputAlgorithm(0, i)->UpdateInformation();
-    vtkInformation* info = this->GetInputInformation(0, i);
-    if (info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
-    {
-      info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-    }
+    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(0, i));
   }
 }
 
@@ -440,13 +436,7 @@ vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
     for (int c = 0; c < inputVector[0]->GetNumberOfInformationObjects(); ++c)
-    {
-      vtkInformation* info = inputVector[0]->GetInformationObject(c);
-      if (info->Has(vtkPagePoolReader::POOL_FILE_NAME()))
-      {
-        info->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-      }
-    }
+      vtkPagePoolReader::RequestCoarsestLevel(inputVector[0]->GetInformationObject(c));
   }
   return result;
 }
