@@ -118,6 +118,8 @@ struct Converter
   std::vector<T> Page;
   std::vector<unsigned char> Packed;
   std::vector<double> FilteredX;
+  std::vector<double> FilteredWeight; ///< weights of the taps holding data (with holes)
+  std::vector<double> AccWeight;
   std::vector<double> Acc;
   double Range[2] = { std::numeric_limits<double>::infinity(),
     -std::numeric_limits<double>::infinity() };
@@ -201,57 +203,94 @@ struct Converter
   }
 
   // Exactly vtkVolumeBrickTree::Downsample's arithmetic, one coarse slice at a time; tiles
-  // skip the (layer) axis 1.
+  // skip the (layer) axis 1. Holes (NaN, the no-data value) take no part: a coarse value is the
+  // weighted mean of the taps that hold data, and a hole only where none does, so every level
+  // covers at least what the finer one covers (a coarse cut of horizons with holes shows no
+  // hole the data do not have, and the rays that hit it ask for its detail).
   std::vector<T> Downsample(size_t l, int cz)
   {
     const LevelState& fine = this->Levels[l];
     const int* fd = fine.D;
     const int* cd = this->Levels[l + 1].D;
     auto tap = [](int v, int d, int n) { return std::clamp(2 * v + d, 0, n - 1); };
+    const bool holes = this->HasNoData || std::numeric_limits<T>::has_quiet_NaN;
     const size_t cslice = static_cast<size_t>(cd[0]) * cd[1];
     this->Acc.assign(cslice, 0.0);
+    this->AccWeight.assign(holes ? cslice : 0, 0.0);
     for (int dz = -1; dz <= 1; ++dz)
     {
       const double wz = dz == 0 ? 2.0 : 1.0;
       const T* slice = this->Slice(fine, tap(cz, dz, fd[2]));
       this->FilteredX.resize(static_cast<size_t>(cd[0]) * fd[1]);
+      this->FilteredWeight.resize(holes ? this->FilteredX.size() : 0);
       for (int y = 0; y < fd[1]; ++y)
       {
         const T* row = slice + static_cast<size_t>(y) * fd[0];
         double* fx = this->FilteredX.data() + static_cast<size_t>(y) * cd[0];
-        for (int cx = 0; cx < cd[0]; ++cx)
+        if (!holes)
         {
-          fx[cx] = static_cast<double>(row[tap(cx, -1, fd[0])]) +
-                   2.0 * static_cast<double>(row[tap(cx, 0, fd[0])]) +
-                   static_cast<double>(row[tap(cx, 1, fd[0])]);
-        }
-      }
-      for (int cy = 0; cy < cd[1]; ++cy)
-      {
-        double* a = this->Acc.data() + static_cast<size_t>(cy) * cd[0];
-        if (this->Tiles)
-        {
-          const double* r = this->FilteredX.data() + static_cast<size_t>(cy) * cd[0];
           for (int cx = 0; cx < cd[0]; ++cx)
           {
-            a[cx] += wz * r[cx];
+            fx[cx] = static_cast<double>(row[tap(cx, -1, fd[0])]) +
+                     2.0 * static_cast<double>(row[tap(cx, 0, fd[0])]) +
+                     static_cast<double>(row[tap(cx, 1, fd[0])]);
           }
           continue;
         }
-        const double* r0 = this->FilteredX.data() + static_cast<size_t>(tap(cy, -1, fd[1])) * cd[0];
-        const double* r1 = this->FilteredX.data() + static_cast<size_t>(tap(cy, 0, fd[1])) * cd[0];
-        const double* r2 = this->FilteredX.data() + static_cast<size_t>(tap(cy, 1, fd[1])) * cd[0];
+        double* fw = this->FilteredWeight.data() + static_cast<size_t>(y) * cd[0];
         for (int cx = 0; cx < cd[0]; ++cx)
         {
-          a[cx] += wz * (r0[cx] + 2.0 * r1[cx] + r2[cx]);
+          double sum = 0.0, weight = 0.0;
+          for (int d = -1; d <= 1; ++d)
+          {
+            const T v = row[tap(cx, d, fd[0])];
+            if (!this->Skip(v))
+            {
+              const double w = d == 0 ? 2.0 : 1.0;
+              sum += w * static_cast<double>(v);
+              weight += w;
+            }
+          }
+          fx[cx] = sum;
+          fw[cx] = weight;
         }
       }
+      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& acc) {
+        for (int cy = 0; cy < cd[1]; ++cy)
+        {
+          double* a = acc.data() + static_cast<size_t>(cy) * cd[0];
+          if (this->Tiles)
+          {
+            const double* r = filtered.data() + static_cast<size_t>(cy) * cd[0];
+            for (int cx = 0; cx < cd[0]; ++cx)
+            {
+              a[cx] += wz * r[cx];
+            }
+            continue;
+          }
+          const double* r0 = filtered.data() + static_cast<size_t>(tap(cy, -1, fd[1])) * cd[0];
+          const double* r1 = filtered.data() + static_cast<size_t>(tap(cy, 0, fd[1])) * cd[0];
+          const double* r2 = filtered.data() + static_cast<size_t>(tap(cy, 1, fd[1])) * cd[0];
+          for (int cx = 0; cx < cd[0]; ++cx)
+          {
+            a[cx] += wz * (r0[cx] + 2.0 * r1[cx] + r2[cx]);
+          }
+        }
+      };
+      accumulate(this->FilteredX, this->Acc);
+      if (holes)
+        accumulate(this->FilteredWeight, this->AccWeight);
     }
     const double norm = this->Tiles ? 16.0 : 64.0;
     std::vector<T> out(cslice);
     for (size_t q = 0; q < cslice; ++q)
     {
-      out[q] = FromDouble<T>(this->Acc[q] / norm);
+      if (!holes)
+        out[q] = FromDouble<T>(this->Acc[q] / norm);
+      else if (this->AccWeight[q] > 0.0)
+        out[q] = FromDouble<T>(this->Acc[q] / this->AccWeight[q]);
+      else
+        out[q] = this->HasNoData ? static_cast<T>(this->NoData) : std::numeric_limits<T>::quiet_NaN();
     }
     return out;
   }

@@ -249,13 +249,18 @@ void vtkVolumeBrickTree::Downsample(int l)
 
   // Separable [1 2 1] taps around fine 2v, clamped to the level; weights sum to 4 per axis.
   // Sums of integer inputs times these weights are exact in double, so integer types round
-  // exactly once, at the end.
+  // exactly once, at the end. NaN taps take no part (the weighted mean of the others; NaN only
+  // where every tap is NaN), as vtkPagePoolWriter builds a pool's levels.
+  constexpr bool holes = std::numeric_limits<T>::has_quiet_NaN;
   auto tap = [](int v, int d, int n) { return std::clamp(2 * v + d, 0, n - 1); };
   std::vector<double> filteredX(static_cast<size_t>(cd[0]) * fd[1]); // x done, y and z not
+  std::vector<double> filteredW(holes ? filteredX.size() : 0);
   std::vector<double> acc(static_cast<size_t>(cd[0]) * cd[1]);
+  std::vector<double> accW(holes ? acc.size() : 0);
   for (int cz = 0; cz < cd[2]; ++cz)
   {
     std::fill(acc.begin(), acc.end(), 0.0);
+    std::fill(accW.begin(), accW.end(), 0.0);
     for (int dz = -1; dz <= 1; ++dz)
     {
       const double wz = dz == 0 ? 2.0 : 1.0;
@@ -266,27 +271,53 @@ void vtkVolumeBrickTree::Downsample(int l)
         double* fx = filteredX.data() + static_cast<size_t>(y) * cd[0];
         for (int cx = 0; cx < cd[0]; ++cx)
         {
-          fx[cx] = static_cast<double>(row[tap(cx, -1, fd[0])]) +
-                   2.0 * static_cast<double>(row[tap(cx, 0, fd[0])]) +
-                   static_cast<double>(row[tap(cx, 1, fd[0])]);
+          if constexpr (holes)
+          {
+            double sum = 0.0, weight = 0.0;
+            for (int d = -1; d <= 1; ++d)
+            {
+              const double v = static_cast<double>(row[tap(cx, d, fd[0])]);
+              if (!std::isnan(v))
+              {
+                sum += (d == 0 ? 2.0 : 1.0) * v;
+                weight += d == 0 ? 2.0 : 1.0;
+              }
+            }
+            fx[cx] = sum;
+            filteredW[static_cast<size_t>(y) * cd[0] + cx] = weight;
+          }
+          else
+          {
+            fx[cx] = static_cast<double>(row[tap(cx, -1, fd[0])]) +
+                     2.0 * static_cast<double>(row[tap(cx, 0, fd[0])]) +
+                     static_cast<double>(row[tap(cx, 1, fd[0])]);
+          }
         }
       }
-      for (int cy = 0; cy < cd[1]; ++cy)
-      {
-        const double* r0 = filteredX.data() + static_cast<size_t>(tap(cy, -1, fd[1])) * cd[0];
-        const double* r1 = filteredX.data() + static_cast<size_t>(tap(cy, 0, fd[1])) * cd[0];
-        const double* r2 = filteredX.data() + static_cast<size_t>(tap(cy, 1, fd[1])) * cd[0];
-        double* a = acc.data() + static_cast<size_t>(cy) * cd[0];
-        for (int cx = 0; cx < cd[0]; ++cx)
+      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& sums) {
+        for (int cy = 0; cy < cd[1]; ++cy)
         {
-          a[cx] += wz * (r0[cx] + 2.0 * r1[cx] + r2[cx]);
+          const double* r0 = filtered.data() + static_cast<size_t>(tap(cy, -1, fd[1])) * cd[0];
+          const double* r1 = filtered.data() + static_cast<size_t>(tap(cy, 0, fd[1])) * cd[0];
+          const double* r2 = filtered.data() + static_cast<size_t>(tap(cy, 1, fd[1])) * cd[0];
+          double* a = sums.data() + static_cast<size_t>(cy) * cd[0];
+          for (int cx = 0; cx < cd[0]; ++cx)
+          {
+            a[cx] += wz * (r0[cx] + 2.0 * r1[cx] + r2[cx]);
+          }
         }
-      }
+      };
+      accumulate(filteredX, acc);
+      if (holes)
+        accumulate(filteredW, accW);
     }
     T* o = out + static_cast<size_t>(cz) * cd[0] * cd[1];
     for (size_t q = 0; q < acc.size(); ++q)
     {
-      o[q] = FromDouble<T>(acc[q] / 64.0);
+      if constexpr (holes)
+        o[q] = accW[q] > 0.0 ? FromDouble<T>(acc[q] / accW[q]) : std::numeric_limits<T>::quiet_NaN();
+      else
+        o[q] = FromDouble<T>(acc[q] / 64.0);
     }
   }
 }

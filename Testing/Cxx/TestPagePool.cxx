@@ -383,23 +383,32 @@ void CheckTiles(const std::string& dir, int nx, int ny, int layers, int B)
     {
       for (int cy = 0; cy < c[1]; ++cy)
       {
-        std::vector<double> acc(c[0], 0.0);
+        // The weighted mean of the 3 x 3 taps that hold data (NaN takes no part), NaN where
+        // none does.
+        std::vector<double> acc(c[0], 0.0), weight(c[0], 0.0);
         for (int dy = -1; dy <= 1; ++dy)
         {
-          const double w = dy == 0 ? 2.0 : 1.0;
           const T* row =
             level.data() + (static_cast<size_t>(layer) * n[1] + tap(cy, dy, n[1])) * n[0];
           for (int cx = 0; cx < c[0]; ++cx)
           {
-            acc[cx] += w * (static_cast<double>(row[tap(cx, -1, n[0])]) +
-                             2.0 * static_cast<double>(row[tap(cx, 0, n[0])]) +
-                             static_cast<double>(row[tap(cx, 1, n[0])]));
+            for (int dx = -1; dx <= 1; ++dx)
+            {
+              const double v = static_cast<double>(row[tap(cx, dx, n[0])]);
+              const double w = (dy == 0 ? 2.0 : 1.0) * (dx == 0 ? 2.0 : 1.0);
+              if (!std::isnan(v))
+              {
+                acc[cx] += w * v;
+                weight[cx] += w;
+              }
+            }
           }
         }
         for (int cx = 0; cx < c[0]; ++cx)
         {
-          coarse[(static_cast<size_t>(layer) * c[1] + cy) * c[0] + cx] =
-            static_cast<T>(acc[cx] / 16.0);
+          coarse[(static_cast<size_t>(layer) * c[1] + cy) * c[0] + cx] = weight[cx] > 0.0
+            ? static_cast<T>(acc[cx] / weight[cx])
+            : std::numeric_limits<T>::quiet_NaN();
         }
       }
     }
