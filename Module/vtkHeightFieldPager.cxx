@@ -36,6 +36,9 @@ public:
     vtkPageCache::Page Data;
     size_t Offset = 0; ///< first value of the horizon's layer in Data (floats)
     std::vector<float> LeafMin, LeafMax;
+    /// Stitched border texels (x = 0 column, x = B - 1 column, y = 0 row, y = B - 1 row, B
+    /// each), empty where the page's own border stands (see Stitch()).
+    std::vector<float> Border;
   };
   struct Horizon
   {
@@ -160,11 +163,10 @@ public:
         float lo = Inf, hi = -Inf;
         for (int qy = qy0; qy <= qy1; ++qy)
         {
-          const float* row = values + static_cast<size_t>(qy) * this->B;
           for (int qx = qx0; qx <= qx1; ++qx)
           {
-            const float v = row[qx];
-            if (!this->IsHole(v))
+            const float v = this->Texel(held, values, qx, qy);
+            if (!std::isnan(v))
             {
               lo = std::min(lo, v);
               hi = std::max(hi, v);
@@ -188,6 +190,194 @@ public:
     const vtkVolumeBrickTree& tree = this->Pools[this->Horizons[h].PoolIndex]->Tree;
     const int* bricks = tree.GetLevelBricks(level);
     return tree.GetLevelOffset(level) + (ty >> level) * bricks[0] + (tx >> level);
+  }
+
+  // The lookup of vtkStackedHeightFieldPagedLookup.glsl, operation for operation: per level-0
+  // tile the page of the cut covering it (values, level, first point in its level's
+  // coordinates); texels on a page's border come from its stitched border when it has one.
+  struct PageRef
+  {
+    const float* Values = nullptr;
+    const Held* Page = nullptr;
+    int Node = -1;
+    int Level = -1;
+    int Base[2] = { 0, 0 };
+  };
+  static constexpr float Big = 3.0e38f;
+  std::vector<PageRef> TilePages; ///< per horizon and level-0 tile, refreshed by Update()
+
+  PageRef TilePage(int h, int tx, int ty) const
+  {
+    const size_t k = (static_cast<size_t>(h) * this->Tiles[1] + ty) * this->Tiles[0] + tx;
+    return k < this->TilePages.size() ? this->TilePages[k] : PageRef();
+  }
+
+  void RefreshTilePages()
+  {
+    this->TilePages.assign(this->Horizons.size() * this->Tiles[0] * this->Tiles[1], PageRef());
+    for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
+      for (int ty = 0; ty < this->Tiles[1]; ++ty)
+        for (int tx = 0; tx < this->Tiles[0]; ++tx)
+        {
+          PageRef& page = this->TilePages[(static_cast<size_t>(h) * this->Tiles[1] + ty) * this->Tiles[0] + tx];
+          int level = 0;
+          const int node = this->NodeOfTile(h, tx, ty, level);
+          const auto& pages = this->Horizons[h].Pages;
+          auto it = node >= 0 ? pages.find(node) : pages.end();
+          if (it == pages.end())
+            continue;
+          page.Values = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
+          page.Page = &it->second;
+          page.Node = node;
+          page.Level = level;
+          page.Base[0] = (tx >> level) * this->S;
+          page.Base[1] = (ty >> level) * this->S;
+        }
+  }
+
+  /// Texel (qx, qy) of a page as the atlas holds it: stitched on the border, NaN for holes.
+  float Texel(const Held& held, const float* values, int qx, int qy) const
+  {
+    float v;
+    if (!held.Border.empty() && (qx == 0 || qy == 0 || qx == this->B - 1 || qy == this->B - 1))
+      v = held.Border[qx == 0 ? qy : qx == this->B - 1 ? this->B + qy : qy == 0 ? 2 * this->B + qx : 3 * this->B + qx];
+    else
+      v = values[static_cast<size_t>(qy) * this->B + qx];
+    return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
+  }
+
+  static float Mix(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+
+  /// Level l of a page bilinearly at level-0 point (i, j) (strataHeight's arithmetic).
+  float PageHeight(const PageRef& page, int i, int j) const
+  {
+    const int l = page.Level;
+    const int qx = (i >> l) - page.Base[0], qy = (j >> l) - page.Base[1];
+    const int rx = i & ((1 << l) - 1), ry = j & ((1 << l) - 1);
+    const Held& held = *page.Page;
+    const float h00 = this->Texel(held, page.Values, qx, qy);
+    if (rx == 0 && ry == 0)
+      return h00;
+    const float h10 = rx ? this->Texel(held, page.Values, qx + 1, qy) : h00;
+    const float h01 = ry ? this->Texel(held, page.Values, qx, qy + 1) : h00;
+    const float h11 = rx && ry ? this->Texel(held, page.Values, qx + 1, qy + 1) : (rx ? h10 : h01);
+    const float fx = static_cast<float>(rx) / static_cast<float>(1 << l);
+    const float fy = static_cast<float>(ry) / static_cast<float>(1 << l);
+    return Mix(Mix(h00, h10, fx), Mix(h01, h11, fx), fy);
+  }
+
+  float Height(int h, int i, int j) const
+  {
+    const PageRef page = this->TilePage(h, std::min(i / this->S, this->Tiles[0] - 1), std::min(j / this->S, this->Tiles[1] - 1));
+    return page.Level < 0 ? Big : this->PageHeight(page, i, j);
+  }
+
+  /// The coarsest cut page among the (up to four) tiles whose closed regions hold (i, j).
+  PageRef Owner(int h, int i, int j) const
+  {
+    const int tx = std::min(i / this->S, this->Tiles[0] - 1), ty = std::min(j / this->S, this->Tiles[1] - 1);
+    PageRef best = this->TilePage(h, tx, ty);
+    const bool lx = i > 0 && i % this->S == 0 && i / this->S < this->Tiles[0];
+    const bool ly = j > 0 && j % this->S == 0 && j / this->S < this->Tiles[1];
+    auto consider = [&](int x, int y) {
+      const PageRef p = this->TilePage(h, x, y);
+      if (p.Level > best.Level)
+        best = p;
+    };
+    if (lx)
+      consider(tx - 1, ty);
+    if (ly)
+      consider(tx, ty - 1);
+    if (lx && ly)
+      consider(tx - 1, ty - 1);
+    return best;
+  }
+
+  /**
+   * Stitching: where tiles of different levels meet, the coarser one rules. Each border texel
+   * of a cut page whose point a coarser page also holds (up to four tiles share a tile corner)
+   * takes that page's value there (its level interpolated along its border), so the finer
+   * page's border lies on the coarser one's border line: no crack, no T-junction, whichever
+   * lookup a ray uses (a tile's own cells in the layer's search, any point's tile in
+   * strataHeight), and one surface, that of the level-0 cells through the point values.
+   * Pages are stitched coarsest first, so a border that meets a page which is itself
+   * stitched to a coarser one follows that one too: exact for any number of levels. Pages
+   * whose borders changed are re-uploaded border only (BorderUploads) and their leaf ranges
+   * recomputed.
+   */
+  std::vector<vtkHeightFieldPager::Upload> BorderUploads;
+
+  void Stitch()
+  {
+    this->BorderUploads.clear();
+    const int B = this->B;
+    for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
+    {
+      Horizon& hz = this->Horizons[h];
+      const vtkVolumeBrickTree& tree = this->Pools[hz.PoolIndex]->Tree;
+      std::vector<std::pair<int, int>> order; // (level, node) of the cut pages held
+      for (int n : this->Cut.GetCutNodes(h))
+        if (!this->Cut.IsEmpty(h, n) && hz.Pages.count(n))
+          order.emplace_back(tree.GetNode(n).Level, n);
+      std::sort(order.rbegin(), order.rend()); // coarsest first
+      std::vector<float> border(4 * static_cast<size_t>(B));
+      for (const auto& [l, n] : order)
+      {
+        Held& held = hz.Pages[n];
+        const auto& node = tree.GetNode(n);
+        const float* values = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
+        // Tiles just outside the page's region: a coarser one among them may own its border.
+        const int t0[2] = { node.Index[0] << l, node.Index[1] << l };
+        const int t1[2] = { std::min((node.Index[0] + 1) << l, this->Tiles[0]), std::min((node.Index[1] + 1) << l, this->Tiles[1]) };
+        bool coarser = false;
+        for (int ty = t0[1] - 1; ty <= t1[1] && !coarser; ++ty)
+          for (int tx = t0[0] - 1; tx <= t1[0] && !coarser; ++tx)
+          {
+            const bool outside = tx < t0[0] || ty < t0[1] || tx >= t1[0] || ty >= t1[1];
+            if (outside && tx >= 0 && ty >= 0 && tx < this->Tiles[0] && ty < this->Tiles[1])
+              coarser = this->TilePage(h, tx, ty).Level > l;
+          }
+        bool any = false;
+        if (coarser)
+        {
+          const int base[2] = { node.Index[0] * this->S, node.Index[1] * this->S };
+          for (int side = 0; side < 4; ++side)
+            for (int t = 0; t < B; ++t)
+            {
+              const int qx = side == 0 ? 0 : side == 1 ? B - 1 : t;
+              const int qy = side == 2 ? 0 : side == 3 ? B - 1 : t;
+              const int i = (base[0] + qx) << l, j = (base[1] + qy) << l;
+              float v = values[static_cast<size_t>(qy) * B + qx];
+              if (i < this->NX && j < this->NY)
+              {
+                const PageRef owner = this->Owner(h, i, j);
+                if (owner.Level > l)
+                {
+                  v = this->PageHeight(owner, i, j);
+                  any = true;
+                }
+              }
+              border[static_cast<size_t>(side) * B + t] = v;
+            }
+        }
+        if (!any)
+        {
+          if (!held.Border.empty())
+          {
+            held.Border.clear();
+            held.LeafMin.clear();
+            this->BorderUploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
+          }
+          continue;
+        }
+        if (held.Border != border)
+        {
+          held.Border = border;
+          held.LeafMin.clear();
+          this->BorderUploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
+        }
+      }
+    }
   }
 
   void RebuildTree()
@@ -247,6 +437,7 @@ public:
     this->Atlas.Clear();
     this->InitializedSlots = -1;
     this->Table.clear();
+    this->TilePages.clear();
     this->TableLevels.clear();
     this->Open = false;
     this->Stats = vtkHeightFieldPager::Statistics();
@@ -671,9 +862,12 @@ bool vtkHeightFieldPager::Update(
   for (size_t e = 0; e < levels.size(); ++e)
     levels[e] = in.Table[4 * e + 3];
   const bool treeChanged = levels != in.TableLevels;
+  in.RefreshTilePages();
+  in.BorderUploads.clear();
   if (treeChanged)
   {
     in.TableLevels.swap(levels);
+    in.Stitch();
     in.RebuildTree();
   }
 
@@ -750,8 +944,35 @@ void vtkHeightFieldPager::GetUploadValues(const Upload& upload, std::vector<floa
   if (it == pages.end())
     return; // cannot happen: the cut holds only tiles whose pages are held
   const float* src = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
-  for (size_t k = 0; k < count; ++k)
-    values[k] = in.IsHole(src[k]) ? std::numeric_limits<float>::quiet_NaN() : src[k];
+  for (int qy = 0; qy < in.B; ++qy)
+    for (int qx = 0; qx < in.B; ++qx)
+      values[static_cast<size_t>(qy) * in.B + qx] = in.Texel(it->second, src, qx, qy);
+}
+
+const std::vector<vtkHeightFieldPager::Upload>& vtkHeightFieldPager::GetBorderUploads() const
+{
+  return this->Internals->BorderUploads;
+}
+
+void vtkHeightFieldPager::GetBorderValues(const Upload& upload, std::vector<float>& values) const
+{
+  const vtkInternals& in = *this->Internals;
+  const int B = in.B;
+  values.assign(4 * static_cast<size_t>(B), std::numeric_limits<float>::quiet_NaN());
+  if (upload.Horizon < 0 || upload.Horizon >= static_cast<int>(in.Horizons.size()))
+    return;
+  const auto& pages = in.Horizons[upload.Horizon].Pages;
+  auto it = pages.find(upload.Node);
+  if (it == pages.end())
+    return;
+  const float* src = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
+  for (int t = 0; t < B; ++t)
+  {
+    values[t] = in.Texel(it->second, src, 0, t);
+    values[B + t] = in.Texel(it->second, src, B - 1, t);
+    values[2 * B + t] = in.Texel(it->second, src, t, 0);
+    values[3 * B + t] = in.Texel(it->second, src, t, B - 1);
+  }
 }
 
 const std::vector<uint16_t>& vtkHeightFieldPager::GetPageTable() const
@@ -796,39 +1017,26 @@ bool vtkHeightFieldPager::WaitForIdle(double seconds)
   return this->Internals->Cache.WaitForIdle(seconds);
 }
 
-float vtkHeightFieldPager::GetHeight(int horizon, int i, int j) const
+float vtkHeightFieldPager::GetTileHeight(int horizon, int tileX, int tileY, int i, int j) const
 {
   const vtkInternals& in = *this->Internals;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty())
+  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty() || tileX < 0 ||
+    tileY < 0 || tileX >= in.Tiles[0] || tileY >= in.Tiles[1] || i < tileX * in.S || j < tileY * in.S ||
+    i > std::min((tileX + 1) * in.S, in.NX - 1) || j > std::min((tileY + 1) * in.S, in.NY - 1))
     return nan;
+  const vtkInternals::PageRef page = in.TilePage(horizon, tileX, tileY);
+  const float h = page.Level < 0 ? nan : in.PageHeight(page, i, j);
+  return std::abs(h) >= 1e30f ? nan : h;
+}
+
+float vtkHeightFieldPager::GetHeight(int horizon, int i, int j) const
+{
+  const vtkInternals& in = *this->Internals;
+  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty())
+    return std::numeric_limits<float>::quiet_NaN();
   i = std::min(std::max(i, 0), in.NX - 1);
   j = std::min(std::max(j, 0), in.NY - 1);
-  const int tx = std::min(i / in.S, in.Tiles[0] - 1);
-  const int ty = std::min(j / in.S, in.Tiles[1] - 1);
-  int level = 0;
-  const int node = in.NodeOfTile(horizon, tx, ty, level);
-  const auto& pages = in.Horizons[horizon].Pages;
-  auto it = node >= 0 ? pages.find(node) : pages.end();
-  if (it == pages.end())
-    return nan;
-  const float* v = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
-  // Level l holds every 2^l-th point: p / 2^l, bilinear, relative to the tile's first point.
-  const int qx = (i >> level) - (tx >> level) * in.S;
-  const int qy = (j >> level) - (ty >> level) * in.S;
-  const int rx = i & ((1 << level) - 1);
-  const int ry = j & ((1 << level) - 1);
-  auto at = [&](int x, int y) {
-    const float h = v[static_cast<size_t>(y) * in.B + x];
-    return in.IsHole(h) ? nan : h;
-  };
-  const float h00 = at(qx, qy);
-  const float h10 = rx ? at(qx + 1, qy) : h00;
-  const float h01 = ry ? at(qx, qy + 1) : h00;
-  const float h11 = rx && ry ? at(qx + 1, qy + 1) : (rx ? h10 : h01);
-  const float fx = static_cast<float>(rx) / static_cast<float>(1 << level);
-  const float fy = static_cast<float>(ry) / static_cast<float>(1 << level);
-  const float a = h00 * (1.0f - fx) + h10 * fx;
-  const float b = h01 * (1.0f - fx) + h11 * fx;
-  return a * (1.0f - fy) + b * fy;
+  const float h = in.Height(horizon, i, j);
+  return std::abs(h) >= 1e30f ? std::numeric_limits<float>::quiet_NaN() : h;
 }

@@ -19,8 +19,14 @@
  * - The page table has one entry per level-0 tile and horizon: (slot x, slot y, slot z,
  *   level) as vtkVolumeCut::BuildIndexTable writes it. The shader maps level-0 grid point p to
  *   the resident tile of level l covering it and interpolates that level bilinearly at
- *   p / 2^l, so any cut is one continuous surface (each point has one value): no cracks
- *   between tiles of different levels, and converged (all level 0) it is the data itself.
+ *   p / 2^l; the layer's search walks each tile in cells of its own level.
+ * - Stitching: where tiles of different levels meet the coarser one rules. A page's border
+ *   texels that a coarser page also holds take that page's value there (its level interpolated
+ *   along its border; coarsest pages first, so chains of levels follow too), in the atlas and in
+ *   GetHeight alike. A finer tile's border then lies on its coarser neighbour's border line, so
+ *   any cut is one surface without cracks or T-junctions, whichever way a ray looks it up, and
+ *   converged (all level 0) it is the data itself. Borders that change with the cut are
+ *   re-uploaded alone (GetBorderUploads).
  * - The min-max quadtree (vtkMinMaxQuadtree) is rebuilt from leaf ranges whenever the cut
  *   changes: a leaf's range is that of the page points its cells interpolate under the cut,
  *   computed once per resident page from its data. At level 0 that is exactly the in-core
@@ -149,8 +155,16 @@ public:
   const int* GetLevelTiles(int level) const;
   int GetNumberOfLevels() const;
 
-  /// B x B heights of an upload, no-data values as NaN.
+  /// B x B heights of an upload as the atlas holds them (stitched borders), no-data as NaN.
   void GetUploadValues(const Upload& upload, std::vector<float>& values) const;
+  /**
+   * Pages already in the atlas whose border texels changed in the last Update() (stitching,
+   * see the class documentation): upload GetBorderValues of each into its slot's border.
+   */
+  const std::vector<Upload>& GetBorderUploads() const;
+  /// 4 B border heights of a page: the x = 0 column, the x = B - 1 column, the y = 0 row and
+  /// the y = B - 1 row, as the atlas holds them, no-data as NaN.
+  void GetBorderValues(const Upload& upload, std::vector<float>& values) const;
 
   /// Page table after Update(): tilesX x tilesY x horizons entries of 4 uint16 (see above).
   const std::vector<uint16_t>& GetPageTable() const;
@@ -170,6 +184,12 @@ public:
    * under the current cut; NaN for a hole.
    */
   float GetHeight(int horizon, int i, int j) const;
+  /**
+   * The height that the page covering level-0 tile (tileX, tileY) gives at level-0 point
+   * (i, j) of the tile's closed region (its border points included), as the layer's search
+   * reads it; NaN for a hole. Where tiles meet both sides must agree: tests check the seams.
+   */
+  float GetTileHeight(int horizon, int tileX, int tileY, int i, int j) const;
 
 private:
   class vtkInternals;

@@ -560,6 +560,25 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
     }
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
   }
+  // Borders stitched anew to coarser neighbours: two columns and two rows per page.
+  if (!in.Pager.GetBorderUploads().empty())
+  {
+    std::vector<float> border;
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (const auto& u : in.Pager.GetBorderUploads())
+    {
+      if (u.Slot < 0)
+        continue;
+      in.Pager.GetBorderValues(u, border);
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data());
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, B - 1, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data() + B);
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 2 * B);
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, B - 1, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 3 * B);
+      in.Paging.BytesUploaded += static_cast<long long>(border.size() * sizeof(float));
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  }
   if (changed || !in.PageTableTexture)
   {
     const std::vector<uint16_t>& table = in.Pager.GetPageTable();
