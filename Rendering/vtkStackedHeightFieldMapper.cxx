@@ -151,6 +151,9 @@ public:
   int AtlasSlots = 0;
   // Level-of-detail feedback: the buffer, the lattice phase and the view it was written from.
   unsigned int FeedbackTexture = 0;
+  unsigned int FeedbackBuffer = 0; ///< pixel buffer the texture is copied into after a frame
+  bool FeedbackPending = false;    ///< the buffer holds a frame not read yet
+  bool PendingViewChanged = false; ///< that frame's view differed from the one before
   int FeedbackSize[2] = { 0, 0 };
   int64_t FeedbackFrame = 0;
   bool FeedbackActive = false; ///< this frame's shader writes the buffer
@@ -539,6 +542,12 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
   in.Pager.SetPagesPerFrame(this->PagesPerFrame);
 
+  // The last frame's feedback, copied into the pixel buffer after it was drawn: read now, when
+  // the GPU has long finished it, so no frame waits for its own.
+  if (in.FeedbackPending)
+  {
+    this->ReadFeedback();
+  }
   // The cut refines by the size of a tile's points on screen, under this camera.
   const vtkVolumeCut::Camera cutCamera = vtkMultiVolumeRayCastMapper::GetCutCamera(ren);
   vtkNew<vtkMatrix4x4> modelGrid;
@@ -666,6 +675,12 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
       *texture = 0;
     }
   }
+  if (in.FeedbackBuffer)
+  {
+    glDeleteBuffers(1, &in.FeedbackBuffer);
+    in.FeedbackBuffer = 0;
+  }
+  in.FeedbackPending = false;
   in.AtlasSlots = 0;
   in.FeedbackSize[0] = in.FeedbackSize[1] = 0;
   for (auto* t : { in.NodeTexture.Get(), in.IntervalTexture.Get(), in.LayerListTexture.Get(),
@@ -913,6 +928,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   if (!feedback)
   {
     in.Pager.ClearFeedback();
+    in.FeedbackPending = false;
   }
   Replace(fs, "//STRATA::Extensions::Dec", feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
   Replace(fs, "//STRATA::Feedback::Dec", feedback ? std::string(FeedbackDeclarations) + vtkFeedbackReduction::GetGLSLPackFunction() : "");
@@ -1180,8 +1196,16 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+      if (!in.FeedbackBuffer)
+      {
+        glGenBuffers(1, &in.FeedbackBuffer);
+      }
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
+      glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(fw) * fh * sizeof(uint32_t), nullptr, GL_STREAM_READ);
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
       in.FeedbackSize[0] = fw;
       in.FeedbackSize[1] = fh;
+      in.FeedbackPending = false;
     }
     const std::vector<uint32_t> zeros(size_t(fw) * fh, 0u);
     glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
@@ -1239,28 +1263,40 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     std::array<double, 16> view;
     std::copy_n(gridToClip->GetData(), 16, view.begin());
-    this->ReadFeedback(view != in.LastView);
+    // Copied into the pixel buffer now, mapped at the next frame (ReadFeedback).
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    in.FeedbackPending = true;
+    in.PendingViewChanged = view != in.LastView;
     in.LastView = view;
   }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
 }
 
-void vtkStackedHeightFieldMapper::ReadFeedback(bool viewChanged)
+void vtkStackedHeightFieldMapper::ReadFeedback()
 {
   vtkInternals& in = *this->Internals;
-  std::vector<uint32_t> ids(size_t(in.FeedbackSize[0]) * in.FeedbackSize[1]);
-  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
-  glBindTexture(GL_TEXTURE_2D, 0);
-  // Timed from here: the read-back above waits for the frame to finish drawing.
+  in.FeedbackPending = false;
+  const bool viewChanged = in.PendingViewChanged;
+  const size_t count = size_t(in.FeedbackSize[0]) * in.FeedbackSize[1];
+  // Timed from here: mapping, reduction and handing over (the copy was queued last frame).
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkFeedbackReduction::Entry> list;
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
+  const auto* ids = static_cast<const uint32_t*>(
+    glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
+  if (ids)
   {
     std::unique_lock<std::mutex> lock;
-    SharedReduction(lock).Reduce(ids.data(), ids.size(), list);
+    SharedReduction(lock).Reduce(ids, count, list);
+    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
   }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   std::vector<uint32_t> pages(list.size()), coverage(list.size());
   for (size_t e = 0; e < list.size(); ++e)
   {

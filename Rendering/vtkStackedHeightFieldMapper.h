@@ -251,7 +251,7 @@ private:
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
   bool UpdatePages(vtkRenderer* ren, vtkActor* actor);
-  void ReadFeedback(bool viewChanged);
+  void ReadFeedback();
 
   int TileSize = 64;
   double LinearSearchStep = 0.5;
