@@ -542,8 +542,7 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
   in.Pager.SetPagesPerFrame(this->PagesPerFrame);
 
-  // The last frame's feedback, copied into the pixel buffer after it was drawn: read now, when
-  // the GPU has long finished it, so no frame waits for its own.
+  // The last frame's feedback when its read-back was deferred (DeferFeedbackReadBack).
   if (in.FeedbackPending)
   {
     this->ReadFeedback();
@@ -1263,7 +1262,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     std::array<double, 16> view;
     std::copy_n(gridToClip->GetData(), 16, view.begin());
-    // Copied into the pixel buffer now, mapped at the next frame (ReadFeedback).
+    // Copied into the pixel buffer now; mapped at once or at the next frame (ReadFeedback).
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
     glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
@@ -1274,6 +1273,10 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     in.FeedbackPending = true;
     in.PendingViewChanged = view != in.LastView;
     in.LastView = view;
+    if (!this->DeferFeedbackReadBack)
+    {
+      this->ReadFeedback();
+    }
   }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
 }
@@ -1319,5 +1322,8 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightArrayName: " << this->HeightArrayName << "\n";
   os << indent << "ColorMode: " << static_cast<int>(this->ColorMode) << "\n";
   os << indent << "OutputMode: " << static_cast<int>(this->OutputMode) << "\n";
+  os << indent << "Feedback: " << this->Feedback << ", scale " << this->FeedbackScale << ", deferred read-back "
+     << this->DeferFeedbackReadBack << "\n";
+  os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << "\n";
   os << indent << "Horizons: " << this->Internals->Stack.GetNumberOfLayers() << "\n";
 }

@@ -176,6 +176,20 @@ public:
 
   ///@{
   /**
+   * When the feedback buffer is read (default off: right after the frame is drawn). It is
+   * copied into a pixel buffer object after the draw; off maps it at once, on maps it at the
+   * next frame, before that frame's cut update, so the CPU does not wait for the GPU to finish
+   * the frame it just queued (the cut sees the same feedback either way). On llvmpipe, where
+   * every draw finishes inside the call, mapping at once measured faster (fly-through median
+   * 43 vs 49 ms, BenchPagingHorizons): hence the default; on a GPU turn it on.
+   */
+  vtkSetMacro(DeferFeedbackReadBack, bool);
+  vtkGetMacro(DeferFeedbackReadBack, bool);
+  vtkBooleanMacro(DeferFeedbackReadBack, bool);
+  ///@}
+
+  ///@{
+  /**
    * Pixels a cell may cover before feedback asks for a finer level; 0 (default) asks for the
    * finest level wherever a ray hits, so the converged image is the in-core one. 1 stops at
    * about one cell per pixel, saving the I/O of sub-pixel detail.
@@ -265,6 +279,7 @@ private:
   bool Feedback = true;
   int FeedbackScale = 4;
   double LevelOfDetailThreshold = 0.0;
+  bool DeferFeedbackReadBack = false;
   ColorModes ColorMode = ColorModes::Solid;
   OutputModes OutputMode = OutputModes::Shaded;
 

@@ -452,6 +452,26 @@ int TestHeightFieldPaging(int, char*[])
     Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
     Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
     Check(st.FinestTiles < sb.FinestTiles, "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
+
+    // Read back at the next frame instead of after the draw: the cut sees the same feedback.
+    vtkNew<vtkStackedHeightFieldMapper> deferred;
+    deferred->SetTileSize(32);
+    deferred->SetPagesPerFrame(3);
+    deferred->DeferFeedbackReadBackOn();
+    for (const auto& r : readers)
+      deferred->AddInputConnection(r->GetOutputPort());
+    int df = 0;
+    for (; df < 300 && !deferred->GetPagingStatistics().Converged; ++df)
+    {
+      render(deferred);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const auto sd = deferred->GetPagingStatistics();
+    const Difference dd = Compare(render(deferred), full, background);
+    std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, " << sd.FinestTiles
+              << " level-0 tiles, max difference " << dd.Max << "\n";
+    Check(sd.Converged && sd.FeedbackUsed && dd.Max == 0 && sd.FinestTiles < sb.FinestTiles,
+      "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles coarse");
   }
   {
     // Zoomed into a corner: tiles out of view are never refined.
