@@ -110,16 +110,7 @@ int main(int argc, char* argv[])
     ren->SetBackground(0.08, 0.09, 0.12);
     win->AddRenderer(ren);
     ren->AddActor(actor);
-    double b[6];
-    actor->GetBounds(b);
-    vtkCamera* cam = ren->GetActiveCamera();
-    const double c[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
-    cam->SetFocalPoint(c);
-    cam->SetPosition(c[0] - 0.9 * (b[1] - b[0]), c[1] - 1.1 * (b[3] - b[2]), c[2] + 0.8 * (b[1] - b[0]));
-    cam->SetViewUp(0, 0, 1);
-    ren->ResetCamera();
-    cam->Zoom(1.3);
-    ren->ResetCameraClippingRange();
+    strata_test::FrameReekScene(ren, actor, 1.3);
     win->Render();
     written.push_back(Save(win, out + "/strata-horizons-reek.png"));
   }

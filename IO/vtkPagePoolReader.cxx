@@ -129,6 +129,15 @@ bool vtkPagePoolReader::RequestCoarsestLevel(vtkInformation* inputInfo)
   return true;
 }
 
+void vtkPagePoolReader::RequestCoarsestLevels(vtkInformation* request, vtkInformationVector** inputVector, int ports)
+{
+  if (!request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+    return;
+  for (int port = 0; port < ports; ++port)
+    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+      RequestCoarsestLevel(inputVector[port]->GetInformationObject(c));
+}
+
 int vtkPagePoolReader::ResolutionToLevel(double r, int levels)
 {
   if (levels <= 1)

@@ -52,6 +52,7 @@ class vtkInformationIntegerKey;
 class vtkImageData;
 class vtkInformationDoubleKey;
 class vtkInformationStringKey;
+class vtkInformationVector;
 
 class STRATA_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
 {
@@ -108,6 +109,9 @@ public:
    * REQUEST_UPDATE_EXTENT, so that no update (a render, GetBounds) reads the whole pool.
    */
   static bool RequestCoarsestLevel(vtkInformation* inputInfo);
+  /// RequestCoarsestLevel on every input of the first `ports` ports when `request` is a
+  /// REQUEST_UPDATE_EXTENT pass; a consumer's ProcessRequest calls it after its superclass's.
+  static void RequestCoarsestLevels(vtkInformation* request, vtkInformationVector** inputVector, int ports);
 
   /// True when the file starts with a valid page pool header (magic, version, checksum).
   static bool CanReadFile(const char* fileName);

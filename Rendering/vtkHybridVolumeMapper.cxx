@@ -10,7 +10,6 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -25,7 +24,6 @@
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -194,11 +192,7 @@ vtkTypeBool vtkHybridVolumeMapper::ProcessRequest(
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the input (GetBounds, the render), a pool's reader serves its coarsest
   // level only: the bricks are paged by the volume mapper.
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    for (int c = 0; c < inputVector[0]->GetNumberOfInformationObjects(); ++c)
-      vtkPagePoolReader::RequestCoarsestLevel(inputVector[0]->GetInformationObject(c));
-  }
+  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, 1);
   return result;
 }
 

@@ -2,6 +2,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkFeedbackReadBack.h"
 #include "vtkFeedbackReduction.h"
 #include "vtkPageCache.h"
 #include "vtkPagePoolFile.h"
@@ -724,17 +725,11 @@ public:
     const size_t count = static_cast<size_t>(this->FeedbackSize[0]) * this->FeedbackSize[1];
     std::vector<vtkFeedbackReduction::Entry> asked;
     bool usedOpenCL = false;
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, this->FeedbackBuffer);
-    const auto* ids = static_cast<const uint32_t*>(
-      glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
-    if (ids)
-    {
+    vtkFeedbackReadBack::Map(this->FeedbackBuffer, count, [&](const uint32_t* ids) {
       usedOpenCL = openCL && this->Reduction.ReduceOpenCL(ids, count, asked);
       if (!usedOpenCL)
         this->Reduction.ReduceCPU(ids, count, asked);
-      glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
-    }
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    });
     std::vector<vtkFeedbackReduction::Entry> below = asked;
     vtkFeedbackReduction::PropagateToAncestors(below, [this](uint32_t page) {
       int v = -1;
@@ -1106,14 +1101,7 @@ vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
   // level only: the bricks are paged, not read through the pipeline.
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
-    {
-      for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-        vtkPagePoolReader::RequestCoarsestLevel(inputVector[port]->GetInformationObject(c));
-    }
-  }
+  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, this->GetNumberOfInputPorts());
   return result;
 }
 
@@ -2277,16 +2265,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     // Copied into the pixel buffer now, mapped at the next frame: no wait for the GPU here.
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-    const int unit = units->Allocate();
-    state->vtkglActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    units->Free(unit);
+    vtkFeedbackReadBack::Queue(renWin, in.FeedbackTexture, in.FeedbackBuffer);
     in.FeedbackPending = true;
     in.FeedbackView = view;
   }

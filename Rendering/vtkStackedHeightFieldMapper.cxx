@@ -7,6 +7,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
+#include "vtkFeedbackReadBack.h"
 #include "vtkFeedbackReduction.h"
 #include "vtkHeightFieldPager.h"
 #include "vtkHeightFieldStack.h"
@@ -436,11 +437,7 @@ vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
   // level only.
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    for (int c = 0; c < inputVector[0]->GetNumberOfInformationObjects(); ++c)
-      vtkPagePoolReader::RequestCoarsestLevel(inputVector[0]->GetInformationObject(c));
-  }
+  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, 1);
   return result;
 }
 
@@ -1263,13 +1260,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     std::array<double, 16> view;
     std::copy_n(gridToClip->GetData(), 16, view.begin());
     // Copied into the pixel buffer now; mapped at once or at the next frame (ReadFeedback).
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    vtkFeedbackReadBack::Queue(renWin, in.FeedbackTexture, in.FeedbackBuffer);
     in.FeedbackPending = true;
     in.PendingViewChanged = view != in.LastView;
     in.LastView = view;
@@ -1290,16 +1281,10 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   // Timed from here: mapping, reduction and handing over (the copy was queued last frame).
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkFeedbackReduction::Entry> list;
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
-  const auto* ids = static_cast<const uint32_t*>(
-    glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
-  if (ids)
-  {
+  vtkFeedbackReadBack::Map(in.FeedbackBuffer, count, [&](const uint32_t* ids) {
     std::unique_lock<std::mutex> lock;
     SharedReduction(lock).Reduce(ids, count, list);
-    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
-  }
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  });
   std::vector<uint32_t> pages(list.size()), coverage(list.size());
   for (size_t e = 0; e < list.size(); ++e)
   {

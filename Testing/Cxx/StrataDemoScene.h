@@ -1,7 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // The demo's first scene, shared by Examples/StrataDemo and TestHeightFieldDemo so that the test
-// checks exactly what the demo shows.
+// checks exactly what the demo shows, and the camera of its Reek scene (TestHeightFieldPaging).
 #ifndef StrataDemoScene_h
 #define StrataDemoScene_h
 
@@ -28,6 +28,10 @@ struct DemoScene
 /// Adds the synthetic stack (MakeDemoHorizons at UTM coordinates, 321 x 241, 6.25 m), the well
 /// and the target to `ren`, with the demo's background and camera.
 DemoScene AddDemoScene(vtkRenderer* ren);
+
+/// The demo's camera on its Reek scene (the four horizons of `actor`, scaled 8x in z): from the
+/// south-west, above, zoomed by `zoom` (the demo uses 1.3).
+void FrameReekScene(vtkRenderer* ren, vtkActor* actor, double zoom);
 }
 
 #endif

@@ -79,6 +79,19 @@ std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(
   return out;
 }
 
+// One vtkPagePoolReader per pool in front of `m`, kept in `readers`.
+void PagedFrom(const std::vector<std::string>& pools, vtkStackedHeightFieldMapper* m,
+  std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers)
+{
+  for (const auto& pool : pools)
+  {
+    auto r = vtkSmartPointer<vtkPagePoolReader>::New();
+    r->SetFileName(pool.c_str());
+    m->AddInputConnection(r->GetOutputPort());
+    readers.push_back(r);
+  }
+}
+
 // Points on tile lines where the pages of the two (or four) tiles meeting there disagree: a
 // crack the ray could pass through. Stitching makes it 0 for every cut.
 long Seams(const vtkHeightFieldPager* pager, double tolerance)
@@ -183,13 +196,7 @@ void ReekPaged(const std::string& dir)
     incore->AddInputDataObject(image);
   paged->SetPagesPerFrame(4);
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
-  for (const auto& pool : pools)
-  {
-    auto r = vtkSmartPointer<vtkPagePoolReader>::New();
-    r->SetFileName(pool.c_str());
-    paged->AddInputConnection(r->GetOutputPort());
-    readers.push_back(r);
-  }
+  PagedFrom(pools, paged, readers);
   vtkNew<vtkActor> actor;
   actor->SetMapper(incore);
   actor->SetScale(1, 1, 8);
@@ -207,16 +214,8 @@ void ReekPaged(const std::string& dir)
     actor->VisibilityOn();
   }
   // The demo's camera, closer (the demo's framing leaves 10 % of this small window covered).
-  double b[6];
-  actor->GetBounds(b);
+  FrameReekScene(ren, actor, 2.4);
   vtkCamera* cam = ren->GetActiveCamera();
-  const double c[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
-  cam->SetFocalPoint(c);
-  cam->SetPosition(c[0] - 0.9 * (b[1] - b[0]), c[1] - 1.1 * (b[3] - b[2]), c[2] + 0.8 * (b[1] - b[0]));
-  cam->SetViewUp(0, 0, 1);
-  ren->ResetCamera();
-  cam->Zoom(2.4);
-  ren->ResetCameraClippingRange();
 
   // Levels are built around holes (vtkPagePoolWriter), so the roots alone already cover all
   // the full data cover: no hole that the rays could not see through to ask for detail.
@@ -329,13 +328,7 @@ int TestHeightFieldPaging(int, char*[])
   paged->SetTileSize(32);
   paged->SetPagesPerFrame(3);
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
-  for (const auto& pool : pools)
-  {
-    auto r = vtkSmartPointer<vtkPagePoolReader>::New();
-    r->SetFileName(pool.c_str());
-    paged->AddInputConnection(r->GetOutputPort());
-    readers.push_back(r);
-  }
+  PagedFrom(pools, paged, readers);
   auto render = [&](vtkStackedHeightFieldMapper* m) {
     scene.Stack->SetMapper(m);
     win->Render();
@@ -504,22 +497,12 @@ int TestHeightFieldPaging(int, char*[])
   cam->DeepCopy(home);
   ren->ResetCameraClippingRange();
   const auto full = render(incore);
-  auto pagedWith = [&](const std::vector<std::string>& files, vtkStackedHeightFieldMapper* m,
-                     std::vector<vtkSmartPointer<vtkPagePoolReader>>& rs) {
-    for (const auto& file : files)
-    {
-      auto r = vtkSmartPointer<vtkPagePoolReader>::New();
-      r->SetFileName(file.c_str());
-      m->AddInputConnection(r->GetOutputPort());
-      rs.push_back(r);
-    }
-  };
   // The error of the root-only rendering: what "coarser" may cost at most.
   double rootError = 0.0;
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
-    pagedWith(pools, m, rs);
+    PagedFrom(pools, m, rs);
     m->SetAtlasBudget(1.0); // 240 tiles: ample
     m->SetPagesPerFrame(1);
     rootError = ImageError(render(m), full).Rms;
@@ -529,7 +512,7 @@ int TestHeightFieldPaging(int, char*[])
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
-    pagedWith({ pools[0], corrupt, pools[2] }, m, rs);
+    PagedFrom({ pools[0], corrupt, pools[2] }, m, rs);
     vtkNew<ErrorCounter> errors;
     errors->Watch(m);
     for (auto& r : rs)
@@ -554,7 +537,7 @@ int TestHeightFieldPaging(int, char*[])
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
-    pagedWith({ shrinking, pools[1], pools[2] }, m, rs);
+    PagedFrom({ shrinking, pools[1], pools[2] }, m, rs);
     m->SetPagesPerFrame(1);
     vtkNew<ErrorCounter> errors;
     errors->Watch(m);
@@ -586,7 +569,7 @@ int TestHeightFieldPaging(int, char*[])
       Check(CopyFile(pools[0], bad, 0.5), "truncated copy written");
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
-    pagedWith({ bad, pools[1], pools[2] }, m, rs);
+    PagedFrom({ bad, pools[1], pools[2] }, m, rs);
     vtkNew<ErrorCounter> errors;
     errors->Watch(m);
     for (auto& r : rs)
