@@ -9,6 +9,7 @@
 #include "vtkVolumeBrickTree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -52,6 +53,7 @@ public:
   std::vector<std::pair<std::string, int>> OpenedSources;
   std::mutex PoolsMutex; ///< guards PoolFiles against the cache's workers
   std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
+  std::vector<std::vector<std::array<int, 3>>> PoolGrids; ///< tiles per level of each pool (idem)
   vtkPageCache Cache;
   vtkVolumeCut Cut;
   vtkBrickAtlasAllocator Atlas;
@@ -110,6 +112,17 @@ public:
 
   vtkInternals()
   {
+    // After a tile loaded on demand: its four neighbours and its parent, ahead of the camera.
+    this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
+      std::lock_guard<std::mutex> lock(this->PoolsMutex);
+      if (key.Dataset < 0 || key.Dataset >= static_cast<int>(this->PoolGrids.size()))
+        return;
+      const auto& grid = this->PoolGrids[key.Dataset];
+      if (key.Level < 0 || key.Level >= static_cast<int>(grid.size()))
+        return;
+      const bool parent = key.Level + 1 < static_cast<int>(grid.size());
+      vtkPageCache::AddGridNeighbours(key, grid[key.Level].data(), parent ? grid[key.Level + 1].data() : nullptr, more);
+    });
     this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
       std::shared_ptr<vtkPagePoolFile> file;
       {
@@ -429,6 +442,7 @@ public:
     {
       std::lock_guard<std::mutex> lock(this->PoolsMutex);
       this->PoolFiles.clear();
+      this->PoolGrids.clear();
     }
     this->Pools.clear();
     this->Horizons.clear();
@@ -546,7 +560,16 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
   {
     std::lock_guard<std::mutex> lock(in.PoolsMutex);
     for (const auto& pool : in.Pools)
+    {
       in.PoolFiles.push_back(pool->File);
+      std::vector<std::array<int, 3>> grid;
+      for (int l = 0; l < pool->Tree.GetNumberOfLevels(); ++l)
+      {
+        const int* t = pool->Tree.GetLevelBricks(l);
+        grid.push_back({ t[0], t[1], 1 });
+      }
+      in.PoolGrids.push_back(grid);
+    }
   }
   in.NX = in.Header.Dimensions[0];
   in.NY = in.Header.Dimensions[1];

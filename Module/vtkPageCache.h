@@ -97,6 +97,14 @@ public:
    */
   using NeighbourFunction = std::function<void(const Key&, std::vector<Key>& prefetch)>;
 
+  /**
+   * The usual prefetch set of a page of a level cut into a grid of `pages` (x fastest, page
+   * index x + nx (y + ny z)): its face neighbours in that level and, when `parentPages` is
+   * given (the next coarser level's grid), its parent (index / 2 per axis). A moving camera
+   * asks for the neighbours of what it sees next, and a collapse for the parent.
+   */
+  static void AddGridNeighbours(const Key& key, const int pages[3], const int* parentPages, std::vector<Key>& prefetch);
+
   /// What Request() found or did.
   enum class State
   {

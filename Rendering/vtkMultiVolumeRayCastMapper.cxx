@@ -626,6 +626,21 @@ public:
 
   vtkInternals()
   {
+    // After a brick loaded on demand: its six neighbours and its parent, ahead of the camera.
+    this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
+      std::shared_ptr<vtkPagePoolFile> pool;
+      {
+        std::lock_guard<std::mutex> lock(this->PoolsMutex);
+        auto it = this->PoolsByPort.find(key.Dataset);
+        if (it != this->PoolsByPort.end())
+          pool = it->second;
+      }
+      if (!pool || key.Level < 0 || key.Level >= pool->GetNumberOfLevels())
+        return;
+      const bool parent = key.Level + 1 < pool->GetNumberOfLevels();
+      vtkPageCache::AddGridNeighbours(
+        key, pool->GetLevel(key.Level).Pages, parent ? pool->GetLevel(key.Level + 1).Pages : nullptr, more);
+    });
     this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
       std::shared_ptr<vtkPagePoolFile> pool;
       {
