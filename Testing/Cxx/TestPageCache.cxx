@@ -161,6 +161,32 @@ void TestKeys()
   Check(!cache.Start(), "Start() without a loader fails");
 }
 
+void TestGridNeighbours()
+{
+  std::cout << "Grid neighbours\n";
+  auto pages = [](const std::vector<Key>& keys) {
+    std::vector<std::pair<int, int64_t>> out;
+    for (const Key& k : keys)
+      out.emplace_back(k.Level, k.Page);
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  // Level 2 of 4 x 3 x 2 bricks, its parents 2 x 2 x 1: brick (1, 2, 1) = 1 + 4 (2 + 3 * 1) = 21.
+  const int grid[3] = { 4, 3, 2 }, coarse[3] = { 2, 2, 1 };
+  std::vector<Key> more;
+  vtkPageCache::AddGridNeighbours(K(5, 2, 21), grid, coarse, more);
+  const std::vector<std::pair<int, int64_t>> expected = { { 2, 9 }, { 2, 17 }, { 2, 20 }, { 2, 22 }, { 3, 2 } };
+  Check(pages(more) == expected && more[0].Dataset == 5,
+    "a brick's face neighbours inside the grid (x -1/+1, y -1, z -1) and its parent (0, 1, 0)");
+  more.clear();
+  const int tiles[3] = { 3, 1, 1 };
+  vtkPageCache::AddGridNeighbours(K(0, 4, 0), tiles, nullptr, more);
+  Check(pages(more) == std::vector<std::pair<int, int64_t>>{ { 4, 1 } }, "a corner tile of the coarsest level: one neighbour, no parent");
+  more.clear();
+  vtkPageCache::AddGridNeighbours(K(0, 0, 3), tiles, nullptr, more);
+  Check(more.empty(), "a page outside the grid has none");
+}
+
 /// The reference: a list in LRU order of (key, frame of last use) with a slot capacity.
 struct ReferenceLru
 {
@@ -670,6 +696,7 @@ int TestPageCache(int, char*[])
 {
   const auto t0 = Clock::now();
   TestKeys();
+  TestGridNeighbours();
   TestAgainstReference();
   TestReferencedAndPinned();
   TestPriorityOrder();
