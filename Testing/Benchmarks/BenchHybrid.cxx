@@ -14,18 +14,13 @@
 //   BenchHybrid run <data>        -> the rows of one data set (tooth, engine, bonsai, bucky)
 //   BenchHybrid report <csv> <png> -> the equal-bytes table and the error-vs-bytes plot
 // Images 384 x 384, sample distance 0.5 voxel; ms per frame: median of 3 after one warm-up.
+#include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
-#include "vtkAxis.h"
-#include "vtkChartLegend.h"
-#include "vtkChartXY.h"
-#include "vtkContextScene.h"
-#include "vtkContextView.h"
-#include "vtkDoubleArray.h"
-#include "vtkGenericRenderWindowInteractor.h"
+#include "vtkChart.h"
 #include "vtkHybridVolumeFile.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkHybridVolumeMapper.h"
@@ -33,18 +28,14 @@
 #include "vtkImageResample.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlotLine.h"
 #include "vtkPlotPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkTable.h"
-#include "vtkTextProperty.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -333,31 +324,14 @@ int Report(const std::string& csv, const std::string& png)
               d.c_str(), Str(r, "method").c_str(), Num(r, "factor"), Str(r, "shape").c_str(), Num(r, "points"), Num(r, "bytes"),
               Num(r, "rms_error"), Num(p, "factor"), Num(p, "rms_error"));
 
-  vtkNew<vtkContextView> view;
-  vtkNew<vtkGenericRenderWindowInteractor> interactor;
-  view->SetInteractor(interactor);
-  view->GetRenderWindow()->SetSize(1000, 650);
-  view->GetRenderWindow()->SetMultiSamples(0);
-  view->GetRenderer()->SetBackground(1, 1, 1);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle("Hybrid point + volume vs plain down-sampling, llvmpipe 384 x 384: RMS error against full resolution vs bytes");
-  chart->GetTitleProperties()->SetFontSize(15);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("bytes on disk (log)");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error, 8-bit units");
+  strata_bench::Chart chart(
+    "Hybrid point + volume vs plain down-sampling, llvmpipe 384 x 384: RMS error against full resolution vs bytes", 15,
+    "bytes on disk (log)", true, "RMS error, 8-bit units", false, true);
   const unsigned char colours[4][3] = { { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 }, { 204, 121, 167 } };
-  std::vector<vtkSmartPointer<vtkTable>> tables;
   for (size_t d = 0; d < datasets.size(); ++d)
     for (int kind = 0; kind < 2; ++kind)
     {
-      vtkNew<vtkDoubleArray> x, y;
       const std::string label = datasets[d] + (kind == 0 ? ", plain down-sampling" : ", hybrid");
-      x->SetName(("bytes " + label).c_str());
-      y->SetName(label.c_str());
       std::vector<std::pair<double, double>> pts;
       for (const auto& r : rows)
       {
@@ -367,21 +341,7 @@ int Report(const std::string& csv, const std::string& png)
           pts.emplace_back(Num(r, "bytes"), Num(r, "rms_error"));
       }
       std::sort(pts.begin(), pts.end());
-      for (const auto& p : pts)
-      {
-        x->InsertNextValue(p.first);
-        y->InsertNextValue(p.second);
-      }
-      if (pts.empty())
-        continue;
-      auto table = vtkSmartPointer<vtkTable>::New();
-      table->AddColumn(x);
-      table->AddColumn(y);
-      tables.push_back(table);
-      vtkPlot* plot = chart->AddPlot(kind == 0 ? vtkChart::LINE : vtkChart::POINTS);
-      plot->SetInputData(table, 0, 1);
-      plot->SetColor(colours[d % 4][0], colours[d % 4][1], colours[d % 4][2], 255);
-      plot->SetLabel(label);
+      vtkPlot* plot = chart.Add(kind == 0 ? vtkChart::LINE : vtkChart::POINTS, label, pts, colours[d % 4]);
       if (auto* points = vtkPlotPoints::SafeDownCast(plot))
       {
         points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
@@ -390,14 +350,7 @@ int Report(const std::string& csv, const std::string& png)
       if (auto* line = vtkPlotLine::SafeDownCast(plot))
         line->SetMarkerStyle(vtkPlotPoints::SQUARE);
     }
-  view->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(png.c_str());
-  writer->Write();
+  chart.Write(png);
   return 0;
 }
 }

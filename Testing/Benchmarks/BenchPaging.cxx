@@ -28,21 +28,16 @@
 //   BenchPaging report <csv> <png> -> the accuracy rows (any case in the CSV, e.g. horizons)
 //                                     as RMS error against atlas budget
 // Rendering at 256 x 256 on whatever OpenGL the EGL window finds (llvmpipe here).
+#include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
-#include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkChartLegend.h"
-#include "vtkChartXY.h"
+#include "vtkChart.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkContextScene.h"
-#include "vtkContextView.h"
-#include "vtkDoubleArray.h"
 #include "vtkFeedbackReduction.h"
-#include "vtkGenericRenderWindowInteractor.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
@@ -50,7 +45,6 @@
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPen.h"
 #include "vtkPiecewiseFunction.h"
@@ -59,12 +53,9 @@
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkTable.h"
-#include "vtkTextProperty.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -422,28 +413,12 @@ int Report(const std::string& csv, const std::string& png)
       std::find(cases.begin(), cases.end(), c->second) == cases.end())
       cases.push_back(c->second);
   }
-  vtkNew<vtkContextView> view;
-  vtkNew<vtkGenericRenderWindowInteractor> interactor;
-  view->SetInteractor(interactor);
-  view->GetRenderWindow()->SetSize(1000, 650);
-  view->GetRenderWindow()->SetMultiSamples(0);
-  view->GetRenderer()->SetBackground(1, 1, 1);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle("Paging on llvmpipe: converged RMS error against the in-core rendering vs atlas budget "
-                  "(legend: ms per frame; RMS 0 drawn at 0.001)");
-  chart->GetTitleProperties()->SetFontSize(15);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("atlas budget, MB (log)");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error, 8-bit units (log)");
-  chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+  strata_bench::Chart chart("Paging on llvmpipe: converged RMS error against the in-core rendering vs atlas budget "
+                            "(legend: ms per frame; RMS 0 drawn at 0.001)",
+    15, "atlas budget, MB (log)", true, "RMS error, 8-bit units (log)", true, true);
   // Okabe-Ito: eight colours told apart also with colour-blind eyes.
   const unsigned char colours[8][3] = { { 0, 0, 0 }, { 230, 159, 0 }, { 86, 180, 233 }, { 0, 158, 115 },
     { 240, 228, 66 }, { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 } };
-  std::vector<vtkSmartPointer<vtkTable>> tables;
   std::printf("%-34s %8s %10s %10s %12s\n", "case", "atlas MB", "RMS", "ms/frame", "MB up/frame");
   for (size_t c = 0; c < cases.size(); ++c)
   {
@@ -463,38 +438,16 @@ int Report(const std::string& csv, const std::string& png)
     if (pts.empty())
       continue;
     std::sort(pts.begin(), pts.end());
-    vtkNew<vtkDoubleArray> x, y;
-    x->SetName(("atlas MB " + cases[c]).c_str());
-    y->SetName(cases[c].c_str());
-    for (const auto& p : pts)
-    {
-      x->InsertNextValue(p.first);
-      y->InsertNextValue(p.second);
-    }
-    auto table = vtkSmartPointer<vtkTable>::New();
-    table->AddColumn(x);
-    table->AddColumn(y);
-    tables.push_back(table);
-    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
-    plot->SetInputData(table, 0, 1);
-    plot->SetColor(colours[c % 8][0], colours[c % 8][1], colours[c % 8][2], 255);
+    std::ostringstream label;
+    label << cases[c] << " (" << std::lround(msLo) << "-" << std::lround(msHi) << " ms)";
+    vtkPlot* plot = chart.Add(vtkChart::LINE, label.str(), pts, colours[c % 8]);
     plot->SetWidth(2.0);
     if (cases[c].find("horizon") != std::string::npos)
       plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
-    std::ostringstream label;
-    label << cases[c] << " (" << std::lround(msLo) << "-" << std::lround(msHi) << " ms)";
-    plot->SetLabel(label.str());
     if (auto* line = vtkPlotLine::SafeDownCast(plot))
       line->SetMarkerStyle(cases[c].find("horizon") != std::string::npos ? vtkPlotPoints::CIRCLE : vtkPlotPoints::SQUARE);
   }
-  view->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(png.c_str());
-  writer->Write();
+  chart.Write(png);
   return 0;
 }
 }

@@ -28,6 +28,7 @@
 // Checks of the reference itself: STRATA_BENCH_CONVERGE=1 makes `multi` also compare its
 // reference with one at half the step; STRATA_BENCH_UNSNAPPED=1 makes `converge` also compare
 // with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
+#include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
@@ -35,15 +36,10 @@
 
 #include "vtkAxis.h"
 #include "vtkCamera.h"
-#include "vtkChartLegend.h"
 #include "vtkChartXY.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkContextScene.h"
-#include "vtkContextView.h"
 #include "vtkDataArray.h"
-#include "vtkDoubleArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
-#include "vtkGenericRenderWindowInteractor.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMatrix4x4.h"
@@ -51,20 +47,15 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNrrdReader.h"
-#include "vtkPNGWriter.h"
-#include "vtkPen.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlotPoints.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkTable.h"
-#include "vtkTextProperty.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeBSPTree.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtkXMLImageDataReader.h"
 
 #include <algorithm>
@@ -1022,25 +1013,9 @@ std::string Get(const std::map<std::string, std::string>& row, const std::string
 /// RMS error against ms per frame, one series per (data set, classification), as a PNG.
 void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std::string& png)
 {
-  vtkNew<vtkContextView> view;
-  // An interactor that never talks to a display: the view's own (X) one would, on first render.
-  vtkNew<vtkGenericRenderWindowInteractor> interactor;
-  view->SetInteractor(interactor);
-  view->GetRenderWindow()->SetSize(1000, 650);
-  view->GetRenderWindow()->SetMultiSamples(0);
-  view->GetRenderer()->SetBackground(1, 1, 1);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle("vtkMultiVolumeRayCastMapper on llvmpipe, 256 x 256: RMS error against the "
-                  "reference vs frame time, every setting");
-  chart->GetTitleProperties()->SetFontSize(16);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("ms per frame (log)");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMS error against the reference, 8-bit units (log)");
-  chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+  strata_bench::Chart chart("vtkMultiVolumeRayCastMapper on llvmpipe, 256 x 256: RMS error against the "
+                            "reference vs frame time, every setting",
+    16, "ms per frame (log)", true, "RMS error against the reference, 8-bit units (log)", true, false);
 
   std::vector<std::string> datasets;
   for (const auto& r : rows)
@@ -1055,62 +1030,43 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
   };
   const int markers[3] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE, vtkPlotPoints::DIAMOND };
   const char* kinds[3] = { "post", "pre", "pre-approx" };
-  std::vector<vtkSmartPointer<vtkTable>> tables; // kept alive until rendered
   double range[4] = { VTK_DOUBLE_MAX, 0.0, VTK_DOUBLE_MAX, 0.0 };
   for (size_t d = 0; d < datasets.size(); ++d)
     for (int k = 0; k < 3; ++k)
     {
-      vtkNew<vtkDoubleArray> x, y;
       const std::string label = datasets[d].substr(9) + ", " + kinds[k];
-      x->SetName(("ms " + label).c_str());
-      y->SetName(label.c_str());
+      std::vector<std::pair<double, double>> pts;
       for (const auto& r : rows)
       {
         const double ms = Number(r, "ms_per_frame"), rms = Number(r, "rms_error");
         if (Get(r, "case") == datasets[d] && Get(r, "classification") == kinds[k] && ms > 0 &&
             rms > 0)
         {
-          x->InsertNextValue(ms);
-          y->InsertNextValue(rms);
+          pts.emplace_back(ms, rms);
           range[0] = std::min(range[0], ms);
           range[1] = std::max(range[1], ms);
           range[2] = std::min(range[2], rms);
           range[3] = std::max(range[3], rms);
         }
       }
-      if (x->GetNumberOfTuples() == 0)
-        continue;
-      auto table = vtkSmartPointer<vtkTable>::New();
-      table->AddColumn(x);
-      table->AddColumn(y);
-      tables.push_back(table);
-      auto* points = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
-      points->SetInputData(table, 0, 1);
-      points->SetColor(colours[d % 4][0], colours[d % 4][1], colours[d % 4][2], 255);
-      points->SetMarkerStyle(markers[k]);
-      points->SetMarkerSize(9);
-      points->SetLabel(label);
+      if (auto* points = vtkPlotPoints::SafeDownCast(chart.Add(vtkChart::POINTS, label, pts, colours[d % 4])))
+      {
+        points->SetMarkerStyle(markers[k]);
+        points->SetMarkerSize(9);
+      }
     }
   if (range[1] > 0.0)
   {
     // Margins so that no point sits on the frame, and room above the points for the legend.
-    vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
-    vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+    vtkAxis* x = chart.GetChart()->GetAxis(vtkAxis::BOTTOM);
+    vtkAxis* y = chart.GetChart()->GetAxis(vtkAxis::LEFT);
     x->SetBehavior(vtkAxis::FIXED);
     y->SetBehavior(vtkAxis::FIXED);
     x->SetUnscaledRange(range[0] / 1.25, range[1] * 1.25);
     y->SetUnscaledRange(
       range[2] / 1.25, range[3] * std::max(3.0, std::pow(range[3] / range[2], 0.6)));
   }
-  view->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(png.c_str());
-  writer->Write();
+  chart.Write(png);
 }
 
 int Report(const std::string& csv, const std::string& png)
