@@ -2,6 +2,7 @@
 #include "vtkHeightFieldPager.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkCutPages.h"
 #include "vtkFeedbackReduction.h"
 #include "vtkMinMaxQuadtree.h"
 #include "vtkPageCache.h"
@@ -849,21 +850,7 @@ bool vtkHeightFieldPager::Update(
   for (int h = 0; h < static_cast<int>(in.Horizons.size()); ++h)
   {
     vtkInternals::Horizon& hz = in.Horizons[h];
-    const vtkVolumeBrickTree& tree = in.Pools[hz.PoolIndex]->Tree;
-    // Ancestors are numbered after their descendants: walk from the finest level up.
-    for (auto it = hz.Pages.begin(); it != hz.Pages.end();)
-    {
-      const int n = it->first;
-      bool keep = n == tree.GetRootId() || in.Cut.IsInCut(h, n);
-      if (!keep && tree.GetNode(n).Level > 0)
-      {
-        int children[8];
-        const int count = tree.GetChildren(n, children);
-        for (int c = 0; c < count && !keep; ++c)
-          keep = in.Cut.IsInCut(h, children[c]) || hz.Pages.count(children[c]);
-      }
-      it = keep ? std::next(it) : hz.Pages.erase(it);
-    }
+    vtkCutPages::Prune(hz.Pages, in.Cut, h, in.Pools[hz.PoolIndex]->Tree);
   }
   in.Cache.CancelStale(in.Cache.GetFrame());
 

@@ -2,6 +2,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkCutPages.h"
 #include "vtkFeedbackReadBack.h"
 #include "vtkFeedbackReduction.h"
 #include "vtkPageCache.h"
@@ -1708,21 +1709,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           if (!volumes[v].Pooled)
             continue;
           StrataVolumeTextures& tex = in.Textures[ports[v]];
-          for (auto it = tex.Held.begin(); it != tex.Held.end();)
-          {
-            const int n = it->first;
-            const bool keep = n == tex.Tree->GetRootId() || in.Cut.IsInCut(static_cast<int>(v), n) ||
-              (tex.Tree->GetParent(n) >= 0 && !in.Cut.IsInCut(static_cast<int>(v), n) && [&] {
-                // an ancestor of the cut: some child is in the cut or is itself kept
-                int children[8];
-                const int count = tex.Tree->GetChildren(n, children);
-                for (int c = 0; c < count; ++c)
-                  if (in.Cut.IsInCut(static_cast<int>(v), children[c]) || tex.Held.count(children[c]))
-                    return true;
-                return false;
-              }());
-            it = keep ? std::next(it) : tex.Held.erase(it);
-          }
+          vtkCutPages::Prune(tex.Held, in.Cut, static_cast<int>(v), *tex.Tree);
         }
         // Requests this frame's cut did not renew are for views gone by: drop them.
         in.Cache.CancelStale(in.Cache.GetFrame());
