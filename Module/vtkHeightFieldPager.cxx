@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -55,6 +56,7 @@ public:
   std::mutex PoolsMutex; ///< guards PoolFiles against the cache's workers
   std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
   std::vector<std::vector<std::array<int, 3>>> PoolGrids; ///< tiles per level of each pool (idem)
+  std::atomic<bool> Prefetch{ true };
   vtkPageCache Cache;
   vtkVolumeCut Cut;
   vtkBrickAtlasAllocator Atlas;
@@ -115,6 +117,8 @@ public:
   {
     // After a tile loaded on demand: its four neighbours and its parent, ahead of the camera.
     this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
+      if (!this->Prefetch)
+        return;
       std::lock_guard<std::mutex> lock(this->PoolsMutex);
       if (key.Dataset < 0 || key.Dataset >= static_cast<int>(this->PoolGrids.size()))
         return;
@@ -775,6 +779,11 @@ void vtkHeightFieldPager::SetCacheBudgetMiB(double mib)
 void vtkHeightFieldPager::SetPagesPerFrame(int pages)
 {
   this->Internals->PagesPerFrame = std::max(1, pages);
+}
+
+void vtkHeightFieldPager::SetPrefetch(bool prefetch)
+{
+  this->Internals->Prefetch = prefetch;
 }
 
 void vtkHeightFieldPager::SetTileSize(int tileSize)

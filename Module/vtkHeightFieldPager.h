@@ -123,6 +123,9 @@ public:
   int GetAtlasSlots() const;
   void SetCacheBudgetMiB(double mib);
   void SetPagesPerFrame(int pages);
+  /// After a tile loaded on demand, queue its four neighbours and its parent below every demand
+  /// request (default on): idle workers read ahead of a moving camera.
+  void SetPrefetch(bool prefetch);
   /// Forgets what the atlas holds (its texture was lost): the next Update() uploads all again.
   void InvalidateAtlas();
   /// Requested quadtree leaf size; the effective one divides B - 1 (see GetLeafSize()).

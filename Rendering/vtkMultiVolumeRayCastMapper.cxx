@@ -54,6 +54,7 @@
 #include "vtkMultiVolumeFragmentVS.h"
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -629,6 +630,8 @@ public:
   {
     // After a brick loaded on demand: its six neighbours and its parent, ahead of the camera.
     this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
+      if (!this->Prefetch)
+        return;
       std::shared_ptr<vtkPagePoolFile> pool;
       {
         std::lock_guard<std::mutex> lock(this->PoolsMutex);
@@ -688,6 +691,7 @@ public:
   std::map<int, std::shared_ptr<vtkPagePoolFile>> PoolsByPort;
   vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
   int RequestLimit = 256; ///< page requests per frame: 4 x PagesPerFrame
+  std::atomic<bool> Prefetch{ true }; ///< read by the neighbour function on the workers
 
   // Level-of-detail feedback: the texture the rays write, the pixel buffer it is read into
   // after the frame (mapped at the next one), and per cut volume and node the pixels that
@@ -1661,6 +1665,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       if (anyPooled)
       {
         in.Cache.SetBudgetMiB(this->PageCacheBudget);
+      in.Prefetch = this->Prefetch;
         in.Cache.Start();
         in.Cache.BeginFrame();
         // Roots first, so that a volume is never a hole. The reader was asked for its coarsest
@@ -2332,6 +2337,7 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SkipCellSize: " << this->SkipCellSize << "\n";
   os << indent << "PageCacheBudget: " << this->PageCacheBudget << " MB\n";
   os << indent << "PagesPerFrame: " << this->PagesPerFrame << "\n";
+  os << indent << "Prefetch: " << this->Prefetch << "\n";
   os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << "\n";
   os << indent << "FeedbackScale: " << this->FeedbackScale << "\n";
   os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";

@@ -538,6 +538,7 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   }
   in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
   in.Pager.SetPagesPerFrame(this->PagesPerFrame);
+  in.Pager.SetPrefetch(this->Prefetch);
 
   // The last frame's feedback when its read-back was deferred (DeferFeedbackReadBack).
   if (in.FeedbackPending)
@@ -1310,5 +1311,7 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Feedback: " << this->Feedback << ", scale " << this->FeedbackScale << ", deferred read-back "
      << this->DeferFeedbackReadBack << "\n";
   os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << "\n";
+  os << indent << "PageCacheBudget: " << this->PageCacheBudget << ", AtlasBudget: " << this->AtlasBudget
+     << ", PagesPerFrame: " << this->PagesPerFrame << ", Prefetch: " << this->Prefetch << "\n";
   os << indent << "Horizons: " << this->Internals->Stack.GetNumberOfLayers() << "\n";
 }

@@ -428,6 +428,7 @@ int TestHeightFieldPaging(int, char*[])
     vtkNew<vtkStackedHeightFieldMapper> blind;
     blind->SetTileSize(32);
     blind->FeedbackOff();
+    blind->PrefetchOff(); // and no read-ahead: the cut still converges on demand alone
     for (const auto& r : readers)
       blind->AddInputConnection(r->GetOutputPort());
     for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)
