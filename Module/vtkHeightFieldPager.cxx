@@ -56,7 +56,7 @@ public:
   std::mutex PoolsMutex; ///< guards PoolFiles against the cache's workers
   std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
   std::vector<std::vector<std::array<int, 3>>> PoolGrids; ///< tiles per level of each pool (idem)
-  std::atomic<bool> Prefetch{ true };
+  std::atomic<bool> Prefetch{ false };
   vtkPageCache Cache;
   vtkVolumeCut Cut;
   vtkBrickAtlasAllocator Atlas;

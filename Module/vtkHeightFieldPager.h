@@ -124,7 +124,7 @@ public:
   void SetCacheBudgetMiB(double mib);
   void SetPagesPerFrame(int pages);
   /// After a tile loaded on demand, queue its four neighbours and its parent below every demand
-  /// request (default on): idle workers read ahead of a moving camera.
+  /// request (default off; see vtkStackedHeightFieldMapper::SetPrefetch).
   void SetPrefetch(bool prefetch);
   /// Forgets what the atlas holds (its texture was lost): the next Update() uploads all again.
   void InvalidateAtlas();

@@ -691,7 +691,7 @@ public:
   std::map<int, std::shared_ptr<vtkPagePoolFile>> PoolsByPort;
   vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
   int RequestLimit = 256; ///< page requests per frame: 4 x PagesPerFrame
-  std::atomic<bool> Prefetch{ true }; ///< read by the neighbour function on the workers
+  std::atomic<bool> Prefetch{ false }; ///< read by the neighbour function on the workers
 
   // Level-of-detail feedback: the texture the rays write, the pixel buffer it is read into
   // after the frame (mapped at the next one), and per cut volume and node the pixels that

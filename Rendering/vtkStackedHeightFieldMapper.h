@@ -150,10 +150,11 @@ public:
   /**
    * Paging budgets, used when the inputs are tile pools: RAM page cache in MiB (default 256),
    * GPU tile atlas in MiB (default 128, floats) and tiles uploaded per frame (default 64).
-   * Prefetch (default on): after a tile loads on demand, idle page-cache workers read its four
-   * neighbours and its parent ahead of a moving camera (more I/O, fewer frames waiting for
-   * detail: the demo path of TestHeightFieldPaging settles in 67 instead of 78 frames, the
-   * paper-size fly-through reads 0.86 instead of 0.63 MB a frame).
+   * Prefetch (default off): after a tile loads on demand, page-cache workers also read its four
+   * neighbours and its parent ahead of a moving camera. Measured: the demo path of
+   * TestHeightFieldPaging (3 tiles a frame) settles in 67 instead of 78 frames, but the
+   * paper-size fly-through of scripts/bench paging reads 0.86 instead of 0.63 MB a frame for the
+   * same 17 frames to settle and the same frame times, hence off.
    */
   vtkSetClampMacro(PageCacheBudget, double, 1.0, 1.0e6);
   vtkGetMacro(PageCacheBudget, double);
@@ -283,7 +284,7 @@ private:
   double PageCacheBudget = 256.0;
   double AtlasBudget = 128.0;
   int PagesPerFrame = 64;
-  bool Prefetch = true;
+  bool Prefetch = false;
   bool Feedback = true;
   int FeedbackScale = 4;
   double LevelOfDetailThreshold = 0.0;

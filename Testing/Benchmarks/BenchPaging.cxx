@@ -7,7 +7,7 @@
 //                                     512^3 accuracy volume as page pools in <dir>, each made
 //                                     once (streamed slab by slab from vtkRTAnalyticSource)
 //   BenchPaging header             -> the CSV header of `flythrough`
-//   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback]
+//   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback] [no-prefetch]
 //                                  -> one row: the nine volumes in a 3 x 3 grid, opened (the
 //                                     readers' pipeline update: header, page table, coarsest
 //                                     level), then a scripted fly-through (48 moving frames),
@@ -153,9 +153,10 @@ struct PageReads
   }
 };
 
-int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feedback)
+int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feedback, bool prefetch)
 {
-  const std::string name = feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback";
+  const std::string name =
+    std::string(feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback") + (prefetch ? "" : "-no-prefetch");
   for (int i = 0; i < 9; ++i)
   {
     if (!FileExists(PoolPath(dir, i)))
@@ -174,6 +175,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
   mapper->SetPageCacheBudget(cacheMB);
   mapper->SetPagesPerFrame(64);
   mapper->SetLevelOfDetailFeedback(feedback);
+  mapper->SetPrefetch(prefetch);
   vtkNew<vtkMultiVolume> multi;
   multi->SetMapper(mapper);
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
@@ -259,6 +261,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
        << " ms median (" << (st.FeedbackOpenCL ? "OpenCL" : "CPU") << ")";
   else
     fb << "no feedback (screen-space cut)";
+  fb << "; prefetch " << (prefetch ? "on" : "off");
   std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
               "(9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages from the readers' "
               "pipeline update%s); %d frames (%d moving) in %.0f s; io_wait_frames counts frames in which the render "
@@ -511,7 +514,15 @@ int main(int argc, char* argv[])
     return 0;
   }
   if (mode == "flythrough" && argc > 4)
-    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), !(argc > 5 && std::string(argv[5]) == "no-feedback"));
+  {
+    bool feedback = true, prefetch = true;
+    for (int a = 5; a < argc; ++a)
+    {
+      feedback = feedback && std::string(argv[a]) != "no-feedback";
+      prefetch = prefetch && std::string(argv[a]) != "no-prefetch";
+    }
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), feedback, prefetch);
+  }
   if (mode == "feedback")
     return Feedback();
   if (mode == "accuracy-header")
@@ -523,7 +534,7 @@ int main(int argc, char* argv[])
     return Accuracy(argv[2]);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
-  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] | "
+  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] [no-prefetch] | "
                "feedback | accuracy-header | accuracy <dir> | report <csv> <png>\n";
   return 2;
 }

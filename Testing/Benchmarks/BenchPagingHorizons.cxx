@@ -7,7 +7,7 @@
 // row of bench-results/paging.csv.
 //
 //   BenchPagingHorizons generate <dir>      (also a 3 x 2049^2 stack for the accuracy rows)
-//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB>
+//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [no-prefetch]
 //   BenchPagingHorizons accuracy <dir>      (rows of bench-results/paging-accuracy.csv)
 #include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
 #include "StrataTestHelpers.h"       // For ReadRGB
@@ -141,13 +141,14 @@ int Generate(const std::string& dir)
   return 0;
 }
 
-int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
+int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool prefetch)
 {
+  const std::string name = std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "" : "-no-prefetch");
   for (int k = 0; k < 3; ++k)
   {
     if (!FileExists(PoolPath(dir, k)))
     {
-      std::printf("flythrough-horizons-3x6870x14300,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n",
+      std::printf("%s,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n", name.c_str(),
         cacheMB + atlasMB, PoolPath(dir, k).c_str());
       return 1;
     }
@@ -158,6 +159,7 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   vtkNew<vtkStackedHeightFieldMapper> mapper;
   mapper->SetHeightScale(-0.1); // decimetres, depth downwards
   mapper->SetPageCacheBudget(cacheMB);
+  mapper->SetPrefetch(prefetch);
   mapper->SetAtlasBudget(atlasMB);
   mapper->SetPagesPerFrame(32);
   mapper->SetLevelOfDetailThreshold(1.0); // about a cell per pixel: no I/O for sub-pixel detail
@@ -221,12 +223,12 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB)
   for (double u : uploaded)
     upTotal += u;
   const auto st = mapper->GetPagingStatistics();
-  std::printf("flythrough-horizons-3x6870x14300,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
+  std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
               "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; "
-              "feedback 1/4, level of detail 1 cell per pixel; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
+              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
               "render thread read tiles itself; %d failed tiles; %dx%d\n",
-    cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
-    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, st.Failures, Size, Size);
+    name.c_str(), cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
+    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, prefetch ? "on" : "off", st.Failures, Size, Size);
   if (const char* png = std::getenv("STRATA_BENCH_PNG"))
   {
     // The converged last pose, for a look.
@@ -358,7 +360,7 @@ int main(int argc, char* argv[])
   if (mode == "accuracy" && argc > 2)
     return Accuracy(argv[2]);
   if (mode == "flythrough" && argc > 4)
-    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]));
-  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB>\n";
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), !(argc > 5 && std::string(argv[5]) == "no-prefetch"));
+  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [no-prefetch]\n";
   return 2;
 }

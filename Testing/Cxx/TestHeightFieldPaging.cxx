@@ -326,6 +326,7 @@ int TestHeightFieldPaging(int, char*[])
   vtkNew<vtkStackedHeightFieldMapper> paged;
   paged->SetTileSize(32);
   paged->SetPagesPerFrame(3);
+  paged->PrefetchOn(); // read-ahead on the path (the other mappers read on demand alone)
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   PagedFrom(pools, paged, readers);
   auto render = [&](vtkStackedHeightFieldMapper* m) {
@@ -428,7 +429,6 @@ int TestHeightFieldPaging(int, char*[])
     vtkNew<vtkStackedHeightFieldMapper> blind;
     blind->SetTileSize(32);
     blind->FeedbackOff();
-    blind->PrefetchOff(); // and no read-ahead: the cut still converges on demand alone
     for (const auto& r : readers)
       blind->AddInputConnection(r->GetOutputPort());
     for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)

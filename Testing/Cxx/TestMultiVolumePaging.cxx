@@ -199,7 +199,7 @@ int TestMultiVolumePaging(int, char*[])
     Configure(paged, mode.Atlas);
     paged->SetLevelOfDetailFeedback(mode.Feedback);
     paged->SetPagesPerFrame(4); // refine slowly: many intermediate frames to check
-    paged->SetPrefetch(mode.Feedback); // the screen-space mode reads on demand alone
+    paged->SetPrefetch(mode.Feedback); // read-ahead with feedback; the screen-space mode on demand alone
     const bool exact = mode.Reference == incoreAll;
     if (exact)
       property->SetInterpolationTypeToNearest();
