@@ -7,7 +7,7 @@
 //                                     512^3 accuracy volume as page pools in <dir>, each made
 //                                     once (streamed slab by slab from vtkRTAnalyticSource)
 //   BenchPaging header             -> the CSV header of `flythrough`
-//   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback] [no-prefetch]
+//   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback] [prefetch]
 //                                  -> one row: the nine volumes in a 3 x 3 grid, opened (the
 //                                     readers' pipeline update: header, page table, coarsest
 //                                     level), then a scripted fly-through (48 moving frames),
@@ -156,7 +156,7 @@ struct PageReads
 int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feedback, bool prefetch)
 {
   const std::string name =
-    std::string(feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback") + (prefetch ? "" : "-no-prefetch");
+    std::string(feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback") + (prefetch ? "-prefetch" : "");
   for (int i = 0; i < 9; ++i)
   {
     if (!FileExists(PoolPath(dir, i)))
@@ -515,11 +515,11 @@ int main(int argc, char* argv[])
   }
   if (mode == "flythrough" && argc > 4)
   {
-    bool feedback = true, prefetch = true;
+    bool feedback = true, prefetch = false;
     for (int a = 5; a < argc; ++a)
     {
       feedback = feedback && std::string(argv[a]) != "no-feedback";
-      prefetch = prefetch && std::string(argv[a]) != "no-prefetch";
+      prefetch = prefetch || std::string(argv[a]) == "prefetch";
     }
     return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), feedback, prefetch);
   }
@@ -534,7 +534,7 @@ int main(int argc, char* argv[])
     return Accuracy(argv[2]);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
-  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] [no-prefetch] | "
+  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] [prefetch] | "
                "feedback | accuracy-header | accuracy <dir> | report <csv> <png>\n";
   return 2;
 }

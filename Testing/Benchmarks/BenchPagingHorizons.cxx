@@ -7,7 +7,7 @@
 // row of bench-results/paging.csv.
 //
 //   BenchPagingHorizons generate <dir>      (also a 3 x 2049^2 stack for the accuracy rows)
-//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [no-prefetch]
+//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [prefetch]
 //   BenchPagingHorizons accuracy <dir>      (rows of bench-results/paging-accuracy.csv)
 #include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
 #include "StrataTestHelpers.h"       // For ReadRGB
@@ -143,7 +143,7 @@ int Generate(const std::string& dir)
 
 int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool prefetch)
 {
-  const std::string name = std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "" : "-no-prefetch");
+  const std::string name = std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "-prefetch" : "");
   for (int k = 0; k < 3; ++k)
   {
     if (!FileExists(PoolPath(dir, k)))
@@ -360,7 +360,7 @@ int main(int argc, char* argv[])
   if (mode == "accuracy" && argc > 2)
     return Accuracy(argv[2]);
   if (mode == "flythrough" && argc > 4)
-    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), !(argc > 5 && std::string(argv[5]) == "no-prefetch"));
-  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [no-prefetch]\n";
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), argc > 5 && std::string(argv[5]) == "prefetch");
+  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [prefetch]\n";
   return 2;
 }
