@@ -607,21 +607,10 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   {
     vtkErrorMacro("Could not load " << failure << "; showing the coarser level.");
   }
-  const vtkHeightFieldPager::Statistics stats = in.Pager.GetStatistics();
+  static_cast<vtkHeightFieldPager::Statistics&>(in.Paging) = in.Pager.GetStatistics();
   in.Paging.Paged = true;
-  in.Paging.Converged = stats.Converged;
-  in.Paging.PendingPages = stats.PendingPages;
-  in.Paging.MissesThisFrame = stats.MissesThisFrame;
-  in.Paging.Entered = stats.Entered;
-  in.Paging.CutTiles = stats.CutTiles;
-  in.Paging.FinestTiles = stats.FinestTiles;
   in.Paging.AtlasSlots = in.AtlasSlots;
-  in.Paging.RootPagesRead = stats.RootPagesRead;
-  in.Paging.Failures = stats.Failures;
-  in.Paging.BytesRead = stats.BytesRead;
-  in.Paging.CacheBytes = stats.CacheBytes;
   in.Paging.FeedbackUsed = in.FeedbackActive;
-  in.Paging.FeedbackPages = stats.FeedbackPages;
   return true;
 }
 

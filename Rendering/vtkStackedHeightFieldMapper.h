@@ -45,13 +45,13 @@
 #define vtkStackedHeightFieldMapper_h
 
 #include "StrataModule.h" // For export macro
+#include "vtkHeightFieldPager.h" // For vtkHeightFieldPager::Statistics
 #include "vtkMapper.h"
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
-class vtkHeightFieldPager;
 class vtkHeightFieldStack;
 class vtkImageData;
 class vtkMatrix4x4;
@@ -207,24 +207,15 @@ public:
   ///@}
 
   /// What paging did in the last frame (all zero when the inputs are in core).
-  struct PagingStatistics
+  /// The pager's statistics (vtkHeightFieldPager::Statistics: cut, cache, reads, failures) and
+  /// what the mapper adds on the GPU side.
+  struct PagingStatistics : vtkHeightFieldPager::Statistics
   {
     bool Paged = false;
-    bool Converged = false;      ///< cut settled, nothing missing or pending
-    int PendingPages = 0;        ///< queued or loading
-    int MissesThisFrame = 0;     ///< splits that waited for a page
-    int Entered = 0;             ///< tiles that entered the cut
-    int CutTiles = 0;            ///< resident tiles over all horizons
-    int FinestTiles = 0;         ///< of which level 0
     int AtlasSlots = 0;          ///< tiles the atlas holds
-    int RootPagesRead = 0;       ///< roots read on the render thread (0 when the readers gave them)
-    int Failures = 0;            ///< failed page loads since the pools were opened
-    long long BytesRead = 0;     ///< by the cache's workers since the pools were opened
-    long long BytesUploaded = 0; ///< this frame
-    long long CacheBytes = 0;
+    long long BytesUploaded = 0; ///< this frame, tiles and stitched borders
     bool FeedbackUsed = false;   ///< the cut was driven by feedback this frame
-    int FeedbackPages = 0;       ///< distinct tiles asked for over the last cycle
-    double FeedbackSeconds = 0;  ///< reduction of the last buffer (not its read-back)
+    double FeedbackSeconds = 0;  ///< mapping and reduction of the last buffer
   };
   PagingStatistics GetPagingStatistics() const;
   /// Forgets failed page loads so that they are tried again.
