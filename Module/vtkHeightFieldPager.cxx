@@ -42,6 +42,10 @@ public:
     /// Stitched border texels (x = 0 column, x = B - 1 column, y = 0 row, y = B - 1 row, B
     /// each), empty where the page's own border stands (see Stitch()).
     std::vector<float> Border;
+    /// While the page blends in from its parent (see Morph()): the B x B heights shown, the
+    /// parent's surface at its points when it entered, and the frames since.
+    std::vector<float> Display, From;
+    int MorphStep = 0;
   };
   struct Horizon
   {
@@ -57,6 +61,9 @@ public:
   std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
   std::vector<std::vector<std::array<int, 3>>> PoolGrids; ///< tiles per level of each pool (idem)
   std::atomic<bool> Prefetch{ false };
+  int MorphFrames = 0;
+  static constexpr int MaxMorphingPages = 64;
+  std::vector<std::vector<char>> WasInCut; ///< per horizon and node, after the last Update()
   vtkPageCache Cache;
   vtkVolumeCut Cut;
   vtkBrickAtlasAllocator Atlas;
@@ -220,6 +227,11 @@ public:
     int Node = -1;
     int Level = -1;
     int Base[2] = { 0, 0 };
+    /// The level it shows: a tile blending in from its parent counts as strictly between the
+    /// two (Level + 1 - (k + 1/2) / n at step k of n), so it owns the borders it shares with tiles
+    /// of its own level and yields those it shares with its parent's, and only tiles that show
+    /// the same (siblings, or cousins that entered together) ever tie (see Stitch()).
+    float Effective = -1.0f;
   };
   static constexpr float Big = 3.0e38f;
   std::vector<PageRef> TilePages; ///< per horizon and level-0 tile, refreshed by Update()
@@ -250,7 +262,15 @@ public:
           page.Level = level;
           page.Base[0] = (tx >> level) * this->S;
           page.Base[1] = (ty >> level) * this->S;
+          page.Effective = this->EffectiveLevel(level, it->second);
         }
+  }
+
+  float EffectiveLevel(int level, const Held& held) const
+  {
+    return held.Display.empty() || this->MorphFrames <= 0
+      ? static_cast<float>(level)
+      : static_cast<float>(level) + 1.0f - (static_cast<float>(held.MorphStep) + 0.5f) / static_cast<float>(this->MorphFrames);
   }
 
   /// Texel (qx, qy) of a page as the atlas holds it: stitched on the border, NaN for holes.
@@ -260,7 +280,7 @@ public:
     if (!held.Border.empty() && (qx == 0 || qy == 0 || qx == this->B - 1 || qy == this->B - 1))
       v = held.Border[qx == 0 ? qy : qx == this->B - 1 ? this->B + qy : qy == 0 ? 2 * this->B + qx : 3 * this->B + qx];
     else
-      v = values[static_cast<size_t>(qy) * this->B + qx];
+      v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * this->B + qx];
     return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
   }
 
@@ -299,7 +319,7 @@ public:
     const bool ly = j > 0 && j % this->S == 0 && j / this->S < this->Tiles[1];
     auto consider = [&](int x, int y) {
       const PageRef p = this->TilePage(h, x, y);
-      if (p.Level > best.Level)
+      if (p.Effective > best.Effective)
         best = p;
     };
     if (lx)
@@ -309,6 +329,109 @@ public:
     if (lx && ly)
       consider(tx - 1, ty - 1);
     return best;
+  }
+
+  /// The page `held` of node `node` as a lookup (level, first point), for pages not in the cut.
+  PageRef RefOf(int h, int node, const Held& held) const
+  {
+    const auto& n = this->Pools[this->Horizons[h].PoolIndex]->Tree.GetNode(node);
+    PageRef page;
+    page.Values = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
+    page.Page = &held;
+    page.Node = node;
+    page.Level = n.Level;
+    page.Base[0] = n.Index[0] * this->S;
+    page.Base[1] = n.Index[1] * this->S;
+    return page;
+  }
+
+  /**
+   * Blending of refinements (SetMorphFrames): advances the tiles that blend, starts the tiles
+   * that entered the cut by a split (from their parent's surface as it was shown last frame, so
+   * the first frame looks exactly as before), and adds every blending tile to `uploads`.
+   * Returns whether any shown height changed.
+   */
+  bool Morph(std::vector<vtkHeightFieldPager::Upload>& uploads)
+  {
+    bool changed = false;
+    int morphing = 0;
+    const int B = this->B;
+    const size_t count = static_cast<size_t>(B) * B;
+    this->WasInCut.resize(this->Horizons.size());
+    auto upload = [&](int h, int n) {
+      for (const auto& u : uploads)
+        if (u.Horizon == h && u.Node == n)
+          return;
+      uploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
+    };
+    for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
+    {
+      Horizon& hz = this->Horizons[h];
+      const vtkVolumeBrickTree& tree = this->Pools[hz.PoolIndex]->Tree;
+      std::vector<char> inCut(tree.GetNumberOfNodes(), 0);
+      const std::vector<int> nodes = this->Cut.GetCutNodes(h);
+      for (int n : nodes)
+        inCut[n] = 1;
+      std::vector<char>& was = this->WasInCut[h];
+      const bool first = was.size() != inCut.size();
+      for (auto& [n, held] : hz.Pages)
+        if (!inCut[n] && !held.Display.empty())
+        {
+          held.Display.clear(); // it left the cut: its children took their start from it
+          held.From.clear();
+        }
+      for (int n : nodes)
+      {
+        auto it = hz.Pages.find(n);
+        if (it == hz.Pages.end())
+          continue;
+        Held& held = it->second;
+        const float* own = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
+        if (held.Display.empty())
+        {
+          // Entered by a split this frame: start from the parent's surface.
+          const int parent = tree.GetParent(n);
+          auto p = parent >= 0 ? hz.Pages.find(parent) : hz.Pages.end();
+          if (first || was[n] || this->MorphFrames <= 0 || morphing >= MaxMorphingPages || p == hz.Pages.end())
+            continue;
+          const PageRef from = this->RefOf(h, parent, p->second);
+          const auto& node = tree.GetNode(n);
+          const int l = node.Level;
+          held.From.resize(count);
+          for (int qy = 0; qy < B; ++qy)
+            for (int qx = 0; qx < B; ++qx)
+            {
+              const int i = std::min((node.Index[0] * this->S + qx) << l, this->NX - 1);
+              const int j = std::min((node.Index[1] * this->S + qy) << l, this->NY - 1);
+              held.From[static_cast<size_t>(qy) * B + qx] = this->PageHeight(from, i, j);
+            }
+          held.MorphStep = 0;
+          held.Display = held.From;
+        }
+        else if (++held.MorphStep >= this->MorphFrames)
+        {
+          held.Display.clear(); // done: its own heights from now on
+          held.From.clear();
+          held.LeafMin.clear();
+          upload(h, n);
+          changed = true;
+          continue;
+        }
+        const float t = static_cast<float>(held.MorphStep) / static_cast<float>(this->MorphFrames);
+        for (size_t k = 0; k < count; ++k)
+        {
+          const float a = held.From[k], b = this->IsHole(own[k]) ? std::numeric_limits<float>::quiet_NaN() : own[k];
+          held.Display[k] = std::isnan(a) || std::isnan(b) ? b : Mix(a, b, t);
+        }
+        held.LeafMin.clear();
+        upload(h, n);
+        changed = true;
+        ++morphing;
+      }
+      was.swap(inCut);
+    }
+    this->Stats.MorphingTiles = morphing;
+    return changed;
   }
 
   /**
@@ -333,15 +456,19 @@ public:
     {
       Horizon& hz = this->Horizons[h];
       const vtkVolumeBrickTree& tree = this->Pools[hz.PoolIndex]->Tree;
-      std::vector<std::pair<int, int>> order; // (level, node) of the cut pages held
+      std::vector<std::pair<float, int>> order; // (shown level, node) of the cut pages held
       for (int n : this->Cut.GetCutNodes(h))
-        if (!this->Cut.IsEmpty(h, n) && hz.Pages.count(n))
-          order.emplace_back(tree.GetNode(n).Level, n);
+      {
+        auto it = !this->Cut.IsEmpty(h, n) ? hz.Pages.find(n) : hz.Pages.end();
+        if (it != hz.Pages.end())
+          order.emplace_back(this->EffectiveLevel(tree.GetNode(n).Level, it->second), n);
+      }
       std::sort(order.rbegin(), order.rend()); // coarsest first
       std::vector<float> border(4 * static_cast<size_t>(B));
-      for (const auto& [l, n] : order)
+      for (const auto& [e, n] : order)
       {
         Held& held = hz.Pages[n];
+        const int l = tree.GetNode(n).Level;
         const auto& node = tree.GetNode(n);
         const float* values = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
         // Tiles just outside the page's region: a coarser one among them may own its border.
@@ -353,7 +480,7 @@ public:
           {
             const bool outside = tx < t0[0] || ty < t0[1] || tx >= t1[0] || ty >= t1[1];
             if (outside && tx >= 0 && ty >= 0 && tx < this->Tiles[0] && ty < this->Tiles[1])
-              coarser = this->TilePage(h, tx, ty).Level > l;
+              coarser = this->TilePage(h, tx, ty).Effective > e;
           }
         bool any = false;
         if (coarser)
@@ -365,11 +492,11 @@ public:
               const int qx = side == 0 ? 0 : side == 1 ? B - 1 : t;
               const int qy = side == 2 ? 0 : side == 3 ? B - 1 : t;
               const int i = (base[0] + qx) << l, j = (base[1] + qy) << l;
-              float v = values[static_cast<size_t>(qy) * B + qx];
+              float v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * B + qx];
               if (i < this->NX && j < this->NY)
               {
                 const PageRef owner = this->Owner(h, i, j);
-                if (owner.Level > l)
+                if (owner.Effective > e)
                 {
                   v = this->PageHeight(owner, i, j);
                   any = true;
@@ -457,6 +584,7 @@ public:
     this->InitializedSlots = -1;
     this->Table.clear();
     this->TilePages.clear();
+    this->WasInCut.clear();
     this->TableLevels.clear();
     this->Open = false;
     this->Stats = vtkHeightFieldPager::Statistics();
@@ -786,6 +914,11 @@ void vtkHeightFieldPager::SetPrefetch(bool prefetch)
   this->Internals->Prefetch = prefetch;
 }
 
+void vtkHeightFieldPager::SetMorphFrames(int frames)
+{
+  this->Internals->MorphFrames = std::max(0, frames);
+}
+
 void vtkHeightFieldPager::SetTileSize(int tileSize)
 {
   vtkInternals& in = *this->Internals;
@@ -881,9 +1014,10 @@ bool vtkHeightFieldPager::Update(
   for (size_t e = 0; e < levels.size(); ++e)
     levels[e] = in.Table[4 * e + 3];
   const bool treeChanged = levels != in.TableLevels;
+  const bool morphed = in.Morph(uploads);
   in.RefreshTilePages();
   in.BorderUploads.clear();
-  if (treeChanged)
+  if (treeChanged || morphed)
   {
     in.TableLevels.swap(levels);
     in.Stitch();
@@ -908,8 +1042,9 @@ bool vtkHeightFieldPager::Update(
   // With feedback, settled also means every pixel of the lattice was sampled since the view
   // last changed.
   const bool cycled = !in.UseFeedback || in.FeedbackFrame - in.CycleStart >= in.FeedbackCycle;
-  in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0 && cycled;
-  return tableChanged || treeChanged;
+  in.Stats.Converged =
+    entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0 && cycled && in.Stats.MorphingTiles == 0;
+  return tableChanged || treeChanged || morphed;
 }
 
 void vtkHeightFieldPager::SetFeedback(

@@ -27,6 +27,9 @@
  *   any cut is one surface without cracks or T-junctions, whichever way a ray looks it up, and
  *   converged (all level 0) it is the data itself. Borders that change with the cut are
  *   re-uploaded alone (GetBorderUploads).
+ * - Blending (SetMorphFrames): a tile that enters by a split shows its parent's surface first and
+ *   its own n frames later, so refinements do not pop either; while it blends it counts as a
+ *   level between the two for stitching.
  * - The min-max quadtree (vtkMinMaxQuadtree) is rebuilt from leaf ranges whenever the cut
  *   changes: a leaf's range is that of the page points its cells interpolate under the cut,
  *   computed once per resident page from its data. At level 0 that is exactly the in-core
@@ -83,6 +86,7 @@ public:
     int FinestTiles = 0;         ///< of which level 0
     int Entered = 0;             ///< tiles that entered the cut this frame
     int FeedbackPages = 0;       ///< distinct tiles the feedback asked for (last cycle)
+    int MorphingTiles = 0;       ///< tiles still blending from their parent's surface
   };
 
   vtkHeightFieldPager();
@@ -126,6 +130,14 @@ public:
   /// After a tile loaded on demand, queue its four neighbours and its parent below every demand
   /// request (default off; see vtkStackedHeightFieldMapper::SetPrefetch).
   void SetPrefetch(bool prefetch);
+  /**
+   * Frames over which a tile that entered the cut by a split blends from its parent's surface
+   * (as it was shown) to its own: frame k of n shows parent + (own - parent) k / n, so a
+   * refinement never pops (default 0: at once). At most 64 tiles blend at a time (the others
+   * appear at once); each is uploaded again every frame it blends. The page table, GetHeight
+   * and the quadtree follow the blended heights, and the cut is not converged while any blends.
+   */
+  void SetMorphFrames(int frames);
   /// Forgets what the atlas holds (its texture was lost): the next Update() uploads all again.
   void InvalidateAtlas();
   /// Requested quadtree leaf size; the effective one divides B - 1 (see GetLeafSize()).

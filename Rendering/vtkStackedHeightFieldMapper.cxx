@@ -539,6 +539,7 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
   in.Pager.SetPagesPerFrame(this->PagesPerFrame);
   in.Pager.SetPrefetch(this->Prefetch);
+  in.Pager.SetMorphFrames(this->MorphFrames);
 
   // The last frame's feedback when its read-back was deferred (DeferFeedbackReadBack).
   if (in.FeedbackPending)
@@ -1301,6 +1302,7 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
      << this->DeferFeedbackReadBack << "\n";
   os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << "\n";
   os << indent << "PageCacheBudget: " << this->PageCacheBudget << ", AtlasBudget: " << this->AtlasBudget
-     << ", PagesPerFrame: " << this->PagesPerFrame << ", Prefetch: " << this->Prefetch << "\n";
+     << ", PagesPerFrame: " << this->PagesPerFrame << ", Prefetch: " << this->Prefetch
+     << ", MorphFrames: " << this->MorphFrames << "\n";
   os << indent << "Horizons: " << this->Internals->Stack.GetNumberOfLayers() << "\n";
 }

@@ -169,6 +169,18 @@ public:
 
   ///@{
   /**
+   * Frames over which a refined tile blends from its parent's surface to its own (default 4;
+   * 0: at once). Levels are stitched, so no cut shows a crack; this keeps a refinement from
+   * popping too: frame k of n shows parent + (own - parent) k / n (vtkHeightFieldPager::
+   * SetMorphFrames). The price: a blending tile is uploaded every frame, and settling takes n
+   * more frames.
+   */
+  vtkSetClampMacro(MorphFrames, int, 0, 64);
+  vtkGetMacro(MorphFrames, int);
+  ///@}
+
+  ///@{
+  /**
    * Level-of-detail feedback while paging (default on): the ray caster writes the tile each
    * sampled ray hit, at the level its pixel footprint wants, into a buffer of 1/FeedbackScale
    * of the viewport per axis (default 4; one pixel of each lattice cell per frame, cycling),
@@ -276,6 +288,7 @@ private:
   double AtlasBudget = 128.0;
   int PagesPerFrame = 64;
   bool Prefetch = false;
+  int MorphFrames = 4;
   bool Feedback = true;
   int FeedbackScale = 4;
   double LevelOfDetailThreshold = 0.0;

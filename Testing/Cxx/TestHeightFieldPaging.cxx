@@ -466,6 +466,43 @@ int TestHeightFieldPaging(int, char*[])
       "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles coarse");
   }
   {
+    // Refinement without pops: at a still camera, the largest change of any grid height from
+    // one frame to the next, tiles blending in over MorphFrames frames and at once.
+    cam->DeepCopy(home);
+    ren->ResetCameraClippingRange();
+    double jump[2] = { 0.0, 0.0 };
+    int settled[2] = { 0, 0 };
+    for (int morph = 0; morph < 2; ++morph)
+    {
+      vtkNew<vtkStackedHeightFieldMapper> m;
+      m->SetTileSize(32);
+      m->SetPagesPerFrame(3);
+      m->SetMorphFrames(morph ? 4 : 0);
+      std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
+      PagedFrom(pools, m, rs);
+      std::vector<float> before;
+      for (int f = 0; f < 300 && !m->GetPagingStatistics().Converged; ++f)
+      {
+        render(m);
+        const vtkHeightFieldPager* pg = m->GetPager();
+        std::vector<float> now;
+        for (int k = 0; k < pg->GetNumberOfHorizons(); ++k)
+          for (int j = 0; j < pg->GetNY(); ++j)
+            for (int i = 0; i < pg->GetNX(); ++i)
+              now.push_back(pg->GetHeight(k, i, j));
+        for (size_t q = 0; q < now.size() && q < before.size(); ++q)
+          if (!std::isnan(now[q]) && !std::isnan(before[q]))
+            jump[morph] = std::max(jump[morph], double(std::abs(now[q] - before[q])));
+        before.swap(now);
+        settled[morph] = f + 1;
+        m->WaitForPages(1.0);
+      }
+    }
+    std::cout << "HFPaging: largest height change between two frames: " << jump[0] << " refining at once (" << settled[0]
+              << " frames), " << jump[1] << " blending over 4 frames (" << settled[1] << " frames)\n";
+    Check(jump[1] > 0.0 && jump[1] <= 0.6 * jump[0], "blended refinement: no frame jumps by more than 0.6 of the largest unblended pop");
+  }
+  {
     // Zoomed into a corner: tiles out of view are never refined.
     cam->DeepCopy(home);
     cam->Dolly(10.0);
