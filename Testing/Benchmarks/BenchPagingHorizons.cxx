@@ -7,7 +7,7 @@
 // row of bench-results/paging.csv.
 //
 //   BenchPagingHorizons generate <dir>      (also a 3 x 2049^2 stack for the accuracy rows)
-//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [prefetch]
+//   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [prefetch] [no-morph]
 //   BenchPagingHorizons accuracy <dir>      (rows of bench-results/paging-accuracy.csv)
 #include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
 #include "StrataTestHelpers.h"       // For ReadRGB
@@ -141,9 +141,10 @@ int Generate(const std::string& dir)
   return 0;
 }
 
-int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool prefetch)
+int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool prefetch, bool morph)
 {
-  const std::string name = std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "-prefetch" : "");
+  const std::string name =
+    std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "-prefetch" : "") + (morph ? "" : "-no-morph");
   for (int k = 0; k < 3; ++k)
   {
     if (!FileExists(PoolPath(dir, k)))
@@ -160,6 +161,8 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool pref
   mapper->SetHeightScale(-0.1); // decimetres, depth downwards
   mapper->SetPageCacheBudget(cacheMB);
   mapper->SetPrefetch(prefetch);
+  if (!morph)
+    mapper->SetMorphFrames(0);
   mapper->SetAtlasBudget(atlasMB);
   mapper->SetPagesPerFrame(32);
   mapper->SetLevelOfDetailThreshold(1.0); // about a cell per pixel: no I/O for sub-pixel detail
@@ -225,10 +228,10 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool pref
   const auto st = mapper->GetPagingStatistics();
   std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
               "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; "
-              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
+              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s, refinements blended over %d frames; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
               "render thread read tiles itself; %d failed tiles; %dx%d\n",
     name.c_str(), cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
-    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, prefetch ? "on" : "off", st.Failures, Size, Size);
+    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, prefetch ? "on" : "off", mapper->GetMorphFrames(), st.Failures, Size, Size);
   if (const char* png = std::getenv("STRATA_BENCH_PNG"))
   {
     // The converged last pose, for a look.
@@ -360,7 +363,15 @@ int main(int argc, char* argv[])
   if (mode == "accuracy" && argc > 2)
     return Accuracy(argv[2]);
   if (mode == "flythrough" && argc > 4)
-    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), argc > 5 && std::string(argv[5]) == "prefetch");
-  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [prefetch]\n";
+  {
+    bool prefetch = false, morph = true;
+    for (int a = 5; a < argc; ++a)
+    {
+      prefetch = prefetch || std::string(argv[a]) == "prefetch";
+      morph = morph && std::string(argv[a]) != "no-morph";
+    }
+    return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), prefetch, morph);
+  }
+  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [prefetch] [no-morph]\n";
   return 2;
 }
