@@ -46,6 +46,10 @@ public:
     /// parent's surface at its points when it entered, and the frames since.
     std::vector<float> Display, From;
     int MorphStep = 0;
+    /// What the stitched border texels span while the pages they follow blend (equal to
+    /// Border where those do not): what the leaf ranges bound, so that a blend does not
+    /// rebuild the quadtree every frame.
+    std::vector<float> BorderLo, BorderHi;
   };
   struct Horizon
   {
@@ -190,11 +194,13 @@ public:
         {
           for (int qx = qx0; qx <= qx1; ++qx)
           {
-            const float v = this->Texel(held, values, qx, qy);
-            if (!std::isnan(v))
+            // What the texel spans until the blends under way end (its value if none).
+            float vlo, vhi;
+            this->TexelRange(held, values, qx, qy, vlo, vhi);
+            if (!std::isnan(vlo))
             {
-              lo = std::min(lo, v);
-              hi = std::max(hi, v);
+              lo = std::min(lo, vlo);
+              hi = std::max(hi, vhi);
             }
           }
         }
@@ -286,6 +292,52 @@ public:
 
   static float Mix(float a, float b, float t) { return a * (1.0f - t) + b * t; }
 
+  /// The range texel (qx, qy) of a page spans over the blends under way: a blending page's
+  /// texel lies between its parent's and its own height, a stitched border texel inside its
+  /// envelope; otherwise the texel itself. NaN for a hole.
+  void TexelRange(const Held& held, const float* values, int qx, int qy, float& lo, float& hi) const
+  {
+    const bool border = qx == 0 || qy == 0 || qx == this->B - 1 || qy == this->B - 1;
+    if (border && !held.Border.empty())
+    {
+      const size_t k = qx == 0 ? qy : qx == this->B - 1 ? this->B + qy : qy == 0 ? 2 * this->B + qx : 3 * this->B + qx;
+      lo = held.BorderLo[k];
+      hi = held.BorderHi[k];
+      if (this->IsHole(lo) || this->IsHole(hi))
+        lo = hi = std::numeric_limits<float>::quiet_NaN();
+      return;
+    }
+    const size_t k = static_cast<size_t>(qy) * this->B + qx;
+    const float v = this->IsHole(values[k]) ? std::numeric_limits<float>::quiet_NaN() : values[k];
+    lo = hi = v;
+    if (!held.From.empty() && !std::isnan(v) && !std::isnan(held.From[k]))
+    {
+      lo = std::min(v, held.From[k]);
+      hi = std::max(v, held.From[k]);
+    }
+  }
+
+  /// Level l of a page at level-0 point (i, j) from the heights `values` (B x B) alone.
+  float ArrayHeight(const PageRef& page, const float* values, int i, int j) const
+  {
+    const int l = page.Level;
+    const int qx = (i >> l) - page.Base[0], qy = (j >> l) - page.Base[1];
+    const int rx = i & ((1 << l) - 1), ry = j & ((1 << l) - 1);
+    auto at = [&](int x, int y) {
+      const float v = values[static_cast<size_t>(y) * this->B + x];
+      return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
+    };
+    const float h00 = at(qx, qy);
+    if (rx == 0 && ry == 0)
+      return h00;
+    const float h10 = rx ? at(qx + 1, qy) : h00;
+    const float h01 = ry ? at(qx, qy + 1) : h00;
+    const float h11 = rx && ry ? at(qx + 1, qy + 1) : (rx ? h10 : h01);
+    const float fx = static_cast<float>(rx) / static_cast<float>(1 << l);
+    const float fy = static_cast<float>(ry) / static_cast<float>(1 << l);
+    return Mix(Mix(h00, h10, fx), Mix(h01, h11, fx), fy);
+  }
+
   /// Level l of a page bilinearly at level-0 point (i, j) (strataHeight's arithmetic).
   float PageHeight(const PageRef& page, int i, int j) const
   {
@@ -351,9 +403,11 @@ public:
    * the first frame looks exactly as before), and adds every blending tile to `uploads`.
    * Returns whether any shown height changed.
    */
+  bool MorphEnded = false; ///< a blend ended (or started) in the last Morph(): rebuild the tree
   bool Morph(std::vector<vtkHeightFieldPager::Upload>& uploads)
   {
     bool changed = false;
+    this->MorphEnded = false;
     int morphing = 0;
     const int B = this->B;
     const size_t count = static_cast<size_t>(B) * B;
@@ -407,6 +461,8 @@ public:
             }
           held.MorphStep = 0;
           held.Display = held.From;
+          held.LeafMin.clear(); // from now on the leaves bound both its parent's and its own heights
+          this->MorphEnded = true;
         }
         else if (++held.MorphStep >= this->MorphFrames)
         {
@@ -415,6 +471,7 @@ public:
           held.LeafMin.clear();
           upload(h, n);
           changed = true;
+          this->MorphEnded = true;
           continue;
         }
         const float t = static_cast<float>(held.MorphStep) / static_cast<float>(this->MorphFrames);
@@ -423,7 +480,6 @@ public:
           const float a = held.From[k], b = this->IsHole(own[k]) ? std::numeric_limits<float>::quiet_NaN() : own[k];
           held.Display[k] = std::isnan(a) || std::isnan(b) ? b : Mix(a, b, t);
         }
-        held.LeafMin.clear();
         upload(h, n);
         changed = true;
         ++morphing;
@@ -464,7 +520,7 @@ public:
           order.emplace_back(this->EffectiveLevel(tree.GetNode(n).Level, it->second), n);
       }
       std::sort(order.rbegin(), order.rend()); // coarsest first
-      std::vector<float> border(4 * static_cast<size_t>(B));
+      std::vector<float> border(4 * static_cast<size_t>(B)), borderLo(border.size()), borderHi(border.size());
       for (const auto& [e, n] : order)
       {
         Held& held = hz.Pages[n];
@@ -493,16 +549,34 @@ public:
               const int qy = side == 2 ? 0 : side == 3 ? B - 1 : t;
               const int i = (base[0] + qx) << l, j = (base[1] + qy) << l;
               float v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * B + qx];
+              float vlo = v, vhi = v;
+              if (!held.From.empty()) // its own texel blends: between its parent's and its own
+              {
+                const float own = values[static_cast<size_t>(qy) * B + qx], from = held.From[static_cast<size_t>(qy) * B + qx];
+                vlo = std::min(own, from);
+                vhi = std::max(own, from);
+              }
               if (i < this->NX && j < this->NY)
               {
                 const PageRef owner = this->Owner(h, i, j);
                 if (owner.Effective > e)
                 {
                   v = this->PageHeight(owner, i, j);
+                  vlo = vhi = v;
+                  if (!owner.Page->From.empty())
+                  {
+                    // The owner blends: this texel moves between its parent's and its own there.
+                    const float a = this->ArrayHeight(owner, owner.Page->From.data(), i, j);
+                    const float b = this->ArrayHeight(owner, owner.Values, i, j);
+                    vlo = std::min({ v, a, b });
+                    vhi = std::max({ v, a, b });
+                  }
                   any = true;
                 }
               }
               border[static_cast<size_t>(side) * B + t] = v;
+              borderLo[static_cast<size_t>(side) * B + t] = vlo;
+              borderHi[static_cast<size_t>(side) * B + t] = vhi;
             }
         }
         if (!any)
@@ -510,6 +584,8 @@ public:
           if (!held.Border.empty())
           {
             held.Border.clear();
+            held.BorderLo.clear();
+            held.BorderHi.clear();
             held.LeafMin.clear();
             this->BorderUploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
           }
@@ -518,14 +594,23 @@ public:
         if (held.Border != border)
         {
           held.Border = border;
-          held.LeafMin.clear();
           this->BorderUploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
+        }
+        if (held.BorderLo != borderLo || held.BorderHi != borderHi)
+        {
+          held.BorderLo = borderLo;
+          held.BorderHi = borderHi;
+          held.LeafMin.clear();
         }
       }
     }
   }
 
-  void RebuildTree()
+  std::vector<float> BuiltMin, BuiltMax; ///< leaf ranges the quadtree was last built from
+
+  /// Rebuilds the quadtree from the leaf ranges; unless `force`, only when some leaf left the
+  /// ranges it was built from. Returns whether it rebuilt.
+  bool RebuildTree(bool force)
   {
     const int H = static_cast<int>(this->Horizons.size());
     const auto leaves = vtkMinMaxQuadtree::GetLeafCount(this->NX, this->NY, this->Leaf);
@@ -561,7 +646,20 @@ public:
         }
       }
     }
+    // Only blends moved (no level changed, none started or ended): when every leaf still lies
+    // inside the range the tree was built with, the tree still bounds the surface.
+    if (!force && lmin.size() == this->BuiltMin.size())
+    {
+      bool inside = true;
+      for (size_t q = 0; q < lmin.size() && inside; ++q)
+        inside = !(lmin[q] <= lmax[q]) || (lmin[q] >= this->BuiltMin[q] && lmax[q] <= this->BuiltMax[q]);
+      if (inside)
+        return false;
+    }
     this->Tree.BuildFromLeafRanges(this->NX, this->NY, H, this->Leaf, lmin, lmax);
+    this->BuiltMin.swap(lmin);
+    this->BuiltMax.swap(lmax);
+    return true;
   }
 
   void Close()
@@ -585,6 +683,8 @@ public:
     this->Table.clear();
     this->TilePages.clear();
     this->WasInCut.clear();
+    this->BuiltMin.clear();
+    this->BuiltMax.clear();
     this->TableLevels.clear();
     this->Open = false;
     this->Stats = vtkHeightFieldPager::Statistics();
@@ -1017,11 +1117,12 @@ bool vtkHeightFieldPager::Update(
   const bool morphed = in.Morph(uploads);
   in.RefreshTilePages();
   in.BorderUploads.clear();
+  bool rebuilt = false;
   if (treeChanged || morphed)
   {
     in.TableLevels.swap(levels);
     in.Stitch();
-    in.RebuildTree();
+    rebuilt = in.RebuildTree(treeChanged || in.MorphEnded);
   }
 
   const vtkPageCache::Statistics cs = in.Cache.GetStatistics();
@@ -1044,7 +1145,7 @@ bool vtkHeightFieldPager::Update(
   const bool cycled = !in.UseFeedback || in.FeedbackFrame - in.CycleStart >= in.FeedbackCycle;
   in.Stats.Converged =
     entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0 && cycled && in.Stats.MorphingTiles == 0;
-  return tableChanged || treeChanged || morphed;
+  return tableChanged || treeChanged || rebuilt;
 }
 
 void vtkHeightFieldPager::SetFeedback(
