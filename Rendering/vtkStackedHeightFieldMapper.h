@@ -22,8 +22,9 @@
  * the horizons itself (vtkHeightFieldPager): the readers only serve their coarsest level, a
  * RAM cache filled by worker threads (PageCacheBudget) feeds a GPU atlas of tiles
  * (AtlasBudget, PagesPerFrame uploads per frame), the shader reads heights through a page
- * table, and the quadtree describes the resident data. Every frame shows a complete, coarser
- * surface until the cut settles; converged, the image equals the in-core one.
+ * table, and the quadtree describes the resident data. Tiles of different levels are stitched
+ * (no cracks) and refined tiles blend in over MorphFrames frames (no pops). Every frame shows a
+ * complete, coarser surface until the cut settles; converged, the image equals the in-core one.
  *
  * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
  * table code with solid colours, no hole test when no horizon has holes. GetFragmentShaderSource

@@ -2,8 +2,10 @@
 // texture). Level-0 grid point p lies in level-0 tile p / S (S = B - 1, tiles share their
 // border points); the page table names the resident tile of level l covering it (its atlas
 // slot) and level l holds every 2^l-th point, so the height is level l interpolated
-// bilinearly at p / 2^l. Every point gets one value, so tiles of different levels meet
-// without cracks; at level 0 it is a single fetch of the data itself.
+// bilinearly at p / 2^l; at level 0 it is a single fetch of the data itself. Tiles of
+// different levels meet without cracks because the atlas holds them stitched: a finer tile's
+// border texels lie on its coarser neighbour's border (vtkHeightFieldPager), so this lookup and
+// the layer's search, which walks each tile's own texels, see one surface.
 uniform sampler2DArray uAtlas;      // one B x B tile per layer (slot)
 uniform usampler2DArray uPageTable; // per level-0 tile and horizon: slot x, y, z and level
 uniform int uPageStride;            // S = B - 1
