@@ -413,10 +413,13 @@ public:
     const size_t count = static_cast<size_t>(B) * B;
     this->WasInCut.resize(this->Horizons.size());
     auto upload = [&](int h, int n) {
+      const int slot = this->Cut.GetSlot(h, n);
+      if (slot < 0)
+        return; // in the cut without an atlas slot: not drawn
       for (const auto& u : uploads)
         if (u.Horizon == h && u.Node == n)
           return;
-      uploads.push_back({ h, n, this->Cut.GetSlot(h, n) });
+      uploads.push_back({ h, n, slot });
     };
     for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
     {
