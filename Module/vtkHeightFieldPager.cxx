@@ -260,15 +260,8 @@ public:
           const int node = this->NodeOfTile(h, tx, ty, level);
           const auto& pages = this->Horizons[h].Pages;
           auto it = node >= 0 ? pages.find(node) : pages.end();
-          if (it == pages.end())
-            continue;
-          page.Values = reinterpret_cast<const float*>(it->second.Data->data()) + it->second.Offset;
-          page.Page = &it->second;
-          page.Node = node;
-          page.Level = level;
-          page.Base[0] = (tx >> level) * this->S;
-          page.Base[1] = (ty >> level) * this->S;
-          page.Effective = this->EffectiveLevel(level, it->second);
+          if (it != pages.end())
+            page = this->RefOf(h, node, it->second);
         }
   }
 
@@ -279,12 +272,20 @@ public:
       : static_cast<float>(level) + 1.0f - (static_cast<float>(held.MorphStep) + 0.5f) / static_cast<float>(this->MorphFrames);
   }
 
+  /// Index of page texel (qx, qy) in a stitched border (Held::Border's layout), -1 inside.
+  int BorderIndex(int qx, int qy) const
+  {
+    const int B = this->B;
+    return qx == 0 ? qy : qx == B - 1 ? B + qy : qy == 0 ? 2 * B + qx : qy == B - 1 ? 3 * B + qx : -1;
+  }
+
   /// Texel (qx, qy) of a page as the atlas holds it: stitched on the border, NaN for holes.
   float Texel(const Held& held, const float* values, int qx, int qy) const
   {
     float v;
-    if (!held.Border.empty() && (qx == 0 || qy == 0 || qx == this->B - 1 || qy == this->B - 1))
-      v = held.Border[qx == 0 ? qy : qx == this->B - 1 ? this->B + qy : qy == 0 ? 2 * this->B + qx : 3 * this->B + qx];
+    const int b = held.Border.empty() ? -1 : this->BorderIndex(qx, qy);
+    if (b >= 0)
+      v = held.Border[b];
     else
       v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * this->B + qx];
     return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
@@ -297,12 +298,11 @@ public:
   /// envelope; otherwise the texel itself. NaN for a hole.
   void TexelRange(const Held& held, const float* values, int qx, int qy, float& lo, float& hi) const
   {
-    const bool border = qx == 0 || qy == 0 || qx == this->B - 1 || qy == this->B - 1;
-    if (border && !held.Border.empty())
+    const int b = held.Border.empty() ? -1 : this->BorderIndex(qx, qy);
+    if (b >= 0)
     {
-      const size_t k = qx == 0 ? qy : qx == this->B - 1 ? this->B + qy : qy == 0 ? 2 * this->B + qx : 3 * this->B + qx;
-      lo = held.BorderLo[k];
-      hi = held.BorderHi[k];
+      lo = held.BorderLo[b];
+      hi = held.BorderHi[b];
       if (this->IsHole(lo) || this->IsHole(hi))
         lo = hi = std::numeric_limits<float>::quiet_NaN();
       return;
@@ -317,43 +317,38 @@ public:
     }
   }
 
-  /// Level l of a page at level-0 point (i, j) from the heights `values` (B x B) alone.
-  float ArrayHeight(const PageRef& page, const float* values, int i, int j) const
+  /// Level l of a page bilinearly at level-0 point (i, j) (strataHeight's arithmetic), its
+  /// texels read by `texel(qx, qy)`.
+  template <typename Texel>
+  float Bilinear(const PageRef& page, int i, int j, Texel texel) const
   {
     const int l = page.Level;
     const int qx = (i >> l) - page.Base[0], qy = (j >> l) - page.Base[1];
     const int rx = i & ((1 << l) - 1), ry = j & ((1 << l) - 1);
-    auto at = [&](int x, int y) {
-      const float v = values[static_cast<size_t>(y) * this->B + x];
-      return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
-    };
-    const float h00 = at(qx, qy);
+    const float h00 = texel(qx, qy);
     if (rx == 0 && ry == 0)
       return h00;
-    const float h10 = rx ? at(qx + 1, qy) : h00;
-    const float h01 = ry ? at(qx, qy + 1) : h00;
-    const float h11 = rx && ry ? at(qx + 1, qy + 1) : (rx ? h10 : h01);
+    const float h10 = rx ? texel(qx + 1, qy) : h00;
+    const float h01 = ry ? texel(qx, qy + 1) : h00;
+    const float h11 = rx && ry ? texel(qx + 1, qy + 1) : (rx ? h10 : h01);
     const float fx = static_cast<float>(rx) / static_cast<float>(1 << l);
     const float fy = static_cast<float>(ry) / static_cast<float>(1 << l);
     return Mix(Mix(h00, h10, fx), Mix(h01, h11, fx), fy);
   }
 
-  /// Level l of a page bilinearly at level-0 point (i, j) (strataHeight's arithmetic).
+  /// The page as shown (stitched, blended) at level-0 point (i, j).
   float PageHeight(const PageRef& page, int i, int j) const
   {
-    const int l = page.Level;
-    const int qx = (i >> l) - page.Base[0], qy = (j >> l) - page.Base[1];
-    const int rx = i & ((1 << l) - 1), ry = j & ((1 << l) - 1);
-    const Held& held = *page.Page;
-    const float h00 = this->Texel(held, page.Values, qx, qy);
-    if (rx == 0 && ry == 0)
-      return h00;
-    const float h10 = rx ? this->Texel(held, page.Values, qx + 1, qy) : h00;
-    const float h01 = ry ? this->Texel(held, page.Values, qx, qy + 1) : h00;
-    const float h11 = rx && ry ? this->Texel(held, page.Values, qx + 1, qy + 1) : (rx ? h10 : h01);
-    const float fx = static_cast<float>(rx) / static_cast<float>(1 << l);
-    const float fy = static_cast<float>(ry) / static_cast<float>(1 << l);
-    return Mix(Mix(h00, h10, fx), Mix(h01, h11, fx), fy);
+    return this->Bilinear(page, i, j, [&](int qx, int qy) { return this->Texel(*page.Page, page.Values, qx, qy); });
+  }
+
+  /// The page's level at (i, j) from the heights `values` (B x B) alone, borders unstitched.
+  float ArrayHeight(const PageRef& page, const float* values, int i, int j) const
+  {
+    return this->Bilinear(page, i, j, [&](int qx, int qy) {
+      const float v = values[static_cast<size_t>(qy) * this->B + qx];
+      return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
+    });
   }
 
   float Height(int h, int i, int j) const
@@ -383,7 +378,7 @@ public:
     return best;
   }
 
-  /// The page `held` of node `node` as a lookup (level, first point), for pages not in the cut.
+  /// The page `held` of node `node` as a lookup (level, first point, shown level).
   PageRef RefOf(int h, int node, const Held& held) const
   {
     const auto& n = this->Pools[this->Horizons[h].PoolIndex]->Tree.GetNode(node);
@@ -394,6 +389,7 @@ public:
     page.Level = n.Level;
     page.Base[0] = n.Index[0] * this->S;
     page.Base[1] = n.Index[1] * this->S;
+    page.Effective = this->EffectiveLevel(n.Level, held);
     return page;
   }
 
@@ -408,10 +404,7 @@ public:
   {
     bool changed = false;
     this->MorphEnded = false;
-    int morphing = 0;
-    const int B = this->B;
-    const size_t count = static_cast<size_t>(B) * B;
-    this->WasInCut.resize(this->Horizons.size());
+    this->Stats.MorphingTiles = 0;
     auto upload = [&](int h, int n) {
       const int slot = this->Cut.GetSlot(h, n);
       if (slot < 0)
@@ -421,6 +414,28 @@ public:
           return;
       uploads.push_back({ h, n, slot });
     };
+    if (this->MorphFrames <= 0)
+    {
+      // Off: no cut membership to track per frame; blends under way when it was switched off
+      // end now.
+      this->WasInCut.clear();
+      for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
+        for (auto& [n, held] : this->Horizons[h].Pages)
+          if (!held.Display.empty())
+          {
+            held.Display.clear();
+            held.From.clear();
+            held.LeafMin.clear();
+            if (this->Cut.IsInCut(h, n))
+              upload(h, n);
+            changed = this->MorphEnded = true;
+          }
+      return changed;
+    }
+    int morphing = 0;
+    const int B = this->B;
+    const size_t count = static_cast<size_t>(B) * B;
+    this->WasInCut.resize(this->Horizons.size());
     for (int h = 0; h < static_cast<int>(this->Horizons.size()); ++h)
     {
       Horizon& hz = this->Horizons[h];
@@ -1118,7 +1133,9 @@ bool vtkHeightFieldPager::Update(
     levels[e] = in.Table[4 * e + 3];
   const bool treeChanged = levels != in.TableLevels;
   const bool morphed = in.Morph(uploads);
-  in.RefreshTilePages();
+  // The pages behind the tiles change only with the cut's levels; their shown levels with blends.
+  if (treeChanged || morphed || in.TilePages.empty())
+    in.RefreshTilePages();
   in.BorderUploads.clear();
   bool rebuilt = false;
   if (treeChanged || morphed)

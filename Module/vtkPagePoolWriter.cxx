@@ -1,6 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkPagePoolWriter.h"
 
+#include "vtkVolumeBrickTree.h"
+
 #include <zstd.h>
 
 #include <algorithm>
@@ -239,21 +241,7 @@ struct Converter
         }
         double* fw = this->FilteredWeight.data() + static_cast<size_t>(y) * cd[0];
         for (int cx = 0; cx < cd[0]; ++cx)
-        {
-          double sum = 0.0, weight = 0.0;
-          for (int d = -1; d <= 1; ++d)
-          {
-            const T v = row[tap(cx, d, fd[0])];
-            if (!this->Skip(v))
-            {
-              const double w = d == 0 ? 2.0 : 1.0;
-              sum += w * static_cast<double>(v);
-              weight += w;
-            }
-          }
-          fx[cx] = sum;
-          fw[cx] = weight;
-        }
+          fx[cx] = vtkVolumeBrickTree::FilterTaps(row, cx, fd[0], [this](T t) { return this->Skip(t); }, fw[cx]);
       }
       auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& acc) {
         for (int cy = 0; cy < cd[1]; ++cy)

@@ -273,18 +273,8 @@ void vtkVolumeBrickTree::Downsample(int l)
         {
           if constexpr (holes)
           {
-            double sum = 0.0, weight = 0.0;
-            for (int d = -1; d <= 1; ++d)
-            {
-              const double v = static_cast<double>(row[tap(cx, d, fd[0])]);
-              if (!std::isnan(v))
-              {
-                sum += (d == 0 ? 2.0 : 1.0) * v;
-                weight += d == 0 ? 2.0 : 1.0;
-              }
-            }
-            fx[cx] = sum;
-            filteredW[static_cast<size_t>(y) * cd[0] + cx] = weight;
+            fx[cx] = FilterTaps(row, cx, fd[0], [](T t) { return std::isnan(static_cast<double>(t)); },
+              filteredW[static_cast<size_t>(y) * cd[0] + cx]);
           }
           else
           {

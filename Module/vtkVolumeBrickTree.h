@@ -53,6 +53,30 @@ public:
   /// Bytes per voxel of a scalar type.
   static int GetScalarSize(ScalarType type);
 
+  /**
+   * One axis of the [1 2 1] filter every coarse level is built with (here and in
+   * vtkPagePoolWriter): the weighted sum of row[2v - 1], row[2v], row[2v + 1] (clamped to the
+   * row's n values) over the taps that hold data (`skip(value)` false), their weight in
+   * `weight`. Holes take no part, so a coarse value is a hole only where every tap is.
+   */
+  template <typename T, typename Skip>
+  static double FilterTaps(const T* row, int v, int n, Skip skip, double& weight)
+  {
+    double sum = 0.0;
+    weight = 0.0;
+    for (int d = -1; d <= 1; ++d)
+    {
+      const int i = 2 * v + d < 0 ? 0 : (2 * v + d > n - 1 ? n - 1 : 2 * v + d);
+      if (!skip(row[i]))
+      {
+        const double w = d == 0 ? 2.0 : 1.0;
+        sum += w * static_cast<double>(row[i]);
+        weight += w;
+      }
+    }
+    return sum;
+  }
+
   struct Node
   {
     int Level;

@@ -6,6 +6,15 @@
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
+void vtkFeedbackReadBack::Allocate(unsigned int& buffer, size_t count)
+{
+  if (!buffer)
+    glGenBuffers(1, &buffer);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+  glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), nullptr, GL_STREAM_READ);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+}
+
 void vtkFeedbackReadBack::Queue(vtkOpenGLRenderWindow* renWin, unsigned int texture, unsigned int buffer)
 {
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);

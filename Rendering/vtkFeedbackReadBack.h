@@ -23,6 +23,8 @@ class vtkOpenGLRenderWindow;
 class STRATA_EXPORT vtkFeedbackReadBack
 {
 public:
+  /// Creates `buffer` if 0 and sizes it (stream read) for `count` ids, contents undefined.
+  static void Allocate(unsigned int& buffer, size_t count);
   /// Queues the copy of `texture` (R32UI, the whole level 0) into `buffer` (a pixel pack
   /// buffer at least as large), on a texture unit of `renWin`'s manager.
   static void Queue(vtkOpenGLRenderWindow* renWin, unsigned int texture, unsigned int buffer);

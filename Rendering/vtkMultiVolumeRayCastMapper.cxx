@@ -708,6 +708,15 @@ public:
   std::vector<std::vector<double>> Demand;
   bool FeedbackUnsupportedWarned = false;
 
+  /// The cut's volume number of input port `port` as the last frame drew it, -1 if none.
+  int CutVolumeOf(int port) const
+  {
+    for (size_t v = 0; v < this->CutVolumes.size(); ++v)
+      if (this->CutVolumes[v].first == port && static_cast<int>(v) < this->Cut.GetNumberOfVolumes())
+        return static_cast<int>(v);
+    return -1;
+  }
+
   // Fixed cuts by port ((level, index) per brick), and whether they changed since the cut last
   // followed them; HeldValid: the cut, atlas and index textures are complete for HoldCut.
   std::map<int, std::vector<std::array<int, 2>>> FixedCuts;
@@ -984,15 +993,13 @@ std::vector<int> vtkMultiVolumeRayCastMapper::GetResidentBricksPerLevel(int port
 {
   const vtkInternals& in = *this->Internals;
   std::vector<int> counts;
-  for (size_t v = 0; v < in.CutVolumes.size(); ++v)
-  {
-    if (in.CutVolumes[v].first != port || static_cast<int>(v) >= in.Cut.GetNumberOfVolumes())
-      continue;
-    const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
-    counts.assign(tree->GetNumberOfLevels(), 0);
-    for (int n : in.Cut.GetCutNodes(static_cast<int>(v)))
-      counts[tree->GetNode(n).Level] += in.Cut.IsEmpty(static_cast<int>(v), n) ? 0 : 1;
-  }
+  const int v = in.CutVolumeOf(port);
+  if (v < 0)
+    return counts;
+  const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
+  counts.assign(tree->GetNumberOfLevels(), 0);
+  for (int n : in.Cut.GetCutNodes(v))
+    counts[tree->GetNode(n).Level] += in.Cut.IsEmpty(v, n) ? 0 : 1;
   return counts;
 }
 
@@ -1005,16 +1012,14 @@ std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int po
 {
   const vtkInternals& in = *this->Internals;
   std::vector<std::array<int, 2>> bricks;
-  for (size_t v = 0; v < in.CutVolumes.size(); ++v)
+  const int v = in.CutVolumeOf(port);
+  if (v < 0)
+    return bricks;
+  const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
+  for (int n : in.Cut.GetCutNodes(v))
   {
-    if (in.CutVolumes[v].first != port || static_cast<int>(v) >= in.Cut.GetNumberOfVolumes())
-      continue;
-    const vtkVolumeBrickTree* tree = in.CutVolumes[v].second;
-    for (int n : in.Cut.GetCutNodes(static_cast<int>(v)))
-    {
-      const int level = tree->GetNode(n).Level;
-      bricks.push_back({ level, n - tree->GetLevelOffset(level) });
-    }
+    const int level = tree->GetNode(n).Level;
+    bricks.push_back({ level, n - tree->GetLevelOffset(level) });
   }
   return bricks;
 }
@@ -1962,8 +1967,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         glGenTextures(1, &in.FeedbackTexture);
       if (!in.FeedbackScoreTexture)
         glGenTextures(1, &in.FeedbackScoreTexture);
-      if (!in.FeedbackBuffer)
-        glGenBuffers(1, &in.FeedbackBuffer);
       glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -1972,9 +1975,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, fw, fh, 0, GL_RED, GL_FLOAT, nullptr);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
-      glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(fw) * fh * sizeof(uint32_t), nullptr, GL_STREAM_READ);
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+      vtkFeedbackReadBack::Allocate(in.FeedbackBuffer, size_t(fw) * fh);
       in.FeedbackSize[0] = fw;
       in.FeedbackSize[1] = fh;
       in.FeedbackPending = false;

@@ -1183,13 +1183,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-      if (!in.FeedbackBuffer)
-      {
-        glGenBuffers(1, &in.FeedbackBuffer);
-      }
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, in.FeedbackBuffer);
-      glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(fw) * fh * sizeof(uint32_t), nullptr, GL_STREAM_READ);
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+      vtkFeedbackReadBack::Allocate(in.FeedbackBuffer, size_t(fw) * fh);
       in.FeedbackSize[0] = fw;
       in.FeedbackSize[1] = fh;
       in.FeedbackPending = false;
@@ -1269,7 +1263,7 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   in.FeedbackPending = false;
   const bool viewChanged = in.PendingViewChanged;
   const size_t count = size_t(in.FeedbackSize[0]) * in.FeedbackSize[1];
-  // Timed from here: mapping, reduction and handing over (the copy was queued last frame).
+  // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkFeedbackReduction::Entry> list;
   vtkFeedbackReadBack::Map(in.FeedbackBuffer, count, [&](const uint32_t* ids) {
