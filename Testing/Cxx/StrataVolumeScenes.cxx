@@ -209,6 +209,19 @@ ChannelError ImageError(const std::vector<unsigned char>& image, const std::vect
   return ImageError(image, std::vector<double>(expected.begin(), expected.end()));
 }
 
+long PixelsOff(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected, int threshold)
+{
+  long n = 0;
+  for (size_t p = 0; p + 2 < image.size() && p + 2 < expected.size(); p += 3)
+  {
+    int m = 0;
+    for (int c = 0; c < 3; ++c)
+      m = std::max(m, std::abs(int(image[p + c]) - int(expected[p + c])));
+    n += m > threshold ? 1 : 0;
+  }
+  return n;
+}
+
 vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs)
 {

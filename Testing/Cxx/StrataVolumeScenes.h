@@ -60,6 +60,8 @@ struct ChannelError
 ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected);
 /// Two 8-bit images against each other.
 ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected);
+/// RGB pixels of two 8-bit images with some channel off by more than `threshold`.
+long PixelsOff(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected, int threshold);
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with

@@ -142,6 +142,37 @@ Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsign
 }
 }
 
+// A path's frames against the in-core rendering of their own cuts: the worst difference, the
+// largest coverage change, the fewest covered pixels and how many frames were compared.
+struct CutFrames
+{
+  Difference Worst;
+  long WorstCoverage = 0;
+  long SmallestCovered = 1L << 30;
+  long Compared = 0;
+  Difference Add(const std::vector<unsigned char>& frame, const std::vector<unsigned char>& ofCut,
+    const std::vector<unsigned char>& background)
+  {
+    const Difference d = Compare(frame, ofCut, background);
+    this->WorstCoverage = std::max(this->WorstCoverage,
+      std::abs(Compare(ofCut, ofCut, background).Covered - Compare(frame, frame, background).Covered));
+    this->SmallestCovered = std::min(this->SmallestCovered, d.Covered);
+    if (d.Differing > this->Worst.Differing || this->Compared == 0)
+      this->Worst = d;
+    ++this->Compared;
+    return d;
+  }
+};
+
+// Gives `twin` (an in-core mapper) exactly the heights `paged`'s cut holds now.
+void SetCutInputs(vtkStackedHeightFieldMapper* twin, vtkStackedHeightFieldMapper* paged,
+  const std::vector<vtkSmartPointer<vtkImageData>>& full)
+{
+  twin->RemoveAllInputConnections(0);
+  for (const auto& image : CutAsImages(paged, full))
+    twin->AddInputDataObject(image);
+}
+
 // The demo's Reek scene (StrataDemo, scene 2) paged from tile pools against the same scene in
 // core: a path of frames each against the rendering of its own cut, then converged.
 void ReekPaged(const std::string& dir)
@@ -225,8 +256,8 @@ void ReekPaged(const std::string& dir)
   std::cout << "HFPaging: Reek: first frame (roots only) covers " << coveredRoots << " pixels, in core " << coveredFull << "\n";
   Check(coveredRoots >= coveredFull, "the Reek roots cover what the full data cover");
 
-  Difference worst;
-  long worstCoverage = 0, compared = 0, smallestCovered = 1L << 30, worstSeams = 0;
+  CutFrames cut;
+  long worstSeams = 0;
   int frames = 0, converged = -1;
   std::vector<unsigned char> last;
   for (int f = 0; f < 300 && converged < 0; ++f)
@@ -239,20 +270,9 @@ void ReekPaged(const std::string& dir)
     last = render(paged);
     ++frames;
     const auto st = paged->GetPagingStatistics();
-    {
-      worstSeams = std::max(worstSeams, Seams(paged->GetPager(), 1e-2));
-      coarse->RemoveAllInputConnections(0);
-      for (const auto& image : CutAsImages(paged, horizons))
-        coarse->AddInputDataObject(image);
-      const auto reference = render(coarse);
-      const Difference d = Compare(last, reference, background);
-      worstCoverage = std::max(worstCoverage,
-        std::abs(Compare(reference, reference, background).Covered - Compare(last, last, background).Covered));
-      smallestCovered = std::min(smallestCovered, d.Covered);
-      if (d.Differing > worst.Differing || compared == 0)
-        worst = d;
-      ++compared;
-    }
+    worstSeams = std::max(worstSeams, Seams(paged->GetPager(), 1e-2));
+    SetCutInputs(coarse, paged, horizons);
+    cut.Add(last, render(coarse), background);
     if (st.Converged && f >= 8)
       converged = f;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -266,16 +286,16 @@ void ReekPaged(const std::string& dir)
     WritePNG(dir + "/hf-paging-reek-incore.png", incoreImage, w, h);
   }
   std::cout << "HFPaging: Reek: 4 pools of 554 x 451 (" << holes << " no-data nodes); converged after " << frames
-            << " frames; " << compared << " frames compared with the rendering of their own cut (each >= " << smallestCovered
-            << " covered pixels): worst " << worst.Differing << " of " << worst.Covered
-            << " covered pixels differ by more than 8/255 (max " << worst.Max << "), coverage by at most " << worstCoverage
+            << " frames; " << cut.Compared << " frames compared with the rendering of their own cut (each >= "
+            << cut.SmallestCovered << " covered pixels): worst " << cut.Worst.Differing << " of " << cut.Worst.Covered
+            << " covered pixels differ by more than 8/255 (max " << cut.Worst.Max << "), coverage by at most " << cut.WorstCoverage
             << " pixels, " << worstSeams << " seam points; converged: max difference " << d.Max << " (" << d.Differing << " pixels off by more than 8/255) over "
             << d.Covered << " covered pixels; "
             << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles << "; " << st.Failures << " failures\n";
   Check(converged > 0, "the paged Reek horizons converge");
-  Check(holes > 0 && compared == frames && smallestCovered > 5000, "the Reek path's frames were compared, holes and all");
+  Check(holes > 0 && cut.Compared == frames && cut.SmallestCovered > 5000, "the Reek path's frames were compared, holes and all");
   Check(worstSeams == 0, "Reek: no seams between tiles of different levels");
-  Check(worst.Differing <= std::max(4L, worst.Covered / 2000) && worstCoverage <= 10,
+  Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000) && cut.WorstCoverage <= 10,
     "every Reek frame is the rendering of its cut (<= 0.05 % of pixels, coverage within 10 pixels)");
   // Converged, the cut's heights render exactly as in core; the paged lookup's float arithmetic
   // on this UTM-scale grid may move a channel of a pixel by 1/255 (seen: one).
@@ -334,12 +354,6 @@ int TestHeightFieldPaging(int, char*[])
     win->Render();
     return ReadRGB(win);
   };
-  auto renderCoarse = [&]() {
-    coarse->RemoveAllInputConnections(0);
-    for (const auto& image : CutAsImages(paged, scene.Horizons))
-      coarse->AddInputDataObject(image);
-    return render(coarse);
-  };
   std::vector<unsigned char> background(size_t(w) * h * 3);
   {
     scene.Stack->VisibilityOff();
@@ -351,8 +365,8 @@ int TestHeightFieldPaging(int, char*[])
   // rendering of its own cut.
   const auto fullFirst = render(incore);
   const long coveredFull = Compare(fullFirst, fullFirst, background).Covered;
-  Difference worst;
-  long worstCoverageLoss = 0, comparedFrames = 0, smallestCovered = 1L << 30, worstSeams = 0, mixedFrames = 0;
+  CutFrames cut;
+  long worstSeams = 0, mixedFrames = 0;
   int frames = 0, converged = -1;
   for (int f = 0; f < 200 && converged < 0; ++f)
   {
@@ -372,38 +386,31 @@ int TestHeightFieldPaging(int, char*[])
       const long covered = Compare(image, image, background).Covered;
       std::cout << "HFPaging: first frame (roots only): " << covered << " covered pixels, in-core " << coveredFull << "\n";
     }
-    {
-      worstSeams = std::max(worstSeams, Seams(paged->GetPager(), 1e-3));
-      mixedFrames += st.FinestTiles < st.CutTiles ? 1 : 0;
-      const auto reference = renderCoarse();
-      const Difference d = Compare(image, reference, background);
-      const long coverageLoss = Compare(reference, reference, background).Covered - Compare(image, image, background).Covered;
-      worstCoverageLoss = std::max(worstCoverageLoss, std::abs(coverageLoss));
-      ++comparedFrames;
-      smallestCovered = std::min(smallestCovered, d.Covered);
-      if (d.Differing > worst.Differing || comparedFrames == 1)
-        worst = d;
-      if (std::getenv("STRATA_DEBUG_PAGING"))
-        std::cout << "  frame " << f << ": tiles " << st.CutTiles << " (finest " << st.FinestTiles << "), pending "
-                  << st.PendingPages << ", entered " << st.Entered << ", differing " << d.Differing << ", max " << d.Max
-                  << "\n";
-    }
+    worstSeams = std::max(worstSeams, Seams(paged->GetPager(), 1e-3));
+    mixedFrames += st.FinestTiles < st.CutTiles ? 1 : 0;
+    SetCutInputs(coarse, paged, scene.Horizons);
+    const Difference d = cut.Add(image, render(coarse), background);
+    if (std::getenv("STRATA_DEBUG_PAGING"))
+      std::cout << "  frame " << f << ": tiles " << st.CutTiles << " (finest " << st.FinestTiles << "), pending "
+                << st.PendingPages << ", entered " << st.Entered << ", differing " << d.Differing << ", max " << d.Max
+                << "\n";
     if (st.Converged && f >= 12)
       converged = f;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  std::cout << "HFPaging: converged after " << frames << " frames; " << comparedFrames
-            << " frames compared with the rendering of their own cut (each >= " << smallestCovered
-            << " covered pixels); worst: " << worst.Differing << " of " << worst.Covered << " covered pixels differ by more than 8/255 (max " << worst.Max
-            << "); coverage differs by at most " << worstCoverageLoss << " pixels; " << mixedFrames
+  std::cout << "HFPaging: converged after " << frames << " frames; " << cut.Compared
+            << " frames compared with the rendering of their own cut (each >= " << cut.SmallestCovered
+            << " covered pixels); worst: " << cut.Worst.Differing << " of " << cut.Worst.Covered
+            << " covered pixels differ by more than 8/255 (max " << cut.Worst.Max << "); coverage differs by at most "
+            << cut.WorstCoverage << " pixels; " << mixedFrames
             << " frames mixed levels, worst " << worstSeams << " tile-line points where neighbouring pages disagree\n";
   Check(converged > 0, "the paged horizons converge");
   Check(worstSeams == 0 && mixedFrames >= 20, "no seams: where tiles of different levels meet, their pages agree");
   // Stitched, the search's surface is the cut's level-0 surface: no cracks at level seams (35
   // of 23033 pixels differed before stitching, where rays passed through them).
-  Check(worst.Differing <= std::max(4L, worst.Covered / 2000), "every intermediate frame is the rendering of its cut (<= 0.05 % of pixels)");
-  Check(worstCoverageLoss <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
-  Check(comparedFrames == frames && frames >= 20 && smallestCovered > 5000, "every frame of the path was compared and shows the horizons");
+  Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000), "every intermediate frame is the rendering of its cut (<= 0.05 % of pixels)");
+  Check(cut.WorstCoverage <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
+  Check(cut.Compared == frames && frames >= 20 && cut.SmallestCovered > 5000, "every frame of the path was compared and shows the horizons");
 
   // 2. Converged: the in-core image, shaded and in ids.
   {

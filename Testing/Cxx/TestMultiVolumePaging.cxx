@@ -89,7 +89,7 @@ std::string Levels(const std::vector<int>& counts)
 
 struct CutDifference
 {
-  int Differing = 0; ///< pixels with a channel off by more than 8/255
+  long Differing = 0; ///< pixels with a channel off by more than 8/255
   double Rms = 0.0;
   double Max = 0.0;
 };
@@ -100,13 +100,7 @@ CutDifference CompareWithCut(const std::vector<unsigned char>& image, const std:
   const ChannelError e = ImageError(image, ofCut);
   d.Rms = e.Rms;
   d.Max = e.Max;
-  for (size_t p = 0; p + 2 < image.size(); p += 3)
-  {
-    int m = 0;
-    for (int c = 0; c < 3; ++c)
-      m = std::max(m, std::abs(int(image[p + c]) - int(ofCut[p + c])));
-    d.Differing += m > 8 ? 1 : 0;
-  }
+  d.Differing = PixelsOff(image, ofCut, 8);
   return d;
 }
 
