@@ -1,12 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // The main demo: renders (1) three crossing synthetic horizons with holes, a well path as a VTK
-// tube and a target sphere, in core and paged out of core from tile pools, (2) the four Reek horizons (Irap binary grids on a rotated UTM-scale
-// grid), (3) three overlapping volumes and (4) the tooth CT at full resolution, at 1/4
-// resolution and as the hybrid of the two (points where the coarse volume errs); writes one PNG
-// per image. Usage: StrataDemo <output-dir> <data-dir>...; the first data dir that holds a
-// scene's files is used (the tooth through STRATA_TEST_DATA / STRATA_SHARED_DATA). Prints each
-// image's path, last.
+// tube and a target sphere, in core and paged out of core from tile pools, (2) the four Reek
+// horizons (Irap binary grids on a rotated UTM-scale grid), (3) three overlapping volumes and (4)
+// the tooth CT at full resolution, at 1/4 resolution and as the hybrid of the two (points where the
+// coarse volume errs); writes one PNG per image. Usage: StrataDemo <output-dir> <data-dir>...; the
+// first data dir that holds a scene's files is used (the tooth through STRATA_TEST_DATA /
+// STRATA_SHARED_DATA). Prints each image's path, last.
 #include "StrataDemoScene.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
@@ -22,9 +22,9 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPolyData.h"
-#include "vtkPNGWriter.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -114,9 +114,10 @@ int main(int argc, char* argv[])
       maxDifference = std::max(maxDifference, std::abs(int(mine[q]) - int(incore[q])));
     written.push_back(Save(win, out + "/strata-horizons-paged.png"));
     const auto st = paged->GetPagingStatistics();
-    std::cerr << "paged horizons: " << pools.size() << " tile pools of 33^2 tiles; settled after " << frames << " frames, "
-              << st.FinestTiles << " level-0 tiles of " << st.CutTiles << ", " << st.BytesRead / 1024
-              << " KiB read; max difference to the in-core image " << maxDifference << "\n";
+    std::cerr << "paged horizons: " << pools.size() << " tile pools of 33^2 tiles; settled after "
+              << frames << " frames, " << st.FinestTiles << " level-0 tiles of " << st.CutTiles
+              << ", " << st.BytesRead / 1024 << " KiB read; max difference to the in-core image "
+              << maxDifference << "\n";
     scene.Stack->SetMapper(scene.Mapper);
     paged->ReleaseGraphicsResources(win);
     readers.clear();
@@ -140,8 +141,10 @@ int main(int argc, char* argv[])
   }
   else
   {
-    const char* names[4] = { "reek_01_topreek_rota.gri", "reek_02_midreek_rota.gri",
-      "reek_03_lowreek_rota.gri", "reek_04_basereek_rota.gri" };
+    const char* names[4] = { "reek_01_topreek_rota.gri",
+      "reek_02_midreek_rota.gri",
+      "reek_03_lowreek_rota.gri",
+      "reek_04_basereek_rota.gri" };
     vtkNew<vtkStackedHeightFieldMapper> mapper;
     std::vector<vtkSmartPointer<vtkIrapBinaryGridReader>> readers;
     for (const char* name : names)
@@ -187,7 +190,8 @@ int main(int argc, char* argv[])
     std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>> inputs;
     if (dataDir.empty() || !strata_test::AddVolumeDemoScene(ren, dataDir, inputs))
     {
-      std::cerr << "volumes/bucky.raw not found in the data directories given; skipping that image.\n";
+      std::cerr
+        << "volumes/bucky.raw not found in the data directories given; skipping that image.\n";
     }
     else
     {
@@ -236,8 +240,9 @@ int main(int argc, char* argv[])
       double dir[3], up[3];
       strata_test::RealVolumeView("tooth", dir, up);
       strata_test::FrameVolumes(ren, { { tooth.Get(), volume.Get() } }, dir, up, 0.85);
-      const std::pair<vtkVolumeMapper*, const char*> views[3] = { { full, "full" }, { low, "low" },
-        { hybrid, "hybrid" } };
+      const std::pair<vtkVolumeMapper*, const char*> views[3] = {
+        { full, "full" }, { low, "low" }, { hybrid, "hybrid" }
+      };
       vtkNew<vtkImageAppend> strip; // the three side by side
       strip->SetAppendAxis(0);
       for (const auto& view : views)
@@ -260,7 +265,8 @@ int main(int argc, char* argv[])
       written.push_back(out + "/strata-tooth-compare.png");
       std::cerr << "tooth: " << tooth->GetDimensions()[0] << "x" << tooth->GetDimensions()[1] << "x"
                 << tooth->GetDimensions()[2] << " voxels; factor 4 -> "
-                << hybridFilter->GetLowResolutionOutput()->GetNumberOfPoints() << " low-resolution voxels + "
+                << hybridFilter->GetLowResolutionOutput()->GetNumberOfPoints()
+                << " low-resolution voxels + "
                 << hybridFilter->GetPointsOutput()->GetNumberOfPoints() << " points (|error| > "
                 << HybridThreshold << ")\n";
     }

@@ -148,8 +148,6 @@ bool IsIndexValue(double v)
   return std::isfinite(v) && std::floor(v) == v && std::fabs(v) < MaxIndexMagnitude;
 }
 
-
-
 /// Checks nx * ny against the absolute and the sparseness bounds.
 bool CheckGridSize(long long nx, long long ny, size_t records, std::string& error)
 {

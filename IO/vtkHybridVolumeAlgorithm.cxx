@@ -234,7 +234,8 @@ void vtkHybridVolumeAlgorithm::FillOutputs(const vtkHybridVolumeFile& file,
   vtkSmartPointer<vtkDoubleArray> cell = vtkSmartPointer<vtkDoubleArray>::New();
   cell->SetName("PointSpacing");
   cell->SetNumberOfComponents(3);
-  const double g[3] = { file.ErrorGridStep[0] * file.Spacing[0], file.ErrorGridStep[1] * file.Spacing[1],
+  const double g[3] = { file.ErrorGridStep[0] * file.Spacing[0],
+    file.ErrorGridStep[1] * file.Spacing[1],
     file.ErrorGridStep[2] * file.Spacing[2] };
   cell->InsertNextTuple(g);
   points->GetFieldData()->AddArray(cell);

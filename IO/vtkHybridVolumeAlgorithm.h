@@ -16,8 +16,8 @@
  *   cells), point data "Value" (float, active scalars), "Error" (float, original minus
  *   reconstruction), "Normals" (float x 3, decoded, active normals) and "NormalCode" (uint16,
  *   the stored octahedral code, for renderers that decode on the GPU); field data
- *   "PointSpacing" (3 doubles: ErrorGridStep * Spacing, the cell a point stands for). Points keep the file's
- *   order (original linear index, x fastest).
+ *   "PointSpacing" (3 doubles: ErrorGridStep * Spacing, the cell a point stands for). Points keep
+ * the file's order (original linear index, x fastest).
  *
  * Subclasses implement RequestData (and RequestInformation / RequestUpdateExtent as needed)
  * and call FillOutputs and SetLowResolutionInformation.

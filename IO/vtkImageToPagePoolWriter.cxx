@@ -64,7 +64,7 @@ Format::ScalarType PoolType(int vtkType)
 }
 
 /// Copies component 0 of `n` tuples starting at tuple `first` into `out`, converting.
-template <typename In, typename Out>
+template<typename In, typename Out>
 void CopyRow(const In* in, int components, vtkIdType first, vtkIdType n, Out* out)
 {
   const In* p = in + first * components;
@@ -74,7 +74,7 @@ void CopyRow(const In* in, int components, vtkIdType first, vtkIdType n, Out* ou
   }
 }
 
-template <typename Out>
+template<typename Out>
 void CopyRowAny(vtkDataArray* array, vtkIdType first, vtkIdType n, Out* out)
 {
   void* data = array->GetVoidPointer(0);
@@ -182,7 +182,8 @@ bool vtkImageToPagePoolWriter::Write()
   this->FileSize = 0;
   this->NumberOfSlabRequests = 0;
   const std::string name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error) {
+  auto fail = [&](const std::string& error)
+  {
     vtkErrorMacro("Cannot write page pool \"" << name << "\": " << error);
     return false;
   };
@@ -208,8 +209,7 @@ bool vtkImageToPagePoolWriter::Write()
     return fail("the input reports no whole extent (did its reader fail?)");
   }
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  const int dims[3] = { whole[1] - whole[0] + 1, whole[3] - whole[2] + 1,
-    whole[5] - whole[4] + 1 };
+  const int dims[3] = { whole[1] - whole[0] + 1, whole[3] - whole[2] + 1, whole[5] - whole[4] + 1 };
   if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0)
   {
     return fail("the input is empty (did its reader fail?)");
@@ -255,7 +255,8 @@ bool vtkImageToPagePoolWriter::Write()
     ~RemoveObserver() { this->Producer->RemoveObserver(this->Tag); }
   } removeObserver{ producer, tag };
 
-  auto request = [&](const int extent[6], std::string& error) -> vtkImageData* {
+  auto request = [&](const int extent[6], std::string& error) -> vtkImageData*
+  {
     vtkNew<vtkInformationVector> requests;
     for (int p = 0; p < producer->GetNumberOfOutputPorts(); ++p)
     {
@@ -326,32 +327,36 @@ bool vtkImageToPagePoolWriter::Write()
   writer.SetMemoryLimit(this->MemoryLimit);
   // No no-data value: the page writer always leaves NaN (float holes) out of min/max.
   std::string sourceError;
-  writer.SetSource([&](int firstSlab, int count, void* buffer) {
-    int ext[6];
-    std::copy(whole, whole + 6, ext);
-    ext[2 * axis] = whole[2 * axis] + firstSlab;
-    ext[2 * axis + 1] = whole[2 * axis] + firstSlab + count - 1;
-    vtkImageData* data = request(ext, sourceError);
-    if (!data)
+  writer.SetSource(
+    [&](int firstSlab, int count, void* buffer)
     {
-      return false;
-    }
-    int have[6];
-    data->GetExtent(have);
-    CopySlab(PickScalars(data), have, ext, type, buffer);
-    return true;
-  });
+      int ext[6];
+      std::copy(whole, whole + 6, ext);
+      ext[2 * axis] = whole[2 * axis] + firstSlab;
+      ext[2 * axis + 1] = whole[2 * axis] + firstSlab + count - 1;
+      vtkImageData* data = request(ext, sourceError);
+      if (!data)
+      {
+        return false;
+      }
+      int have[6];
+      data->GetExtent(have);
+      CopySlab(PickScalars(data), have, ext, type, buffer);
+      return true;
+    });
   double last = 0.0;
   this->UpdateProgress(0.0);
-  writer.SetProgressCallback([&](double fraction) {
-    // Kept strictly non-decreasing and short of 1 until the file is in place.
-    fraction = std::min(std::max(fraction, last), 0.999);
-    if (fraction > last)
+  writer.SetProgressCallback(
+    [&](double fraction)
     {
-      last = fraction;
-      this->UpdateProgress(fraction);
-    }
-  });
+      // Kept strictly non-decreasing and short of 1 until the file is in place.
+      fraction = std::min(std::max(fraction, last), 0.999);
+      if (fraction > last)
+      {
+        last = fraction;
+        this->UpdateProgress(fraction);
+      }
+    });
   const bool ok = writer.Write();
   // Let go of the last slab: the conversion must not leave a slab of the input in memory. A
   // trivial producer's output is the caller's own data set, which is left alone.

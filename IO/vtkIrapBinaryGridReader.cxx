@@ -235,7 +235,6 @@ bool ReadHeader(RecordFile& file, IrapHeader& h, std::string& error)
   return true;
 }
 
-
 }
 
 //------------------------------------------------------------------------------

@@ -611,7 +611,6 @@ vtkIdType ConvertAny(const NpyHeader& h,
   return 0;
 }
 
-
 }
 
 //------------------------------------------------------------------------------
@@ -735,7 +734,13 @@ int vtkNumpyGridReader::RequestInformation(vtkInformation*,
 
   const double origin[2] = { this->Origin[0], this->Origin[1] };
   const double spacing[2] = { this->Spacing[0], this->Spacing[1] };
-  SetGridInformation(outInfo, internals.NX(), internals.NY(), origin, spacing, this->Rotation, this->GetOutputDataType());
+  SetGridInformation(outInfo,
+    internals.NX(),
+    internals.NY(),
+    origin,
+    spacing,
+    this->Rotation,
+    this->GetOutputDataType());
   return 1;
 }
 
@@ -853,7 +858,8 @@ int vtkNumpyGridReader::RequestData(vtkInformation*,
 
   const double gridOrigin[2] = { this->Origin[0], this->Origin[1] };
   const double gridSpacing[2] = { this->Spacing[0], this->Spacing[1] };
-  SetGridGeometry(output, this->Internals->NX(), this->Internals->NY(), gridOrigin, gridSpacing, this->Rotation);
+  SetGridGeometry(
+    output, this->Internals->NX(), this->Internals->NY(), gridOrigin, gridSpacing, this->Rotation);
   output->GetPointData()->SetScalars(values);
   this->NumberOfNoDataValues = noData;
   return 1;

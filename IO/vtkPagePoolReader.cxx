@@ -54,7 +54,8 @@ public:
   }
 };
 
-vtkInformationDoubleKey* ResolutionKey = new vtkPagePoolResolutionKey("UPDATE_RESOLUTION", "vtkPagePoolReader");
+vtkInformationDoubleKey* ResolutionKey =
+  new vtkPagePoolResolutionKey("UPDATE_RESOLUTION", "vtkPagePoolReader");
 
 int ToVTKType(Format::ScalarType type)
 {
@@ -129,7 +130,9 @@ bool vtkPagePoolReader::RequestCoarsestLevel(vtkInformation* inputInfo)
   return true;
 }
 
-void vtkPagePoolReader::RequestCoarsestLevels(vtkInformation* request, vtkInformationVector** inputVector, int ports)
+void vtkPagePoolReader::RequestCoarsestLevels(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  int ports)
 {
   if (!request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
     return;
@@ -171,7 +174,7 @@ bool vtkPagePoolReader::CanReadFile(const char* fileName)
   in.seekg(0, std::ios::beg);
   unsigned char bytes[Format::HeaderSize];
   if (size < static_cast<long long>(Format::HeaderSize) ||
-    !in.read(reinterpret_cast<char*>(bytes), Format::HeaderSize))
+      !in.read(reinterpret_cast<char*>(bytes), Format::HeaderSize))
   {
     return false;
   }
@@ -195,11 +198,10 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
     ClearOutput(outInfo);
     outInfo->Remove(POOL_FILE_NAME());
     outInfo->Remove(POOL_LAYER());
-    vtkErrorMacro("Cannot read page pool \"" << (this->FileName ? this->FileName : "")
-                                             << "\": "
-                                             << (this->FileName && *this->FileName
-                                                    ? file.GetErrorMessage()
-                                                    : std::string("no file name set")));
+    vtkErrorMacro("Cannot read page pool \""
+                  << (this->FileName ? this->FileName : "") << "\": "
+                  << (this->FileName && *this->FileName ? file.GetErrorMessage()
+                                                        : std::string("no file name set")));
     return 0;
   }
   const Format::Header& h = file.GetHeader();
@@ -235,7 +237,8 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   }
   output->Initialize();
   const std::string name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error) {
+  auto fail = [&](const std::string& error)
+  {
     output->Initialize();
     vtkErrorMacro("Cannot read page pool \"" << name << "\": " << error);
     return 0;
@@ -262,8 +265,8 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   {
     output->ShallowCopy(this->LastOutput);
     output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
-    this->LevelRead = ResolutionToLevel(outInfo->Has(UPDATE_RESOLUTION()) ? outInfo->Get(UPDATE_RESOLUTION())
-                                                                            : this->Resolution,
+    this->LevelRead = ResolutionToLevel(
+      outInfo->Has(UPDATE_RESOLUTION()) ? outInfo->Get(UPDATE_RESOLUTION()) : this->Resolution,
       this->NumberOfLevels);
     return 1;
   }
@@ -294,8 +297,9 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   const int level = ResolutionToLevel(resolution, file.GetNumberOfLevels());
   const Format::Level& lv = file.GetLevel(level);
 
-  int updateExtent[6] = { 0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0,
-    tiles ? 0 : h.Dimensions[2] - 1 };
+  int updateExtent[6] = {
+    0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, tiles ? 0 : h.Dimensions[2] - 1
+  };
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
   {
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), updateExtent);
@@ -358,8 +362,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
       p0[a] = p1[a] = 0;
     }
   }
-  const vtkIdType total =
-    vtkIdType(p1[0] - p0[0] + 1) * (p1[1] - p0[1] + 1) * (p1[2] - p0[2] + 1);
+  const vtkIdType total = vtkIdType(p1[0] - p0[0] + 1) * (p1[1] - p0[1] + 1) * (p1[2] - p0[2] + 1);
   std::vector<unsigned char> page(file.GetPageBytes());
   this->LevelRead = level;
   this->UpdateProgress(0.0);

@@ -111,7 +111,9 @@ public:
   static bool RequestCoarsestLevel(vtkInformation* inputInfo);
   /// RequestCoarsestLevel on every input of the first `ports` ports when `request` is a
   /// REQUEST_UPDATE_EXTENT pass; a consumer's ProcessRequest calls it after its superclass's.
-  static void RequestCoarsestLevels(vtkInformation* request, vtkInformationVector** inputVector, int ports);
+  static void RequestCoarsestLevels(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    int ports);
 
   /// True when the file starts with a valid page pool header (magic, version, checksum).
   static bool CanReadFile(const char* fileName);

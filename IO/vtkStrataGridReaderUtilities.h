@@ -43,8 +43,13 @@ inline void RotationToDirection(double degrees, double d[9])
 
 /// Reports an nx x ny grid with the given lateral origin, spacing and rotation (degrees) and
 /// scalar type to the pipeline, as every horizon reader's RequestInformation does.
-inline void SetGridInformation(vtkInformation* outInfo, int nx, int ny, const double origin[2],
-  const double spacing[2], double rotationDegrees, int scalarType)
+inline void SetGridInformation(vtkInformation* outInfo,
+  int nx,
+  int ny,
+  const double origin[2],
+  const double spacing[2],
+  double rotationDegrees,
+  int scalarType)
 {
   const int extent[6] = { 0, nx - 1, 0, ny - 1, 0, 0 };
   const double origin3[3] = { origin[0], origin[1], 0.0 };
@@ -59,8 +64,12 @@ inline void SetGridInformation(vtkInformation* outInfo, int nx, int ny, const do
 }
 
 /// Gives `output` the same grid geometry that SetGridInformation() reported.
-inline void SetGridGeometry(vtkImageData* output, int nx, int ny, const double origin[2],
-  const double spacing[2], double rotationDegrees)
+inline void SetGridGeometry(vtkImageData* output,
+  int nx,
+  int ny,
+  const double origin[2],
+  const double spacing[2],
+  double rotationDegrees)
 {
   double direction[9];
   RotationToDirection(rotationDegrees, direction);

@@ -24,7 +24,7 @@ public:
    * node of volume `volume`'s cut, nor an ancestor of one. Ancestors are numbered after their
    * descendants, so walking the map in key order decides every child before its parent.
    */
-  template <typename Map>
+  template<typename Map>
   static void Prune(Map& held, const vtkVolumeCut& cut, int volume, const vtkVolumeBrickTree& tree)
   {
     for (auto it = held.begin(); it != held.end();)

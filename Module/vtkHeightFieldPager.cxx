@@ -16,8 +16,8 @@
 #include <limits>
 #include <map>
 #include <mutex>
-#include <unordered_map>
 #include <sstream>
+#include <unordered_map>
 
 namespace
 {
@@ -105,7 +105,8 @@ public:
   {
     this->SubtreeRequests.assign(this->Horizons.size(), std::vector<double>());
     for (size_t h = 0; h < this->Horizons.size(); ++h)
-      this->SubtreeRequests[h].assign(this->Pools[this->Horizons[h].PoolIndex]->Tree.GetNumberOfNodes(), 0.0);
+      this->SubtreeRequests[h].assign(
+        this->Pools[this->Horizons[h].PoolIndex]->Tree.GetNumberOfNodes(), 0.0);
     for (const auto& r : this->Requests)
     {
       const int h = vtkFeedbackReduction::GetDataSet(r.first);
@@ -119,7 +120,8 @@ public:
       const int64_t index = vtkFeedbackReduction::GetPageIndex(r.first);
       if (index >= static_cast<int64_t>(bricks[0]) * bricks[1])
         continue;
-      for (int n = tree.GetLevelOffset(level) + static_cast<int>(index); n >= 0; n = tree.GetParent(n))
+      for (int n = tree.GetLevelOffset(level) + static_cast<int>(index); n >= 0;
+           n = tree.GetParent(n))
         this->SubtreeRequests[h][n] += r.second.first;
     }
   }
@@ -127,36 +129,45 @@ public:
   vtkInternals()
   {
     // After a tile loaded on demand: its four neighbours and its parent, ahead of the camera.
-    this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
-      if (!this->Prefetch)
-        return;
-      std::lock_guard<std::mutex> lock(this->PoolsMutex);
-      if (key.Dataset < 0 || key.Dataset >= static_cast<int>(this->PoolGrids.size()))
-        return;
-      const auto& grid = this->PoolGrids[key.Dataset];
-      if (key.Level < 0 || key.Level >= static_cast<int>(grid.size()))
-        return;
-      const bool parent = key.Level + 1 < static_cast<int>(grid.size());
-      vtkPageCache::AddGridNeighbours(key, grid[key.Level].data(), parent ? grid[key.Level + 1].data() : nullptr, more);
-    });
-    this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
-      std::shared_ptr<vtkPagePoolFile> file;
+    this->Cache.SetNeighbourFunction(
+      [this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more)
       {
+        if (!this->Prefetch)
+          return;
         std::lock_guard<std::mutex> lock(this->PoolsMutex);
-        if (key.Dataset >= 0 && key.Dataset < static_cast<int>(this->PoolFiles.size()))
-          file = this->PoolFiles[key.Dataset];
-      }
-      if (!file)
+        if (key.Dataset < 0 || key.Dataset >= static_cast<int>(this->PoolGrids.size()))
+          return;
+        const auto& grid = this->PoolGrids[key.Dataset];
+        if (key.Level < 0 || key.Level >= static_cast<int>(grid.size()))
+          return;
+        const bool parent = key.Level + 1 < static_cast<int>(grid.size());
+        vtkPageCache::AddGridNeighbours(
+          key, grid[key.Level].data(), parent ? grid[key.Level + 1].data() : nullptr, more);
+      });
+    this->Cache.SetLoadFunction(
+      [this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error)
       {
-        error = "no tile pool " + std::to_string(key.Dataset);
-        return false;
-      }
-      out.resize(file->GetPageValues() * sizeof(float));
-      return file->ReadPage(key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
-    });
+        std::shared_ptr<vtkPagePoolFile> file;
+        {
+          std::lock_guard<std::mutex> lock(this->PoolsMutex);
+          if (key.Dataset >= 0 && key.Dataset < static_cast<int>(this->PoolFiles.size()))
+            file = this->PoolFiles[key.Dataset];
+        }
+        if (!file)
+        {
+          error = "no tile pool " + std::to_string(key.Dataset);
+          return false;
+        }
+        out.resize(file->GetPageValues() * sizeof(float));
+        return file->ReadPage(
+          key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
+      });
   }
 
-  bool IsHole(float v) const { return std::isnan(v) || (this->HasNoData && v == static_cast<float>(this->NoData)); }
+  bool IsHole(float v) const
+  {
+    return std::isnan(v) || (this->HasNoData && v == static_cast<float>(this->NoData));
+  }
 
   void ComputeLeaves(int h, int node, Held& held) const
   {
@@ -255,7 +266,8 @@ public:
       for (int ty = 0; ty < this->Tiles[1]; ++ty)
         for (int tx = 0; tx < this->Tiles[0]; ++tx)
         {
-          PageRef& page = this->TilePages[(static_cast<size_t>(h) * this->Tiles[1] + ty) * this->Tiles[0] + tx];
+          PageRef& page =
+            this->TilePages[(static_cast<size_t>(h) * this->Tiles[1] + ty) * this->Tiles[0] + tx];
           int level = 0;
           const int node = this->NodeOfTile(h, tx, ty, level);
           const auto& pages = this->Horizons[h].Pages;
@@ -268,15 +280,21 @@ public:
   float EffectiveLevel(int level, const Held& held) const
   {
     return held.Display.empty() || this->MorphFrames <= 0
-      ? static_cast<float>(level)
-      : static_cast<float>(level) + 1.0f - (static_cast<float>(held.MorphStep) + 0.5f) / static_cast<float>(this->MorphFrames);
+             ? static_cast<float>(level)
+             : static_cast<float>(level) + 1.0f -
+                 (static_cast<float>(held.MorphStep) + 0.5f) /
+                   static_cast<float>(this->MorphFrames);
   }
 
   /// Index of page texel (qx, qy) in a stitched border (Held::Border's layout), -1 inside.
   int BorderIndex(int qx, int qy) const
   {
     const int B = this->B;
-    return qx == 0 ? qy : qx == B - 1 ? B + qy : qy == 0 ? 2 * B + qx : qy == B - 1 ? 3 * B + qx : -1;
+    return qx == 0       ? qy
+           : qx == B - 1 ? B + qy
+           : qy == 0     ? 2 * B + qx
+           : qy == B - 1 ? 3 * B + qx
+                         : -1;
   }
 
   /// Texel (qx, qy) of a page as the atlas holds it: stitched on the border, NaN for holes.
@@ -287,7 +305,8 @@ public:
     if (b >= 0)
       v = held.Border[b];
     else
-      v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * this->B + qx];
+      v = (held.Display.empty() ? values
+                                : held.Display.data())[static_cast<size_t>(qy) * this->B + qx];
     return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
   }
 
@@ -319,7 +338,7 @@ public:
 
   /// Level l of a page bilinearly at level-0 point (i, j) (strataHeight's arithmetic), its
   /// texels read by `texel(qx, qy)`.
-  template <typename Texel>
+  template<typename Texel>
   float Bilinear(const PageRef& page, int i, int j, Texel texel) const
   {
     const int l = page.Level;
@@ -339,32 +358,40 @@ public:
   /// The page as shown (stitched, blended) at level-0 point (i, j).
   float PageHeight(const PageRef& page, int i, int j) const
   {
-    return this->Bilinear(page, i, j, [&](int qx, int qy) { return this->Texel(*page.Page, page.Values, qx, qy); });
+    return this->Bilinear(
+      page, i, j, [&](int qx, int qy) { return this->Texel(*page.Page, page.Values, qx, qy); });
   }
 
   /// The page's level at (i, j) from the heights `values` (B x B) alone, borders unstitched.
   float ArrayHeight(const PageRef& page, const float* values, int i, int j) const
   {
-    return this->Bilinear(page, i, j, [&](int qx, int qy) {
-      const float v = values[static_cast<size_t>(qy) * this->B + qx];
-      return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
-    });
+    return this->Bilinear(page,
+      i,
+      j,
+      [&](int qx, int qy)
+      {
+        const float v = values[static_cast<size_t>(qy) * this->B + qx];
+        return this->IsHole(v) ? std::numeric_limits<float>::quiet_NaN() : v;
+      });
   }
 
   float Height(int h, int i, int j) const
   {
-    const PageRef page = this->TilePage(h, std::min(i / this->S, this->Tiles[0] - 1), std::min(j / this->S, this->Tiles[1] - 1));
+    const PageRef page = this->TilePage(
+      h, std::min(i / this->S, this->Tiles[0] - 1), std::min(j / this->S, this->Tiles[1] - 1));
     return page.Level < 0 ? Big : this->PageHeight(page, i, j);
   }
 
   /// The coarsest cut page among the (up to four) tiles whose closed regions hold (i, j).
   PageRef Owner(int h, int i, int j) const
   {
-    const int tx = std::min(i / this->S, this->Tiles[0] - 1), ty = std::min(j / this->S, this->Tiles[1] - 1);
+    const int tx = std::min(i / this->S, this->Tiles[0] - 1),
+              ty = std::min(j / this->S, this->Tiles[1] - 1);
     PageRef best = this->TilePage(h, tx, ty);
     const bool lx = i > 0 && i % this->S == 0 && i / this->S < this->Tiles[0];
     const bool ly = j > 0 && j % this->S == 0 && j / this->S < this->Tiles[1];
-    auto consider = [&](int x, int y) {
+    auto consider = [&](int x, int y)
+    {
       const PageRef p = this->TilePage(h, x, y);
       if (p.Effective > best.Effective)
         best = p;
@@ -405,7 +432,8 @@ public:
     bool changed = false;
     this->MorphEnded = false;
     this->Stats.MorphingTiles = 0;
-    auto upload = [&](int h, int n) {
+    auto upload = [&](int h, int n)
+    {
       const int slot = this->Cut.GetSlot(h, n);
       if (slot < 0)
         return; // in the cut without an atlas slot: not drawn
@@ -464,7 +492,8 @@ public:
           // Entered by a split this frame: start from the parent's surface.
           const int parent = tree.GetParent(n);
           auto p = parent >= 0 ? hz.Pages.find(parent) : hz.Pages.end();
-          if (first || was[n] || this->MorphFrames <= 0 || morphing >= MaxMorphingPages || p == hz.Pages.end())
+          if (first || was[n] || this->MorphFrames <= 0 || morphing >= MaxMorphingPages ||
+              p == hz.Pages.end())
             continue;
           const PageRef from = this->RefOf(h, parent, p->second);
           const auto& node = tree.GetNode(n);
@@ -479,7 +508,8 @@ public:
             }
           held.MorphStep = 0;
           held.Display = held.From;
-          held.LeafMin.clear(); // from now on the leaves bound both its parent's and its own heights
+          held.LeafMin
+            .clear(); // from now on the leaves bound both its parent's and its own heights
           this->MorphEnded = true;
         }
         else if (++held.MorphStep >= this->MorphFrames)
@@ -495,7 +525,8 @@ public:
         const float t = static_cast<float>(held.MorphStep) / static_cast<float>(this->MorphFrames);
         for (size_t k = 0; k < count; ++k)
         {
-          const float a = held.From[k], b = this->IsHole(own[k]) ? std::numeric_limits<float>::quiet_NaN() : own[k];
+          const float a = held.From[k],
+                      b = this->IsHole(own[k]) ? std::numeric_limits<float>::quiet_NaN() : own[k];
           held.Display[k] = std::isnan(a) || std::isnan(b) ? b : Mix(a, b, t);
         }
         upload(h, n);
@@ -538,7 +569,8 @@ public:
           order.emplace_back(this->EffectiveLevel(tree.GetNode(n).Level, it->second), n);
       }
       std::sort(order.rbegin(), order.rend()); // coarsest first
-      std::vector<float> border(4 * static_cast<size_t>(B)), borderLo(border.size()), borderHi(border.size());
+      std::vector<float> border(4 * static_cast<size_t>(B)), borderLo(border.size()),
+        borderHi(border.size());
       for (const auto& [e, n] : order)
       {
         Held& held = hz.Pages[n];
@@ -547,7 +579,8 @@ public:
         const float* values = reinterpret_cast<const float*>(held.Data->data()) + held.Offset;
         // Tiles just outside the page's region: a coarser one among them may own its border.
         const int t0[2] = { node.Index[0] << l, node.Index[1] << l };
-        const int t1[2] = { std::min((node.Index[0] + 1) << l, this->Tiles[0]), std::min((node.Index[1] + 1) << l, this->Tiles[1]) };
+        const int t1[2] = { std::min((node.Index[0] + 1) << l, this->Tiles[0]),
+          std::min((node.Index[1] + 1) << l, this->Tiles[1]) };
         bool coarser = false;
         for (int ty = t0[1] - 1; ty <= t1[1] && !coarser; ++ty)
           for (int tx = t0[0] - 1; tx <= t1[0] && !coarser; ++tx)
@@ -566,11 +599,14 @@ public:
               const int qx = side == 0 ? 0 : side == 1 ? B - 1 : t;
               const int qy = side == 2 ? 0 : side == 3 ? B - 1 : t;
               const int i = (base[0] + qx) << l, j = (base[1] + qy) << l;
-              float v = (held.Display.empty() ? values : held.Display.data())[static_cast<size_t>(qy) * B + qx];
+              float v =
+                (held.Display.empty() ? values
+                                      : held.Display.data())[static_cast<size_t>(qy) * B + qx];
               float vlo = v, vhi = v;
               if (!held.From.empty()) // its own texel blends: between its parent's and its own
               {
-                const float own = values[static_cast<size_t>(qy) * B + qx], from = held.From[static_cast<size_t>(qy) * B + qx];
+                const float own = values[static_cast<size_t>(qy) * B + qx],
+                            from = held.From[static_cast<size_t>(qy) * B + qx];
                 vlo = std::min(own, from);
                 vhi = std::max(own, from);
               }
@@ -643,7 +679,8 @@ public:
         for (int a = 0; a < leaves[0]; ++a)
         {
           int level = 0;
-          const int node = this->NodeOfTile(h, std::min(a / R, this->Tiles[0] - 1), std::min(b / R, this->Tiles[1] - 1), level);
+          const int node = this->NodeOfTile(
+            h, std::min(a / R, this->Tiles[0] - 1), std::min(b / R, this->Tiles[1] - 1), level);
           auto it = node >= 0 ? hz.Pages.find(node) : hz.Pages.end();
           if (it == hz.Pages.end())
             continue; // empty or without a slot: a hole, nothing to bound
@@ -653,7 +690,8 @@ public:
           const auto& n = this->Pools[hz.PoolIndex]->Tree.GetNode(node);
           const int la = a - ((n.Index[0] << level) * R);
           const int lb = b - ((n.Index[1] << level) * R);
-          const int na = std::min(((n.Index[0] + 1) << level) * R, leaves[0]) - ((n.Index[0] << level) * R);
+          const int na =
+            std::min(((n.Index[0] + 1) << level) * R, leaves[0]) - ((n.Index[0] << level) * R);
           const size_t k = static_cast<size_t>(lb) * na + la;
           if (k < held.LeafMin.size())
           {
@@ -670,7 +708,8 @@ public:
     {
       bool inside = true;
       for (size_t q = 0; q < lmin.size() && inside; ++q)
-        inside = !(lmin[q] <= lmax[q]) || (lmin[q] >= this->BuiltMin[q] && lmax[q] <= this->BuiltMax[q]);
+        inside =
+          !(lmin[q] <= lmax[q]) || (lmin[q] >= this->BuiltMin[q] && lmax[q] <= this->BuiltMax[q]);
       if (inside)
         return false;
     }
@@ -729,7 +768,8 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
     return true;
   in.Close();
   in.Error.clear();
-  auto fail = [&](const std::string& message) {
+  auto fail = [&](const std::string& message)
+  {
     in.Error = message;
     in.Close();
     return false;
@@ -761,16 +801,17 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
       else
       {
         const auto& h0 = in.Header;
-        bool same = header.Dimensions[0] == h0.Dimensions[0] && header.Dimensions[1] == h0.Dimensions[1] &&
-          header.PageSize == h0.PageSize;
+        bool same = header.Dimensions[0] == h0.Dimensions[0] &&
+                    header.Dimensions[1] == h0.Dimensions[1] && header.PageSize == h0.PageSize;
         for (int a = 0; a < 3 && same; ++a)
           same = std::abs(header.Spacing[a] - h0.Spacing[a]) <= 1e-9 * std::abs(h0.Spacing[a]) &&
-            std::abs(header.Origin[a] - h0.Origin[a]) <= 1e-6 * std::max(1.0, std::abs(h0.Spacing[a]));
+                 std::abs(header.Origin[a] - h0.Origin[a]) <=
+                   1e-6 * std::max(1.0, std::abs(h0.Spacing[a]));
         for (int a = 0; a < 9 && same; ++a)
           same = std::abs(header.Direction[a] - h0.Direction[a]) <= 1e-9;
         if (!same)
           return fail("\"" + src.FileName + "\" lies on another grid than \"" + in.Pools[0]->Name +
-            "\" (dimensions, page size, spacing, origin or direction differ)");
+                      "\" (dimensions, page size, spacing, origin or direction differ)");
       }
       // The pool's quadtree, its ranges straight from the page table: nothing is read.
       const uint64_t pages = pool->File->GetNumberOfPages();
@@ -785,7 +826,7 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
       if (dims[0] < 2 || dims[1] < 2)
         return fail("\"" + src.FileName + "\" is a line of points; paging needs at least 2 x 2");
       if (!pool->Tree.BuildStructure(dims, header.PageSize, mins.data(), maxs.data()) ||
-        pool->Tree.GetNumberOfNodes() != static_cast<int>(pages))
+          pool->Tree.GetNumberOfNodes() != static_cast<int>(pages))
         return fail("\"" + src.FileName + "\": its tiles do not form the expected quadtree");
       p = static_cast<int>(in.Pools.size());
       poolOf[src.FileName] = p;
@@ -799,8 +840,8 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
     if (src.Layer < 0 || src.Layer >= layers)
     {
       std::ostringstream msg;
-      msg << "horizon " << h << ": layer " << src.Layer << " out of range [0, " << layers - 1 << "] of \""
-          << src.FileName << "\"";
+      msg << "horizon " << h << ": layer " << src.Layer << " out of range [0, " << layers - 1
+          << "] of \"" << src.FileName << "\"";
       return fail(msg.str());
     }
     vtkInternals::Horizon hz;
@@ -847,7 +888,8 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
       in.ValueRange[0] = std::min(in.ValueRange[0], header.ValueRange[0]);
       in.ValueRange[1] = std::max(in.ValueRange[1], header.ValueRange[1]);
     }
-    in.Holes = in.Holes || header.HasNoDataValue || header.Type == vtkPagePoolFormat::ScalarType::Float32;
+    in.Holes =
+      in.Holes || header.HasNoDataValue || header.Type == vtkPagePoolFormat::ScalarType::Float32;
     const auto& t = pool->Tree;
     for (int n = 0; n < t.GetNumberOfNodes() && !in.Holes; ++n)
       in.Holes = !(t.GetNode(n).Min <= t.GetNode(n).Max);
@@ -865,41 +907,45 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
     // With feedback, split a tile when rays asked for tiles below it: the pixels that did are
     // its priority. Without, its screen-space error.
     const vtkVolumeBrickTree* tree = &in.Pools[in.Horizons[h].PoolIndex]->Tree;
-    in.Cut.SetVolumePriority(v, [internals, tree, hi](int node, double screenSpaceError) {
-      if (!internals->UseFeedback)
-        return screenSpaceError;
-      int children[8];
-      const int count = tree->GetChildren(node, children);
-      double asked = 0.0;
-      for (int c = 0; c < count; ++c)
-        asked += internals->SubtreeRequests[hi][children[c]];
-      return asked;
-    });
-    in.Cut.SetVolumeAvailability(v, [internals, hi](int node, double priority) {
-      vtkInternals::Horizon& hz = internals->Horizons[hi];
-      if (hz.Pages.count(node))
-        return true;
-      const vtkVolumeBrickTree& tree = internals->Pools[hz.PoolIndex]->Tree;
-      const auto& n = tree.GetNode(node);
-      vtkPageCache::Key key;
-      key.Dataset = hz.PoolIndex;
-      key.Level = n.Level;
-      key.Page = node - tree.GetLevelOffset(n.Level);
-      if (vtkPageCache::Page page = internals->Cache.Find(key))
+    in.Cut.SetVolumePriority(v,
+      [internals, tree, hi](int node, double screenSpaceError)
       {
-        vtkInternals::Held held;
-        held.Data = page;
-        held.Offset = static_cast<size_t>(hz.Layer) * internals->B * internals->B;
-        hz.Pages[node] = std::move(held);
-        return true;
-      }
-      // No more than a few frames' worth of uploads queued: a longer queue would load pages
-      // that the cache evicts again before the cut can use them.
-      if (internals->Stats.MissesThisFrame < internals->RequestLimit)
-        internals->Cache.Request(key, priority);
-      ++internals->Stats.MissesThisFrame;
-      return false;
-    });
+        if (!internals->UseFeedback)
+          return screenSpaceError;
+        int children[8];
+        const int count = tree->GetChildren(node, children);
+        double asked = 0.0;
+        for (int c = 0; c < count; ++c)
+          asked += internals->SubtreeRequests[hi][children[c]];
+        return asked;
+      });
+    in.Cut.SetVolumeAvailability(v,
+      [internals, hi](int node, double priority)
+      {
+        vtkInternals::Horizon& hz = internals->Horizons[hi];
+        if (hz.Pages.count(node))
+          return true;
+        const vtkVolumeBrickTree& tree = internals->Pools[hz.PoolIndex]->Tree;
+        const auto& n = tree.GetNode(node);
+        vtkPageCache::Key key;
+        key.Dataset = hz.PoolIndex;
+        key.Level = n.Level;
+        key.Page = node - tree.GetLevelOffset(n.Level);
+        if (vtkPageCache::Page page = internals->Cache.Find(key))
+        {
+          vtkInternals::Held held;
+          held.Data = page;
+          held.Offset = static_cast<size_t>(hz.Layer) * internals->B * internals->B;
+          hz.Pages[node] = std::move(held);
+          return true;
+        }
+        // No more than a few frames' worth of uploads queued: a longer queue would load pages
+        // that the cache evicts again before the cut can use them.
+        if (internals->Stats.MissesThisFrame < internals->RequestLimit)
+          internals->Cache.Request(key, priority);
+        ++internals->Stats.MissesThisFrame;
+        return false;
+      });
   }
 
   // Roots: given by the caller (the reader's coarsest level) or read here, once.
@@ -915,18 +961,21 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
     if (src.RootValues && src.RootDims[0] == rootDims[0] && src.RootDims[1] == rootDims[1])
     {
       // The page repeats the level's last point beyond it, as the writer pads.
-      auto page = std::make_shared<std::vector<uint8_t>>(static_cast<size_t>(in.B) * in.B * sizeof(float));
+      auto page =
+        std::make_shared<std::vector<uint8_t>>(static_cast<size_t>(in.B) * in.B * sizeof(float));
       float* out = reinterpret_cast<float*>(page->data());
       for (int y = 0; y < in.B; ++y)
         for (int x = 0; x < in.B; ++x)
           out[static_cast<size_t>(y) * in.B + x] =
-            src.RootValues[static_cast<size_t>(std::min(y, rootDims[1] - 1)) * rootDims[0] + std::min(x, rootDims[0] - 1)];
+            src.RootValues[static_cast<size_t>(std::min(y, rootDims[1] - 1)) * rootDims[0] +
+                           std::min(x, rootDims[0] - 1)];
       held.Data = page;
       held.Offset = 0;
     }
     else
     {
-      auto page = std::make_shared<std::vector<uint8_t>>(pool.File->GetPageValues() * sizeof(float));
+      auto page =
+        std::make_shared<std::vector<uint8_t>>(pool.File->GetPageValues() * sizeof(float));
       std::string error;
       if (!pool.File->ReadPage(rootLevel, 0, reinterpret_cast<float*>(page->data()), &error))
         return fail("cannot read the root tile of \"" + pool.Name + "\": " + error);
@@ -1060,8 +1109,9 @@ int vtkHeightFieldPager::GetLeafSize() const
   return this->Internals->Leaf;
 }
 
-bool vtkHeightFieldPager::Update(
-  const vtkVolumeCut::Camera& camera, const double gridToWorld[16], std::vector<Upload>& uploads)
+bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
+  const double gridToWorld[16],
+  std::vector<Upload>& uploads)
 {
   vtkInternals& in = *this->Internals;
   uploads.clear();
@@ -1080,7 +1130,8 @@ bool vtkHeightFieldPager::Update(
 
   // The tree's index space is (x, y, 0): place it at the middle of the value range, where
   // the screen-space error of a tile is best estimated without its heights.
-  const double zMid = in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[0] + in.ValueRange[1]) : 0.0;
+  const double zMid =
+    in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[0] + in.ValueRange[1]) : 0.0;
   double m[16];
   std::copy_n(gridToWorld, 16, m);
   for (int r = 0; r < 4; ++r)
@@ -1093,7 +1144,8 @@ bool vtkHeightFieldPager::Update(
   vtkVolumeCut::Camera cutCamera = camera;
   if (cutCamera.UseFrustum)
   {
-    const double half = in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[1] - in.ValueRange[0]) : 0.0;
+    const double half =
+      in.ValueRange[0] <= in.ValueRange[1] ? 0.5 * (in.ValueRange[1] - in.ValueRange[0]) : 0.0;
     const double span[3] = { gridToWorld[2] * half, gridToWorld[6] * half, gridToWorld[10] * half };
     for (int q = 0; q < 6; ++q)
     {
@@ -1163,13 +1215,15 @@ bool vtkHeightFieldPager::Update(
   // With feedback, settled also means every pixel of the lattice was sampled since the view
   // last changed.
   const bool cycled = !in.UseFeedback || in.FeedbackFrame - in.CycleStart >= in.FeedbackCycle;
-  in.Stats.Converged =
-    entered == 0 && in.Stats.MissesThisFrame == 0 && in.Stats.PendingPages == 0 && cycled && in.Stats.MorphingTiles == 0;
+  in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 &&
+                       in.Stats.PendingPages == 0 && cycled && in.Stats.MorphingTiles == 0;
   return tableChanged || treeChanged || rebuilt;
 }
 
-void vtkHeightFieldPager::SetFeedback(
-  const std::vector<uint32_t>& pages, const std::vector<uint32_t>& coverage, int cycleFrames, bool viewChanged)
+void vtkHeightFieldPager::SetFeedback(const std::vector<uint32_t>& pages,
+  const std::vector<uint32_t>& coverage,
+  int cycleFrames,
+  bool viewChanged)
 {
   vtkInternals& in = *this->Internals;
   ++in.FeedbackFrame;
@@ -1183,7 +1237,8 @@ void vtkHeightFieldPager::SetFeedback(
     in.Requests[pages[e]] = { coverage[e], in.FeedbackFrame };
   // Requests older than a cycle were for pixels that have been sampled again since.
   for (auto it = in.Requests.begin(); it != in.Requests.end();)
-    it = in.FeedbackFrame - it->second.second >= in.FeedbackCycle ? in.Requests.erase(it) : std::next(it);
+    it = in.FeedbackFrame - it->second.second >= in.FeedbackCycle ? in.Requests.erase(it)
+                                                                  : std::next(it);
   in.SumRequests();
 }
 
@@ -1267,10 +1322,12 @@ std::vector<std::string> vtkHeightFieldPager::TakeNewFailures()
   for (const auto& f : in.Cache.TakeNewFailures())
   {
     std::ostringstream msg;
-    const std::string name = f.PageKey.Dataset >= 0 && f.PageKey.Dataset < static_cast<int>(in.Pools.size())
-      ? in.Pools[f.PageKey.Dataset]->Name
-      : std::string("?");
-    msg << "tile " << f.PageKey.Page << " of level " << f.PageKey.Level << " of \"" << name << "\": " << f.Error;
+    const std::string name =
+      f.PageKey.Dataset >= 0 && f.PageKey.Dataset < static_cast<int>(in.Pools.size())
+        ? in.Pools[f.PageKey.Dataset]->Name
+        : std::string("?");
+    msg << "tile " << f.PageKey.Page << " of level " << f.PageKey.Level << " of \"" << name
+        << "\": " << f.Error;
     messages.push_back(msg.str());
     ++in.Stats.Failures;
   }
@@ -1296,9 +1353,10 @@ float vtkHeightFieldPager::GetTileHeight(int horizon, int tileX, int tileY, int 
 {
   const vtkInternals& in = *this->Internals;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty() || tileX < 0 ||
-    tileY < 0 || tileX >= in.Tiles[0] || tileY >= in.Tiles[1] || i < tileX * in.S || j < tileY * in.S ||
-    i > std::min((tileX + 1) * in.S, in.NX - 1) || j > std::min((tileY + 1) * in.S, in.NY - 1))
+  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) ||
+      in.Table.empty() || tileX < 0 || tileY < 0 || tileX >= in.Tiles[0] || tileY >= in.Tiles[1] ||
+      i < tileX * in.S || j < tileY * in.S || i > std::min((tileX + 1) * in.S, in.NX - 1) ||
+      j > std::min((tileY + 1) * in.S, in.NY - 1))
     return nan;
   const vtkInternals::PageRef page = in.TilePage(horizon, tileX, tileY);
   const float h = page.Level < 0 ? nan : in.PageHeight(page, i, j);
@@ -1308,7 +1366,8 @@ float vtkHeightFieldPager::GetTileHeight(int horizon, int tileX, int tileY, int 
 float vtkHeightFieldPager::GetHeight(int horizon, int i, int j) const
 {
   const vtkInternals& in = *this->Internals;
-  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) || in.Table.empty())
+  if (!in.Open || horizon < 0 || horizon >= static_cast<int>(in.Horizons.size()) ||
+      in.Table.empty())
     return std::numeric_limits<float>::quiet_NaN();
   i = std::min(std::max(i, 0), in.NX - 1);
   j = std::min(std::max(j, 0), in.NY - 1);

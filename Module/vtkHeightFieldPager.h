@@ -75,18 +75,18 @@ public:
 
   struct Statistics
   {
-    int PendingPages = 0;        ///< queued or loading in the cache
-    int MissesThisFrame = 0;     ///< cut splits that waited for a page this frame
-    bool Converged = false;      ///< cut settled, nothing missing or pending
-    long long BytesRead = 0;     ///< by the cache's workers, since Open()
-    long long CacheBytes = 0;    ///< resident in RAM now
-    int RootPagesRead = 0;       ///< roots this object read itself (no RootValues given)
-    int Failures = 0;            ///< pages whose load failed, since Open()
-    int CutTiles = 0;            ///< resident cut tiles over all horizons
-    int FinestTiles = 0;         ///< of which level 0
-    int Entered = 0;             ///< tiles that entered the cut this frame
-    int FeedbackPages = 0;       ///< distinct tiles the feedback asked for (last cycle)
-    int MorphingTiles = 0;       ///< tiles still blending from their parent's surface
+    int PendingPages = 0;     ///< queued or loading in the cache
+    int MissesThisFrame = 0;  ///< cut splits that waited for a page this frame
+    bool Converged = false;   ///< cut settled, nothing missing or pending
+    long long BytesRead = 0;  ///< by the cache's workers, since Open()
+    long long CacheBytes = 0; ///< resident in RAM now
+    int RootPagesRead = 0;    ///< roots this object read itself (no RootValues given)
+    int Failures = 0;         ///< pages whose load failed, since Open()
+    int CutTiles = 0;         ///< resident cut tiles over all horizons
+    int FinestTiles = 0;      ///< of which level 0
+    int Entered = 0;          ///< tiles that entered the cut this frame
+    int FeedbackPages = 0;    ///< distinct tiles the feedback asked for (last cycle)
+    int MorphingTiles = 0;    ///< tiles still blending from their parent's surface
   };
 
   vtkHeightFieldPager();
@@ -151,7 +151,9 @@ public:
    * `uploads` with the pages the caller must upload before drawing. Returns true when the page
    * table or the quadtree changed (upload them again).
    */
-  bool Update(const vtkVolumeCut::Camera& camera, const double gridToWorld[16], std::vector<Upload>& uploads);
+  bool Update(const vtkVolumeCut::Camera& camera,
+    const double gridToWorld[16],
+    std::vector<Upload>& uploads);
 
   /**
    * Level-of-detail feedback of the last frame: (page, coverage) entries as
@@ -162,7 +164,9 @@ public:
    * (priority: the pixels asking), so hidden and out-of-view parts stay coarse; without it
    * the screen-space error of every tile rules. `viewChanged` restarts the cycle.
    */
-  void SetFeedback(const std::vector<uint32_t>& pages, const std::vector<uint32_t>& coverage, int cycleFrames,
+  void SetFeedback(const std::vector<uint32_t>& pages,
+    const std::vector<uint32_t>& coverage,
+    int cycleFrames,
     bool viewChanged);
   /// Back to screen-space error priorities (feedback off).
   void ClearFeedback();

@@ -59,8 +59,10 @@ double SmallestRoot(double a, double b, double c, double len)
 }
 }
 
-vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(
-  const double o[3], const double d[3], double tMin, double tMax) const
+vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(const double o[3],
+  const double d[3],
+  double tMin,
+  double tMax) const
 {
   Hit hit;
   const vtkHeightFieldStack& s = this->Stack;
@@ -118,7 +120,8 @@ vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(
   const int stepX = d[0] > 0.0 ? 1 : -1;
   const int stepY = d[1] > 0.0 ? 1 : -1;
   const double inf = std::numeric_limits<double>::infinity();
-  auto nextT = [&](double p0, double dir, int cell) {
+  auto nextT = [&](double p0, double dir, int cell)
+  {
     if (dir > 0.0)
       return (cell + 1 - p0) / dir;
     if (dir < 0.0)
@@ -196,19 +199,24 @@ vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(
   return hit;
 }
 
-void vtkHeightFieldReferenceCaster::CastImage(const double m[16], int width, int height,
-  std::vector<int>& layers, std::vector<double>& points) const
+void vtkHeightFieldReferenceCaster::CastImage(const double m[16],
+  int width,
+  int height,
+  std::vector<int>& layers,
+  std::vector<double>& points) const
 {
   layers.assign(static_cast<size_t>(width) * height, -1);
   points.assign(static_cast<size_t>(width) * height * 3, std::nan(""));
-  auto transform = [m](double x, double y, double z, double out[3]) {
+  auto transform = [m](double x, double y, double z, double out[3])
+  {
     double w = m[12] * x + m[13] * y + m[14] * z + m[15];
     for (int r = 0; r < 3; ++r)
     {
       out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
     }
   };
-  auto work = [&](int rowBegin, int rowStep) {
+  auto work = [&](int rowBegin, int rowStep)
+  {
     for (int py = rowBegin; py < height; py += rowStep)
     {
       for (int px = 0; px < width; ++px)

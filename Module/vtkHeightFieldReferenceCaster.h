@@ -43,7 +43,10 @@ public:
    * layers (-1 for none) and grid-space hit points (3 per pixel, NaN for none), bottom row
    * first. Uses all cores.
    */
-  void CastImage(const double ndcToGrid[16], int width, int height, std::vector<int>& layers,
+  void CastImage(const double ndcToGrid[16],
+    int width,
+    int height,
+    std::vector<int>& layers,
     std::vector<double>& points) const;
 
 private:

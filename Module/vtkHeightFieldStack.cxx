@@ -15,8 +15,8 @@ bool vtkHeightFieldStack::Initialize(int nx, int ny)
   // arithmetic honest; a GPU texture could not hold it either.
   if (nx < 1 || ny < 1 || static_cast<double>(nx) * ny > 2147483647.0)
   {
-    this->ErrorMessage = "height-field grid of " + std::to_string(nx) + " x " +
-      std::to_string(ny) + " points is empty or too large";
+    this->ErrorMessage = "height-field grid of " + std::to_string(nx) + " x " + std::to_string(ny) +
+                         " points is empty or too large";
     this->NX = this->NY = this->InputNX = this->InputNY = 0;
     return false;
   }
@@ -29,7 +29,7 @@ bool vtkHeightFieldStack::Initialize(int nx, int ny)
   return true;
 }
 
-template <typename T>
+template<typename T>
 bool vtkHeightFieldStack::AddLayerT(const T* values, bool useNull, double nullValue, bool mayBorrow)
 {
   if (this->NX == 0 || !values)
@@ -40,9 +40,8 @@ bool vtkHeightFieldStack::AddLayerT(const T* values, bool useNull, double nullVa
   const bool expanded = this->NX != this->InputNX || this->NY != this->InputNY;
   const size_t n = static_cast<size_t>(this->InputNX) * this->InputNY;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  auto isHole = [&](double v) {
-    return std::isnan(v) || std::abs(v) >= 1e30 || (useNull && v == nullValue);
-  };
+  auto isHole = [&](double v)
+  { return std::isnan(v) || std::abs(v) >= 1e30 || (useNull && v == nullValue); };
 
   Layer layer;
   layer.Min = std::numeric_limits<double>::infinity();

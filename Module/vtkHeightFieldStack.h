@@ -87,7 +87,7 @@ private:
     double Max = -1.0;
     size_t Holes = 0;
   };
-  template <typename T>
+  template<typename T>
   bool AddLayerT(const T* values, bool useNull, double nullValue, bool mayBorrow);
 
   int InputNX = 0;

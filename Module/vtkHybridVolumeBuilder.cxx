@@ -77,8 +77,13 @@ int Clamp(int v, int n)
 
 // Filters one original slice (n0 x n1) to the low-resolution x-y grid (l0 x l1), and, when
 // `mins` is given, the minimum over each low-resolution point's footprint |x - c| < f.
-void ReduceSlice(const float* s, const int n[2], const int l[2], const int f[2], const Taps t[2],
-  std::vector<double>& sum, std::vector<double>* mins)
+void ReduceSlice(const float* s,
+  const int n[2],
+  const int l[2],
+  const int f[2],
+  const Taps t[2],
+  std::vector<double>& sum,
+  std::vector<double>* mins)
 {
   std::vector<double> rowSum(static_cast<size_t>(l[0]) * n[1]);
   std::vector<double> rowMin(mins ? rowSum.size() : 0);
@@ -233,8 +238,10 @@ private:
   size_t Peak = 0;
 };
 
-void vtkHybridVolumeBuilder::SetInput(const int dims[3], const double spacing[3],
-  const double origin[3], SlabSource source)
+void vtkHybridVolumeBuilder::SetInput(const int dims[3],
+  const double spacing[3],
+  const double origin[3],
+  SlabSource source)
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -295,8 +302,8 @@ bool vtkHybridVolumeBuilder::Build(vtkHybridVolumeFile& out)
   if (invalid.empty() && !(slicesAllowed >= 4))
   {
     invalid = "memory limit of " + std::to_string(this->MemoryLimit) +
-      " MB holds fewer than the 4 slices of " + std::to_string(sliceBytes / 1048576.0) +
-      " MB needed";
+              " MB holds fewer than the 4 slices of " + std::to_string(sliceBytes / 1048576.0) +
+              " MB needed";
   }
   if (!invalid.empty())
   {
@@ -337,8 +344,9 @@ bool vtkHybridVolumeBuilder::BuildLowResolution(vtkHybridVolumeFile& out, SliceR
   const int* l = out.LowDimensions;
   const int* f = this->Factor;
   const bool optimized = this->Filter == FilterType::Optimized;
-  const Taps taps[3] = { MakeTaps(this->Filter, f[0]), MakeTaps(this->Filter, f[1]),
-    MakeTaps(this->Filter, f[2]) };
+  const Taps taps[3] = {
+    MakeTaps(this->Filter, f[0]), MakeTaps(this->Filter, f[1]), MakeTaps(this->Filter, f[2])
+  };
   const size_t planeValues = static_cast<size_t>(l[0]) * l[1];
   out.LowResolution.assign(planeValues * l[2], 0.0f);
 
@@ -372,7 +380,8 @@ bool vtkHybridVolumeBuilder::BuildLowResolution(vtkHybridVolumeFile& out, SliceR
       {
         mins.emplace_back();
       }
-      ReduceSlice(reader.Slice(next), n, l, f, taps, sums.back(), optimized ? &mins.back() : nullptr);
+      ReduceSlice(
+        reader.Slice(next), n, l, f, taps, sums.back(), optimized ? &mins.back() : nullptr);
     }
     std::vector<double> sum(planeValues, 0.0);
     for (int d = -taps[2].Radius; d <= taps[2].Radius; ++d)
@@ -431,11 +440,12 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
       CellOf(i * s[a], f[a], l[a], cell[a][i], weight[a][i]);
     }
   }
-  auto low = [&](int i, int j, int k) -> double {
-    return out.LowResolution[(static_cast<size_t>(std::min(k, l[2] - 1)) * l[1] +
-                               std::min(j, l[1] - 1)) *
-        l[0] +
-      std::min(i, l[0] - 1)];
+  auto low = [&](int i, int j, int k) -> double
+  {
+    return out
+      .LowResolution[(static_cast<size_t>(std::min(k, l[2] - 1)) * l[1] + std::min(j, l[1] - 1)) *
+                       l[0] +
+                     std::min(i, l[0] - 1)];
   };
   const bool budget = this->PointBudget > 0;
   // Budget: min-heap on rank, the worst kept candidate on top.
@@ -449,8 +459,8 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
     const int zlo = std::max(z - 1, 0), zhi = std::min(z + 1, n[2] - 1);
     if (!reader.Require(zlo, zhi))
     {
-      this->ErrorMessage = "slab source failed reading slices " + std::to_string(zlo) + " to " +
-        std::to_string(zhi);
+      this->ErrorMessage =
+        "slab source failed reading slices " + std::to_string(zlo) + " to " + std::to_string(zhi);
       return false;
     }
     const float* sz = reader.Slice(z);
@@ -475,8 +485,7 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
           {
             for (int dx = 0; dx < 2; ++dx)
             {
-              const double w =
-                (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
+              const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
               if (w != 0)
               {
                 r += w * low(cx + dx, cy + dy, cz + dz);
@@ -495,7 +504,7 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
         }
         const uint64_t index = (static_cast<uint64_t>(z) * n[1] + y) * n[0] + x;
         if (budget && heap.size() == this->PointBudget &&
-          !RanksBefore(Candidate{ magnitude, index, {} }, heap.top()))
+            !RanksBefore(Candidate{ magnitude, index, {} }, heap.top()))
         {
           continue;
         }
@@ -505,12 +514,14 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
         double g[3] = { 0, 0, 0 };
         if (xhi > xlo)
         {
-          g[0] = (sz[static_cast<size_t>(y) * n[0] + xhi] - sz[static_cast<size_t>(y) * n[0] + xlo]) /
+          g[0] =
+            (sz[static_cast<size_t>(y) * n[0] + xhi] - sz[static_cast<size_t>(y) * n[0] + xlo]) /
             ((xhi - xlo) * this->Spacing[0]);
         }
         if (yhi > ylo)
         {
-          g[1] = (sz[static_cast<size_t>(yhi) * n[0] + x] - sz[static_cast<size_t>(ylo) * n[0] + x]) /
+          g[1] =
+            (sz[static_cast<size_t>(yhi) * n[0] + x] - sz[static_cast<size_t>(ylo) * n[0] + x]) /
             ((yhi - ylo) * this->Spacing[1]);
         }
         if (zhi > zlo)
@@ -551,7 +562,8 @@ bool vtkHybridVolumeBuilder::BuildPoints(vtkHybridVolumeFile& out, SliceReader& 
     {
       kept.push_back(heap.top());
     }
-    std::sort(kept.begin(), kept.end(),
+    std::sort(kept.begin(),
+      kept.end(),
       [](const Candidate& a, const Candidate& b) { return a.Index < b.Index; });
     for (const Candidate& c : kept)
     {

@@ -60,7 +60,9 @@ public:
   using ProgressCallback = std::function<void(double fraction)>;
 
   /// The original volume: points per axis (each in [1, 65536]), spacing, origin, source.
-  void SetInput(const int dims[3], const double spacing[3], const double origin[3],
+  void SetInput(const int dims[3],
+    const double spacing[3],
+    const double origin[3],
     SlabSource source);
 
   ///@{

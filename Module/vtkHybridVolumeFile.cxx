@@ -174,15 +174,15 @@ std::string vtkHybridVolumeFile::Validate() const
     if (this->LowDimensions[a] != GetLowResolutionDimension(n, f))
     {
       return "low-resolution dimension " + axis + " = " + std::to_string(this->LowDimensions[a]) +
-        " does not match dimension " + std::to_string(n) + " and factor " + std::to_string(f);
+             " does not match dimension " + std::to_string(n) + " and factor " + std::to_string(f);
     }
     if (this->ErrorGridStep[a] < 1 || this->ErrorGridStep[a] > n)
     {
       return "error grid step " + axis + " = " + std::to_string(this->ErrorGridStep[a]) +
-        " is not in [1, " + std::to_string(n) + "]";
+             " is not in [1, " + std::to_string(n) + "]";
     }
     if (!std::isfinite(this->Spacing[a]) || !(this->Spacing[a] > 0) ||
-      !std::isfinite(this->Origin[a]))
+        !std::isfinite(this->Origin[a]))
     {
       return "spacing or origin along " + axis + " is not finite and positive";
     }
@@ -206,7 +206,8 @@ bool vtkHybridVolumeFile::Write(const std::string& path)
   if (this->ErrorMessage.empty() && this->LowResolution.size() != lowCount)
   {
     this->ErrorMessage = "low-resolution volume holds " +
-      std::to_string(this->LowResolution.size()) + " values, expected " + std::to_string(lowCount);
+                         std::to_string(this->LowResolution.size()) + " values, expected " +
+                         std::to_string(lowCount);
   }
   if (this->ErrorMessage.empty() && !LittleEndianHost())
   {
@@ -251,11 +252,9 @@ bool vtkHybridVolumeFile::Write(const std::string& path)
     return false;
   }
   bool ok = std::fwrite(h, 1, HeaderSize, f) == HeaderSize;
-  ok = ok &&
-    std::fwrite(this->LowResolution.data(), sizeof(float), lowCount, f) == lowCount;
-  ok = ok &&
-    std::fwrite(this->Points.data(), sizeof(Point), this->Points.size(), f) ==
-      this->Points.size();
+  ok = ok && std::fwrite(this->LowResolution.data(), sizeof(float), lowCount, f) == lowCount;
+  ok = ok && std::fwrite(this->Points.data(), sizeof(Point), this->Points.size(), f) ==
+               this->Points.size();
   ok = (std::fflush(f) == 0) && ok;
   ok = (std::fclose(f) == 0) && ok;
   if (!ok || std::rename(partial.c_str(), path.c_str()) != 0)
@@ -270,7 +269,8 @@ bool vtkHybridVolumeFile::Write(const std::string& path)
 bool vtkHybridVolumeFile::Read(const std::string& path)
 {
   *this = vtkHybridVolumeFile();
-  auto fail = [&](const std::string& why) {
+  auto fail = [&](const std::string& why)
+  {
     const std::string message = path + ": " + why;
     *this = vtkHybridVolumeFile();
     this->ErrorMessage = message;
@@ -341,19 +341,21 @@ bool vtkHybridVolumeFile::Read(const std::string& path)
   // Dimensions are at most 65536, so lowCount * 4 < 2^51: no overflow. The point count is
   // checked against the file size before it is multiplied.
   const uint64_t lowCount = static_cast<uint64_t>(this->LowDimensions[0]) *
-    static_cast<uint64_t>(this->LowDimensions[1]) * static_cast<uint64_t>(this->LowDimensions[2]);
+                            static_cast<uint64_t>(this->LowDimensions[1]) *
+                            static_cast<uint64_t>(this->LowDimensions[2]);
   const uint64_t lowBytes = lowCount * sizeof(float);
-  if (fileSize < HeaderSize + lowBytes || (fileSize - HeaderSize - lowBytes) / PointSize < pointCount ||
-    fileSize != HeaderSize + lowBytes + pointCount * PointSize)
+  if (fileSize < HeaderSize + lowBytes ||
+      (fileSize - HeaderSize - lowBytes) / PointSize < pointCount ||
+      fileSize != HeaderSize + lowBytes + pointCount * PointSize)
   {
     return fail("file is " + std::to_string(fileSize) + " bytes, the header announces " +
-      std::to_string(lowCount) + " low-resolution values and " + std::to_string(pointCount) +
-      " points (truncated or corrupt)");
+                std::to_string(lowCount) + " low-resolution values and " +
+                std::to_string(pointCount) + " points (truncated or corrupt)");
   }
   this->LowResolution.resize(static_cast<size_t>(lowCount));
   this->Points.resize(static_cast<size_t>(pointCount));
   if (std::fread(this->LowResolution.data(), sizeof(float), lowCount, f) != lowCount ||
-    std::fread(this->Points.data(), sizeof(Point), pointCount, f) != pointCount)
+      std::fread(this->Points.data(), sizeof(Point), pointCount, f) != pointCount)
   {
     return fail("read error");
   }

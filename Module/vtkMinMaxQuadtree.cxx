@@ -33,7 +33,9 @@ void vtkMinMaxQuadtree::BuildLevels(int nx, int ny, int tileSize)
   for (;;)
   {
     this->LevelOffsets.push_back(static_cast<int>(
-      this->LevelDims.empty() ? 0 : this->LevelOffsets.back() + this->LevelDims.back()[0] * this->LevelDims.back()[1]));
+      this->LevelDims.empty()
+        ? 0
+        : this->LevelOffsets.back() + this->LevelDims.back()[0] * this->LevelDims.back()[1]));
     this->LevelDims.push_back({ tx, ty });
     if (tx == 1 && ty == 1)
     {
@@ -95,12 +97,17 @@ void vtkMinMaxQuadtree::Build(const vtkHeightFieldStack& stack, int tileSize)
   this->BuildUpperLevels(layers, lmin, lmax);
 }
 
-void vtkMinMaxQuadtree::BuildFromLeafRanges(int nx, int ny, int layers, int tileSize,
-  const std::vector<float>& leafMin, const std::vector<float>& leafMax)
+void vtkMinMaxQuadtree::BuildFromLeafRanges(int nx,
+  int ny,
+  int layers,
+  int tileSize,
+  const std::vector<float>& leafMin,
+  const std::vector<float>& leafMax)
 {
   this->BuildLevels(nx, ny, tileSize);
   const size_t total = this->Nodes.size();
-  const size_t leafValues = static_cast<size_t>(this->LevelDims[0][0]) * this->LevelDims[0][1] * layers;
+  const size_t leafValues =
+    static_cast<size_t>(this->LevelDims[0][0]) * this->LevelDims[0][1] * layers;
   std::vector<float> lmin(total * layers, Inf);
   std::vector<float> lmax(total * layers, -Inf);
   const size_t given = std::min({ leafValues, leafMin.size(), leafMax.size() });
@@ -109,7 +116,9 @@ void vtkMinMaxQuadtree::BuildFromLeafRanges(int nx, int ny, int layers, int tile
   this->BuildUpperLevels(layers, lmin, lmax);
 }
 
-void vtkMinMaxQuadtree::BuildUpperLevels(int layers, std::vector<float>& lmin, std::vector<float>& lmax)
+void vtkMinMaxQuadtree::BuildUpperLevels(int layers,
+  std::vector<float>& lmin,
+  std::vector<float>& lmax)
 {
   const int levels = static_cast<int>(this->LevelDims.size());
   const int total = static_cast<int>(this->Nodes.size());
@@ -122,7 +131,8 @@ void vtkMinMaxQuadtree::BuildUpperLevels(int layers, std::vector<float>& lmin, s
     {
       for (int a = 0; a < this->LevelDims[l][0]; ++a)
       {
-        const size_t parent = static_cast<size_t>(this->LevelOffsets[l] + b * this->LevelDims[l][0] + a);
+        const size_t parent =
+          static_cast<size_t>(this->LevelOffsets[l] + b * this->LevelDims[l][0] + a);
         for (int cb = 2 * b; cb < std::min(2 * b + 2, cy); ++cb)
         {
           for (int ca = 2 * a; ca < std::min(2 * a + 2, cx); ++ca)
@@ -130,8 +140,10 @@ void vtkMinMaxQuadtree::BuildUpperLevels(int layers, std::vector<float>& lmin, s
             const size_t child = static_cast<size_t>(this->LevelOffsets[l - 1] + cb * cx + ca);
             for (int k = 0; k < layers; ++k)
             {
-              lmin[parent * layers + k] = std::min(lmin[parent * layers + k], lmin[child * layers + k]);
-              lmax[parent * layers + k] = std::max(lmax[parent * layers + k], lmax[child * layers + k]);
+              lmin[parent * layers + k] =
+                std::min(lmin[parent * layers + k], lmin[child * layers + k]);
+              lmax[parent * layers + k] =
+                std::max(lmax[parent * layers + k], lmax[child * layers + k]);
             }
           }
         }
@@ -147,8 +159,10 @@ void vtkMinMaxQuadtree::BuildUpperLevels(int layers, std::vector<float>& lmin, s
   }
 }
 
-void vtkMinMaxQuadtree::BuildIntervals(
-  const std::vector<float>& layerMin, const std::vector<float>& layerMax, int layers, Node& node)
+void vtkMinMaxQuadtree::BuildIntervals(const std::vector<float>& layerMin,
+  const std::vector<float>& layerMax,
+  int layers,
+  Node& node)
 {
   node.Min = Inf;
   node.Max = -Inf;
@@ -177,7 +191,8 @@ void vtkMinMaxQuadtree::BuildIntervals(
   // layers whose range covers it. Pieces with no layers are dropped (empty space), adjacent
   // ones with the same layers merged: fewer, longer searches.
   std::vector<int> layersHere;
-  auto emit = [&](float lo, float hi) {
+  auto emit = [&](float lo, float hi)
+  {
     if (layersHere.empty())
     {
       return;
@@ -186,7 +201,8 @@ void vtkMinMaxQuadtree::BuildIntervals(
     {
       Interval& last = this->Intervals.back();
       if (last.ZMax == lo && last.LayerCount == static_cast<int>(layersHere.size()) &&
-        std::equal(layersHere.begin(), layersHere.end(), this->LayerLists.begin() + last.LayerOffset))
+          std::equal(
+            layersHere.begin(), layersHere.end(), this->LayerLists.begin() + last.LayerOffset))
       {
         last.ZMax = hi;
         return;

@@ -24,9 +24,9 @@
 
 #include "StrataModule.h" // For export macro
 
-#include <array>  // For std::array
+#include <array>   // For std::array
 #include <cstddef> // For size_t
-#include <vector> // For std::vector
+#include <vector>  // For std::vector
 
 class vtkHeightFieldStack;
 
@@ -61,8 +61,12 @@ public:
    * coarse pages get coarse but valid bounds; ranges computed from full-resolution heights
    * give exactly the tree Build() makes.
    */
-  void BuildFromLeafRanges(int nx, int ny, int layers, int tileSize,
-    const std::vector<float>& leafMin, const std::vector<float>& leafMax);
+  void BuildFromLeafRanges(int nx,
+    int ny,
+    int layers,
+    int tileSize,
+    const std::vector<float>& leafMin,
+    const std::vector<float>& leafMax);
 
   /// Level-0 tiles (leaves) in x and y of a grid of nx x ny points with the given tile size.
   static std::array<int, 2> GetLeafCount(int nx, int ny, int tileSize);
@@ -87,8 +91,10 @@ public:
 private:
   void BuildLevels(int nx, int ny, int tileSize);
   void BuildUpperLevels(int layers, std::vector<float>& lmin, std::vector<float>& lmax);
-  void BuildIntervals(const std::vector<float>& layerMin, const std::vector<float>& layerMax,
-    int layers, Node& node);
+  void BuildIntervals(const std::vector<float>& layerMin,
+    const std::vector<float>& layerMax,
+    int layers,
+    Node& node);
 
   int TileSize = 0;
   std::vector<std::array<int, 2>> LevelDims;

@@ -35,7 +35,8 @@ Poly LerpPoly(const Poly& p, const Poly& q, double y0, double ey)
 int QuadraticRoots(double a, double b, double c, double lo, double hi, double roots[2])
 {
   int n = 0;
-  auto keep = [&](double r) {
+  auto keep = [&](double r)
+  {
     if (r > lo && r < hi)
     {
       roots[n++] = r;
@@ -137,8 +138,9 @@ void Attenuation(double x, double& transmitted, double& absorbed)
   if (x < 0.1)
   {
     // x (1 - x/2 (1 - x/3 (... (1 - x/9)))), with reciprocals (no division chain)
-    static constexpr double inv[10] = { 0.0, 1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6,
-      1.0 / 7, 1.0 / 8, 1.0 / 9 };
+    static constexpr double inv[10] = {
+      0.0, 1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8, 1.0 / 9
+    };
     double sum = 1.0;
     for (int k = 9; k >= 2; --k)
     {
@@ -302,13 +304,18 @@ public:
 
   double StepLength() const { return this->StepFraction * this->SmallestVoxel; }
 
-  std::array<double, 4> Integrate(
-    const double o[3], const double d[3], double t0, double t1, Workspace& ws) const;
+  std::array<double, 4> Integrate(const double o[3],
+    const double d[3],
+    double t0,
+    double t1,
+    Workspace& ws) const;
   void BuildCover(const Active& a, double ta, double tm, Cover& c) const;
 };
 
-void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(
-  const Active& a, double ta, double tm, Cover& c) const
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a,
+  double ta,
+  double tm,
+  Cover& c) const
 {
   const Vol& v = *a.V;
   c.V = &v;
@@ -362,8 +369,11 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(
   c.S = LerpPoly(py0, py1, x0[2], ex[2]);
 }
 
-std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(
-  const double o[3], const double d[3], double t0, double t1, Workspace& ws) const
+std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
+  const double d[3],
+  double t0,
+  double t1,
+  Workspace& ws) const
 {
   std::array<double, 4> out = { 0.0, 0.0, 0.0, 0.0 };
   const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -479,7 +489,8 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
       {
         const std::vector<double>& kinks = c.V->Tf.Kinks;
         for (auto it = std::upper_bound(kinks.begin(), kinks.end(), c.SLo);
-             it != kinks.end() && *it < c.SHi; ++it)
+             it != kinks.end() && *it < c.SHi;
+             ++it)
         {
           AppendCrossings(c.S, *it, len, ws.Sub);
         }
@@ -547,7 +558,8 @@ vtkMultiVolumeReferenceIntegrator::~vtkMultiVolumeReferenceIntegrator() = defaul
 int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
 {
   vtkInternals& self = *this->Internals;
-  auto fail = [&](const char* why) {
+  auto fail = [&](const char* why)
+  {
     self.LastError = why;
     return -1;
   };
@@ -667,7 +679,8 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
       t.Color[3 * k + ch] = tf.Color.empty() ? 1.0 : tf.Color[3 * k + ch];
     }
   }
-  auto slopeDiffers = [&](int k) {
+  auto slopeDiffers = [&](int k)
+  {
     // Slopes left and right of node k (zero outside the table): alpha, then colours.
     for (int q = 0; q < 4; ++q)
     {
@@ -862,8 +875,10 @@ void vtkMultiVolumeReferenceIntegrator::GetLocalOrigin(double origin[3]) const
   std::copy(this->Internals->LocalOrigin, this->Internals->LocalOrigin + 3, origin);
 }
 
-std::array<double, 4> vtkMultiVolumeReferenceIntegrator::IntegrateRay(
-  const double origin[3], const double direction[3], double t0, double t1) const
+std::array<double, 4> vtkMultiVolumeReferenceIntegrator::IntegrateRay(const double origin[3],
+  const double direction[3],
+  double t0,
+  double t1) const
 {
   const double* l = this->Internals->LocalOrigin;
   const double o[3] = { origin[0] - l[0], origin[1] - l[1], origin[2] - l[2] };
@@ -871,8 +886,12 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::IntegrateRay(
   return this->Internals->Integrate(o, direction, t0, t1, ws);
 }
 
-void vtkMultiVolumeReferenceIntegrator::IntegrateImage(const double clipToWorld[16], int width,
-  int height, std::vector<double>& rgba, const double* start, const double* stop,
+void vtkMultiVolumeReferenceIntegrator::IntegrateImage(const double clipToWorld[16],
+  int width,
+  int height,
+  std::vector<double>& rgba,
+  const double* start,
+  const double* stop,
   DepthKind kind) const
 {
   rgba.assign(4 * static_cast<size_t>(std::max(width, 0)) * std::max(height, 0), 0.0);
@@ -891,14 +910,16 @@ void vtkMultiVolumeReferenceIntegrator::IntegrateImage(const double clipToWorld[
     }
     m[12 + c] = clipToWorld[12 + c];
   }
-  auto transform = [&m](double x, double y, double z, double out[3]) {
+  auto transform = [&m](double x, double y, double z, double out[3])
+  {
     const double w = m[12] * x + m[13] * y + m[14] * z + m[15];
     for (int r = 0; r < 3; ++r)
     {
       out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
     }
   };
-  auto work = [&](int rowBegin, int rowStep) {
+  auto work = [&](int rowBegin, int rowStep)
+  {
     vtkInternals::Workspace ws;
     for (int py = rowBegin; py < height; py += rowStep)
     {
@@ -915,7 +936,8 @@ void vtkMultiVolumeReferenceIntegrator::IntegrateImage(const double clipToWorld[
         }
         const double dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
         const size_t idx = static_cast<size_t>(py) * width + px;
-        auto toT = [&](double value) {
+        auto toT = [&](double value)
+        {
           if (kind == DepthKind::WorldDistance)
           {
             return value / std::sqrt(dd);

@@ -176,8 +176,10 @@ public:
    * Composite along origin + t * direction for t in [t0, t1] (world coordinates; direction
    * need not be unit length). Returns premultiplied {R, G, B, A}.
    */
-  std::array<double, 4> IntegrateRay(
-    const double origin[3], const double direction[3], double t0, double t1) const;
+  std::array<double, 4> IntegrateRay(const double origin[3],
+    const double direction[3],
+    double t0,
+    double t1) const;
 
   /**
    * One ray per pixel centre of a width x height image through clipToWorld (row-major 4x4,
@@ -185,8 +187,12 @@ public:
    * values (bottom row first) of the given kind; a ray runs from the later of its near point
    * and start to the earlier of its far point and stop. Fills rgba with 4 values per pixel.
    */
-  void IntegrateImage(const double clipToWorld[16], int width, int height,
-    std::vector<double>& rgba, const double* start = nullptr, const double* stop = nullptr,
+  void IntegrateImage(const double clipToWorld[16],
+    int width,
+    int height,
+    std::vector<double>& rgba,
+    const double* start = nullptr,
+    const double* stop = nullptr,
     DepthKind kind = DepthKind::WindowDepth) const;
 
   /**

@@ -356,14 +356,17 @@ bool vtkPageCache::SetLoadFunction(LoadFunction loader)
   return true;
 }
 
-void vtkPageCache::AddGridNeighbours(
-  const Key& key, const int pages[3], const int* parentPages, std::vector<Key>& prefetch)
+void vtkPageCache::AddGridNeighbours(const Key& key,
+  const int pages[3],
+  const int* parentPages,
+  std::vector<Key>& prefetch)
 {
   const int64_t nx = pages[0], ny = pages[1], nz = pages[2];
   if (key.Page < 0 || key.Page >= nx * ny * nz)
     return;
   const int64_t x = key.Page % nx, y = (key.Page / nx) % ny, z = key.Page / (nx * ny);
-  auto add = [&](int level, int64_t i, int64_t j, int64_t k, int64_t mx, int64_t my, int64_t mz) {
+  auto add = [&](int level, int64_t i, int64_t j, int64_t k, int64_t mx, int64_t my, int64_t mz)
+  {
     if (i < 0 || j < 0 || k < 0 || i >= mx || j >= my || k >= mz)
       return;
     Key n = key;

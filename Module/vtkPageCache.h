@@ -103,7 +103,10 @@ public:
    * given (the next coarser level's grid), its parent (index / 2 per axis). A moving camera
    * asks for the neighbours of what it sees next, and a collapse for the parent.
    */
-  static void AddGridNeighbours(const Key& key, const int pages[3], const int* parentPages, std::vector<Key>& prefetch);
+  static void AddGridNeighbours(const Key& key,
+    const int pages[3],
+    const int* parentPages,
+    std::vector<Key>& prefetch);
 
   /// What Request() found or did.
   enum class State

@@ -241,9 +241,11 @@ struct Converter
         }
         double* fw = this->FilteredWeight.data() + static_cast<size_t>(y) * cd[0];
         for (int cx = 0; cx < cd[0]; ++cx)
-          fx[cx] = vtkVolumeBrickTree::FilterTaps(row, cx, fd[0], [this](T t) { return this->Skip(t); }, fw[cx]);
+          fx[cx] = vtkVolumeBrickTree::FilterTaps(
+            row, cx, fd[0], [this](T t) { return this->Skip(t); }, fw[cx]);
       }
-      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& acc) {
+      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& acc)
+      {
         for (int cy = 0; cy < cd[1]; ++cy)
         {
           double* a = acc.data() + static_cast<size_t>(cy) * cd[0];
@@ -278,7 +280,8 @@ struct Converter
       else if (this->AccWeight[q] > 0.0)
         out[q] = FromDouble<T>(this->Acc[q] / this->AccWeight[q]);
       else
-        out[q] = this->HasNoData ? static_cast<T>(this->NoData) : std::numeric_limits<T>::quiet_NaN();
+        out[q] =
+          this->HasNoData ? static_cast<T>(this->NoData) : std::numeric_limits<T>::quiet_NaN();
     }
     return out;
   }

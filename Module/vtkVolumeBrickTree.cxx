@@ -188,7 +188,10 @@ bool vtkVolumeBrickTree::BuildLevels(const int dims[3], int brickSize)
   return true;
 }
 
-bool vtkVolumeBrickTree::BuildStructure(const int dims[3], int brickSize, const float* minima, const float* maxima)
+bool vtkVolumeBrickTree::BuildStructure(const int dims[3],
+  int brickSize,
+  const float* minima,
+  const float* maxima)
 {
   this->Levels.clear();
   this->Nodes.clear();
@@ -218,7 +221,6 @@ bool vtkVolumeBrickTree::BuildStructure(const int dims[3], int brickSize, const 
   }
   return true;
 }
-
 
 const void* vtkVolumeBrickTree::GetLevelData(int l) const
 {
@@ -273,7 +275,11 @@ void vtkVolumeBrickTree::Downsample(int l)
         {
           if constexpr (holes)
           {
-            fx[cx] = FilterTaps(row, cx, fd[0], [](T t) { return std::isnan(static_cast<double>(t)); },
+            fx[cx] = FilterTaps(
+              row,
+              cx,
+              fd[0],
+              [](T t) { return std::isnan(static_cast<double>(t)); },
               filteredW[static_cast<size_t>(y) * cd[0] + cx]);
           }
           else
@@ -284,7 +290,8 @@ void vtkVolumeBrickTree::Downsample(int l)
           }
         }
       }
-      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& sums) {
+      auto accumulate = [&](const std::vector<double>& filtered, std::vector<double>& sums)
+      {
         for (int cy = 0; cy < cd[1]; ++cy)
         {
           const double* r0 = filtered.data() + static_cast<size_t>(tap(cy, -1, fd[1])) * cd[0];
@@ -305,7 +312,8 @@ void vtkVolumeBrickTree::Downsample(int l)
     for (size_t q = 0; q < acc.size(); ++q)
     {
       if constexpr (holes)
-        o[q] = accW[q] > 0.0 ? FromDouble<T>(acc[q] / accW[q]) : std::numeric_limits<T>::quiet_NaN();
+        o[q] =
+          accW[q] > 0.0 ? FromDouble<T>(acc[q] / accW[q]) : std::numeric_limits<T>::quiet_NaN();
       else
         o[q] = FromDouble<T>(acc[q] / 64.0);
     }

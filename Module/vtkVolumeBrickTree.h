@@ -59,7 +59,7 @@ public:
    * row's n values) over the taps that hold data (`skip(value)` false), their weight in
    * `weight`. Holes take no part, so a coarse value is a hole only where every tap is.
    */
-  template <typename T, typename Skip>
+  template<typename T, typename Skip>
   static double FilterTaps(const T* row, int v, int n, Skip skip, double& weight)
   {
     double sum = 0.0;

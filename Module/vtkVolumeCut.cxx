@@ -442,7 +442,7 @@ int vtkVolumeCut::Update(const Camera& camera)
     // Data last: only a split that fits asks for its children's pages, so a paging renderer
     // never loads what the budget would not let it show.
     if (freed < need || (bound > 0 && added > 0 && added + children + moves > bound) ||
-      !in.ChildrenAvailable(v, n))
+        !in.ChildrenAvailable(v, n))
     {
       in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
       continue;

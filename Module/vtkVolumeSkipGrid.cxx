@@ -12,8 +12,14 @@ using Dims = std::array<long long, 3>;
 // Ranges along one axis: `in` (dims d, x fastest) reduced to cells [c C, (c + 1) C] of that
 // axis, clamped to its last point; the other axes keep their size. NaN fails both comparisons
 // and is left out.
-void ReduceAxis(const float* inMin, const float* inMax, Dims& d, int axis, int cells, int C,
-  std::vector<float>& outMin, std::vector<float>& outMax)
+void ReduceAxis(const float* inMin,
+  const float* inMax,
+  Dims& d,
+  int axis,
+  int cells,
+  int C,
+  std::vector<float>& outMin,
+  std::vector<float>& outMax)
 {
   Dims o = d;
   o[axis] = cells;
@@ -58,8 +64,10 @@ void vtkVolumeSkipGrid::Build(const float* scalars, const int dims[3], int cellS
   this->Distance.assign(this->Min.size(), 255);
 }
 
-void vtkVolumeSkipGrid::BuildFromRanges(
-  const int cellDims[3], int cellSize, const float* minima, const float* maxima)
+void vtkVolumeSkipGrid::BuildFromRanges(const int cellDims[3],
+  int cellSize,
+  const float* minima,
+  const float* maxima)
 {
   this->CellSize = std::max(cellSize, 1);
   for (int a = 0; a < 3; ++a)
@@ -83,7 +91,8 @@ long long vtkVolumeSkipGrid::Classify(const OpacityRange& opacity)
   }
   // Chessboard distance transform: two raster passes with the 26-neighbourhood, unit weights
   // (exact for this metric). The forward pass looks at the 13 neighbours already visited.
-  auto pass = [&](int sign) {
+  auto pass = [&](int sign)
+  {
     const int z0 = sign > 0 ? 0 : cz - 1, y0 = sign > 0 ? 0 : cy - 1, x0 = sign > 0 ? 0 : cx - 1;
     for (int z = z0; z >= 0 && z < cz; z += sign)
       for (int y = y0; y >= 0 && y < cy; y += sign)

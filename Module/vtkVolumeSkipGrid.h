@@ -41,7 +41,10 @@ public:
    * Cells given by their ranges (cellDims cells of cellSize voxels, x fastest), for data that
    * is not in memory: a page pool's level-0 bricks of stride cellSize are exactly such cells.
    */
-  void BuildFromRanges(const int cellDims[3], int cellSize, const float* minima, const float* maxima);
+  void BuildFromRanges(const int cellDims[3],
+    int cellSize,
+    const float* minima,
+    const float* maxima);
 
   /// Visibility and distances for this opacity function. Returns the number of visible cells.
   long long Classify(const OpacityRange& opacity);

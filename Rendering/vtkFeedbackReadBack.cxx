@@ -11,11 +11,16 @@ void vtkFeedbackReadBack::Allocate(unsigned int& buffer, size_t count)
   if (!buffer)
     glGenBuffers(1, &buffer);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-  glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), nullptr, GL_STREAM_READ);
+  glBufferData(GL_PIXEL_PACK_BUFFER,
+    static_cast<GLsizeiptr>(count * sizeof(uint32_t)),
+    nullptr,
+    GL_STREAM_READ);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
-void vtkFeedbackReadBack::Queue(vtkOpenGLRenderWindow* renWin, unsigned int texture, unsigned int buffer)
+void vtkFeedbackReadBack::Queue(vtkOpenGLRenderWindow* renWin,
+  unsigned int texture,
+  unsigned int buffer)
 {
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
@@ -30,11 +35,13 @@ void vtkFeedbackReadBack::Queue(vtkOpenGLRenderWindow* renWin, unsigned int text
   units->Free(unit);
 }
 
-bool vtkFeedbackReadBack::Map(unsigned int buffer, size_t count, const std::function<void(const uint32_t* ids)>& use)
+bool vtkFeedbackReadBack::Map(unsigned int buffer,
+  size_t count,
+  const std::function<void(const uint32_t* ids)>& use)
 {
   glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-  const auto* ids = static_cast<const uint32_t*>(
-    glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
+  const auto* ids = static_cast<const uint32_t*>(glMapBufferRange(
+    GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_MAP_READ_BIT));
   if (ids)
   {
     use(ids);

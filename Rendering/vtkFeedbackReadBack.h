@@ -29,7 +29,9 @@ public:
   /// buffer at least as large), on a texture unit of `renWin`'s manager.
   static void Queue(vtkOpenGLRenderWindow* renWin, unsigned int texture, unsigned int buffer);
   /// Maps the first `count` ids of `buffer` and hands them to `use`; false if the map failed.
-  static bool Map(unsigned int buffer, size_t count, const std::function<void(const uint32_t* ids)>& use);
+  static bool Map(unsigned int buffer,
+    size_t count,
+    const std::function<void(const uint32_t* ids)>& use);
 };
 
 #endif

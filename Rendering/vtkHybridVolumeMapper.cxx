@@ -56,21 +56,24 @@ void BuildPointShaders(bool splats, bool shaded, std::string& vs, std::string& f
     // A Gaussian of standard deviation sigma = size / sqrt(2 pi) integrates to size^2, the
     // square's area; the sprite spans +- 3 sigma.
     Replace(vs, "//STRATA::Splat::VSDec", "out float vSigma;\nout float vSide;");
-    Replace(vs, "//STRATA::Splat::VSImpl",
+    Replace(vs,
+      "//STRATA::Splat::VSImpl",
       "float px = max(size, 1.0);\n"
       "  vSigma = px * 0.3989422804;\n"
       "  vSide = ceil(6.0 * vSigma);\n"
       "  gl_PointSize = vSide;\n"
       "  vColor = vec4(c, a) * min(size * size / (px * px), 1.0);");
     Replace(fs, "//STRATA::Splat::FSDec", "in float vSigma;\nin float vSide;");
-    Replace(fs, "//STRATA::Splat::FSImpl",
+    Replace(fs,
+      "//STRATA::Splat::FSImpl",
       "vec2 r = (gl_PointCoord - 0.5) * vSide;\n"
       "  gl_FragData[0] = vColor * exp(-dot(r, r) / (2.0 * vSigma * vSigma));");
   }
   else
   {
     Replace(vs, "//STRATA::Splat::VSDec", "");
-    Replace(vs, "//STRATA::Splat::VSImpl",
+    Replace(vs,
+      "//STRATA::Splat::VSImpl",
       "float side = max(ceil(size), 1.0);\n"
       "  gl_PointSize = side;\n"
       "  vColor = vec4(c, a) * min(size * size / (side * side), 1.0);");
@@ -80,7 +83,8 @@ void BuildPointShaders(bool splats, bool shaded, std::string& vs, std::string& f
   if (shaded)
   {
     // Two-sided Blinn-Phong with the scene's directional lights, as the ray caster shades.
-    Replace(vs, "//STRATA::Normal::Dec",
+    Replace(vs,
+      "//STRATA::Normal::Dec",
       "in vec3 pointNormal;\n"
       "uniform mat3 uNormalToWorld;\n"
       "uniform vec4 uMaterial; // ambient, diffuse, specular, specular power\n"
@@ -88,12 +92,14 @@ void BuildPointShaders(bool splats, bool shaded, std::string& vs, std::string& f
       "uniform vec3 uLightDirection[8];\n"
       "uniform vec3 uLightColor[8];\n"
       "uniform vec3 uViewDirection; // towards the eye");
-    Replace(vs, "//STRATA::Normal::Impl",
+    Replace(vs,
+      "//STRATA::Normal::Impl",
       "vec3 N = normalize(uNormalToWorld * pointNormal);\n"
       "  vec3 diffuse = vec3(0.0);\n  vec3 specular = vec3(0.0);\n"
       "  for (int l = 0; l < uNumLights; ++l)\n  {\n"
       "    diffuse += abs(dot(N, uLightDirection[l])) * uLightColor[l];\n"
-      "    specular += pow(abs(dot(N, normalize(uLightDirection[l] + uViewDirection))), uMaterial.w) * uLightColor[l];\n"
+      "    specular += pow(abs(dot(N, normalize(uLightDirection[l] + uViewDirection))), "
+      "uMaterial.w) * uLightColor[l];\n"
       "  }\n"
       "  c = c * (uMaterial.x + uMaterial.y * diffuse) + uMaterial.z * specular * a;");
   }
@@ -186,8 +192,9 @@ int vtkHybridVolumeMapper::FillInputPortInformation(int port, vtkInformation* in
   return 1;
 }
 
-vtkTypeBool vtkHybridVolumeMapper::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkTypeBool vtkHybridVolumeMapper::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the input (GetBounds, the render), a pool's reader serves its coarsest
@@ -260,8 +267,9 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->GetInputAlgorithm(port, 0)->Update();
   }
   auto* low = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkPolyData* points =
-    this->GetNumberOfInputConnections(1) > 0 ? vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0)) : nullptr;
+  vtkPolyData* points = this->GetNumberOfInputConnections(1) > 0
+                          ? vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0))
+                          : nullptr;
   if (!low)
   {
     vtkErrorMacro("No low-resolution volume on input 0.");
@@ -294,7 +302,8 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const vtkIdType count = values && errors ? points->GetNumberOfPoints() : 0;
   if (points && count == 0 && points->GetNumberOfPoints() > 0)
   {
-    vtkErrorMacro("The points input has no \"Value\" and \"Error\" point data: drawing the volume alone.");
+    vtkErrorMacro(
+      "The points input has no \"Value\" and \"Error\" point data: drawing the volume alone.");
   }
   in.Drawn = 0;
   if (count == 0)
@@ -309,20 +318,23 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkDataArray* spacing = points->GetFieldData()->GetArray("PointSpacing");
     if (!spacing || spacing->GetNumberOfTuples() * spacing->GetNumberOfComponents() < 3)
     {
-      vtkErrorMacro("No PointSpacing: set it, or give the points field data \"PointSpacing\" (3 values).");
+      vtkErrorMacro(
+        "No PointSpacing: set it, or give the points field data \"PointSpacing\" (3 values).");
       return;
     }
     double g[3];
     for (int c = 0; c < 3; ++c)
-      g[c] = spacing->GetNumberOfComponents() >= 3 ? spacing->GetComponent(0, c) : spacing->GetComponent(c, 0);
+      g[c] = spacing->GetNumberOfComponents() >= 3 ? spacing->GetComponent(0, c)
+                                                   : spacing->GetComponent(c, 0);
     cell = std::cbrt(std::abs(g[0] * g[1] * g[2]));
   }
   vtkDataArray* normals = points->GetPointData()->GetArray("Normals");
   vtkVolumeProperty* property = vol->GetProperty();
-  const bool shaded = property->GetShade(0) != 0 && normals && normals->GetNumberOfComponents() == 3 &&
-    ren->GetLights()->GetNumberOfItems() > 0;
+  const bool shaded = property->GetShade(0) != 0 && normals &&
+                      normals->GetNumberOfComponents() == 3 &&
+                      ren->GetLights()->GetNumberOfItems() > 0;
   if (in.PointsInput != points || in.PointsTime < points->GetMTime() || in.Count != count ||
-    in.HasNormals != shaded)
+      in.HasNormals != shaded)
   {
     double b[6];
     points->GetBounds(b);
@@ -363,7 +375,8 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     double range[2];
     std::vector<float> table, alpha;
-    vtkMultiVolumeRayCastMapper::UploadTransferTable(renWin, property, in.Transfer, in.TableRange, range, table, alpha);
+    vtkMultiVolumeRayCastMapper::UploadTransferTable(
+      renWin, property, in.Transfer, in.TableRange, range, table, alpha);
     in.TransferProperty = property;
     in.TransferTime = tfTime;
   }
@@ -375,7 +388,8 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   camera->GetFocalPoint(focal);
   camera->GetDirectionOfProjection(dir);
   const double* m = vol->GetMatrix()->GetData();
-  auto depthOf = [&](const double local[3]) {
+  auto depthOf = [&](const double local[3])
+  {
     // local (relative to the points' origin) -> world by the prop's matrix -> depth.
     double d = 0.0;
     for (int r = 0; r < 3; ++r)
@@ -414,7 +428,8 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   std::vector<size_t> start(buckets + 1, 0);
   for (vtkIdType i = 0; i < count; ++i)
   {
-    const int nearToFar = std::min(buckets - 1, std::max(0, int((depth[i] - lo) / width * buckets)));
+    const int nearToFar =
+      std::min(buckets - 1, std::max(0, int((depth[i] - lo) / width * buckets)));
     bucketOf[i] = static_cast<unsigned int>(buckets - 1 - nearToFar);
     ++start[bucketOf[i] + 1];
   }
@@ -498,17 +513,23 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         glGenVertexArrays(1, &in.VAO);
       glBindVertexArray(in.VAO);
       glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, in.IBO);
-      glBufferData(GL_ELEMENT_ARRAY_BUFFER, order.size() * sizeof(unsigned int), order.data(), GL_STREAM_DRAW);
+      glBufferData(
+        GL_ELEMENT_ARRAY_BUFFER, order.size() * sizeof(unsigned int), order.data(), GL_STREAM_DRAW);
       if (in.VaoProgram != program)
       {
         glBindBuffer(GL_ARRAY_BUFFER, in.VBO);
         const GLsizei stride = (shaded ? 8 : 5) * sizeof(float);
-        auto attribute = [&](const char* name, int size, size_t offset) {
+        auto attribute = [&](const char* name, int size, size_t offset)
+        {
           const GLint location = glGetAttribLocation(program->GetHandle(), name);
           if (location >= 0)
           {
             glEnableVertexAttribArray(location);
-            glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, stride,
+            glVertexAttribPointer(location,
+              size,
+              GL_FLOAT,
+              GL_FALSE,
+              stride,
               reinterpret_cast<const void*>(offset * sizeof(float)));
           }
         };
@@ -525,7 +546,9 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformf("uPixelsPerUnit", static_cast<float>(p11 * vp[3] / 2.0));
       in.Transfer->Activate();
       program->SetUniformi("uTransfer", in.Transfer->GetTextureUnit());
-      const float range[3] = { float(in.TableRange[0]), float(in.TableRange[1]), float(in.TableRange[2]) };
+      const float range[3] = {
+        float(in.TableRange[0]), float(in.TableRange[1]), float(in.TableRange[2])
+      };
       program->SetUniform3f("uTableRange", range);
       if (shaded)
       {
@@ -534,9 +557,11 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
         if (!lightDirections.empty())
         {
-          program->SetUniform3fv("uLightDirection", static_cast<int>(lightDirections.size() / 3),
+          program->SetUniform3fv("uLightDirection",
+            static_cast<int>(lightDirections.size() / 3),
             reinterpret_cast<const float(*)[3]>(lightDirections.data()));
-          program->SetUniform3fv("uLightColor", static_cast<int>(lightColors.size() / 3),
+          program->SetUniform3fv("uLightColor",
+            static_cast<int>(lightColors.size() / 3),
             reinterpret_cast<const float(*)[3]>(lightColors.data()));
         }
         // Normals go to world by the inverse transpose of the prop's linear part.
@@ -547,8 +572,10 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
           for (int c = 0; c < 3; ++c)
             n3[3 * c + r] = static_cast<float>(inv->GetElement(c, r)); // column-major transpose
         program->SetUniformMatrix3x3("uNormalToWorld", n3);
-        const float material[4] = { float(property->GetAmbient(0)), float(property->GetDiffuse(0)),
-          float(property->GetSpecular(0)), float(property->GetSpecularPower(0)) };
+        const float material[4] = { float(property->GetAmbient(0)),
+          float(property->GetDiffuse(0)),
+          float(property->GetSpecular(0)),
+          float(property->GetSpecularPower(0)) };
         program->SetUniform4f("uMaterial", material);
         const float view[3] = { float(-dir[0]), float(-dir[1]), float(-dir[2]) };
         program->SetUniform3f("uViewDirection", view);
@@ -570,7 +597,9 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     state->vtkglDepthMask(GL_FALSE);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    glDrawElements(GL_POINTS, static_cast<GLsizei>(last - first), GL_UNSIGNED_INT,
+    glDrawElements(GL_POINTS,
+      static_cast<GLsizei>(last - first),
+      GL_UNSIGNED_INT,
       reinterpret_cast<const void*>(first * sizeof(unsigned int)));
     glDisable(GL_PROGRAM_POINT_SIZE);
     glBindVertexArray(0);
@@ -583,7 +612,9 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 void vtkHybridVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "PointShape: " << (this->PointShape == PointShapes::Squares ? "Squares" : "GaussianSplats") << "\n";
+  os << indent
+     << "PointShape: " << (this->PointShape == PointShapes::Squares ? "Squares" : "GaussianSplats")
+     << "\n";
   os << indent << "NumberOfSlabs: " << this->NumberOfSlabs << "\n";
   os << indent << "PointSpacing: " << this->PointSpacing << "\n";
 }

@@ -91,7 +91,8 @@ public:
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   /// Asks a page-pool reader on input 0 for its coarsest level (the volume mapper pages it).
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 

@@ -9,10 +9,10 @@
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkVolumeBSPTree.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeCut.h"
 #include "vtkVolumeSkipGrid.h"
-#include "vtkVolumeBSPTree.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -54,8 +54,8 @@
 #include "vtkMultiVolumeFragmentVS.h"
 
 #include <algorithm>
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -103,8 +103,8 @@ bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
   int d[3];
   image->GetDimensions(d);
   vtkDataArray* scalars = image->GetPointData() ? image->GetPointData()->GetScalars() : nullptr;
-  if (!scalars || d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2] || d[0] > B || d[1] > B || d[2] > B ||
-    scalars->GetNumberOfTuples() != vtkIdType(d[0]) * d[1] * d[2])
+  if (!scalars || d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2] || d[0] > B || d[1] > B ||
+      d[2] > B || scalars->GetNumberOfTuples() != vtkIdType(d[0]) * d[1] * d[2])
   {
     return false;
   }
@@ -112,7 +112,9 @@ bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
     for (int j = 0; j < B; ++j)
       for (int i = 0; i < B; ++i)
       {
-        const vtkIdType at = (vtkIdType(std::min(k, d[2] - 1)) * d[1] + std::min(j, d[1] - 1)) * d[0] + std::min(i, d[0] - 1);
+        const vtkIdType at =
+          (vtkIdType(std::min(k, d[2] - 1)) * d[1] + std::min(j, d[1] - 1)) * d[0] +
+          std::min(i, d[0] - 1);
         page[(size_t(k) * B + j) * B + i] = static_cast<float>(scalars->GetComponent(at, 0));
       }
   return true;
@@ -153,8 +155,11 @@ std::string FeedbackGlobals(bool footprint)
 
 std::string FeedbackVolumeUniforms(const std::string& n, bool footprint)
 {
-  return "uniform int uFeedbackSet" + n + ";\nuniform int uLevelBricks" + n + "[" + std::to_string(3 * FeedbackLevels) +
-    "];\n" + (footprint ? "uniform vec2 uFeedbackLod" + n + "; // 1 / level-0 voxel size, coarsest level\n" : "");
+  return "uniform int uFeedbackSet" + n + ";\nuniform int uLevelBricks" + n + "[" +
+         std::to_string(3 * FeedbackLevels) + "];\n" +
+         (footprint
+             ? "uniform vec2 uFeedbackLod" + n + "; // 1 / level-0 voxel size, coarsest level\n"
+             : "");
 }
 
 // Inside strataScalarAt<n>, after the index entry e of level-0 brick b was fetched. Among
@@ -163,32 +168,36 @@ std::string FeedbackFetchCheck(const std::string& n, bool frontToBack, bool foot
 {
   std::string code = "  if (gFeedbackRay)\n  {\n";
   if (footprint)
-    code += "    int want = int(clamp(floor(log2(max(gFootprint * uFeedbackLod" + n + ".x, 1.0e-30))), 0.0, uFeedbackLod" + n +
-      ".y));\n";
+    code += "    int want = int(clamp(floor(log2(max(gFootprint * uFeedbackLod" + n +
+            ".x, 1.0e-30))), 0.0, uFeedbackLod" + n + ".y));\n";
   else
     code += "    int want = 0;\n";
-  code += "    float score = e.w != 65535u && e.w > uint(want) ? gTransmittance * exp2(float(min(int(e.w) - want, 16))) : 0.0;\n"
-          "    bool better = score " + std::string(frontToBack ? ">" : ">=") + " gLackScore && score > 0.0;\n"
+  code += "    float score = e.w != 65535u && e.w > uint(want) ? gTransmittance * "
+          "exp2(float(min(int(e.w) - want, 16))) : 0.0;\n"
+          "    bool better = score " +
+          std::string(frontToBack ? ">" : ">=") +
+          " gLackScore && score > 0.0;\n"
           "    gLackFound = gLackFound || better;\n"
           "    gLackScore = better ? score : gLackScore;\n"
           "    gLack = better ? ivec4(b, want) : gLack;\n"
-          "    gLackVolume = better ? " + n + " : gLackVolume;\n  }\n";
+          "    gLackVolume = better ? " +
+          n + " : gLackVolume;\n  }\n";
   return code;
 }
 
 std::string FeedbackPacking(int k)
 {
   std::ostringstream dec;
-  dec << vtkFeedbackReduction::GetGLSLPackFunction()
-      << "uint strataLackingPage()\n{\n"
+  dec << vtkFeedbackReduction::GetGLSLPackFunction() << "uint strataLackingPage()\n{\n"
       << "  ivec3 w = gLack.xyz >> gLack.w;\n"
       << "  int g = 3 * gLack.w;\n";
   for (int i = 0; i < k; ++i)
   {
     const std::string n = std::to_string(i);
     dec << "  if (gLackVolume == " << n << ")\n  {\n"
-        << "    return strataPackPage(uint(uFeedbackSet" << n << "), uint(gLack.w), uint((w.z * uLevelBricks" << n
-        << "[g + 1] + w.y) * uLevelBricks" << n << "[g] + w.x));\n  }\n";
+        << "    return strataPackPage(uint(uFeedbackSet" << n
+        << "), uint(gLack.w), uint((w.z * uLevelBricks" << n << "[g + 1] + w.y) * uLevelBricks" << n
+        << "[g] + w.x));\n  }\n";
   }
   dec << "  return 0u;\n}\n";
   return dec.str();
@@ -196,9 +205,17 @@ std::string FeedbackPacking(int k)
 
 // The fragment shader for k volumes: one unrolled block per volume, the classification's segment
 // code and the compositing loop of the order; nothing a fragment does not use.
-std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classifications classification,
-  bool frontToBack, bool barrier, int rays, bool coherence, const std::vector<bool>& shaded,
-  bool atlas, bool skipping, bool feedback, bool footprint)
+std::string BuildFragmentShader(int k,
+  vtkMultiVolumeRayCastMapper::Classifications classification,
+  bool frontToBack,
+  bool barrier,
+  int rays,
+  bool coherence,
+  const std::vector<bool>& shaded,
+  bool atlas,
+  bool skipping,
+  bool feedback,
+  bool footprint)
 {
   using C = vtkMultiVolumeRayCastMapper::Classifications;
   std::string fs = vtkMultiVolumeFragmentFS;
@@ -222,7 +239,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
         dec << FeedbackVolumeUniforms(n, footprint);
       dec << "uniform usampler3D uIndex" << n << ";\n"
           << "uniform vec3 uTableDims" << n << ";\n"
-          << "uniform float uEmptyScalar" << n << "; // a value the transfer function makes transparent\n"
+          << "uniform float uEmptyScalar" << n
+          << "; // a value the transfer function makes transparent\n"
           << "float strataScalarAt" << n << "(vec3 idx)\n{\n"
           << "  float S = uBrickSize - 1.0;\n"
           << "  vec3 x = clamp(idx, vec3(0.0), uTableDims" << n << " * S);\n"
@@ -230,7 +248,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
           << "  uvec4 e = texelFetch(uIndex" << n << ", b, 0);\n"
           << (feedback ? FeedbackFetchCheck(n, frontToBack, footprint) : std::string())
           << "  if (e.w >= 65534u)\n  {\n    return uEmptyScalar" << n << ";\n  }\n"
-          << "  vec3 t = vec3(e.xyz) * uBrickSize + x * exp2(-float(e.w)) - vec3(b >> int(e.w)) * S + 0.5;\n"
+          << "  vec3 t = vec3(e.xyz) * uBrickSize + x * exp2(-float(e.w)) - vec3(b >> int(e.w)) * "
+             "S + 0.5;\n"
           << "  return texture(uAtlas, t / uAtlasSize).r;\n}\n";
     }
     else
@@ -244,7 +263,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
         << "uniform float uNearest" << n << "; // 1: nearest-point interpolation\n"
         << "float strataScalar" << n << "(vec3 p)\n{\n"
         << "  vec3 idx = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
-        << "  return strataScalarAt" << n << "(mix(idx, floor(idx + 0.5), uNearest" << n << "));\n}\n";
+        << "  return strataScalarAt" << n << "(mix(idx, floor(idx + 0.5), uNearest" << n
+        << "));\n}\n";
     if (shaded[i])
     {
       // Gradient by central differences one voxel apart in texture space, taken to the local
@@ -253,10 +273,12 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       dec << "uniform vec4 uMaterial" << n << "; // ambient, diffuse, specular, specular power\n"
           << "vec3 strataShade" << n << "(vec3 p, vec3 color)\n{\n"
           << "  vec3 x = (uLocalToIndex" << n << " * vec4(p, 1.0)).xyz;\n"
-          << "  vec3 g = 0.5 * vec3(strataScalarAt" << n << "(x + vec3(1.0, 0.0, 0.0)) - strataScalarAt" << n
-          << "(x - vec3(1.0, 0.0, 0.0)),\n"
-          << "    strataScalarAt" << n << "(x + vec3(0.0, 1.0, 0.0)) - strataScalarAt" << n << "(x - vec3(0.0, 1.0, 0.0)),\n"
-          << "    strataScalarAt" << n << "(x + vec3(0.0, 0.0, 1.0)) - strataScalarAt" << n << "(x - vec3(0.0, 0.0, 1.0)));\n"
+          << "  vec3 g = 0.5 * vec3(strataScalarAt" << n
+          << "(x + vec3(1.0, 0.0, 0.0)) - strataScalarAt" << n << "(x - vec3(1.0, 0.0, 0.0)),\n"
+          << "    strataScalarAt" << n << "(x + vec3(0.0, 1.0, 0.0)) - strataScalarAt" << n
+          << "(x - vec3(0.0, 1.0, 0.0)),\n"
+          << "    strataScalarAt" << n << "(x + vec3(0.0, 0.0, 1.0)) - strataScalarAt" << n
+          << "(x - vec3(0.0, 0.0, 1.0)));\n"
           << "  g = transpose(mat3(uLocalToIndex" << n << ")) * g;\n"
           << "  float len = length(g);\n"
           << "  vec4 m = uMaterial" << n << ";\n"
@@ -299,18 +321,22 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
             << "vec4 strataIntegral" << n << "(float x)\n{\n"
             << "  float f = x * (uPreRange" << n << ".z - 1.0);\n"
             << "  int i0 = min(int(floor(f)), int(uPreRange" << n << ".z) - 2);\n"
-            << "  return mix(texelFetch(uPreTable" << n << ", ivec2(i0, 0), 0), texelFetch(uPreTable" << n
+            << "  return mix(texelFetch(uPreTable" << n
+            << ", ivec2(i0, 0), 0), texelFetch(uPreTable" << n
             << ", ivec2(i0 + 1, 0), 0), f - float(i0));\n}\n"
             << "vec4 strataPre" << n << "(float sf, float sb, float len)\n{\n"
-            << "  float xf = clamp((sf - uPreRange" << n << ".x) * uPreRange" << n << ".y, 0.0, 1.0);\n"
-            << "  float xb = clamp((sb - uPreRange" << n << ".x) * uPreRange" << n << ".y, 0.0, 1.0);\n"
+            << "  float xf = clamp((sf - uPreRange" << n << ".x) * uPreRange" << n
+            << ".y, 0.0, 1.0);\n"
+            << "  float xb = clamp((sb - uPreRange" << n << ".x) * uPreRange" << n
+            << ".y, 0.0, 1.0);\n"
             << "  float h = 1.0 / (uPreRange" << n << ".z - 1.0);\n"
             << "  float w = max(abs(xb - xf), h);\n"
             << "  float lo = clamp(0.5 * (xf + xb) - 0.5 * w, 0.0, 1.0 - w);\n"
             << "  float hi = lo + w;\n"
             << "  vec4 d = strataIntegral" << n << "(hi) - strataIntegral" << n << "(lo);\n"
             << "  float tau = max(d.a / (hi - lo), 0.0);\n"
-            << "  vec3 k = clamp(d.rgb / (hi - lo), vec3(0.0), vec3(uPreMaxColor" << n << " * tau));\n"
+            << "  vec3 k = clamp(d.rgb / (hi - lo), vec3(0.0), vec3(uPreMaxColor" << n
+            << " * tau));\n"
             << "  float X = len * tau;\n"
             << "  float a = X < 0.01 ? X * (1.0 - X / 2.0 + X * X / 6.0) : 1.0 - exp(-X);\n"
             << "  vec3 c = X < 0.01 ? len * k * (1.0 - X / 2.0 + X * X / 6.0) : len * k * a / X;\n"
@@ -322,10 +348,11 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
   for (int i = 0; i < k; ++i)
     anyShaded = anyShaded || shaded[i];
   // The lights come before the volumes' shading functions that read them.
-  const std::string lights = anyShaded
-    ? "uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, unit\n"
-      "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n"
-    : "";
+  const std::string lights =
+    anyShaded
+      ? "uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, unit\n"
+        "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n"
+      : "";
   if (classification == C::PostClassification)
   {
     // Emission and extinction of the mixed media at p, one lattice step of length len.
@@ -334,8 +361,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     for (int i = 0; i < k; ++i)
     {
       const std::string n = std::to_string(i);
-      seg << "  tf = texture(uTransfer" << n << ", vec2((strataScalar" << n << "(p) - uTableRange" << n
-          << ".x) * uTableRange" << n << ".y + uTableRange" << n << ".z, 0.5));\n";
+      seg << "  tf = texture(uTransfer" << n << ", vec2((strataScalar" << n << "(p) - uTableRange"
+          << n << ".x) * uTableRange" << n << ".y + uTableRange" << n << ".z, 0.5));\n";
       if (shaded[i])
         seg << "  if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade" << n << "(p, tf.rgb);\n  }\n";
       seg << "  e += tf.rgb * tf.a;\n  tau += tf.a;\n";
@@ -349,12 +376,14 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     for (int i = 0; i < k; ++i)
       seg << "  s[" << i << "] = strataScalar" << i << "(p);\n";
     seg << "}\n";
-    seg << "vec4 strataPair(float sf[" << K << "], float sb[" << K << "], float len, vec3 mid)\n{\n";
+    seg << "vec4 strataPair(float sf[" << K << "], float sb[" << K
+        << "], float len, vec3 mid)\n{\n";
     if (k == 1)
     {
       if (shaded[0])
-        seg << "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
-            << "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n";
+        seg
+          << "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
+          << "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n";
       else
         seg << "  return strataPre0(sf[0], sb[0], len);\n}\n";
     }
@@ -369,7 +398,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
             << "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
             << "  X += x;\n";
         if (shaded[i])
-          seg << "  e += ca.a > 0.0 ? strataShade" << i << "(mid, ca.rgb / ca.a) * x : vec3(0.0);\n";
+          seg << "  e += ca.a > 0.0 ? strataShade" << i
+              << "(mid, ca.rgb / ca.a) * x : vec3(0.0);\n";
         else
           seg << "  e += ca.a > 0.0 ? ca.rgb / ca.a * x : vec3(0.0);\n";
       }
@@ -395,21 +425,26 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     for (int i = 0; i < k; ++i)
     {
       const std::string n = std::to_string(i);
-      seg << "  x0 = (uLocalToIndex" << n << " * vec4(o + t * d, 1.0)).xyz;\n"
-          << "  dx = dir * (mat3(uLocalToIndex" << n << ") * d);\n"
-          << "  c = clamp(ivec3(floor(x0 / uSkipGrid" << n << ".w)), ivec3(0), ivec3(uSkipGrid" << n << ".xyz) - 1);\n"
-          << "  D = float(texelFetch(uSkip" << n << ", c, 0).r);\n"
-          << "  if (D == 0.0)\n  {\n    return t;\n  }\n"
-          << "  lo = (vec3(c) - (D - 1.0)) * uSkipGrid" << n << ".w;\n"
-          << "  hi = (vec3(c) + D) * uSkipGrid" << n << ".w;\n"
-          << "  te = vec3(dx.x > 0.0 ? (hi.x - x0.x) / dx.x : (dx.x < 0.0 ? (lo.x - x0.x) / dx.x : 3.0e38),\n"
-          << "    dx.y > 0.0 ? (hi.y - x0.y) / dx.y : (dx.y < 0.0 ? (lo.y - x0.y) / dx.y : 3.0e38),\n"
-          << "    dx.z > 0.0 ? (hi.z - x0.z) / dx.z : (dx.z < 0.0 ? (lo.z - x0.z) / dx.z : 3.0e38));\n"
-          << "  until = min(until, max(min(te.x, min(te.y, te.z)), 0.0));\n";
+      seg
+        << "  x0 = (uLocalToIndex" << n << " * vec4(o + t * d, 1.0)).xyz;\n"
+        << "  dx = dir * (mat3(uLocalToIndex" << n << ") * d);\n"
+        << "  c = clamp(ivec3(floor(x0 / uSkipGrid" << n << ".w)), ivec3(0), ivec3(uSkipGrid" << n
+        << ".xyz) - 1);\n"
+        << "  D = float(texelFetch(uSkip" << n << ", c, 0).r);\n"
+        << "  if (D == 0.0)\n  {\n    return t;\n  }\n"
+        << "  lo = (vec3(c) - (D - 1.0)) * uSkipGrid" << n << ".w;\n"
+        << "  hi = (vec3(c) + D) * uSkipGrid" << n << ".w;\n"
+        << "  te = vec3(dx.x > 0.0 ? (hi.x - x0.x) / dx.x : (dx.x < 0.0 ? (lo.x - x0.x) / dx.x : "
+           "3.0e38),\n"
+        << "    dx.y > 0.0 ? (hi.y - x0.y) / dx.y : (dx.y < 0.0 ? (lo.y - x0.y) / dx.y : 3.0e38),\n"
+        << "    dx.z > 0.0 ? (hi.z - x0.z) / dx.z : (dx.z < 0.0 ? (lo.z - x0.z) / dx.z : "
+           "3.0e38));\n"
+        << "  until = min(until, max(min(te.x, min(te.y, te.z)), 0.0));\n";
     }
     seg << "  return t + dir * until;\n}\n";
   }
-  Replace(fs, "//STRATA::Extensions::Dec",
+  Replace(fs,
+    "//STRATA::Extensions::Dec",
     feedback ? "#extension GL_ARB_shader_image_load_store : require\n" : "");
   Replace(fs, "//STRATA::Volumes::Dec", lights + dec.str() + (feedback ? FeedbackPacking(k) : ""));
   Replace(fs, "//STRATA::Segment::Dec", seg.str());
@@ -419,7 +454,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     for (int r = 0; barrier && r < rays; ++r)
       dec += "uniform sampler2D uAccumulation" + std::to_string(r) + ";\n";
     Replace(fs, "//STRATA::Termination::Dec", dec);
-    Replace(fs, "//STRATA::Termination::Impl",
+    Replace(fs,
+      "//STRATA::Termination::Impl",
       "if (prior >= uTerminationOpacity)\n  {\n    return vec4(0.0);\n  }\n"
       "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
       "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
@@ -446,8 +482,10 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     if (r == 0)
     {
       if (feedback)
-        raysCode << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, ivec2(uFeedbackScale / 2)));\n";
-      raysCode << "  gl_FragData[0] = strataCastRay(" << (rays > 1 ? pixel.str() : "gl_FragCoord.xy") << ", 0.0, " << prior
+        raysCode << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, "
+                    "ivec2(uFeedbackScale / 2)));\n";
+      raysCode << "  gl_FragData[0] = strataCastRay("
+               << (rays > 1 ? pixel.str() : "gl_FragCoord.xy") << ", 0.0, " << prior
                << ", 0.0, tFirst0, inside0);\n";
       if (feedback)
         raysCode << "  gFeedbackRay = false;\n";
@@ -462,8 +500,9 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
       std::ostringstream phase;
       phase.precision(9);
       phase << double(r) / rays;
-      raysCode << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", " << phase.str()
-               << ", " << prior << ", " << (coherence ? "tStart" : "0.0") << ", tFirst, inside);\n";
+      raysCode << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", "
+               << phase.str() << ", " << prior << ", " << (coherence ? "tStart" : "0.0")
+               << ", tFirst, inside);\n";
     }
   }
   if (feedback)
@@ -472,9 +511,11 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     // are drawn one after another with a barrier between; on a tie the nearer one wins).
     raysCode << "  if (gLackFound)\n  {\n"
              << "    ivec2 texel = ivec2(gl_FragCoord.xy) / uFeedbackScale;\n"
-             << "    if (gLackScore " << (frontToBack ? ">" : ">=") << " imageLoad(uFeedbackScore, texel).r)\n    {\n"
+             << "    if (gLackScore " << (frontToBack ? ">" : ">=")
+             << " imageLoad(uFeedbackScore, texel).r)\n    {\n"
              << "      imageStore(uFeedbackScore, texel, vec4(gLackScore));\n"
-             << "      imageStore(uFeedback, texel, uvec4(strataLackingPage(), 0u, 0u, 0u));\n    }\n  }\n";
+             << "      imageStore(uFeedback, texel, uvec4(strataLackingPage(), 0u, 0u, 0u));\n    "
+                "}\n  }\n";
   }
   Replace(fs, "//STRATA::Rays::Impl", raysCode.str());
   const bool pre = classification != C::PostClassification;
@@ -489,7 +530,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     if (feedback)
       loop << "  gTransmittance = 1.0 - prior;\n";
     if (skipping)
-      loop << "  bool probe = true; // look for empty space: at the start and after transparent steps\n";
+      loop << "  bool probe = true; // look for empty space: at the start and after transparent "
+              "steps\n";
     if (pre)
       loop << "  float sA[" << K << "];\n  float sB[" << K << "];\n"
            << "  strataSampleAll(o + tEnter * d, sA);\n";
@@ -511,16 +553,17 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     if (feedback)
       loop << "      gTransmittance = (1.0 - prior) * (1.0 - acc.a);\n";
     if (footprint)
-      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * d, uFeedbackEye);\n";
+      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * "
+              "(a + b) * d, uFeedbackEye);\n";
     if (pre)
       loop << "      strataSampleAll(o + b * d, sB);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
            << "      sA = sB;\n";
     else
       loop << "      vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);\n";
-    loop << "      if (c.a > 0.0 && tFirst == tExit)\n      {\n        tFirst = max(a - dt, tEnter);\n      }\n"
-         << (skipping ? "      probe = c.a <= 0.0;\n" : "")
-         << "      acc += (1.0 - acc.a) * c;\n"
+    loop << "      if (c.a > 0.0 && tFirst == tExit)\n      {\n        tFirst = max(a - dt, "
+            "tEnter);\n      }\n"
+         << (skipping ? "      probe = c.a <= 0.0;\n" : "") << "      acc += (1.0 - acc.a) * c;\n"
          << "      if (acc.a >= localStop)\n      {\n        break;\n      }\n    }\n"
          << "    kk += 1.0;\n  }";
   }
@@ -547,7 +590,8 @@ std::string BuildFragmentShader(int k, vtkMultiVolumeRayCastMapper::Classificati
     }
     loop << "    if (b > a)\n    {\n";
     if (footprint)
-      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * d, uFeedbackEye);\n";
+      loop << "      gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * "
+              "(a + b) * d, uFeedbackEye);\n";
     if (pre)
       loop << "      strataSampleAll(o + a * d, sA);\n"
            << "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
@@ -583,7 +627,9 @@ struct StrataVolumeTextures
   vtkMTimeType DataTime = 0;
   vtkMTimeType TransferTime = 0;
   vtkImageData* DataInput = nullptr;
-  double Range[3] = { 0, 1, 0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
+  double Range[3] = { 0,
+    1,
+    0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
   double ScalarRange[2] = { 0, 1 };
   vtkPreIntegrationTable PreIntegration;
   std::vector<float> Scalars;               ///< the input as float; the brick tree borrows it
@@ -613,8 +659,8 @@ struct StrataVolumeTextures
     const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
     return *std::max_element(this->Alpha.begin() + i0, this->Alpha.begin() + i1 + 1);
   }
-  std::vector<float> Alpha;                 ///< the tabulated opacity, TransferTableSize entries
-  double EmptyScalar = 0.0;                 ///< a scalar of zero opacity
+  std::vector<float> Alpha; ///< the tabulated opacity, TransferTableSize entries
+  double EmptyScalar = 0.0; ///< a scalar of zero opacity
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table
   int PreTableKind = -1;           ///< classification it was uploaded for
@@ -629,46 +675,53 @@ public:
   vtkInternals()
   {
     // After a brick loaded on demand: its six neighbours and its parent, ahead of the camera.
-    this->Cache.SetNeighbourFunction([this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more) {
-      if (!this->Prefetch)
-        return;
-      std::shared_ptr<vtkPagePoolFile> pool;
+    this->Cache.SetNeighbourFunction(
+      [this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more)
       {
-        std::lock_guard<std::mutex> lock(this->PoolsMutex);
-        auto it = this->PoolsByPort.find(key.Dataset);
-        if (it != this->PoolsByPort.end())
-          pool = it->second;
-      }
-      if (!pool || key.Level < 0 || key.Level >= pool->GetNumberOfLevels())
-        return;
-      const bool parent = key.Level + 1 < pool->GetNumberOfLevels();
-      vtkPageCache::AddGridNeighbours(
-        key, pool->GetLevel(key.Level).Pages, parent ? pool->GetLevel(key.Level + 1).Pages : nullptr, more);
-    });
-    this->Cache.SetLoadFunction([this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error) {
-      std::shared_ptr<vtkPagePoolFile> pool;
+        if (!this->Prefetch)
+          return;
+        std::shared_ptr<vtkPagePoolFile> pool;
+        {
+          std::lock_guard<std::mutex> lock(this->PoolsMutex);
+          auto it = this->PoolsByPort.find(key.Dataset);
+          if (it != this->PoolsByPort.end())
+            pool = it->second;
+        }
+        if (!pool || key.Level < 0 || key.Level >= pool->GetNumberOfLevels())
+          return;
+        const bool parent = key.Level + 1 < pool->GetNumberOfLevels();
+        vtkPageCache::AddGridNeighbours(key,
+          pool->GetLevel(key.Level).Pages,
+          parent ? pool->GetLevel(key.Level + 1).Pages : nullptr,
+          more);
+      });
+    this->Cache.SetLoadFunction(
+      [this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error)
       {
-        std::lock_guard<std::mutex> lock(this->PoolsMutex);
-        auto it = this->PoolsByPort.find(key.Dataset);
-        if (it != this->PoolsByPort.end())
-          pool = it->second;
-      }
-      if (!pool)
-      {
-        error = "no page pool on port " + std::to_string(key.Dataset);
-        return false;
-      }
-      out.resize(pool->GetPageValues() * sizeof(float));
-      return pool->ReadPage(key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
-    });
+        std::shared_ptr<vtkPagePoolFile> pool;
+        {
+          std::lock_guard<std::mutex> lock(this->PoolsMutex);
+          auto it = this->PoolsByPort.find(key.Dataset);
+          if (it != this->PoolsByPort.end())
+            pool = it->second;
+        }
+        if (!pool)
+        {
+          error = "no page pool on port " + std::to_string(key.Dataset);
+          return false;
+        }
+        out.resize(pool->GetPageValues() * sizeof(float));
+        return pool->ReadPage(
+          key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
+      });
   }
   unsigned int FragmentVAO = 0;
   unsigned int FragmentVBO = 0;
   unsigned int EmptyVAO = 0;
   std::vector<int> FragmentFirst, FragmentCount;
   std::vector<std::array<float, 3>> FragmentCentroid; ///< local frame, for the outline dilation
-  std::vector<std::vector<float>> FragmentPlanes;    ///< 4 floats per face, local frame
-  std::map<std::string, std::string> ShaderSources;  ///< generated sources by feature key
+  std::vector<std::vector<float>> FragmentPlanes;     ///< 4 floats per face, local frame
+  std::map<std::string, std::string> ShaderSources;   ///< generated sources by feature key
   bool GeometryValid = false;
   std::vector<vtkSmartPointer<vtkTextureObject>> Accumulation; ///< one integration buffer per ray
   vtkSmartPointer<vtkTextureObject> SceneDepth;
@@ -690,7 +743,7 @@ public:
   std::mutex PoolsMutex;
   std::map<int, std::shared_ptr<vtkPagePoolFile>> PoolsByPort;
   vtkMultiVolumeRayCastMapper::PagingStatistics Paging;
-  int RequestLimit = 256; ///< page requests per frame: 4 x PagesPerFrame
+  int RequestLimit = 256;              ///< page requests per frame: 4 x PagesPerFrame
   std::atomic<bool> Prefetch{ false }; ///< read by the neighbour function on the workers
 
   // Level-of-detail feedback: the texture the rays write, the pixel buffer it is read into
@@ -754,22 +807,28 @@ public:
     const size_t count = static_cast<size_t>(this->FeedbackSize[0]) * this->FeedbackSize[1];
     std::vector<vtkFeedbackReduction::Entry> asked;
     bool usedOpenCL = false;
-    vtkFeedbackReadBack::Map(this->FeedbackBuffer, count, [&](const uint32_t* ids) {
-      usedOpenCL = openCL && this->Reduction.ReduceOpenCL(ids, count, asked);
-      if (!usedOpenCL)
-        this->Reduction.ReduceCPU(ids, count, asked);
-    });
+    vtkFeedbackReadBack::Map(this->FeedbackBuffer,
+      count,
+      [&](const uint32_t* ids)
+      {
+        usedOpenCL = openCL && this->Reduction.ReduceOpenCL(ids, count, asked);
+        if (!usedOpenCL)
+          this->Reduction.ReduceCPU(ids, count, asked);
+      });
     std::vector<vtkFeedbackReduction::Entry> below = asked;
-    vtkFeedbackReduction::PropagateToAncestors(below, [this](uint32_t page) {
-      int v = -1;
-      const int node = this->NodeOf(page, v);
-      const int parent = node < 0 ? -1 : this->CutVolumes[v].second->GetParent(node);
-      if (parent < 0)
-        return vtkFeedbackReduction::NoPage;
-      const vtkVolumeBrickTree* tree = this->CutVolumes[v].second;
-      const int level = tree->GetNode(parent).Level;
-      return vtkFeedbackReduction::PackPage(v, level, static_cast<uint32_t>(parent - tree->GetLevelOffset(level)));
-    });
+    vtkFeedbackReduction::PropagateToAncestors(below,
+      [this](uint32_t page)
+      {
+        int v = -1;
+        const int node = this->NodeOf(page, v);
+        const int parent = node < 0 ? -1 : this->CutVolumes[v].second->GetParent(node);
+        if (parent < 0)
+          return vtkFeedbackReduction::NoPage;
+        const vtkVolumeBrickTree* tree = this->CutVolumes[v].second;
+        const int level = tree->GetNode(parent).Level;
+        return vtkFeedbackReduction::PackPage(
+          v, level, static_cast<uint32_t>(parent - tree->GetLevelOffset(level)));
+      });
     // Both lists are sorted by page id: one merge subtracts the node's own requests.
     auto own = asked.begin();
     long long pixels = 0;
@@ -867,13 +926,17 @@ vtkMTimeType vtkMultiVolumeRayCastMapper::GetTransferFunctionMTime(vtkVolumeProp
 {
   // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
   const bool rgb = property->GetColorChannels(0) == 3;
-  const vtkMTimeType color =
-    rgb ? property->GetRGBTransferFunction(0)->GetMTime() : property->GetGrayTransferFunction(0)->GetMTime();
+  const vtkMTimeType color = rgb ? property->GetRGBTransferFunction(0)->GetMTime()
+                                 : property->GetGrayTransferFunction(0)->GetMTime();
   return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
 }
 
-void vtkMultiVolumeRayCastMapper::UploadTransferTable(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
-  vtkSmartPointer<vtkTextureObject>& texture, double tableRange[3], double range[2], std::vector<float>& rgbTau,
+void vtkMultiVolumeRayCastMapper::UploadTransferTable(vtkOpenGLRenderWindow* renWin,
+  vtkVolumeProperty* property,
+  vtkSmartPointer<vtkTextureObject>& texture,
+  double tableRange[3],
+  double range[2],
+  std::vector<float>& rgbTau,
   std::vector<float>& opacity)
 {
   TabulateExtinction(property, TransferTableSize, range, rgbTau, opacity);
@@ -887,14 +950,18 @@ void vtkMultiVolumeRayCastMapper::UploadTransferTable(vtkOpenGLRenderWindow* ren
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) / N.
+  // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) /
+  // N.
   tableRange[0] = range[0];
   tableRange[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
   tableRange[2] = 0.5 / TransferTableSize;
 }
 
-void vtkMultiVolumeRayCastMapper::TabulateExtinction(
-  vtkVolumeProperty* property, int size, double range[2], std::vector<float>& rgbTau, std::vector<float>& opacity)
+void vtkMultiVolumeRayCastMapper::TabulateExtinction(vtkVolumeProperty* property,
+  int size,
+  double range[2],
+  std::vector<float>& rgbTau,
+  std::vector<float>& opacity)
 {
   std::vector<float> rgb;
   TabulateTransferFunction(property, size, range, rgb, opacity);
@@ -911,8 +978,11 @@ void vtkMultiVolumeRayCastMapper::TabulateExtinction(
   }
 }
 
-void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* property, int size,
-  double range[2], std::vector<float>& rgb, std::vector<float>& opacity)
+void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* property,
+  int size,
+  double range[2],
+  std::vector<float>& rgb,
+  std::vector<float>& opacity)
 {
   // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
   const bool useRgb = property->GetColorChannels(0) == 3;
@@ -950,8 +1020,14 @@ void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* pr
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
 {
   // A rotated-grid-like pattern in pixels from the centre; the first R of these for R rays.
-  static const double pattern[8][2] = { { 0.0, 0.0 }, { 0.25, 0.25 }, { -0.25, -0.25 },
-    { 0.375, -0.125 }, { -0.375, 0.125 }, { -0.125, 0.375 }, { 0.125, -0.375 }, { 0.4375, 0.4375 } };
+  static const double pattern[8][2] = { { 0.0, 0.0 },
+    { 0.25, 0.25 },
+    { -0.25, -0.25 },
+    { 0.375, -0.125 },
+    { -0.375, 0.125 },
+    { -0.125, 0.375 },
+    { 0.125, -0.375 },
+    { 0.4375, 0.4375 } };
   // Re-centred so that the mean of the R rays is the pixel centre for every R (otherwise two
   // rays would shift the image by 1/8 pixel).
   const int count = std::min(std::max(rays, 1), 8);
@@ -1024,7 +1100,8 @@ std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int po
   return bricks;
 }
 
-void vtkMultiVolumeRayCastMapper::SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks)
+void vtkMultiVolumeRayCastMapper::SetFixedCut(int port,
+  const std::vector<std::array<int, 2>>& bricks)
 {
   this->Internals->FixedCuts[port] = bricks;
   this->Internals->FixedCutsChanged = true;
@@ -1092,8 +1169,9 @@ vtkVolumeCut::Camera vtkMultiVolumeRayCastMapper::GetCutCamera(vtkRenderer* ren)
   return cutCamera;
 }
 
-void vtkMultiVolumeRayCastMapper::GetLights(
-  vtkRenderer* ren, std::vector<float>& lightDirections, std::vector<float>& lightColors)
+void vtkMultiVolumeRayCastMapper::GetLights(vtkRenderer* ren,
+  std::vector<float>& lightDirections,
+  std::vector<float>& lightColors)
 {
   lightDirections.clear();
   lightColors.clear();
@@ -1120,8 +1198,9 @@ void vtkMultiVolumeRayCastMapper::GetLights(
   }
 }
 
-vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
@@ -1130,7 +1209,8 @@ vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(
   return result;
 }
 
-vtkMultiVolumeRayCastMapper::PagingStatistics vtkMultiVolumeRayCastMapper::GetPagingStatistics() const
+vtkMultiVolumeRayCastMapper::PagingStatistics vtkMultiVolumeRayCastMapper::GetPagingStatistics()
+  const
 {
   return this->Internals->Paging;
 }
@@ -1139,7 +1219,6 @@ void vtkMultiVolumeRayCastMapper::RetryFailedPages()
 {
   this->Internals->Cache.RetryAll();
 }
-
 
 void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
 {
@@ -1188,8 +1267,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         auto file = std::make_shared<vtkPagePoolFile>();
         if (!file->Open(pool) || file->GetKind() != vtkPagePoolFormat::Kind::BrickPool)
         {
-          vtkErrorMacro("Cannot page the volume on port " << port << " from \"" << pool << "\": "
-                                                          << (file->IsOpen() ? "not a brick pool" : file->GetErrorMessage()));
+          vtkErrorMacro("Cannot page the volume on port "
+                        << port << " from \"" << pool << "\": "
+                        << (file->IsOpen() ? "not a brick pool" : file->GetErrorMessage()));
           continue;
         }
         tex.Pool = file;
@@ -1229,7 +1309,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     const int B = in.Textures[ports[v]].Pool->GetPageSize();
     if (anyPooled && B != brickSize)
     {
-      vtkErrorMacro("Paged volumes of page sizes " << brickSize << " and " << B << " cannot share one atlas.");
+      vtkErrorMacro(
+        "Paged volumes of page sizes " << brickSize << " and " << B << " cannot share one atlas.");
       return;
     }
     brickSize = B;
@@ -1247,11 +1328,14 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     uint64_t bricks = 1;
     for (int a = 0; a < 3; ++a)
-      bricks *= e.Dims[a] <= 1 ? 1 : (static_cast<uint64_t>(e.Dims[a]) - 1 + brickSize - 2) / (brickSize - 1);
+      bricks *= e.Dims[a] <= 1
+                  ? 1
+                  : (static_cast<uint64_t>(e.Dims[a]) - 1 + brickSize - 2) / (brickSize - 1);
     idsFit = idsFit && bricks <= vtkFeedbackReduction::MaxPagesPerLevel;
   }
   const bool imageStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
-  if (anyPooled && this->LevelOfDetailFeedback && (!imageStore || !idsFit) && !in.FeedbackUnsupportedWarned)
+  if (anyPooled && this->LevelOfDetailFeedback && (!imageStore || !idsFit) &&
+      !in.FeedbackUnsupportedWarned)
   {
     vtkWarningMacro(<< (imageStore ? "More than 62 volumes or 2^21 bricks in a level"
                                    : "No image load/store (OpenGL 4.2)")
@@ -1341,7 +1425,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         }
         tex.Tree.reset(new vtkVolumeBrickTree);
         if (!tex.Tree->BuildStructure(e.Dims, brickSize, lo.data(), hi.data()) ||
-          static_cast<uint64_t>(tex.Tree->GetNumberOfNodes()) != file.GetNumberOfPages())
+            static_cast<uint64_t>(tex.Tree->GetNumberOfNodes()) != file.GetNumberOfPages())
         {
           vtkErrorMacro("The pool \"" << tex.PoolName << "\" does not match its brick tree.");
           tex.Tree.reset();
@@ -1354,8 +1438,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     else if (tex.Scalars.empty() || tex.DataInput != e.Input || tex.DataTime < e.Input->GetMTime())
     {
       int cellFlag = 0;
-      vtkDataArray* scalars = vtkAbstractMapper::GetScalars(e.Input, this->ScalarMode,
-        this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+      vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+        e.Input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
       if (!scalars || cellFlag)
       {
         vtkErrorMacro("Volume on port " << ports[v] << " has no point scalars.");
@@ -1379,7 +1463,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Tree.reset(new vtkVolumeBrickTree);
       if (!tex.Tree->Build(tex.Scalars.data(), e.Dims, brickSize))
       {
-        vtkErrorMacro("Cannot brick the volume on port " << ports[v] << ": " << tex.Tree->GetErrorMessage());
+        vtkErrorMacro(
+          "Cannot brick the volume on port " << ports[v] << ": " << tex.Tree->GetErrorMessage());
         return;
       }
       in.CutVolumes.clear(); // the cut must be rebuilt with this tree
@@ -1411,7 +1496,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           rgbD[3 * i + c] = table[4 * i + c];
         tauD[i] = table[4 * i + 3];
       }
-      tex.PreIntegration.SetTransferFunction(range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
+      tex.PreIntegration.SetTransferFunction(
+        range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
       // What the shader reads: for the cut's transparent bricks, the skip grid and the scalar an
       // empty brick reads.
       tex.Alpha = alpha;
@@ -1433,8 +1519,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   {
     StrataVolumeTextures& tex = in.Textures[ports[v]];
     const bool build = volumes[v].Pooled ? tex.SkipDataTime == 0
-                                         : tex.SkipDataTime != tex.DataTime || tex.Skip.GetCellSize() != this->SkipCellSize ||
-        tex.Skip.GetMinima().empty();
+                                         : tex.SkipDataTime != tex.DataTime ||
+                                             tex.Skip.GetCellSize() != this->SkipCellSize ||
+                                             tex.Skip.GetMinima().empty();
     if (build && volumes[v].Pooled)
     {
       // Paged: the level-0 bricks' ranges are the cells (stride B - 1), nothing is read.
@@ -1462,7 +1549,15 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         glGenTextures(1, &tex.SkipTexture);
       glBindTexture(GL_TEXTURE_3D, tex.SkipTexture);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, cd[0], cd[1], cd[2], 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+      glTexImage3D(GL_TEXTURE_3D,
+        0,
+        GL_R8UI,
+        cd[0],
+        cd[1],
+        cd[2],
+        0,
+        GL_RED_INTEGER,
+        GL_UNSIGNED_BYTE,
         tex.Skip.GetDistances().data());
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -1478,7 +1573,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   const int width = vp[2], height = vp[3];
   vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> worldToClip, toWorld, localToClip, clipToLocal;
-  worldToClip->DeepCopy(camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  worldToClip->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
   Translation(toWorld, origin);
   vtkMatrix4x4::Multiply4x4(worldToClip, toWorld, localToClip);
   vtkMatrix4x4::Invert(localToClip, clipToLocal);
@@ -1524,10 +1620,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   if (atlas)
   {
     bool rebuild = in.CutVolumes.size() != volumes.size() || in.AtlasBrickSize != brickSize ||
-      in.AtlasBudget != this->AtlasBudget || !in.AtlasTexture;
+                   in.AtlasBudget != this->AtlasBudget || !in.AtlasTexture;
     for (size_t v = 0; !rebuild && v < volumes.size(); ++v)
     {
-      rebuild = in.CutVolumes[v].first != ports[v] || in.CutVolumes[v].second != in.Textures[ports[v]].Tree.get();
+      rebuild = in.CutVolumes[v].first != ports[v] ||
+                in.CutVolumes[v].second != in.Textures[ports[v]].Tree.get();
     }
     if (rebuild)
     {
@@ -1541,14 +1638,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       const double budget = std::min(this->AtlasBudget, (allBricks + 0.5) * brickMB);
       if (!in.Atlas.InitializeFromBudget(budget, brickSize, 4, std::min(max3D, 2048)))
       {
-        vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of " << brickSize << "^3 float voxels.");
+        vtkErrorMacro("An atlas budget of " << this->AtlasBudget << " MB holds no brick of "
+                                            << brickSize << "^3 float voxels.");
         return;
       }
       const auto size = in.Atlas.GetTextureSize();
       if (!in.AtlasTexture)
         glGenTextures(1, &in.AtlasTexture);
       glBindTexture(GL_TEXTURE_3D, in.AtlasTexture);
-      glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size[0], size[1], size[2], 0, GL_RED, GL_FLOAT, nullptr);
+      glTexImage3D(
+        GL_TEXTURE_3D, 0, GL_R32F, size[0], size[1], size[2], 0, GL_RED, GL_FLOAT, nullptr);
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -1606,11 +1705,13 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       {
         in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
         StrataVolumeTextures* tex = &in.Textures[ports[v]];
-        in.Cut.SetVolumeOpacity(static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
+        in.Cut.SetVolumeOpacity(
+          static_cast<int>(v), [tex](double lo, double hi) { return tex->MaxOpacity(lo, hi); });
         if (feedback)
         {
           const std::vector<double>* demand = &in.Demand[v];
-          in.Cut.SetVolumePriority(static_cast<int>(v), [demand](int node, double) { return (*demand)[node]; });
+          in.Cut.SetVolumePriority(
+            static_cast<int>(v), [demand](int node, double) { return (*demand)[node]; });
         }
         else
         {
@@ -1629,10 +1730,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
             const int* n = tree->GetLevelBricks(b[0]);
             if (b[1] >= n[0] * n[1] * n[2])
               continue;
-            for (int a = tree->GetParent(tree->GetLevelOffset(b[0]) + b[1]); a >= 0 && !(*split)[a]; a = tree->GetParent(a))
+            for (int a = tree->GetParent(tree->GetLevelOffset(b[0]) + b[1]); a >= 0 && !(*split)[a];
+                 a = tree->GetParent(a))
               (*split)[a] = 1;
           }
-          in.Cut.SetVolumePriority(static_cast<int>(v), [split](int node, double) { return (*split)[node] ? 1e30 : 0.0; });
+          in.Cut.SetVolumePriority(
+            static_cast<int>(v), [split](int node, double) { return (*split)[node] ? 1e30 : 0.0; });
         }
         if (volumes[v].Pooled)
         {
@@ -1640,26 +1743,28 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           // frame), or queued at the parent's screen-space priority for a later frame.
           const int port = ports[v];
           vtkInternals* internals = &in;
-          in.Cut.SetVolumeAvailability(static_cast<int>(v), [tex, port, internals](int node, double priority) {
-            if (tex->Held.count(node))
-              return true;
-            const auto& n = tex->Tree->GetNode(node);
-            vtkPageCache::Key key;
-            key.Dataset = port;
-            key.Level = n.Level;
-            key.Page = node - tex->Tree->GetLevelOffset(n.Level);
-            if (vtkPageCache::Page page = internals->Cache.Find(key))
+          in.Cut.SetVolumeAvailability(static_cast<int>(v),
+            [tex, port, internals](int node, double priority)
             {
-              tex->Held[node] = page;
-              return true;
-            }
-            // Ask for no more than a few frames' worth of uploads at a time: a longer queue
-            // would load pages the cache evicts again before the cut can use them.
-            if (internals->Paging.MissesThisFrame < internals->RequestLimit)
-              internals->Cache.Request(key, priority);
-            ++internals->Paging.MissesThisFrame;
-            return false;
-          });
+              if (tex->Held.count(node))
+                return true;
+              const auto& n = tex->Tree->GetNode(node);
+              vtkPageCache::Key key;
+              key.Dataset = port;
+              key.Level = n.Level;
+              key.Page = node - tex->Tree->GetLevelOffset(n.Level);
+              if (vtkPageCache::Page page = internals->Cache.Find(key))
+              {
+                tex->Held[node] = page;
+                return true;
+              }
+              // Ask for no more than a few frames' worth of uploads at a time: a longer queue
+              // would load pages the cache evicts again before the cut can use them.
+              if (internals->Paging.MissesThisFrame < internals->RequestLimit)
+                internals->Cache.Request(key, priority);
+              ++internals->Paging.MissesThisFrame;
+              return false;
+            });
         }
         else
         {
@@ -1670,7 +1775,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       if (anyPooled)
       {
         in.Cache.SetBudgetMiB(this->PageCacheBudget);
-      in.Prefetch = this->Prefetch;
+        in.Prefetch = this->Prefetch;
         in.Cache.Start();
         in.Cache.BeginFrame();
         // Roots first, so that a volume is never a hole. The reader was asked for its coarsest
@@ -1682,9 +1787,12 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           const int root = volumes[v].Pooled ? tex.Tree->GetRootId() : -1;
           if (root < 0 || tex.Held.count(root))
             continue;
-          auto page = std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
+          auto page =
+            std::make_shared<std::vector<uint8_t>>(tex.Pool->GetPageValues() * sizeof(float));
           const int level = tex.Tree->GetNode(root).Level;
-          if (RootFromImage(volumes[v].Input, tex.Tree->GetLevelDimensions(level), brickSize,
+          if (RootFromImage(volumes[v].Input,
+                tex.Tree->GetLevelDimensions(level),
+                brickSize,
                 reinterpret_cast<float*>(page->data())))
           {
             ++in.Paging.RootPagesFromPipeline;
@@ -1725,20 +1833,22 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         in.Cache.CancelStale(in.Cache.GetFrame());
         for (const auto& failure : in.Cache.TakeNewFailures())
         {
-          vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page << " of the volume on port "
-                                << failure.PageKey.Dataset << " failed to load (" << failure.Error
+          vtkErrorMacro("Page " << failure.PageKey.Level << "/" << failure.PageKey.Page
+                                << " of the volume on port " << failure.PageKey.Dataset
+                                << " failed to load (" << failure.Error
                                 << "); showing the coarser level.");
           ++in.Paging.Failures;
         }
         const vtkPageCache::Statistics stats = in.Cache.GetStatistics();
         in.Paging.PendingPages = static_cast<int>(stats.QueueLength + stats.InFlight);
-        // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
-        in.Paging.BytesRead = stats.BytesRead +
-          (in.Paging.RootPagesRead + in.Paging.RootPagesFromPipeline) *
-            static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
+        // The cache's reads plus the root pages, read here or by the readers, a page of floats
+        // each.
+        in.Paging.BytesRead =
+          stats.BytesRead + (in.Paging.RootPagesRead + in.Paging.RootPagesFromPipeline) *
+                              static_cast<long long>(std::pow(brickSize, 3) * sizeof(float));
         in.Paging.CacheBytes = static_cast<long long>(stats.CurrentBytes);
-        in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 && in.Paging.PendingPages == 0 &&
-          (!feedback || feedbackCurrent);
+        in.Paging.Converged = entered == 0 && in.Paging.MissesThisFrame == 0 &&
+                              in.Paging.PendingPages == 0 && (!feedback || feedbackCurrent);
       }
       in.Atlas.BeginFrame();
       std::vector<vtkVolumeCut::Upload> uploads;
@@ -1775,7 +1885,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           }
         }
         const auto pos = in.Atlas.GetSlotPosition(u.Slot);
-        glTexSubImage3D(GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, data);
+        glTexSubImage3D(
+          GL_TEXTURE_3D, 0, pos[0] * B, pos[1] * B, pos[2] * B, B, B, B, GL_RED, GL_FLOAT, data);
         in.Paging.BytesUploaded += static_cast<long long>(brick.size() * sizeof(float));
       }
       glBindTexture(GL_TEXTURE_3D, 0);
@@ -1789,7 +1900,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           glGenTextures(1, &tex.IndexTexture);
         glBindTexture(GL_TEXTURE_3D, tex.IndexTexture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-        glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16UI, dims[0], dims[1], dims[2], 0, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, table.data());
+        glTexImage3D(GL_TEXTURE_3D,
+          0,
+          GL_RGBA16UI,
+          dims[0],
+          dims[1],
+          dims[2],
+          0,
+          GL_RGBA_INTEGER,
+          GL_UNSIGNED_SHORT,
+          table.data());
         glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glBindTexture(GL_TEXTURE_3D, 0);
@@ -1837,8 +1957,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   const bool frontToBack = this->CompositeOrder == CompositeOrders::FrontToBack;
   // Early termination across fragments reads the integration buffer's own pixel while drawing
   // into it: defined under a texture barrier (each pixel is read and written once per fragment).
-  const bool barrier = frontToBack &&
-    (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier);
+  const bool barrier =
+    frontToBack && (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier);
 
   state->PushFramebufferBindings();
   in.Framebuffer->Bind();
@@ -1894,7 +2014,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       for (int c = 0; c < 3; ++c)
       {
         const double len = std::sqrt(std::pow(e.IndexToWorld->GetElement(0, c), 2) +
-          std::pow(e.IndexToWorld->GetElement(1, c), 2) + std::pow(e.IndexToWorld->GetElement(2, c), 2));
+                                     std::pow(e.IndexToWorld->GetElement(1, c), 2) +
+                                     std::pow(e.IndexToWorld->GetElement(2, c), 2));
         sampleDistance = std::min(sampleDistance, 0.5 * len);
       }
   }
@@ -1927,13 +2048,16 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         tex.PreTable->SetContext(renWin);
         const std::vector<float>& data =
           full ? tex.PreIntegration.GetFullTable() : tex.PreIntegration.GetIntegralTable();
-        tex.PreTable->Create2DFromRaw(m, full ? m : 1, 4, VTK_FLOAT, const_cast<float*>(data.data()));
+        tex.PreTable->Create2DFromRaw(
+          m, full ? m : 1, 4, VTK_FLOAT, const_cast<float*>(data.data()));
         tex.PreTable->SetWrapS(vtkTextureObject::ClampToEdge);
         tex.PreTable->SetWrapT(vtkTextureObject::ClampToEdge);
         // The full table is read with bilinear filtering; the integral table with texelFetch
         // and mix in float (filter weights would be amplified by its division).
-        tex.PreTable->SetMinificationFilter(full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
-        tex.PreTable->SetMagnificationFilter(full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+        tex.PreTable->SetMinificationFilter(
+          full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+        tex.PreTable->SetMagnificationFilter(
+          full ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
         tex.PreTableCount = count;
         tex.PreTableKind = kind;
       }
@@ -1997,7 +2121,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       const std::vector<GLuint> zeros(static_cast<size_t>(fw) * fh, 0u);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
       glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
+      glTexSubImage2D(
+        GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
       glBindTexture(GL_TEXTURE_2D, in.FeedbackScoreTexture);
       glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED, GL_FLOAT, zeros.data());
     }
@@ -2011,7 +2136,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     if (camera->GetParallelProjection())
       feedbackFootprint[0] = static_cast<float>(tau * 2.0 * camera->GetParallelScale() / height);
     else
-      feedbackFootprint[1] = static_cast<float>(tau / vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle()));
+      feedbackFootprint[1] =
+        static_cast<float>(tau / vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle()));
     for (int c = 0; c < 3; ++c)
       feedbackEye[c] = static_cast<float>(eye[c] - origin[c]);
     for (size_t v = 0; v < volumes.size(); ++v)
@@ -2022,15 +2148,18 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       for (int a = 0; a < 3; ++a)
       {
         const double edge = std::sqrt(std::pow(volumes[v].IndexToWorld->GetElement(0, a), 2) +
-          std::pow(volumes[v].IndexToWorld->GetElement(1, a), 2) + std::pow(volumes[v].IndexToWorld->GetElement(2, a), 2));
+                                      std::pow(volumes[v].IndexToWorld->GetElement(1, a), 2) +
+                                      std::pow(volumes[v].IndexToWorld->GetElement(2, a), 2));
         any = std::max(any, edge);
         longest = volumes[v].Dims[a] > 1 ? std::max(longest, edge) : longest;
       }
-      feedbackLod[v] = { static_cast<float>(1.0 / (longest > 0.0 ? longest : (any > 0.0 ? any : 1.0))),
+      feedbackLod[v] = { static_cast<float>(
+                           1.0 / (longest > 0.0 ? longest : (any > 0.0 ? any : 1.0))),
         static_cast<float>(std::min(tree->GetNumberOfLevels(), FeedbackLevels) - 1) };
       levelBricks[v].assign(3 * FeedbackLevels, 1);
       for (int l = 0; l < tree->GetNumberOfLevels() && l < FeedbackLevels; ++l)
-        std::copy(tree->GetLevelBricks(l), tree->GetLevelBricks(l) + 3, levelBricks[v].begin() + 3 * l);
+        std::copy(
+          tree->GetLevelBricks(l), tree->GetLevelBricks(l) + 3, levelBricks[v].begin() + 3 * l);
     }
   }
   for (int f : order)
@@ -2043,8 +2172,9 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     }
     if (static_cast<int>(frag.Planes.size() + clipPlanes.size() / 4) > MaxPlanes)
     {
-      vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces and there are " << clipPlanes.size() / 4
-                                          << " clipping planes; at most " << MaxPlanes << " in all are supported.");
+      vtkErrorMacro("A BSP fragment has " << frag.Planes.size() << " faces and there are "
+                                          << clipPlanes.size() / 4 << " clipping planes; at most "
+                                          << MaxPlanes << " in all are supported.");
       continue;
     }
     std::vector<bool> shaded(k);
@@ -2056,17 +2186,27 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     }
     // One source per feature set, generated once.
     const bool coherent = this->RayCoherence && rays > 1;
-    std::string key = std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
-      (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) + (coherent ? "c" : "-") +
-      (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-") + (feedback ? (footprint ? "P" : "F") : "-");
+    std::string key =
+      std::to_string(k) + "/" + std::to_string(static_cast<int>(this->Classification)) +
+      (frontToBack ? "f" : "b") + (barrier ? "t" : "-") + std::to_string(rays) +
+      (coherent ? "c" : "-") + (atlas ? "a" : "-") + (this->EmptySpaceSkipping ? "e" : "-") +
+      (feedback ? (footprint ? "P" : "F") : "-");
     for (bool sh : shaded)
       key += sh ? 's' : '-';
     std::string& fs = in.ShaderSources[key];
     if (fs.empty())
     {
-      fs = BuildFragmentShader(
-        k, this->Classification, frontToBack, barrier, rays, coherent, shaded, atlas,
-        this->EmptySpaceSkipping, feedback, footprint);
+      fs = BuildFragmentShader(k,
+        this->Classification,
+        frontToBack,
+        barrier,
+        rays,
+        coherent,
+        shaded,
+        atlas,
+        this->EmptySpaceSkipping,
+        feedback,
+        footprint);
     }
     vtkShaderProgram* program =
       renWin->GetShaderCache()->ReadyShaderProgram(vtkMultiVolumeFragmentVS, fs.c_str(), "");
@@ -2117,7 +2257,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         const int v = frag.BoxIndices[i];
         const std::string n = std::to_string(i);
         program->SetUniformi(("uFeedbackSet" + n).c_str(), v);
-        program->SetUniform1iv(("uLevelBricks" + n).c_str(), 3 * FeedbackLevels, levelBricks[v].data());
+        program->SetUniform1iv(
+          ("uLevelBricks" + n).c_str(), 3 * FeedbackLevels, levelBricks[v].data());
         program->SetUniform2f(("uFeedbackLod" + n).c_str(), feedbackLod[v].data());
       }
     }
@@ -2126,17 +2267,20 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
       if (!lightDirections.empty())
       {
-        program->SetUniform3fv("uLightDirection", static_cast<int>(lightDirections.size() / 3),
+        program->SetUniform3fv("uLightDirection",
+          static_cast<int>(lightDirections.size() / 3),
           reinterpret_cast<const float(*)[3]>(lightDirections.data()));
-        program->SetUniform3fv("uLightColor", static_cast<int>(lightColors.size() / 3),
+        program->SetUniform3fv("uLightColor",
+          static_cast<int>(lightColors.size() / 3),
           reinterpret_cast<const float(*)[3]>(lightColors.data()));
       }
     }
     std::vector<float> planes = in.FragmentPlanes[f];
     planes.insert(planes.end(), clipPlanes.begin(), clipPlanes.end());
     program->SetUniformi("uNumPlanes", static_cast<int>(planes.size() / 4));
-    program->SetUniform4fv(
-      "uPlanes", static_cast<int>(planes.size() / 4), reinterpret_cast<const float(*)[4]>(planes.data()));
+    program->SetUniform4fv("uPlanes",
+      static_cast<int>(planes.size() / 4),
+      reinterpret_cast<const float(*)[4]>(planes.data()));
     in.SceneDepth->Activate();
     program->SetUniformi("uSceneDepth", in.SceneDepth->GetTextureUnit());
     if (frontToBack)
@@ -2146,7 +2290,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (int r = 0; barrier && r < rays; ++r)
     {
       in.Accumulation[r]->Activate();
-      program->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
+      program->SetUniformi(
+        ("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
     }
     std::vector<int> rawUnits;
     if (atlas)
@@ -2167,7 +2312,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       StrataVolumeTextures& tex = in.Textures[ports[v]];
       const StrataVolumeEntry& e = volumes[v];
       const std::string n = std::to_string(i);
-      program->SetUniformMatrix4x4(("uLocalToIndex" + n).c_str(), const_cast<float*>(e.LocalToIndex));
+      program->SetUniformMatrix4x4(
+        ("uLocalToIndex" + n).c_str(), const_cast<float*>(e.LocalToIndex));
       program->SetUniformf(("uNearest" + n).c_str(),
         e.Property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
       if (atlas)
@@ -2197,14 +2343,18 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         glBindTexture(GL_TEXTURE_3D, tex.SkipTexture);
         program->SetUniformi(("uSkip" + n).c_str(), unit);
         const int* cd = tex.Skip.GetCellDimensions();
-        const float grid[4] = { float(cd[0]), float(cd[1]), float(cd[2]), float(tex.Skip.GetCellSize()) };
+        const float grid[4] = {
+          float(cd[0]), float(cd[1]), float(cd[2]), float(tex.Skip.GetCellSize())
+        };
         program->SetUniform4f(("uSkipGrid" + n).c_str(), grid);
       }
       if (shaded[i])
       {
         vtkVolumeProperty* p = e.Property;
-        const float material[4] = { float(p->GetAmbient(0)), float(p->GetDiffuse(0)),
-          float(p->GetSpecular(0)), float(p->GetSpecularPower(0)) };
+        const float material[4] = { float(p->GetAmbient(0)),
+          float(p->GetDiffuse(0)),
+          float(p->GetSpecular(0)),
+          float(p->GetSpecularPower(0)) };
         program->SetUniform4f(("uMaterial" + n).c_str(), material);
       }
       if (this->Classification == Classifications::PostClassification)
@@ -2225,7 +2375,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         if (this->Classification == Classifications::PreIntegrated)
           program->SetUniformf(("uPreStep" + n).c_str(), static_cast<float>(sampleDistance));
         else
-          program->SetUniformf(("uPreMaxColor" + n).c_str(), static_cast<float>(tex.PreIntegration.GetMaximumColor()));
+          program->SetUniformf(
+            ("uPreMaxColor" + n).c_str(), static_cast<float>(tex.PreIntegration.GetMaximumColor()));
       }
     }
     glDrawArrays(GL_TRIANGLES, in.FragmentFirst[f], in.FragmentCount[f]);
@@ -2289,7 +2440,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       impl << (r ? " + " : "") << "texelFetch(uAccumulation" << r << ", pixel, 0)";
     }
     Replace(compositeFS, "//STRATA::Accumulation::Dec", dec.str());
-    Replace(compositeFS, "//STRATA::Accumulation::Impl",
+    Replace(compositeFS,
+      "//STRATA::Accumulation::Impl",
       "fragOutput0 = (" + impl.str() + ") / " + std::to_string(rays) + ".0;");
   }
   vtkShaderProgram* composite = renWin->GetShaderCache()->ReadyShaderProgram(
@@ -2302,7 +2454,8 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     for (int r = 0; r < rays; ++r)
     {
       in.Accumulation[r]->Activate();
-      composite->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
+      composite->SetUniformi(
+        ("uAccumulation" + std::to_string(r)).c_str(), in.Accumulation[r]->GetTextureUnit());
     }
     const float vpOrigin[2] = { float(vp[0]), float(vp[1]) };
     composite->SetUniform2f("uViewportOrigin", vpOrigin);
@@ -2325,7 +2478,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CompositeOrder: "
-     << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront") << "\n";
+     << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront")
+     << "\n";
   os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "UseBrickAtlas: " << this->UseBrickAtlas << "\n";

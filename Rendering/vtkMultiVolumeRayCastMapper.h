@@ -32,7 +32,7 @@
 #include "StrataModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkSmartPointer.h" // For UploadTransferTable
-#include "vtkVolumeCut.h"     // For vtkVolumeCut::Camera
+#include "vtkVolumeCut.h"    // For vtkVolumeCut::Camera
 
 #include <array>  // For std::array
 #include <memory> // For std::unique_ptr
@@ -59,8 +59,8 @@ public:
 
   enum class Classifications
   {
-    PostClassification, ///< classify each sample (at segment midpoints)
-    PreIntegrated,      ///< full 2-D table of segment integrals at the sample distance
+    PostClassification,       ///< classify each sample (at segment midpoints)
+    PreIntegrated,            ///< full 2-D table of segment integrals at the sample distance
     PreIntegratedApproximate, ///< the two-integral form: two 1-D tables, any segment length
   };
 
@@ -205,21 +205,21 @@ public:
 
   struct PagingStatistics
   {
-    int PendingPages = 0;        ///< queued or loading after the last frame
+    int PendingPages = 0; ///< queued or loading after the last frame
     /// The last frame's cut did not change, nothing is pending, and (with feedback) the
     /// feedback it used was rendered from the same view and cut.
     bool Converged = false;
-    long long BytesRead = 0;     ///< in all, root pages included
-    long long BytesUploaded = 0; ///< to the atlas in the last frame (paged or not)
-    long long CacheBytes = 0;    ///< resident in the page cache
-    int RootPagesRead = 0;       ///< pages the render thread read itself (roots not in the input)
+    long long BytesRead = 0;       ///< in all, root pages included
+    long long BytesUploaded = 0;   ///< to the atlas in the last frame (paged or not)
+    long long CacheBytes = 0;      ///< resident in the page cache
+    int RootPagesRead = 0;         ///< pages the render thread read itself (roots not in the input)
     int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest-level images
-    int Failures = 0;            ///< pages that failed to load
-    int MissesThisFrame = 0;     ///< bricks the last frame's cut wanted but had no page for
-    int FeedbackPages = 0;       ///< distinct pages in the last feedback buffer reduced
-    int FeedbackPixels = 0;      ///< its pixels that asked for a page
+    int Failures = 0;              ///< pages that failed to load
+    int MissesThisFrame = 0;       ///< bricks the last frame's cut wanted but had no page for
+    int FeedbackPages = 0;         ///< distinct pages in the last feedback buffer reduced
+    int FeedbackPixels = 0;        ///< its pixels that asked for a page
     double FeedbackMilliseconds = 0.0; ///< its read-back and reduction (propagation included)
-    bool FeedbackOpenCL = false; ///< whether OpenCL reduced it (else the CPU)
+    bool FeedbackOpenCL = false;       ///< whether OpenCL reduced it (else the CPU)
   };
   PagingStatistics GetPagingStatistics() const;
   /// Loads failed pages again (after a transient error).
@@ -313,16 +313,22 @@ public:
    * colour and opacity per unit distance, as VTK's GetTable computes them. References use it
    * to integrate exactly what the GPU sees.
    */
-  static void TabulateTransferFunction(vtkVolumeProperty* property, int size, double range[2],
-    std::vector<float>& rgb, std::vector<float>& opacity);
+  static void TabulateTransferFunction(vtkVolumeProperty* property,
+    int size,
+    double range[2],
+    std::vector<float>& rgb,
+    std::vector<float>& opacity);
 
   /**
    * The table the shaders read: TabulateTransferFunction's, with the opacity turned into
    * extinction per unit length (-ln(1 - a) / unit distance; a capped at 1 - 1e-6 so that it
    * stays finite), interleaved RGBA per entry. `opacity` gets the tabulated opacity.
    */
-  static void TabulateExtinction(vtkVolumeProperty* property, int size, double range[2],
-    std::vector<float>& rgbTau, std::vector<float>& opacity);
+  static void TabulateExtinction(vtkVolumeProperty* property,
+    int size,
+    double range[2],
+    std::vector<float>& rgbTau,
+    std::vector<float>& opacity);
 
   /**
    * TabulateExtinction's table of `property` uploaded into `texture` (created if null; RGBA32F,
@@ -330,9 +336,13 @@ public:
    * coordinate (s - tableRange[0]) * tableRange[1] + tableRange[2]; `range` is the table's
    * scalar range, `rgbTau` and `opacity` the table itself.
    */
-  static void UploadTransferTable(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
-    vtkSmartPointer<vtkTextureObject>& texture, double tableRange[3], double range[2],
-    std::vector<float>& rgbTau, std::vector<float>& opacity);
+  static void UploadTransferTable(vtkOpenGLRenderWindow* renWin,
+    vtkVolumeProperty* property,
+    vtkSmartPointer<vtkTextureObject>& texture,
+    double tableRange[3],
+    double range[2],
+    std::vector<float>& rgbTau,
+    std::vector<float>& opacity);
   /// When `property`'s transfer functions last changed (those of its colour kind only).
   static vtkMTimeType GetTransferFunctionMTime(vtkVolumeProperty* property);
 
@@ -341,7 +351,9 @@ public:
    * positional light counts as directional from its position to its focal point) and colour
    * times intensity, 3 floats each, at most 8.
    */
-  static void GetLights(vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors);
+  static void GetLights(vtkRenderer* ren,
+    std::vector<float>& directions,
+    std::vector<float>& colors);
 
   /**
    * The renderer's active camera as vtkVolumeCut sees it: eye, pixels per radian (or per
@@ -366,7 +378,8 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
   /// Asks page-pool readers for their coarsest level (see PageCacheBudget).
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   void GetReductionRatio(double ratio[3]) override;

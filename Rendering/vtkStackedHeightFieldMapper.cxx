@@ -6,9 +6,9 @@
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
-#include "vtkFloatArray.h"
 #include "vtkFeedbackReadBack.h"
 #include "vtkFeedbackReduction.h"
+#include "vtkFloatArray.h"
 #include "vtkHeightFieldPager.h"
 #include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
@@ -26,8 +26,8 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
-#include "vtkPagePoolReader.h"
 #include "vtkOpenGLState.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
@@ -45,8 +45,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -57,15 +57,23 @@ vtkStandardNewMacro(vtkStackedHeightFieldMapper);
 namespace
 {
 // Distinct colours for horizons without one of their own (after Paul Tol's "bright" scheme).
-const double DefaultPalette[8][3] = { { 0.93, 0.40, 0.47 }, { 0.27, 0.47, 0.67 },
-  { 0.13, 0.53, 0.20 }, { 0.80, 0.73, 0.27 }, { 0.40, 0.80, 0.93 }, { 0.67, 0.20, 0.47 },
-  { 0.73, 0.73, 0.73 }, { 0.90, 0.55, 0.20 } };
+const double DefaultPalette[8][3] = { { 0.93, 0.40, 0.47 },
+  { 0.27, 0.47, 0.67 },
+  { 0.13, 0.53, 0.20 },
+  { 0.80, 0.73, 0.27 },
+  { 0.40, 0.80, 0.93 },
+  { 0.67, 0.20, 0.47 },
+  { 0.73, 0.73, 0.73 },
+  { 0.90, 0.55, 0.20 } };
 
 // The paper's default depth colour map: deep blue through cyan, green and yellow to red.
 void DefaultDepthColor(double s, double rgb[3])
 {
-  static const double stops[5][3] = { { 0.15, 0.20, 0.75 }, { 0.10, 0.70, 0.90 },
-    { 0.20, 0.80, 0.30 }, { 0.95, 0.85, 0.20 }, { 0.85, 0.20, 0.15 } };
+  static const double stops[5][3] = { { 0.15, 0.20, 0.75 },
+    { 0.10, 0.70, 0.90 },
+    { 0.20, 0.80, 0.30 },
+    { 0.95, 0.85, 0.20 },
+    { 0.85, 0.20, 0.15 } };
   s = std::min(std::max(s, 0.0), 1.0) * 4.0;
   const int k = std::min(static_cast<int>(s), 3);
   const double f = s - k;
@@ -95,7 +103,8 @@ uniform float uLodScale;
 uniform int uPageLevels;
 uniform int uLevelTilesX[32];
 )";
-const char* FeedbackWrite = R"(if (all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, uFeedbackOffset)))
+const char* FeedbackWrite =
+  R"(if (all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, uFeedbackOffset)))
   {
     vec3 n0 = clip.xyz / clip.w;
     vec4 gx = uClipToGrid * vec4(n0 + vec3(2.0 / uViewport.z, 0.0, 0.0), 1.0);
@@ -183,8 +192,10 @@ vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
   this->SetNumberOfInputPorts(1);
   this->Static = 0;
   this->Internals->ColorsModified.Modified();
-  for (auto* bo : { this->Internals->NodeBuffer.Get(), this->Internals->IntervalBuffer.Get(),
-         this->Internals->LayerListBuffer.Get(), this->Internals->ColorBuffer.Get() })
+  for (auto* bo : { this->Internals->NodeBuffer.Get(),
+         this->Internals->IntervalBuffer.Get(),
+         this->Internals->LayerListBuffer.Get(),
+         this->Internals->ColorBuffer.Get() })
   {
     bo->SetType(vtkOpenGLBufferObject::TextureBuffer);
   }
@@ -288,7 +299,8 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   }
   if (pooled > 0 && pooled < n)
   {
-    vtkErrorMacro(<< pooled << " of " << n << " horizons come from page pools: page all horizons of a stack or none.");
+    vtkErrorMacro(<< pooled << " of " << n
+                  << " horizons come from page pools: page all horizons of a stack or none.");
     return false;
   }
   in.Paged = pooled > 0;
@@ -301,8 +313,8 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   images[0]->GetDimensions(dims);
   if (dims[2] != 1 || dims[0] < 1 || dims[1] < 1)
   {
-    vtkErrorMacro("Height fields must be nx x ny x 1 images; input 0 is " << dims[0] << " x "
-                                                                           << dims[1] << " x " << dims[2] << ".");
+    vtkErrorMacro("Height fields must be nx x ny x 1 images; input 0 is "
+                  << dims[0] << " x " << dims[1] << " x " << dims[2] << ".");
     return false;
   }
   if (!in.Stack.Initialize(dims[0], dims[1]))
@@ -327,23 +339,27 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     const double* s = images[i]->GetSpacing();
     for (int a = 0; a < 2; ++a)
     {
-      if (std::abs(o[a] - origin[a]) > 1e-6 * std::max(1.0, std::abs(spacing[a])) * std::max(1.0, std::abs(origin[a]) / std::max(1e-300, std::abs(spacing[a])) * 1e-3) ||
-        std::abs(s[a] - spacing[a]) > 1e-9 * std::abs(spacing[a]))
+      if (std::abs(o[a] - origin[a]) >
+            1e-6 * std::max(1.0, std::abs(spacing[a])) *
+              std::max(1.0, std::abs(origin[a]) / std::max(1e-300, std::abs(spacing[a])) * 1e-3) ||
+          std::abs(s[a] - spacing[a]) > 1e-9 * std::abs(spacing[a]))
       {
-        vtkErrorMacro("Input " << i << " lies on another lateral grid (origin or spacing differ "
-                                       "from input 0).");
+        vtkErrorMacro("Input " << i
+                               << " lies on another lateral grid (origin or spacing differ "
+                                  "from input 0).");
         return false;
       }
     }
     vtkDataArray* array = this->HeightArrayName.empty()
-      ? images[i]->GetPointData()->GetScalars()
-      : images[i]->GetPointData()->GetArray(this->HeightArrayName.c_str());
+                            ? images[i]->GetPointData()->GetScalars()
+                            : images[i]->GetPointData()->GetArray(this->HeightArrayName.c_str());
     if (!array || array->GetNumberOfComponents() != 1 ||
-      array->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+        array->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
     {
-      vtkErrorMacro("Input " << i << " has no single-component height array"
-                             << (this->HeightArrayName.empty() ? "" : " named " + this->HeightArrayName)
-                             << " with one value per point.");
+      vtkErrorMacro(
+        "Input " << i << " has no single-component height array"
+                 << (this->HeightArrayName.empty() ? "" : " named " + this->HeightArrayName)
+                 << " with one value per point.");
       return false;
     }
     bool ok;
@@ -387,8 +403,8 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     {
       in.GridToWorld->SetElement(r, c, dir[3 * r + c] * scale[c]);
     }
-    in.GridToWorld->SetElement(r, 3,
-      origin[r] + dir[3 * r] * scale[0] * offset[0] + dir[3 * r + 1] * scale[1] * offset[1]);
+    in.GridToWorld->SetElement(
+      r, 3, origin[r] + dir[3 * r] * scale[0] * offset[0] + dir[3 * r + 1] * scale[1] * offset[1]);
   }
   this->ComputeBounds();
   in.Valid = true;
@@ -407,7 +423,9 @@ void vtkStackedHeightFieldMapper::ComputeBounds()
   for (int corner = 0; corner < 8; ++corner)
   {
     const double p[4] = { (corner & 1) ? in.NX - 1.0 : 0.0,
-      (corner & 2) ? in.NY - 1.0 : 0.0, (corner & 4) ? zr[1] : zr[0], 1.0 };
+      (corner & 2) ? in.NY - 1.0 : 0.0,
+      (corner & 4) ? zr[1] : zr[0],
+      1.0 };
     double w[4];
     in.GridToWorld->MultiplyPoint(p, w);
     for (int a = 0; a < 3; ++a)
@@ -431,8 +449,9 @@ void vtkStackedHeightFieldMapper::SetPooledInputsToCoarsest()
   }
 }
 
-vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
@@ -450,13 +469,14 @@ bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageDat
   {
     vtkInformation* info = this->GetInputInformation(0, static_cast<int>(i));
     sources[i].FileName = info->Get(vtkPagePoolReader::POOL_FILE_NAME());
-    sources[i].Layer = info->Has(vtkPagePoolReader::POOL_LAYER()) ? info->Get(vtkPagePoolReader::POOL_LAYER()) : 0;
+    sources[i].Layer =
+      info->Has(vtkPagePoolReader::POOL_LAYER()) ? info->Get(vtkPagePoolReader::POOL_LAYER()) : 0;
     // The reader's coarsest level is the root tile: the pager starts from it without a read.
     vtkDataArray* array = images[i]->GetPointData()->GetScalars();
     int d[3];
     images[i]->GetDimensions(d);
     if (array && array->GetNumberOfComponents() == 1 && d[2] == 1 &&
-      array->GetNumberOfTuples() == static_cast<vtkIdType>(d[0]) * d[1])
+        array->GetNumberOfTuples() == static_cast<vtkIdType>(d[0]) * d[1])
     {
       in.RootValues[i].resize(static_cast<size_t>(d[0]) * d[1]);
       for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
@@ -508,7 +528,8 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   const double tileBytes = double(B) * B * sizeof(float);
-  const int slots = static_cast<int>(std::min<double>(maxLayers, std::floor(this->AtlasBudget * 1048576.0 / tileBytes)));
+  const int slots = static_cast<int>(
+    std::min<double>(maxLayers, std::floor(this->AtlasBudget * 1048576.0 / tileBytes)));
   if (slots < 1 || B > maxSize)
   {
     vtkErrorMacro("An atlas of " << this->AtlasBudget << " MiB holds no tile of " << B << " x " << B
@@ -528,8 +549,9 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     if (glGetError() != GL_NO_ERROR)
     {
-      vtkErrorMacro("Could not allocate a tile atlas of " << slots << " tiles of " << B << " x " << B
-                                                         << " (out of GPU memory?): lower AtlasBudget.");
+      vtkErrorMacro("Could not allocate a tile atlas of "
+                    << slots << " tiles of " << B << " x " << B
+                    << " (out of GPU memory?): lower AtlasBudget.");
       return false;
     }
     in.AtlasSlots = slots;
@@ -562,7 +584,8 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
     for (const auto& u : uploads)
     {
       in.Pager.GetUploadValues(u, values);
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, B, 1, GL_RED, GL_FLOAT, values.data());
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, B, 1, GL_RED, GL_FLOAT, values.data());
       in.Paging.BytesUploaded += static_cast<long long>(values.size() * sizeof(float));
     }
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
@@ -578,10 +601,14 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
       if (u.Slot < 0)
         continue;
       in.Pager.GetBorderValues(u, border);
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data());
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, B - 1, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data() + B);
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 2 * B);
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, B - 1, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 3 * B);
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data());
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, B - 1, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data() + B);
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 2 * B);
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, B - 1, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 3 * B);
       in.Paging.BytesUploaded += static_cast<long long>(border.size() * sizeof(float));
     }
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
@@ -598,8 +625,16 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA16UI, tiles[0], tiles[1], in.Layers, 0, GL_RGBA_INTEGER,
-      GL_UNSIGNED_SHORT, table.data());
+    glTexImage3D(GL_TEXTURE_2D_ARRAY,
+      0,
+      GL_RGBA16UI,
+      tiles[0],
+      tiles[1],
+      in.Layers,
+      0,
+      GL_RGBA_INTEGER,
+      GL_UNSIGNED_SHORT,
+      table.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     in.TreeDirty = true;
@@ -615,7 +650,8 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
   return true;
 }
 
-vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPagingStatistics() const
+vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPagingStatistics()
+  const
 {
   return this->Internals->Paging;
 }
@@ -654,7 +690,8 @@ double* vtkStackedHeightFieldMapper::GetBounds()
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
-  for (unsigned int* texture : { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture, &in.FeedbackTexture })
+  for (unsigned int* texture :
+    { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture, &in.FeedbackTexture })
   {
     if (*texture)
     {
@@ -670,13 +707,19 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.FeedbackPending = false;
   in.AtlasSlots = 0;
   in.FeedbackSize[0] = in.FeedbackSize[1] = 0;
-  for (auto* t : { in.NodeTexture.Get(), in.IntervalTexture.Get(), in.LayerListTexture.Get(),
+  for (auto* t : { in.NodeTexture.Get(),
+         in.IntervalTexture.Get(),
+         in.LayerListTexture.Get(),
          in.ColorTexture.Get() })
   {
     t->ReleaseGraphicsResources(win);
   }
-  for (auto* b : { in.NodeBuffer.Get(), in.IntervalBuffer.Get(), in.LayerListBuffer.Get(),
-         in.ColorBuffer.Get(), in.BoxVertices.Get(), in.BoxIndices.Get() })
+  for (auto* b : { in.NodeBuffer.Get(),
+         in.IntervalBuffer.Get(),
+         in.LayerListBuffer.Get(),
+         in.ColorBuffer.Get(),
+         in.BoxVertices.Get(),
+         in.BoxIndices.Get() })
   {
     b->ReleaseGraphicsResources();
   }
@@ -711,22 +754,26 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   const int ny = in.NY;
   const int layers = in.Layers;
 
-  auto uploadBuffer = [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex,
-                        const std::vector<float>& data, int comps) {
+  auto uploadBuffer =
+    [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex, const std::vector<float>& data, int comps)
+  {
     tex->SetContext(renWin);
     bo->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
     tex->CreateTextureBuffer(static_cast<unsigned int>(data.size() / comps), comps, VTK_FLOAT, bo);
   };
-  auto uploadTree = [&](const vtkMinMaxQuadtree& tree) {
+  auto uploadTree = [&](const vtkMinMaxQuadtree& tree)
+  {
     // Ints stored as floats are exact below 2^24, far above any tree built here.
     std::vector<float> nodes, intervals, lists;
     for (const auto& node : tree.GetNodes())
     {
-      nodes.insert(nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
+      nodes.insert(
+        nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
     }
     for (const auto& iv : tree.GetIntervals())
     {
-      intervals.insert(intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
+      intervals.insert(
+        intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
     }
     for (int id : tree.GetLayerLists())
     {
@@ -744,7 +791,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     uploadBuffer(in.IntervalBuffer, in.IntervalTexture, intervals, 4);
     uploadBuffer(in.LayerListBuffer, in.LayerListTexture, lists, 1);
   };
-  auto uploadBox = [&]() {
+  auto uploadBox = [&]()
+  {
     // Proxy box, slightly taller than the data so that flat stacks still have back faces.
     double zr[2] = { in.ZRange[0], in.ZRange[1] };
     if (zr[0] > zr[1])
@@ -754,10 +802,45 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     const double pad = std::max(1e-3, 1e-3 * (zr[1] - zr[0]));
     const float x1 = float(nx - 1), y1 = float(ny - 1);
     const float z0 = float(zr[0] - pad), z1 = float(zr[1] + pad);
-    const std::vector<float> verts = { 0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1,
-      0, z1, 0, y1, z1, x1, y1, z1 };
-    const std::vector<unsigned int> faces = { 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5,
-      4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5 };
+    const std::vector<float> verts = {
+      0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1, 0, z1, 0, y1, z1, x1, y1, z1
+    };
+    const std::vector<unsigned int> faces = { 0,
+      2,
+      1,
+      1,
+      2,
+      3,
+      4,
+      5,
+      6,
+      5,
+      7,
+      6,
+      0,
+      1,
+      4,
+      1,
+      5,
+      4,
+      2,
+      6,
+      3,
+      3,
+      6,
+      7,
+      0,
+      4,
+      2,
+      2,
+      4,
+      6,
+      1,
+      3,
+      5,
+      3,
+      7,
+      5 };
     in.BoxVertices->Upload(verts, vtkOpenGLBufferObject::ArrayBuffer);
     in.BoxIndices->Upload(faces, vtkOpenGLBufferObject::ElementArrayBuffer);
     in.LastProgram = nullptr; // attribute bindings must be redone
@@ -808,8 +891,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, nx, ny, layers, 0, GL_RED, GL_FLOAT, nullptr);
     for (int k = 0; k < layers; ++k)
     {
-      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT,
-        in.Stack.GetLayer(k));
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT, in.Stack.GetLayer(k));
     }
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     if (glGetError() != GL_NO_ERROR)
@@ -869,13 +952,15 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
       for (int k = 0; k < layers; ++k)
       {
         auto it = in.HorizonColors.find(k);
-        const double* rgb = it != in.HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
+        const double* rgb =
+          it != in.HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
         colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
       }
     }
     in.ColorTexture->SetContext(renWin);
     in.ColorBuffer->Upload(colors, vtkOpenGLBufferObject::TextureBuffer);
-    in.ColorTexture->CreateTextureBuffer(static_cast<unsigned int>(colors.size() / 4), 4, VTK_FLOAT, in.ColorBuffer);
+    in.ColorTexture->CreateTextureBuffer(
+      static_cast<unsigned int>(colors.size() / 4), 4, VTK_FLOAT, in.ColorBuffer);
     in.ColorTime = std::max(in.ColorsModified.GetMTime(), in.BuildTime);
     if (in.Lut)
     {
@@ -891,9 +976,12 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   std::string vs = vtkStackedHeightFieldVS;
   std::string fs = vtkStackedHeightFieldFS;
   // Data lookup: one function, so that paging can swap in a virtual-texture lookup.
-  Replace(fs, "//STRATA::HeightLookup::Dec", in.Paged ? vtkStackedHeightFieldPagedLookup : 
-    "uniform sampler2DArray uHeights;\n"
-    "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; }");
+  Replace(fs,
+    "//STRATA::HeightLookup::Dec",
+    in.Paged ? vtkStackedHeightFieldPagedLookup
+             : "uniform sampler2DArray uHeights;\n"
+               "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, "
+               "layer), 0).r; }");
   // Feedback: image load/store (GL 4.2 or the ARB extension), at most 63 horizons (page ids).
   bool feedback = in.Paged && this->Feedback && layers <= vtkFeedbackReduction::MaxDataSets;
   if (feedback)
@@ -905,7 +993,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     {
       if (!in.FeedbackUnsupportedWarned)
       {
-        vtkWarningMacro("OpenGL " << major << "." << minor << " has no image load/store: paging without feedback.");
+        vtkWarningMacro("OpenGL " << major << "." << minor
+                                  << " has no image load/store: paging without feedback.");
         in.FeedbackUnsupportedWarned = true;
       }
       feedback = false;
@@ -917,19 +1006,26 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     in.Pager.ClearFeedback();
     in.FeedbackPending = false;
   }
-  Replace(fs, "//STRATA::Extensions::Dec", feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
-  Replace(fs, "//STRATA::Feedback::Dec", feedback ? std::string(FeedbackDeclarations) + vtkFeedbackReduction::GetGLSLPackFunction() : "");
+  Replace(fs,
+    "//STRATA::Extensions::Dec",
+    feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  Replace(fs,
+    "//STRATA::Feedback::Dec",
+    feedback ? std::string(FeedbackDeclarations) + vtkFeedbackReduction::GetGLSLPackFunction()
+             : "");
   Replace(fs, "//STRATA::Feedback::Impl", feedback ? FeedbackWrite : "");
   if (in.Paged)
   {
-    Replace(fs, "//STRATA::CellCorners::Dec",
+    Replace(fs,
+      "//STRATA::CellCorners::Dec",
       "vec4 strataCellCorners(int layer, ivec2 c)\n"
       "{\n"
       "  ivec2 q = c - gPageBase;\n"
       "  return vec4(strataTexel(gPageSlot, q), strataTexel(gPageSlot, q + ivec2(1, 0)),\n"
       "    strataTexel(gPageSlot, q + ivec2(0, 1)), strataTexel(gPageSlot, q + ivec2(1, 1)));\n"
       "}");
-    Replace(fs, "//STRATA::SearchLevel::Impl",
+    Replace(fs,
+      "//STRATA::SearchLevel::Impl",
       "lv = strataLeafPage(layer, cLo0);\n"
       "  if (lv < 0)\n"
       "  {\n"
@@ -938,29 +1034,38 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   else
   {
-    Replace(fs, "//STRATA::CellCorners::Dec",
+    Replace(fs,
+      "//STRATA::CellCorners::Dec",
       "vec4 strataCellCorners(int layer, ivec2 c) { return strataCorners(layer, c); }");
     Replace(fs, "//STRATA::SearchLevel::Impl", "");
   }
   // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
-  Replace(fs, "//STRATA::Hole::Impl",
-    !holes ? "" : in.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));" : "valid = !any(isnan(h));");
+  Replace(fs,
+    "//STRATA::Hole::Impl",
+    !holes     ? ""
+    : in.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));"
+               : "valid = !any(isnan(h));");
   if (!shaded)
   {
     Replace(fs, "//STRATA::Color::Dec", "");
     Replace(fs, "//STRATA::Color::Impl", "");
     Replace(fs, "//STRATA::Shading::Dec", "");
     Replace(fs, "//STRATA::Shading::Impl", "");
-    Replace(fs, "//STRATA::Output::Impl",
+    Replace(fs,
+      "//STRATA::Output::Impl",
       "int id = hitLayer + 1;\n"
-      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), 255.0) / 255.0;");
+      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), "
+      "255.0) / 255.0;");
   }
   else
   {
     if (useLut)
     {
-      Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
-      Replace(fs, "//STRATA::Color::Impl",
+      Replace(fs,
+        "//STRATA::Color::Dec",
+        "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
+      Replace(fs,
+        "//STRATA::Color::Impl",
         "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
         "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
     }
@@ -980,7 +1085,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
           << oglRen->GetLightingUniforms();
       impl << "vec4 hc = strataCorners(hitLayer, hitCell);\n"
               "  vec2 huv = clamp(pGrid.xy - vec2(hitCell), 0.0, 1.0);\n"
-              "  vec3 nGrid = vec3(-mix(hc.y - hc.x, hc.w - hc.z, huv.y), -mix(hc.z - hc.x, hc.w - hc.y, huv.x), 1.0);\n"
+              "  vec3 nGrid = vec3(-mix(hc.y - hc.x, hc.w - hc.z, huv.y), -mix(hc.z - hc.x, hc.w - "
+              "hc.y, huv.x), 1.0);\n"
               "  vec3 normalVC = normalize(uNormalMatrix * nGrid);\n"
               "  vec3 posVC = (uGridToView * vec4(pGrid, 1.0)).xyz;\n"
               "  vec3 viewDirectionVC = uParallel != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-posVC);\n"
@@ -1007,20 +1113,24 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
                  << "      att = 1.0 / (lightAttenuation" << l << ".x + lightAttenuation" << l
                  << ".y * dist + lightAttenuation" << l << ".z * dist * dist);\n"
                  << "      if (lightConeAngle" << l << " < 90.0)\n"
-                 << "        att *= coneDot >= cos(radians(lightConeAngle" << l << ")) ? pow(coneDot, lightExponent" << l << ") : 0.0;\n"
+                 << "        att *= coneDot >= cos(radians(lightConeAngle" << l
+                 << ")) ? pow(coneDot, lightExponent" << l << ") : 0.0;\n"
                  << "    }\n";
           }
           impl << "    float df = max(0.0, dot(normalVC, -L));\n"
                << "    diffuse += att * df * lightColor" << l << ";\n"
                << "    if (df > 0.0)\n"
-               << "      specular += att * pow(max(0.0, dot(reflect(L, normalVC), viewDirectionVC)), uSpecularPower) * lightColor"
+               << "      specular += att * pow(max(0.0, dot(reflect(L, normalVC), "
+                  "viewDirectionVC)), uSpecularPower) * lightColor"
                << l << ";\n  }\n";
         }
       }
-      impl << "  vec3 shadedColor = uAmbient * baseColor + uDiffuse * diffuse * baseColor + uSpecular * specular * uSpecularColor;";
+      impl << "  vec3 shadedColor = uAmbient * baseColor + uDiffuse * diffuse * baseColor + "
+              "uSpecular * specular * uSpecularColor;";
       Replace(fs, "//STRATA::Shading::Dec", dec.str());
       Replace(fs, "//STRATA::Shading::Impl", impl.str());
-      Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
+      Replace(
+        fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
     }
     else
     {
@@ -1077,7 +1187,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   program->SetUniform4f("uViewport", viewport);
   const float gridMax[2] = { float(nx - 1), float(ny - 1) };
   program->SetUniform2f("uGridMax", gridMax);
-  const double zr[2] = { in.ZRange[0] <= in.ZRange[1] ? in.ZRange[0] : 0.0, in.ZRange[0] <= in.ZRange[1] ? in.ZRange[1] : 0.0 };
+  const double zr[2] = { in.ZRange[0] <= in.ZRange[1] ? in.ZRange[0] : 0.0,
+    in.ZRange[0] <= in.ZRange[1] ? in.ZRange[1] : 0.0 };
   const float zRange[2] = { float(zr[0]), float(zr[1]) };
   program->SetUniform2f("uZRange", zRange);
   // Bilinear interpolation in float is within a few ulps of the corner range; 1e-5 relative
@@ -1266,10 +1377,13 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkFeedbackReduction::Entry> list;
-  vtkFeedbackReadBack::Map(in.FeedbackBuffer, count, [&](const uint32_t* ids) {
-    std::unique_lock<std::mutex> lock;
-    SharedReduction(lock).Reduce(ids, count, list);
-  });
+  vtkFeedbackReadBack::Map(in.FeedbackBuffer,
+    count,
+    [&](const uint32_t* ids)
+    {
+      std::unique_lock<std::mutex> lock;
+      SharedReduction(lock).Reduce(ids, count, list);
+    });
   std::vector<uint32_t> pages(list.size()), coverage(list.size());
   for (size_t e = 0; e < list.size(); ++e)
   {
@@ -1278,7 +1392,8 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   }
   in.Pager.SetFeedback(pages, coverage, this->FeedbackScale * this->FeedbackScale, viewChanged);
   ++in.FeedbackFrame;
-  in.Paging.FeedbackSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  in.Paging.FeedbackSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -1292,11 +1407,11 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightArrayName: " << this->HeightArrayName << "\n";
   os << indent << "ColorMode: " << static_cast<int>(this->ColorMode) << "\n";
   os << indent << "OutputMode: " << static_cast<int>(this->OutputMode) << "\n";
-  os << indent << "Feedback: " << this->Feedback << ", scale " << this->FeedbackScale << ", deferred read-back "
-     << this->DeferFeedbackReadBack << "\n";
+  os << indent << "Feedback: " << this->Feedback << ", scale " << this->FeedbackScale
+     << ", deferred read-back " << this->DeferFeedbackReadBack << "\n";
   os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << "\n";
-  os << indent << "PageCacheBudget: " << this->PageCacheBudget << ", AtlasBudget: " << this->AtlasBudget
-     << ", PagesPerFrame: " << this->PagesPerFrame << ", Prefetch: " << this->Prefetch
-     << ", MorphFrames: " << this->MorphFrames << "\n";
+  os << indent << "PageCacheBudget: " << this->PageCacheBudget
+     << ", AtlasBudget: " << this->AtlasBudget << ", PagesPerFrame: " << this->PagesPerFrame
+     << ", Prefetch: " << this->Prefetch << ", MorphFrames: " << this->MorphFrames << "\n";
   os << indent << "Horizons: " << this->Internals->Stack.GetNumberOfLayers() << "\n";
 }

@@ -45,7 +45,7 @@
 #ifndef vtkStackedHeightFieldMapper_h
 #define vtkStackedHeightFieldMapper_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataModule.h"        // For export macro
 #include "vtkHeightFieldPager.h" // For vtkHeightFieldPager::Statistics
 #include "vtkMapper.h"
 
@@ -142,8 +142,9 @@ public:
   void SetHorizonColor(int index, double r, double g, double b);
 
   /**
-   * Lookup table over the height value for LookupTable mode (separate from vtkMapper's own); null (default) uses a built-in
-   * depth colour map over the stack's range. Its own range is used when it has one.
+   * Lookup table over the height value for LookupTable mode (separate from vtkMapper's own); null
+   * (default) uses a built-in depth colour map over the stack's range. Its own range is used when
+   * it has one.
    */
   void SetHeightLookupTable(vtkScalarsToColors* lut);
 
@@ -240,7 +241,8 @@ public:
   /// The pager (cut, page table, CPU reference of the lookup); meaningful when GetPaged().
   const vtkHeightFieldPager* GetPager() const;
 
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
   /// The fragment shader source of the last render (empty before).

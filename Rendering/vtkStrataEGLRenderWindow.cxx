@@ -32,7 +32,7 @@ SharedDisplay& GetSharedDisplay()
   return display;
 }
 
-template <typename T>
+template<typename T>
 T LoadProc(const char* name)
 {
   return reinterpret_cast<T>(eglGetProcAddress(name));
@@ -65,7 +65,7 @@ bool TryInitialize(EGLDisplay display)
 EGLDisplay OpenDeviceDisplay(const char* clientExtensions)
 {
   if (!HasExtension(clientExtensions, "EGL_EXT_device_enumeration") &&
-    !HasExtension(clientExtensions, "EGL_EXT_device_base"))
+      !HasExtension(clientExtensions, "EGL_EXT_device_base"))
   {
     return EGL_NO_DISPLAY;
   }
@@ -112,8 +112,9 @@ EGLDisplay OpenSurfacelessDisplay(const char* clientExtensions)
   }
   auto getPlatformDisplay = LoadProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
   EGLDisplay display =
-    getPlatformDisplay ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
-                       : EGL_NO_DISPLAY;
+    getPlatformDisplay
+      ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
+      : EGL_NO_DISPLAY;
   return TryInitialize(display) ? display : EGL_NO_DISPLAY;
 }
 
@@ -213,9 +214,23 @@ bool vtkStrataEGLRenderWindow::CreateContext()
   in.Display = shared.Display;
   in.Platform = shared.Platform;
 
-  const EGLint configAttribs[] = { EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RED_SIZE, 8,
-    EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_STENCIL_SIZE,
-    8, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE };
+  const EGLint configAttribs[] = { EGL_SURFACE_TYPE,
+    EGL_PBUFFER_BIT,
+    EGL_RED_SIZE,
+    8,
+    EGL_GREEN_SIZE,
+    8,
+    EGL_BLUE_SIZE,
+    8,
+    EGL_ALPHA_SIZE,
+    8,
+    EGL_DEPTH_SIZE,
+    24,
+    EGL_STENCIL_SIZE,
+    8,
+    EGL_RENDERABLE_TYPE,
+    EGL_OPENGL_BIT,
+    EGL_NONE };
   EGLint numConfigs = 0;
   if (!eglChooseConfig(in.Display, configAttribs, &in.Config, 1, &numConfigs) || numConfigs < 1)
   {
@@ -233,8 +248,13 @@ bool vtkStrataEGLRenderWindow::CreateContext()
   const int versions[][2] = { { 4, 6 }, { 4, 5 }, { 4, 3 }, { 4, 1 }, { 3, 3 }, { 3, 2 } };
   for (const auto& v : versions)
   {
-    const EGLint contextAttribs[] = { EGL_CONTEXT_MAJOR_VERSION, v[0], EGL_CONTEXT_MINOR_VERSION,
-      v[1], EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+    const EGLint contextAttribs[] = { EGL_CONTEXT_MAJOR_VERSION,
+      v[0],
+      EGL_CONTEXT_MINOR_VERSION,
+      v[1],
+      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+      EGL_NONE };
     in.Context = eglCreateContext(in.Display, in.Config, EGL_NO_CONTEXT, contextAttribs);
     if (in.Context != EGL_NO_CONTEXT)
     {
@@ -373,8 +393,8 @@ void vtkStrataEGLRenderWindow::MakeCurrent()
   {
     if (eglMakeCurrent(in.Display, in.Surface, in.Surface, in.Context) != EGL_TRUE)
     {
-      vtkErrorMacro("eglMakeCurrent failed (error 0x" << std::hex << eglGetError() << std::dec
-                                                     << ").");
+      vtkErrorMacro(
+        "eglMakeCurrent failed (error 0x" << std::hex << eglGetError() << std::dec << ").");
     }
   }
 }
@@ -391,7 +411,7 @@ void vtkStrataEGLRenderWindow::ReleaseCurrent()
 bool vtkStrataEGLRenderWindow::IsCurrent()
 {
   return this->Internals->Context != EGL_NO_CONTEXT &&
-    eglGetCurrentContext() == this->Internals->Context;
+         eglGetCurrentContext() == this->Internals->Context;
 }
 
 int vtkStrataEGLRenderWindow::SupportsOpenGL()

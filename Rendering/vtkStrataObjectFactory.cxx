@@ -32,8 +32,11 @@ public:
 protected:
   vtkStrataObjectFactory()
   {
-    this->RegisterOverride("vtkRenderWindow", "vtkStrataEGLRenderWindow",
-      "Offscreen EGL window (no X server)", 1, CreateStrataEGLRenderWindow);
+    this->RegisterOverride("vtkRenderWindow",
+      "vtkStrataEGLRenderWindow",
+      "Offscreen EGL window (no X server)",
+      1,
+      CreateStrataEGLRenderWindow);
   }
 };
 

@@ -27,8 +27,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -62,7 +62,7 @@ vtkSmartPointer<vtkPolyData> MeshOf(vtkImageData* image)
     {
       const vtkIdType a = vtkIdType(j) * d[0] + i, b = a + 1, c = a + d[0], e = c + 1;
       if (std::isnan(h->GetValue(a)) || std::isnan(h->GetValue(b)) || std::isnan(h->GetValue(c)) ||
-        std::isnan(h->GetValue(e)))
+          std::isnan(h->GetValue(e)))
         continue;
       const vtkIdType t1[3] = { a, b, e }, t2[3] = { a, e, c };
       tris->InsertNextCell(3, t1);
@@ -97,7 +97,8 @@ double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views
       const auto t0 = std::chrono::steady_clock::now();
       win->Render();
       win->WaitForCompletion();
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
   }
   std::sort(ms.begin(), ms.end());
@@ -207,14 +208,22 @@ int main(int argc, char* argv[])
           const auto t0 = std::chrono::steady_clock::now();
           win->Render();
           win->WaitForCompletion();
-          t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+          t.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+              .count());
         }
         std::sort(t.begin(), t.end());
         ms = t[t.size() / 2];
       }
       auto r = strata_test::CompareWithReference(win, ren, a, m, horizons, "bench-" + scene);
-      std::printf("%s,%s,%g,%.1f,%.5f,%ld,%.0f\n", label.c_str(), scene.c_str(), step, ms,
-        r.MismatchFraction(), r.Covered, r.DepthBoundViolations);
+      std::printf("%s,%s,%g,%.1f,%.5f,%ld,%.0f\n",
+        label.c_str(),
+        scene.c_str(),
+        step,
+        ms,
+        r.MismatchFraction(),
+        r.Covered,
+        r.DepthBoundViolations);
       std::fflush(stdout);
     }
   }

@@ -51,7 +51,8 @@
 namespace
 {
 const int Size = 384;
-const char* Header = "case,method,factor,filter,threshold,error_grid,shape,points,bytes,ms_per_frame,rms_error,p99_error,equal_bytes_as,note";
+const char* Header = "case,method,factor,filter,threshold,error_grid,shape,points,bytes,ms_per_"
+                     "frame,rms_error,p99_error,equal_bytes_as,note";
 
 struct Measure
 {
@@ -59,8 +60,11 @@ struct Measure
 };
 
 // Median frame time of 3 after a warm-up, and the image's error against `reference`.
-Measure Render(vtkRenderWindow* win, vtkVolume* volume, vtkVolumeMapper* mapper,
-  const std::vector<unsigned char>* reference, std::vector<unsigned char>* image = nullptr)
+Measure Render(vtkRenderWindow* win,
+  vtkVolume* volume,
+  vtkVolumeMapper* mapper,
+  const std::vector<unsigned char>* reference,
+  std::vector<unsigned char>* image = nullptr)
 {
   volume->SetMapper(mapper);
   win->Render();
@@ -70,7 +74,8 @@ Measure Render(vtkRenderWindow* win, vtkVolume* volume, vtkVolumeMapper* mapper,
     const auto t0 = std::chrono::steady_clock::now();
     win->Render();
     win->WaitForCompletion();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   std::sort(ms.begin(), ms.end());
   Measure m;
@@ -97,7 +102,7 @@ Measure Render(vtkRenderWindow* win, vtkVolume* volume, vtkVolumeMapper* mapper,
 double Bytes(vtkImageData* low, vtkIdType points)
 {
   return vtkHybridVolumeFile::HeaderSize + 4.0 * low->GetNumberOfPoints() +
-    double(vtkHybridVolumeFile::PointSize) * points;
+         double(vtkHybridVolumeFile::PointSize) * points;
 }
 
 int Run(const std::string& name)
@@ -126,13 +131,19 @@ int Run(const std::string& name)
   std::vector<unsigned char> reference;
   const Measure f = Render(win, volume, full, nullptr, &reference);
   const double fullBytes = vtkHybridVolumeFile::HeaderSize + 4.0 * image->GetNumberOfPoints();
-  std::printf("%s,full,1,,,,,0,%.0f,%.2f,0,0,,%dx%dx%d original\n", name.c_str(), fullBytes, f.Ms,
-    image->GetDimensions()[0], image->GetDimensions()[1], image->GetDimensions()[2]);
+  std::printf("%s,full,1,,,,,0,%.0f,%.2f,0,0,,%dx%dx%d original\n",
+    name.c_str(),
+    fullBytes,
+    f.Ms,
+    image->GetDimensions()[0],
+    image->GetDimensions()[1],
+    image->GetDimensions()[2]);
   std::fflush(stdout);
 
   // One filter per (factor, grid, threshold or budget); the mapper draws its outputs.
   vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity(0);
-  auto build = [&](int factor, int grid, double threshold, vtkIdType budget, bool weighted) {
+  auto build = [&](int factor, int grid, double threshold, vtkIdType budget, bool weighted)
+  {
     auto filter = vtkSmartPointer<vtkHybridVolumeFilter>::New();
     filter->SetInputData(image);
     filter->SetFactor(factor, factor, factor);
@@ -156,27 +167,46 @@ int Run(const std::string& name)
     plain->SetInputData(low);
     const Measure m = Render(win, volume, plain, &reference);
     plainBytes[factor] = Bytes(low, 0);
-    std::printf("%s,low-resolution,%d,cubic,,,,0,%.0f,%.2f,%.4f,%.1f,,\n", name.c_str(), factor, plainBytes[factor],
-      m.Ms, m.Rms, m.P99);
+    std::printf("%s,low-resolution,%d,cubic,,,,0,%.0f,%.2f,%.4f,%.1f,,\n",
+      name.c_str(),
+      factor,
+      plainBytes[factor],
+      m.Ms,
+      m.Rms,
+      m.P99);
     std::fflush(stdout);
   }
-  auto hybridRows = [&](const char* method, int factor, int grid, double threshold, vtkIdType budget,
-                      const std::string& note) {
+  auto hybridRows = [&](const char* method,
+                      int factor,
+                      int grid,
+                      double threshold,
+                      vtkIdType budget,
+                      const std::string& note)
+  {
     const bool weighted = std::string(method).find("-tf") != std::string::npos;
     auto filter = build(factor, grid, threshold, budget, weighted);
     vtkImageData* low = filter->GetLowResolutionOutput();
     vtkPolyData* points = filter->GetPointsOutput();
     hybrid->SetInputData(low);
     hybrid->SetPointsInputData(points);
-    for (auto shape : { vtkHybridVolumeMapper::PointShapes::Squares, vtkHybridVolumeMapper::PointShapes::GaussianSplats })
+    for (auto shape : { vtkHybridVolumeMapper::PointShapes::Squares,
+           vtkHybridVolumeMapper::PointShapes::GaussianSplats })
     {
       hybrid->SetPointShape(shape);
       const Measure m = Render(win, volume, hybrid, &reference);
-      std::printf("%s,%s,%d,cubic,%g,%d,%s,%lld,%.0f,%.2f,%.4f,%.1f,,%s\n", name.c_str(), method, factor,
-        budget > 0 ? 0.0 : threshold, grid,
+      std::printf("%s,%s,%d,cubic,%g,%d,%s,%lld,%.0f,%.2f,%.4f,%.1f,,%s\n",
+        name.c_str(),
+        method,
+        factor,
+        budget > 0 ? 0.0 : threshold,
+        grid,
         shape == vtkHybridVolumeMapper::PointShapes::Squares ? "squares" : "splats",
-        static_cast<long long>(points->GetNumberOfPoints()), Bytes(low, points->GetNumberOfPoints()), m.Ms, m.Rms,
-        m.P99, note.c_str());
+        static_cast<long long>(points->GetNumberOfPoints()),
+        Bytes(low, points->GetNumberOfPoints()),
+        m.Ms,
+        m.Rms,
+        m.P99,
+        note.c_str());
       std::fflush(stdout);
     }
     // Plain down-sampling to the same bytes: the original resampled (cubic) by the factor that
@@ -184,7 +214,8 @@ int Run(const std::string& name)
     const double bytes = Bytes(low, points->GetNumberOfPoints());
     if (std::string(method) != "hybrid-budget" && factor == 4 && points->GetNumberOfPoints() >= 100)
     {
-      const double r = std::cbrt(4.0 * image->GetNumberOfPoints() / (bytes - vtkHybridVolumeFile::HeaderSize));
+      const double r =
+        std::cbrt(4.0 * image->GetNumberOfPoints() / (bytes - vtkHybridVolumeFile::HeaderSize));
       vtkNew<vtkImageResample> resample;
       resample->SetInputData(image);
       resample->SetMagnificationFactors(1.0 / r, 1.0 / r, 1.0 / r);
@@ -192,10 +223,22 @@ int Run(const std::string& name)
       resample->Update();
       plain->SetInputData(resample->GetOutput());
       const Measure m = Render(win, volume, plain, &reference);
-      std::printf("%s,low-resolution-equal-bytes,%.3f,cubic,,,,0,%.0f,%.2f,%.4f,%.1f,%s/%g/%d,resampled by 1/%.3f "
+      std::printf("%s,low-resolution-equal-bytes,%.3f,cubic,,,,0,%.0f,%.2f,%.4f,%.1f,%s/%g/"
+                  "%d,resampled by 1/%.3f "
                   "per axis to the bytes of the factor-4 %s with threshold %g and error grid %d\n",
-        name.c_str(), r, Bytes(resample->GetOutput(), 0), m.Ms, m.Rms, m.P99, method, threshold, grid, r, method,
-        threshold, grid);
+        name.c_str(),
+        r,
+        Bytes(resample->GetOutput(), 0),
+        m.Ms,
+        m.Rms,
+        m.P99,
+        method,
+        threshold,
+        grid,
+        r,
+        method,
+        threshold,
+        grid);
       std::fflush(stdout);
     }
   };
@@ -214,8 +257,13 @@ int Run(const std::string& name)
     const double room = plainBytes[factor / 2] - Bytes(probe->GetLowResolutionOutput(), 0);
     const vtkIdType budget = static_cast<vtkIdType>(room / vtkHybridVolumeFile::PointSize);
     for (const char* method : { "hybrid-budget", "hybrid-tf-budget" })
-      hybridRows(method, factor, 1, 0.0, std::max<vtkIdType>(budget, 1),
-        "point budget " + std::to_string(budget) + ": bytes of the plain factor-" + std::to_string(factor / 2) + " volume");
+      hybridRows(method,
+        factor,
+        1,
+        0.0,
+        std::max<vtkIdType>(budget, 1),
+        "point budget " + std::to_string(budget) + ": bytes of the plain factor-" +
+          std::to_string(factor / 2) + " volume");
   }
   return 0;
 }
@@ -265,13 +313,21 @@ int Report(const std::string& csv, const std::string& png)
   const auto rows = ReadCsv(csv);
   std::vector<std::string> datasets;
   for (const auto& r : rows)
-    if (std::find(datasets.begin(), datasets.end(), Str(r, "case")) == datasets.end() && Num(r, "bytes") > 0)
+    if (std::find(datasets.begin(), datasets.end(), Str(r, "case")) == datasets.end() &&
+        Num(r, "bytes") > 0)
       datasets.push_back(Str(r, "case"));
   // Headline: each factor-4 hybrid against the plain volume resampled to its bytes (the better
   // of squares and splats), then the point budgets that fill a plain factor-2 / 4 volume's bytes.
-  std::printf("\nEqual bytes: factor-4 hybrids (cubic) against the original resampled (cubic) to the same bytes\n");
-  std::printf("%-8s %-22s %10s %8s %11s %11s %8s\n", "data", "hybrid (method/threshold/grid)", "bytes", "points",
-    "plain RMS", "hybrid RMS", "better");
+  std::printf("\nEqual bytes: factor-4 hybrids (cubic) against the original resampled (cubic) to "
+              "the same bytes\n");
+  std::printf("%-8s %-22s %10s %8s %11s %11s %8s\n",
+    "data",
+    "hybrid (method/threshold/grid)",
+    "bytes",
+    "points",
+    "plain RMS",
+    "hybrid RMS",
+    "better");
   // Headline family: ranked by missing opacity on the error grid of step 2 (a point per 2^3
   // voxels); the volume counts when that family beats plain at every size it was measured at.
   int wins = 0;
@@ -289,7 +345,7 @@ int Report(const std::string& csv, const std::string& png)
         std::ostringstream k;
         k << Str(r, "method") << "/" << Num(r, "threshold") << "/" << Num(r, "error_grid");
         if (Str(r, "case") == d && int(Num(r, "factor")) == 4 && k.str() == key &&
-          (hybridRms < 0 || Num(r, "rms_error") < hybridRms))
+            (hybridRms < 0 || Num(r, "rms_error") < hybridRms))
         {
           hybridRms = Num(r, "rms_error");
           points = Num(r, "points");
@@ -304,30 +360,60 @@ int Report(const std::string& csv, const std::string& png)
         ++familyCompared;
         familyWon += hybridRms < Num(p, "rms_error") ? 1 : 0;
       }
-      std::printf("%-8s %-22s %10.0f %8.0f %11.3f %11.3f %8s\n", d.c_str(), key.c_str(), Num(p, "bytes"), points,
-        Num(p, "rms_error"), hybridRms, hybridRms < Num(p, "rms_error") ? "hybrid" : "plain");
+      std::printf("%-8s %-22s %10.0f %8.0f %11.3f %11.3f %8s\n",
+        d.c_str(),
+        key.c_str(),
+        Num(p, "bytes"),
+        points,
+        Num(p, "rms_error"),
+        hybridRms,
+        hybridRms < Num(p, "rms_error") ? "hybrid" : "plain");
     }
-    std::printf("%-8s hybrid better in %d of %d configurations; ranked by missing opacity, error grid 2: %d of %d\n",
-      d.c_str(), won, compared, familyWon, familyCompared);
+    std::printf("%-8s hybrid better in %d of %d configurations; ranked by missing opacity, error "
+                "grid 2: %d of %d\n",
+      d.c_str(),
+      won,
+      compared,
+      familyWon,
+      familyCompared);
     wins += familyCompared > 0 && familyWon == familyCompared ? 1 : 0;
   }
-  std::printf("hybrid (ranked by missing opacity, error grid 2) beats plain down-sampling at equal bytes at every "
+  std::printf("hybrid (ranked by missing opacity, error grid 2) beats plain down-sampling at equal "
+              "bytes at every "
               "size on %d of %zu volumes\n",
-    wins, datasets.size());
-  std::printf("\nPoint budgets filling a plain volume's bytes (factor f hybrid vs plain factor f/2)\n");
+    wins,
+    datasets.size());
+  std::printf(
+    "\nPoint budgets filling a plain volume's bytes (factor f hybrid vs plain factor f/2)\n");
   for (const auto& d : datasets)
     for (const auto& r : rows)
       if (Str(r, "case") == d && Str(r, "method").find("budget") != std::string::npos)
         for (const auto& p : rows)
-          if (Str(p, "case") == d && Str(p, "method") == "low-resolution" && Num(p, "factor") * 2 == Num(r, "factor"))
-            std::printf("%-8s %-16s factor %g %-7s %8.0f points, %10.0f bytes: hybrid RMS %.3f, plain factor %g RMS %.3f\n",
-              d.c_str(), Str(r, "method").c_str(), Num(r, "factor"), Str(r, "shape").c_str(), Num(r, "points"), Num(r, "bytes"),
-              Num(r, "rms_error"), Num(p, "factor"), Num(p, "rms_error"));
+          if (Str(p, "case") == d && Str(p, "method") == "low-resolution" &&
+              Num(p, "factor") * 2 == Num(r, "factor"))
+            std::printf("%-8s %-16s factor %g %-7s %8.0f points, %10.0f bytes: hybrid RMS %.3f, "
+                        "plain factor %g RMS %.3f\n",
+              d.c_str(),
+              Str(r, "method").c_str(),
+              Num(r, "factor"),
+              Str(r, "shape").c_str(),
+              Num(r, "points"),
+              Num(r, "bytes"),
+              Num(r, "rms_error"),
+              Num(p, "factor"),
+              Num(p, "rms_error"));
 
-  strata_bench::Chart chart(
-    "Hybrid point + volume vs plain down-sampling, llvmpipe 384 x 384: RMS error against full resolution vs bytes", 15,
-    "bytes on disk (log)", true, "RMS error, 8-bit units", false, true);
-  const unsigned char colours[4][3] = { { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 }, { 204, 121, 167 } };
+  strata_bench::Chart chart("Hybrid point + volume vs plain down-sampling, llvmpipe 384 x 384: RMS "
+                            "error against full resolution vs bytes",
+    15,
+    "bytes on disk (log)",
+    true,
+    "RMS error, 8-bit units",
+    false,
+    true);
+  const unsigned char colours[4][3] = {
+    { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 }, { 204, 121, 167 }
+  };
   for (size_t d = 0; d < datasets.size(); ++d)
     for (int kind = 0; kind < 2; ++kind)
     {
@@ -337,11 +423,12 @@ int Report(const std::string& csv, const std::string& png)
       {
         const std::string m = Str(r, "method");
         if (Str(r, "case") == datasets[d] && Num(r, "bytes") > 0 && Num(r, "rms_error") >= 0 &&
-          (kind == 0 ? m.rfind("low-resolution", 0) == 0 : m.rfind("hybrid", 0) == 0))
+            (kind == 0 ? m.rfind("low-resolution", 0) == 0 : m.rfind("hybrid", 0) == 0))
           pts.emplace_back(Num(r, "bytes"), Num(r, "rms_error"));
       }
       std::sort(pts.begin(), pts.end());
-      vtkPlot* plot = chart.Add(kind == 0 ? vtkChart::LINE : vtkChart::POINTS, label, pts, colours[d % 4]);
+      vtkPlot* plot =
+        chart.Add(kind == 0 ? vtkChart::LINE : vtkChart::POINTS, label, pts, colours[d % 4]);
       if (auto* points = vtkPlotPoints::SafeDownCast(plot))
       {
         points->SetMarkerStyle(vtkPlotPoints::CIRCLE);

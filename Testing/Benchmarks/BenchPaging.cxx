@@ -69,8 +69,8 @@
 #include <thread>
 #include <vector>
 
-using strata_test::PeakRssMB;
 using strata_test::FileExists;
+using strata_test::PeakRssMB;
 using strata_test::Percentile;
 
 namespace
@@ -117,8 +117,10 @@ bool Generate(const std::string& path, int edge, int i)
   writer->SetMemoryLimit(256);
   const auto t0 = std::chrono::steady_clock::now();
   const bool ok = writer->Write();
-  std::cerr << path << ": " << (ok ? "written" : "FAILED") << ", " << writer->GetFileSize() / 1048576.0 << " MB, "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+  std::cerr << path << ": " << (ok ? "written" : "FAILED") << ", "
+            << writer->GetFileSize() / 1048576.0 << " MB, "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+            << " s\n";
   return ok;
 }
 
@@ -149,19 +151,23 @@ struct PageReads
   long long Pages = 0;
   static void Count(vtkObject* caller, unsigned long, void* self, void*)
   {
-    static_cast<PageReads*>(self)->Pages += static_cast<vtkPagePoolReader*>(caller)->GetNumberOfPagesRead();
+    static_cast<PageReads*>(self)->Pages +=
+      static_cast<vtkPagePoolReader*>(caller)->GetNumberOfPagesRead();
   }
 };
 
 int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feedback, bool prefetch)
 {
   const std::string name =
-    std::string(feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback") + (prefetch ? "-prefetch" : "");
+    std::string(feedback ? "flythrough-9x1024" : "flythrough-9x1024-no-feedback") +
+    (prefetch ? "-prefetch" : "");
   for (int i = 0; i < 9; ++i)
   {
     if (!FileExists(PoolPath(dir, i)))
     {
-      std::printf("%s,%g,,,,,,,,missing %s: run BenchPaging generate first\n", name.c_str(), cacheMB + atlasMB,
+      std::printf("%s,%g,,,,,,,,missing %s: run BenchPaging generate first\n",
+        name.c_str(),
+        cacheMB + atlasMB,
         PoolPath(dir, i).c_str());
       return 1;
     }
@@ -205,18 +211,21 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
   // update reads the page tables and the coarsest level (the roots the mapper draws first).
   const auto open0 = std::chrono::steady_clock::now();
   mapper->Update();
-  const double openMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - open0).count();
+  const double openMs =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - open0).count();
   const long long openPages = pipelineReads.Pages;
   vtkCamera* cam = ren->GetActiveCamera();
   cam->SetViewAngle(35);
   cam->SetViewUp(0, 0, 1);
   const double centre[3] = { 1.6 * Edge, 1.6 * Edge, 0.5 * Edge };
   // The path: a low pass across the grid, turning, then still at the last pose.
-  auto pose = [&](double s) {
+  auto pose = [&](double s)
+  {
     const double a = -2.2 + 1.6 * s;
     const double r = (3.6 - 1.2 * s) * Edge;
     cam->SetFocalPoint(centre[0] + 0.4 * Edge * std::cos(3 * s), centre[1], centre[2]);
-    cam->SetPosition(centre[0] + r * std::cos(a), centre[1] + r * std::sin(a), centre[2] + (1.5 - 0.5 * s) * Edge);
+    cam->SetPosition(
+      centre[0] + r * std::cos(a), centre[1] + r * std::sin(a), centre[2] + (1.5 - 0.5 * s) * Edge);
     ren->ResetCameraClippingRange(0, 3.3 * Edge, 0, 3.3 * Edge, 0, Edge);
   };
   const int moving = 48;
@@ -232,7 +241,8 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
     const auto t0 = std::chrono::steady_clock::now();
     win->Render();
     win->WaitForCompletion();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     const auto st = mapper->GetPagingStatistics();
     uploaded.push_back(st.BytesUploaded / 1048576.0);
     if (feedback && st.FeedbackPages + st.FeedbackPixels > 0)
@@ -247,30 +257,54 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
     if (f >= moving && st.Converged)
       converged = f - moving + 1;
     if (f % 16 == 0)
-      std::cerr << "  frame " << f << ": " << ms.back() << " ms, " << mapper->GetNumberOfResidentBricks() << " bricks, "
-                << st.PendingPages << " pending, " << lastRead << " MB read, RSS " << PeakRssMB() << " MB\n";
+      std::cerr << "  frame " << f << ": " << ms.back() << " ms, "
+                << mapper->GetNumberOfResidentBricks() << " bricks, " << st.PendingPages
+                << " pending, " << lastRead << " MB read, RSS " << PeakRssMB() << " MB\n";
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double upTotal = 0.0;
   for (double u : uploaded)
     upTotal += u;
   const auto st = mapper->GetPagingStatistics();
   std::ostringstream fb;
   if (feedback)
-    fb << "level-of-detail feedback at 1/4 (64x64 ids), read back and reduced in " << Percentile(feedbackMs, 0.5)
-       << " ms median (" << (st.FeedbackOpenCL ? "OpenCL" : "CPU") << ")";
+    fb << "level-of-detail feedback at 1/4 (64x64 ids), read back and reduced in "
+       << Percentile(feedbackMs, 0.5) << " ms median (" << (st.FeedbackOpenCL ? "OpenCL" : "CPU")
+       << ")";
   else
     fb << "no feedback (screen-space cut)";
   fb << "; prefetch " << (prefetch ? "on" : "off");
-  std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
-              "(9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages from the readers' "
-              "pipeline update%s); %d frames (%d moving) in %.0f s; io_wait_frames counts frames in which the render "
-              "thread read a page (%d roots read by the mapper itself); %d failed pages; sample distance 2 voxels; "
-              "%dx%d\n",
-    name.c_str(), cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99),
-    lastRead / frames, upTotal / frames, cacheMB, atlasMB, fb.str().c_str(), openMs, openPages,
-    st.RootPagesFromPipeline == 9 ? ", taken as the volumes' roots" : ", NOT all used as roots", frames, moving,
-    seconds, st.RootPagesRead, st.Failures, Size, Size);
+  std::printf(
+    "%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
+    "(9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages from the readers' "
+    "pipeline update%s); %d frames (%d moving) in %.0f s; io_wait_frames counts frames in which "
+    "the render "
+    "thread read a page (%d roots read by the mapper itself); %d failed pages; sample distance 2 "
+    "voxels; "
+    "%dx%d\n",
+    name.c_str(),
+    cacheMB + atlasMB,
+    PeakRssMB(),
+    waits,
+    converged,
+    Percentile(ms, 0.5),
+    Percentile(ms, 0.99),
+    lastRead / frames,
+    upTotal / frames,
+    cacheMB,
+    atlasMB,
+    fb.str().c_str(),
+    openMs,
+    openPages,
+    st.RootPagesFromPipeline == 9 ? ", taken as the volumes' roots" : ", NOT all used as roots",
+    frames,
+    moving,
+    seconds,
+    st.RootPagesRead,
+    st.Failures,
+    Size,
+    Size);
   return 0;
 }
 
@@ -279,7 +313,11 @@ const char* const AccuracyHeader =
 
 // One accuracy row: the accuracy volume paged under `atlasMB`, rendered until converged, then
 // timed and compared with `reference`. feedbackScale 0: no feedback (the screen-space cut).
-void AccuracyRow(vtkRenderWindow* win, vtkVolume* volume, const std::string& path, double atlasMB, int feedbackScale,
+void AccuracyRow(vtkRenderWindow* win,
+  vtkVolume* volume,
+  const std::string& path,
+  double atlasMB,
+  int feedbackScale,
   const std::vector<double>& reference)
 {
   vtkNew<vtkPagePoolReader> reader;
@@ -310,7 +348,8 @@ void AccuracyRow(vtkRenderWindow* win, vtkVolume* volume, const std::string& pat
     const auto t0 = std::chrono::steady_clock::now();
     win->Render();
     win->WaitForCompletion();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   const auto err = strata_test::ImageError(strata_test::ReadRGB(win), reference);
   const auto st = paged->GetPagingStatistics();
@@ -321,16 +360,26 @@ void AccuracyRow(vtkRenderWindow* win, vtkVolume* volume, const std::string& pat
     note << " " << c;
   note << "); converged after " << frames << " frames; " << up << " MB uploaded in all; ";
   if (feedbackScale > 0)
-    note << "feedback buffer 1/" << feedbackScale << " of the viewport (" << (Size + feedbackScale - 1) / feedbackScale
-         << "^2 ids), its read-back and reduction " << st.FeedbackMilliseconds << " ms ("
-         << (st.FeedbackOpenCL ? "OpenCL" : "CPU") << ") in the last frame";
+    note << "feedback buffer 1/" << feedbackScale << " of the viewport ("
+         << (Size + feedbackScale - 1) / feedbackScale << "^2 ids), its read-back and reduction "
+         << st.FeedbackMilliseconds << " ms (" << (st.FeedbackOpenCL ? "OpenCL" : "CPU")
+         << ") in the last frame";
   else
     note << "no feedback: screen-space cut";
-  note << "; reference: in-core, every brick (" << Size << "x" << Size << "; sample distance 1 voxel)";
-  const std::string name =
-    feedbackScale > 0 ? "accuracy-512-feedback-1/" + std::to_string(feedbackScale) : std::string("accuracy-512-no-feedback");
-  std::printf("%s,%g,%.4f,%.1f,%.1f,%d,%.2f,%s\n", name.c_str(), atlasMB, err.Rms, err.Max, Percentile(ms, 0.5), frames,
-    up / frames, note.str().c_str());
+  note << "; reference: in-core, every brick (" << Size << "x" << Size
+       << "; sample distance 1 voxel)";
+  const std::string name = feedbackScale > 0
+                             ? "accuracy-512-feedback-1/" + std::to_string(feedbackScale)
+                             : std::string("accuracy-512-no-feedback");
+  std::printf("%s,%g,%.4f,%.1f,%.1f,%d,%.2f,%s\n",
+    name.c_str(),
+    atlasMB,
+    err.Rms,
+    err.Max,
+    Percentile(ms, 0.5),
+    frames,
+    up / frames,
+    note.str().c_str());
   std::fflush(stdout);
 }
 
@@ -413,15 +462,27 @@ int Report(const std::string& csv, const std::string& png)
   {
     const auto c = r.find("case");
     if (c != r.end() && r.count("atlas_mb") && !r.at("atlas_mb").empty() &&
-      std::find(cases.begin(), cases.end(), c->second) == cases.end())
+        std::find(cases.begin(), cases.end(), c->second) == cases.end())
       cases.push_back(c->second);
   }
-  strata_bench::Chart chart("Paging on llvmpipe: converged RMS error against the in-core rendering vs atlas budget "
-                            "(legend: ms per frame; RMS 0 drawn at 0.001)",
-    15, "atlas budget, MB (log)", true, "RMS error, 8-bit units (log)", true, true);
+  strata_bench::Chart chart(
+    "Paging on llvmpipe: converged RMS error against the in-core rendering vs atlas budget "
+    "(legend: ms per frame; RMS 0 drawn at 0.001)",
+    15,
+    "atlas budget, MB (log)",
+    true,
+    "RMS error, 8-bit units (log)",
+    true,
+    true);
   // Okabe-Ito: eight colours told apart also with colour-blind eyes.
-  const unsigned char colours[8][3] = { { 0, 0, 0 }, { 230, 159, 0 }, { 86, 180, 233 }, { 0, 158, 115 },
-    { 240, 228, 66 }, { 0, 114, 178 }, { 213, 94, 0 }, { 204, 121, 167 } };
+  const unsigned char colours[8][3] = { { 0, 0, 0 },
+    { 230, 159, 0 },
+    { 86, 180, 233 },
+    { 0, 158, 115 },
+    { 240, 228, 66 },
+    { 0, 114, 178 },
+    { 213, 94, 0 },
+    { 204, 121, 167 } };
   std::printf("%-34s %8s %10s %10s %12s\n", "case", "atlas MB", "RMS", "ms/frame", "MB up/frame");
   for (size_t c = 0; c < cases.size(); ++c)
   {
@@ -431,12 +492,17 @@ int Report(const std::string& csv, const std::string& png)
     {
       if (r.at("case") != cases[c] || !r.count("rms_error") || r.at("rms_error").empty())
         continue;
-      pts.emplace_back(std::atof(r.at("atlas_mb").c_str()), std::max(std::atof(r.at("rms_error").c_str()), 1e-3));
+      pts.emplace_back(
+        std::atof(r.at("atlas_mb").c_str()), std::max(std::atof(r.at("rms_error").c_str()), 1e-3));
       const double ms = r.count("ms_per_frame") ? std::atof(r.at("ms_per_frame").c_str()) : 0.0;
       msLo = std::min(msLo, ms);
       msHi = std::max(msHi, ms);
-      std::printf("%-34s %8s %10s %10s %12s\n", cases[c].c_str(), r.at("atlas_mb").c_str(), r.at("rms_error").c_str(),
-        r.count("ms_per_frame") ? r.at("ms_per_frame").c_str() : "", r.count("mb_uploaded_per_frame") ? r.at("mb_uploaded_per_frame").c_str() : "");
+      std::printf("%-34s %8s %10s %10s %12s\n",
+        cases[c].c_str(),
+        r.at("atlas_mb").c_str(),
+        r.at("rms_error").c_str(),
+        r.count("ms_per_frame") ? r.at("ms_per_frame").c_str() : "",
+        r.count("mb_uploaded_per_frame") ? r.at("mb_uploaded_per_frame").c_str() : "");
     }
     if (pts.empty())
       continue;
@@ -448,7 +514,8 @@ int Report(const std::string& csv, const std::string& png)
     if (cases[c].find("horizon") != std::string::npos)
       plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
     if (auto* line = vtkPlotLine::SafeDownCast(plot))
-      line->SetMarkerStyle(cases[c].find("horizon") != std::string::npos ? vtkPlotPoints::CIRCLE : vtkPlotPoints::SQUARE);
+      line->SetMarkerStyle(cases[c].find("horizon") != std::string::npos ? vtkPlotPoints::CIRCLE
+                                                                         : vtkPlotPoints::SQUARE);
   }
   chart.Write(png);
   return 0;
@@ -473,9 +540,11 @@ int Feedback()
         state = state * 1664525u + 1013904223u;
         const bool empty = (state >> 24) < 26;
         const int level = std::min(5, (bx + by) / 16);
-        ids[size_t(y) * w + x] = empty ? 0u
-                                       : vtkFeedbackReduction::PackPage((bx / 16 + 3 * (by / 16)) % 9, level,
-                                           static_cast<uint32_t>((bx * 131 + by * 71) % 32768));
+        ids[size_t(y) * w + x] = empty
+                                   ? 0u
+                                   : vtkFeedbackReduction::PackPage((bx / 16 + 3 * (by / 16)) % 9,
+                                       level,
+                                       static_cast<uint32_t>((bx * 131 + by * 71) % 32768));
       }
     std::vector<vtkFeedbackReduction::Entry> cpu, gpu;
     std::vector<double> cpuMs, clMs;
@@ -489,8 +558,13 @@ int Feedback()
     bool same = cl && cpu.size() == gpu.size();
     for (size_t i = 0; same && i < cpu.size(); ++i)
       same = cpu[i].Page == gpu[i].Page && cpu[i].Coverage == gpu[i].Coverage;
-    std::printf("feedback,1/%d,%d,%zu,%.3f,%s,%s,%s\n", scale, w * h, cpu.size(), Percentile(cpuMs, 0.5),
-      clMs.empty() ? "" : std::to_string(Percentile(clMs, 0.5)).c_str(), cl ? (same ? "yes" : "no") : "",
+    std::printf("feedback,1/%d,%d,%zu,%.3f,%s,%s,%s\n",
+      scale,
+      w * h,
+      cpu.size(),
+      Percentile(cpuMs, 0.5),
+      clMs.empty() ? "" : std::to_string(Percentile(clMs, 0.5)).c_str(),
+      cl ? (same ? "yes" : "no") : "",
       cl ? reduction.GetOpenCLDeviceName().c_str() : reduction.GetOpenCLMessage().c_str());
   }
   return 0;
@@ -509,7 +583,8 @@ int main(int argc, char* argv[])
   }
   if (mode == "header")
   {
-    std::printf("case,budget_mb,peak_rss_mb,io_wait_frames,frames_to_converge,ms_per_frame_median,ms_per_frame_p99,"
+    std::printf("case,budget_mb,peak_rss_mb,io_wait_frames,frames_to_converge,ms_per_frame_median,"
+                "ms_per_frame_p99,"
                 "mb_read_per_frame,mb_uploaded_per_frame,note\n");
     return 0;
   }
@@ -534,7 +609,8 @@ int main(int argc, char* argv[])
     return Accuracy(argv[2]);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
-  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas MB> [no-feedback] [prefetch] | "
+  std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas "
+               "MB> [no-feedback] [prefetch] | "
                "feedback | accuracy-header | accuracy <dir> | report <csv> <png>\n";
   return 2;
 }

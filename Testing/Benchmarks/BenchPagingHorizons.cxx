@@ -40,8 +40,8 @@
 #include <string>
 #include <vector>
 
-using strata_test::PeakRssMB;
 using strata_test::FileExists;
+using strata_test::PeakRssMB;
 using strata_test::Percentile;
 
 namespace
@@ -63,12 +63,16 @@ public:
 
 protected:
   HorizonSource() { this->SetNumberOfInputPorts(0); }
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  int RequestInformation(vtkInformation*,
+    vtkInformationVector**,
+    vtkInformationVector* out) override
   {
     vtkInformation* info = out->GetInformationObject(0);
     const int extent[6] = { 0, this->Nx - 1, 0, this->Ny - 1, 0, 0 };
     info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    const double spacing[3] = { Spacing * (NX - 1) / (this->Nx - 1), Spacing * (NY - 1) / (this->Ny - 1), 1.0 };
+    const double spacing[3] = {
+      Spacing * (NX - 1) / (this->Nx - 1), Spacing * (NY - 1) / (this->Ny - 1), 1.0
+    };
     const double origin[3] = { 420000.0, 6500000.0, 0.0 };
     info->Set(vtkDataObject::SPACING(), spacing, 3);
     info->Set(vtkDataObject::ORIGIN(), origin, 3);
@@ -93,8 +97,10 @@ protected:
       {
         const double u = double(i) / (this->Nx - 1), v = double(j) / (this->Ny - 1);
         const double metres = 1200.0 + 600.0 * k + 900.0 * u + 500.0 * v +
-          (180.0 + 40.0 * k) * strata_test::FractalNoise(12 * u + 3.1 * k, 25 * v + 1.7 * k, 31 + k, 7);
-        values[n++] = static_cast<unsigned short>(std::min(65535.0, std::max(0.0, std::round(metres * 10.0))));
+                              (180.0 + 40.0 * k) * strata_test::FractalNoise(
+                                                     12 * u + 3.1 * k, 25 * v + 1.7 * k, 31 + k, 7);
+        values[n++] =
+          static_cast<unsigned short>(std::min(65535.0, std::max(0.0, std::round(metres * 10.0))));
       }
     }
     return 1;
@@ -107,7 +113,7 @@ std::string PoolPath(const std::string& dir, int k, bool small = false)
   return dir + (small ? "/paging-horizon-small-" : "/paging-horizon-") + std::to_string(k) + ".spp";
 }
 
-const int SmallN = 2049;    // points per axis of the accuracy stack
+const int SmallN = 2049;   // points per axis of the accuracy stack
 const int SmallPage = 129; // its tile size
 
 int Generate(const std::string& dir)
@@ -132,9 +138,10 @@ int Generate(const std::string& dir)
     writer->SetMemoryLimit(256);
     const auto t0 = std::chrono::steady_clock::now();
     const bool ok = writer->Write();
-    std::cerr << path << ": " << (ok ? "written" : "FAILED") << ", " << writer->GetFileSize() / 1048576.0 << " MB, "
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, peak RSS "
-              << PeakRssMB() << " MB\n";
+    std::cerr << path << ": " << (ok ? "written" : "FAILED") << ", "
+              << writer->GetFileSize() / 1048576.0 << " MB, "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+              << " s, peak RSS " << PeakRssMB() << " MB\n";
     if (!ok)
       return 1;
   }
@@ -143,14 +150,16 @@ int Generate(const std::string& dir)
 
 int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool prefetch, bool morph)
 {
-  const std::string name =
-    std::string("flythrough-horizons-3x6870x14300") + (prefetch ? "-prefetch" : "") + (morph ? "" : "-no-morph");
+  const std::string name = std::string("flythrough-horizons-3x6870x14300") +
+                           (prefetch ? "-prefetch" : "") + (morph ? "" : "-no-morph");
   for (int k = 0; k < 3; ++k)
   {
     if (!FileExists(PoolPath(dir, k)))
     {
-      std::printf("%s,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n", name.c_str(),
-        cacheMB + atlasMB, PoolPath(dir, k).c_str());
+      std::printf("%s,%g,,,,,,,,missing %s: run BenchPagingHorizons generate first\n",
+        name.c_str(),
+        cacheMB + atlasMB,
+        PoolPath(dir, k).c_str());
       return 1;
     }
   }
@@ -189,7 +198,8 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool pref
   cam->SetViewUp(0, 0, 1);
   const double cx = 0.5 * (b[0] + b[1]), lx = b[1] - b[0], ly = b[3] - b[2];
   // The path: a low oblique pass from the south end to two thirds up the survey, turning.
-  auto pose = [&](double s) {
+  auto pose = [&](double s)
+  {
     const double y = b[2] + (0.05 + 0.6 * s) * ly;
     const double x = cx + 0.25 * lx * std::sin(3.0 * s);
     cam->SetFocalPoint(x, y + 0.3 * ly, b[4]);
@@ -207,31 +217,55 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool pref
     const auto t0 = std::chrono::steady_clock::now();
     win->Render();
     win->WaitForCompletion();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     const auto st = mapper->GetPagingStatistics();
     uploaded.push_back(st.BytesUploaded / 1048576.0);
-    waits += st.RootPagesRead > lastRoots ? 1 : 0; // tiles read on this thread (roots without a reader)
+    waits +=
+      st.RootPagesRead > lastRoots ? 1 : 0; // tiles read on this thread (roots without a reader)
     lastRoots = st.RootPagesRead;
     lastRead = st.BytesRead / 1048576.0;
     ++frames;
     if (f >= moving && st.Converged)
       converged = f - moving + 1;
     if (f % 16 == 0)
-      std::cerr << "  frame " << f << ": " << ms.back() << " ms, " << st.CutTiles << " tiles (" << st.FinestTiles
-                << " level 0), " << st.PendingPages << " pending, " << lastRead << " MB read, RSS " << PeakRssMB()
-                << " MB\n";
+      std::cerr << "  frame " << f << ": " << ms.back() << " ms, " << st.CutTiles << " tiles ("
+                << st.FinestTiles << " level 0), " << st.PendingPages << " pending, " << lastRead
+                << " MB read, RSS " << PeakRssMB() << " MB\n";
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double upTotal = 0.0;
   for (double u : uploaded)
     upTotal += u;
   const auto st = mapper->GetPagingStatistics();
   std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
-              "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; "
-              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s, refinements blended over %d frames; the readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which the "
+              "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d "
+              "moving) in %.0f s; "
+              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s, refinements blended "
+              "over %d frames; the readers read the 3 root tiles before the first frame; "
+              "io_wait_frames counts frames in which the "
               "render thread read tiles itself; %d failed tiles; %dx%d\n",
-    name.c_str(), cacheMB + atlasMB, PeakRssMB(), waits, converged, Percentile(ms, 0.5), Percentile(ms, 0.99), lastRead / frames,
-    upTotal / frames, cacheMB, atlasMB, st.AtlasSlots, frames, moving, seconds, prefetch ? "on" : "off", mapper->GetMorphFrames(), st.Failures, Size, Size);
+    name.c_str(),
+    cacheMB + atlasMB,
+    PeakRssMB(),
+    waits,
+    converged,
+    Percentile(ms, 0.5),
+    Percentile(ms, 0.99),
+    lastRead / frames,
+    upTotal / frames,
+    cacheMB,
+    atlasMB,
+    st.AtlasSlots,
+    frames,
+    moving,
+    seconds,
+    prefetch ? "on" : "off",
+    mapper->GetMorphFrames(),
+    st.Failures,
+    Size,
+    Size);
   if (const char* png = std::getenv("STRATA_BENCH_PNG"))
   {
     // The converged last pose, for a look.
@@ -255,7 +289,8 @@ int Accuracy(const std::string& dir)
   {
     if (!FileExists(PoolPath(dir, k, true)))
     {
-      std::printf("accuracy-horizons-%d,,,,,,,missing %s: run BenchPagingHorizons generate first\n", SmallN,
+      std::printf("accuracy-horizons-%d,,,,,,,missing %s: run BenchPagingHorizons generate first\n",
+        SmallN,
         PoolPath(dir, k, true).c_str());
       return 1;
     }
@@ -272,7 +307,8 @@ int Accuracy(const std::string& dir)
   vtkNew<vtkActor> actor;
   actor->SetScale(1, 1, 8);
   ren->AddActor(actor);
-  auto setUp = [&](vtkStackedHeightFieldMapper* m) {
+  auto setUp = [&](vtkStackedHeightFieldMapper* m)
+  {
     m->SetHeightScale(-0.1);
     m->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
     actor->SetMapper(m);
@@ -293,65 +329,84 @@ int Accuracy(const std::string& dir)
   win->Render();
   const auto reference = strata_test::ReadRGB(win);
   for (int feedbackScale : { 0, 2, 4, 8 })
-  for (double atlasMB : { 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0 })
-  {
-    vtkNew<vtkStackedHeightFieldMapper> paged;
-    setUp(paged);
-    paged->SetAtlasBudget(atlasMB);
-    paged->SetFeedback(feedbackScale > 0);
-    paged->SetFeedbackScale(std::max(1, feedbackScale));
-    paged->SetPagesPerFrame(32);
-    std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
-    for (int k = 0; k < 3; ++k)
+    for (double atlasMB : { 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0 })
     {
-      auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
-      reader->SetFileName(PoolPath(dir, k, true).c_str());
-      paged->AddInputConnection(reader->GetOutputPort());
-      readers.push_back(reader);
-    }
-    int frames = 0;
-    double uploaded = 0.0;
-    for (; frames < 400; ++frames)
-    {
-      win->Render();
+      vtkNew<vtkStackedHeightFieldMapper> paged;
+      setUp(paged);
+      paged->SetAtlasBudget(atlasMB);
+      paged->SetFeedback(feedbackScale > 0);
+      paged->SetFeedbackScale(std::max(1, feedbackScale));
+      paged->SetPagesPerFrame(32);
+      std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+      for (int k = 0; k < 3; ++k)
+      {
+        auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+        reader->SetFileName(PoolPath(dir, k, true).c_str());
+        paged->AddInputConnection(reader->GetOutputPort());
+        readers.push_back(reader);
+      }
+      int frames = 0;
+      double uploaded = 0.0;
+      for (; frames < 400; ++frames)
+      {
+        win->Render();
+        const auto st = paged->GetPagingStatistics();
+        uploaded += st.BytesUploaded / 1048576.0;
+        if (st.Converged)
+          break;
+        paged->WaitForPages(1.0);
+      }
+      std::vector<double> ms;
+      for (int f = 0; f < 5; ++f)
+      {
+        const auto t0 = std::chrono::steady_clock::now();
+        win->Render();
+        win->WaitForCompletion();
+        ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      }
+      const auto image = strata_test::ReadRGB(win);
+      double sum = 0.0;
+      int worst = 0;
+      long differing = 0;
+      for (size_t p = 0; p < image.size(); ++p)
+      {
+        const int e = std::abs(int(image[p]) - int(reference[p]));
+        sum += double(e) * e;
+        worst = std::max(worst, e);
+      }
+      for (size_t p = 0; p + 2 < image.size(); p += 3)
+        differing += (image[p] != reference[p] || image[p + 1] != reference[p + 1] ||
+                       image[p + 2] != reference[p + 2])
+                       ? 1
+                       : 0;
       const auto st = paged->GetPagingStatistics();
-      uploaded += st.BytesUploaded / 1048576.0;
-      if (st.Converged)
-        break;
-      paged->WaitForPages(1.0);
+      const std::string name = "accuracy-horizons-" + std::to_string(SmallN) +
+                               (feedbackScale > 0 ? "-feedback-1/" + std::to_string(feedbackScale)
+                                                  : std::string("-no-feedback"));
+      std::printf(
+        "%s,%g,%.4f,%d,%.1f,%d,%.2f,%d tiles of %dx%d resident (%d at level 0); %.1f %% of "
+        "pixels differ; %.1f MB uploaded in all; %s; reference: in-core, every point (%dx%d)\n",
+        name.c_str(),
+        atlasMB,
+        std::sqrt(sum / image.size()),
+        worst,
+        Percentile(ms, 0.5),
+        frames + 1,
+        uploaded / (frames + 1),
+        st.CutTiles,
+        SmallPage,
+        SmallPage,
+        st.FinestTiles,
+        100.0 * differing / (image.size() / 3),
+        uploaded,
+        feedbackScale > 0
+          ? ("feedback reduction " + std::to_string(st.FeedbackSeconds * 1e3) + " ms").c_str()
+          : "screen-space cut",
+        Size,
+        Size);
+      std::fflush(stdout);
     }
-    std::vector<double> ms;
-    for (int f = 0; f < 5; ++f)
-    {
-      const auto t0 = std::chrono::steady_clock::now();
-      win->Render();
-      win->WaitForCompletion();
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    const auto image = strata_test::ReadRGB(win);
-    double sum = 0.0;
-    int worst = 0;
-    long differing = 0;
-    for (size_t p = 0; p < image.size(); ++p)
-    {
-      const int e = std::abs(int(image[p]) - int(reference[p]));
-      sum += double(e) * e;
-      worst = std::max(worst, e);
-    }
-    for (size_t p = 0; p + 2 < image.size(); p += 3)
-      differing += (image[p] != reference[p] || image[p + 1] != reference[p + 1] || image[p + 2] != reference[p + 2]) ? 1 : 0;
-    const auto st = paged->GetPagingStatistics();
-    const std::string name = "accuracy-horizons-" + std::to_string(SmallN) +
-      (feedbackScale > 0 ? "-feedback-1/" + std::to_string(feedbackScale) : std::string("-no-feedback"));
-    std::printf("%s,%g,%.4f,%d,%.1f,%d,%.2f,%d tiles of %dx%d resident (%d at level 0); %.1f %% of "
-                "pixels differ; %.1f MB uploaded in all; %s; reference: in-core, every point (%dx%d)\n",
-      name.c_str(), atlasMB, std::sqrt(sum / image.size()), worst, Percentile(ms, 0.5), frames + 1, uploaded / (frames + 1),
-      st.CutTiles, SmallPage, SmallPage, st.FinestTiles, 100.0 * differing / (image.size() / 3), uploaded,
-      feedbackScale > 0 ? ("feedback reduction " + std::to_string(st.FeedbackSeconds * 1e3) + " ms").c_str()
-                        : "screen-space cut",
-      Size, Size);
-    std::fflush(stdout);
-  }
   return 0;
 }
 
@@ -372,6 +427,7 @@ int main(int argc, char* argv[])
     }
     return FlyThrough(argv[2], std::atof(argv[3]), std::atof(argv[4]), prefetch, morph);
   }
-  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> [prefetch] [no-morph]\n";
+  std::cerr << "usage: BenchPagingHorizons generate <dir> | flythrough <dir> <cache MB> <atlas MB> "
+               "[prefetch] [no-morph]\n";
   return 2;
 }

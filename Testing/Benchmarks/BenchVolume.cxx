@@ -1013,9 +1013,15 @@ std::string Get(const std::map<std::string, std::string>& row, const std::string
 /// RMS error against ms per frame, one series per (data set, classification), as a PNG.
 void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std::string& png)
 {
-  strata_bench::Chart chart("vtkMultiVolumeRayCastMapper on llvmpipe, 256 x 256: RMS error against the "
-                            "reference vs frame time, every setting",
-    16, "ms per frame (log)", true, "RMS error against the reference, 8-bit units (log)", true, false);
+  strata_bench::Chart chart(
+    "vtkMultiVolumeRayCastMapper on llvmpipe, 256 x 256: RMS error against the "
+    "reference vs frame time, every setting",
+    16,
+    "ms per frame (log)",
+    true,
+    "RMS error against the reference, 8-bit units (log)",
+    true,
+    false);
 
   std::vector<std::string> datasets;
   for (const auto& r : rows)
@@ -1049,7 +1055,8 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
           range[3] = std::max(range[3], rms);
         }
       }
-      if (auto* points = vtkPlotPoints::SafeDownCast(chart.Add(vtkChart::POINTS, label, pts, colours[d % 4])))
+      if (auto* points =
+            vtkPlotPoints::SafeDownCast(chart.Add(vtkChart::POINTS, label, pts, colours[d % 4])))
       {
         points->SetMarkerStyle(markers[k]);
         points->SetMarkerSize(9);

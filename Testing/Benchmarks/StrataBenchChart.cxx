@@ -18,8 +18,13 @@
 
 namespace strata_bench
 {
-Chart::Chart(const std::string& title, int titleFontSize, const std::string& xTitle, bool xLog, const std::string& yTitle,
-  bool yLog, bool legendRight)
+Chart::Chart(const std::string& title,
+  int titleFontSize,
+  const std::string& xTitle,
+  bool xLog,
+  const std::string& yTitle,
+  bool yLog,
+  bool legendRight)
 {
   this->View->SetInteractor(this->Interactor);
   this->View->GetRenderWindow()->SetSize(1000, 650);
@@ -29,7 +34,8 @@ Chart::Chart(const std::string& title, int titleFontSize, const std::string& xTi
   this->XY->SetTitle(title);
   this->XY->GetTitleProperties()->SetFontSize(titleFontSize);
   this->XY->SetShowLegend(true);
-  this->XY->GetLegend()->SetHorizontalAlignment(legendRight ? vtkChartLegend::RIGHT : vtkChartLegend::LEFT);
+  this->XY->GetLegend()->SetHorizontalAlignment(
+    legendRight ? vtkChartLegend::RIGHT : vtkChartLegend::LEFT);
   this->XY->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
   this->XY->GetAxis(vtkAxis::BOTTOM)->SetTitle(xTitle);
   this->XY->GetAxis(vtkAxis::BOTTOM)->SetLogScale(xLog);
@@ -39,8 +45,10 @@ Chart::Chart(const std::string& title, int titleFontSize, const std::string& xTi
 
 Chart::~Chart() = default;
 
-vtkPlot* Chart::Add(
-  int kind, const std::string& label, const std::vector<std::pair<double, double>>& points, const unsigned char rgb[3])
+vtkPlot* Chart::Add(int kind,
+  const std::string& label,
+  const std::vector<std::pair<double, double>>& points,
+  const unsigned char rgb[3])
 {
   if (points.empty())
     return nullptr;

@@ -25,12 +25,19 @@ class Chart
 {
 public:
   /// `legendRight`: the legend in the top right corner, else the top left.
-  Chart(const std::string& title, int titleFontSize, const std::string& xTitle, bool xLog, const std::string& yTitle,
-    bool yLog, bool legendRight);
+  Chart(const std::string& title,
+    int titleFontSize,
+    const std::string& xTitle,
+    bool xLog,
+    const std::string& yTitle,
+    bool yLog,
+    bool legendRight);
   ~Chart();
   /// One series (vtkChart::LINE or POINTS) of (x, y) points in `rgb`; its plot for styling, or
   /// null when there are no points.
-  vtkPlot* Add(int kind, const std::string& label, const std::vector<std::pair<double, double>>& points,
+  vtkPlot* Add(int kind,
+    const std::string& label,
+    const std::vector<std::pair<double, double>>& points,
     const unsigned char rgb[3]);
   vtkChartXY* GetChart();
   /// Renders the view and writes it to `png`.

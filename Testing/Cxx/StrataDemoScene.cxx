@@ -87,7 +87,8 @@ void FrameReekScene(vtkRenderer* ren, vtkActor* actor, double zoom)
   vtkCamera* cam = ren->GetActiveCamera();
   const double c[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
   cam->SetFocalPoint(c);
-  cam->SetPosition(c[0] - 0.9 * (b[1] - b[0]), c[1] - 1.1 * (b[3] - b[2]), c[2] + 0.8 * (b[1] - b[0]));
+  cam->SetPosition(
+    c[0] - 0.9 * (b[1] - b[0]), c[1] - 1.1 * (b[3] - b[2]), c[2] + 0.8 * (b[1] - b[0]));
   cam->SetViewUp(0, 0, 1);
   ren->ResetCamera();
   cam->Zoom(zoom);

@@ -50,9 +50,10 @@ struct Scene
   }
   bool Check(const std::string& name, long minCovered)
   {
-    return CheckReference(CompareWithReference(this->Win, this->Ren, this->Actor, this->Mapper,
-                            this->Images, name),
-      name, minCovered);
+    return CheckReference(
+      CompareWithReference(this->Win, this->Ren, this->Actor, this->Mapper, this->Images, name),
+      name,
+      minCovered);
   }
 };
 
@@ -130,7 +131,8 @@ int RunHeightFieldCase(const std::string& name)
     // Camera inside the box, between two horizons, looking obliquely: both are visible.
     const int n = 101;
     std::vector<float> top = Field(n, n, 1, 100.0, 25.0), bottom = Field(n, n, 2, -100.0, 25.0);
-    Scene s({ MakeHorizon(n, n, 0, 0, 10, 10, 0, top), MakeHorizon(n, n, 0, 0, 10, 10, 0, bottom) });
+    Scene s(
+      { MakeHorizon(n, n, 0, 0, 10, 10, 0, top), MakeHorizon(n, n, 0, 0, 10, 10, 0, bottom) });
     const double pos[3] = { 300, 500, 0 }, foc[3] = { 800, 500, 20 }, up[3] = { 0, 0, 1 };
     s.Camera(pos, foc, up);
     s.Ren->GetActiveCamera()->SetViewAngle(90);
@@ -192,7 +194,8 @@ int RunHeightFieldCase(const std::string& name)
     ok = CheckReference(ra, "UTM-origin", 20000);
     ok = CheckReference(rb, "UTM-utm", 20000) && ok;
     const auto same = CompareIds(ra.GpuIds, rb.GpuIds, 200, 160);
-    std::cout << "UTM vs origin: " << same.Mismatched << " of " << same.Covered << " pixels differ\n";
+    std::cout << "UTM vs origin: " << same.Mismatched << " of " << same.Covered
+              << " pixels differ\n";
     if (same.MismatchFraction() > 0.001 || same.WideRegion)
     {
       std::cerr << "FAILED: the UTM-scale image differs from the one at the origin\n";
@@ -203,7 +206,8 @@ int RunHeightFieldCase(const std::string& name)
   {
     // NaN holes and null-value (-999.25) holes in two horizons above a third.
     const int n = 101;
-    std::vector<float> a = Field(n, n, 3, 80, 20), b = Field(n, n, 4, 0, 20), c = Field(n, n, 6, -80, 20);
+    std::vector<float> a = Field(n, n, 3, 80, 20), b = Field(n, n, 4, 0, 20),
+                       c = Field(n, n, 6, -80, 20);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
       {
@@ -212,7 +216,8 @@ int RunHeightFieldCase(const std::string& name)
         if (std::abs(i - j) < 6 || (i > 70 && j < 30))
           b[j * n + i] = -999.25f;
       }
-    Scene s({ MakeHorizon(n, n, 0, 0, 10, 10, 0, a), MakeHorizon(n, n, 0, 0, 10, 10, 0, b),
+    Scene s({ MakeHorizon(n, n, 0, 0, 10, 10, 0, a),
+      MakeHorizon(n, n, 0, 0, 10, 10, 0, b),
       MakeHorizon(n, n, 0, 0, 10, 10, 0, c) });
     s.Mapper->UseNullValueOn();
     s.Mapper->SetNullValue(-999.25);
@@ -225,7 +230,8 @@ int RunHeightFieldCase(const std::string& name)
     for (int id : r.GpuIds)
       if (id >= 0 && id < 3)
         ++seen[id];
-    std::cout << "Holes: pixels per horizon " << seen[0] << " " << seen[1] << " " << seen[2] << "\n";
+    std::cout << "Holes: pixels per horizon " << seen[0] << " " << seen[1] << " " << seen[2]
+              << "\n";
     if (seen[1] < 1000 || seen[2] < 100)
     {
       std::cerr << "FAILED: too few rays pass through the holes\n";

@@ -27,7 +27,7 @@ namespace
 double Hash(int x, int y, int seed)
 {
   uint32_t h = static_cast<uint32_t>(x) * 374761393u + static_cast<uint32_t>(y) * 668265263u +
-    static_cast<uint32_t>(seed) * 2246822519u;
+               static_cast<uint32_t>(seed) * 2246822519u;
   h = (h ^ (h >> 13)) * 1274126177u;
   h ^= h >> 16;
   return (h & 0xffffff) / double(0xffffff) * 2.0 - 1.0;
@@ -58,8 +58,14 @@ double FractalNoise(double x, double y, int seed, int octaves)
   return sum / norm;
 }
 
-vtkSmartPointer<vtkImageData> MakeHorizon(int nx, int ny, double ox, double oy, double sx,
-  double sy, double rotationDeg, const std::vector<float>& heights)
+vtkSmartPointer<vtkImageData> MakeHorizon(int nx,
+  int ny,
+  double ox,
+  double oy,
+  double sx,
+  double sy,
+  double rotationDeg,
+  const std::vector<float>& heights)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(nx, ny, 1);
@@ -79,8 +85,12 @@ vtkSmartPointer<vtkImageData> MakeHorizon(int nx, int ny, double ox, double oy, 
   return image;
 }
 
-std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(
-  int nx, int ny, double ox, double oy, double spacing, double rot)
+std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(int nx,
+  int ny,
+  double ox,
+  double oy,
+  double spacing,
+  double rot)
 {
   std::vector<vtkSmartPointer<vtkImageData>> out;
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -94,10 +104,11 @@ std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(
         const double u = double(i) / (nx - 1), v = double(j) / (ny - 1);
         // Mean depths 300, 420, 520 m with tilts that make them cross; 60-90 m of relief.
         double z = 300.0 + 120.0 * k + (k == 1 ? 220.0 * (u - 0.5) : 0.0) +
-          (k == 2 ? -160.0 * (v - 0.5) : 0.0) + (70.0 + 10 * k) * FractalNoise(4 * u + 3.1 * k, 4 * v + 1.7 * k, 11 + k, 6);
+                   (k == 2 ? -160.0 * (v - 0.5) : 0.0) +
+                   (70.0 + 10 * k) * FractalNoise(4 * u + 3.1 * k, 4 * v + 1.7 * k, 11 + k, 6);
         // Holes: a round one in the top horizon, a fault-like band in the middle one.
         const bool hole = (k == 0 && (u - 0.3) * (u - 0.3) + (v - 0.6) * (v - 0.6) < 0.02) ||
-          (k == 1 && std::abs(u + 0.5 * v - 0.9) < 0.03);
+                          (k == 1 && std::abs(u + 0.5 * v - 0.9) < 0.03);
         h[static_cast<size_t>(j) * nx + i] = hole ? nan : static_cast<float>(-z);
       }
     }
@@ -106,8 +117,11 @@ std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(
   return out;
 }
 
-ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtkActor* actor,
-  vtkStackedHeightFieldMapper* mapper, const std::vector<vtkSmartPointer<vtkImageData>>& images,
+ReferenceResult CompareWithReference(vtkRenderWindow* win,
+  vtkRenderer* ren,
+  vtkActor* actor,
+  vtkStackedHeightFieldMapper* mapper,
+  const std::vector<vtkSmartPointer<vtkImageData>>& images,
   const std::string& name)
 {
   ReferenceResult r;
@@ -130,7 +144,8 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtk
     auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
     stack.AddLayer(a->GetPointer(0), mapper->GetUseNullValue(), mapper->GetNullValue());
   }
-  // Grid -> world from the image's own geometry: origin + D diag(sx, sy, scale) (x + off, y + off, z).
+  // Grid -> world from the image's own geometry: origin + D diag(sx, sy, scale) (x + off, y + off,
+  // z).
   vtkNew<vtkMatrix4x4> gridToWorld;
   const double* o = first->GetOrigin();
   const double* s = first->GetSpacing();
@@ -141,13 +156,15 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtk
   {
     for (int c = 0; c < 3; ++c)
       gridToWorld->SetElement(row, c, d[3 * row + c] * sc[c]);
-    gridToWorld->SetElement(row, 3, o[row] + d[3 * row] * s[0] * off[0] + d[3 * row + 1] * s[1] * off[1]);
+    gridToWorld->SetElement(
+      row, 3, o[row] + d[3 * row] * s[0] * off[0] + d[3 * row + 1] * s[1] * off[1]);
   }
   vtkNew<vtkMatrix4x4> model, gridToClip, clipToGrid;
   vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), gridToWorld, model);
-  vtkMatrix4x4::Multiply4x4(
-    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1),
-    model, gridToClip);
+  vtkMatrix4x4::Multiply4x4(ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+                              ren->GetTiledAspectRatio(), -1, 1),
+    model,
+    gridToClip);
   vtkMatrix4x4::Invert(gridToClip, clipToGrid);
 
   vtkHeightFieldReferenceCaster caster(stack);
@@ -164,7 +181,8 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtk
   ren->GetActiveCamera()->GetClippingRange(range);
   const double n = range[0], f = range[1];
   const bool parallel = ren->GetActiveCamera()->GetParallelProjection() != 0;
-  auto eyeDepth = [&](double zw) {
+  auto eyeDepth = [&](double zw)
+  {
     const double zn = 2.0 * zw - 1.0;
     return parallel ? 0.5 * (zn + 1.0) * (f - n) + n : 2.0 * f * n / (f + n - zn * (f - n));
   };
@@ -217,12 +235,13 @@ bool CheckReference(const ReferenceResult& r, const std::string& name, long minC
 {
   std::cout << name << ": covered " << r.Covered << " px, mismatched " << r.Mismatched << " ("
             << 100.0 * r.MismatchFraction() << " %), wide region " << (r.WideRegion ? "yes" : "no")
-            << ", max relative depth error " << r.MaxRelDepthError << ", of which depth outside its bound "
-            << r.DepthBoundViolations << "\n";
+            << ", max relative depth error " << r.MaxRelDepthError
+            << ", of which depth outside its bound " << r.DepthBoundViolations << "\n";
   bool ok = true;
   if (r.Covered < minCovered)
   {
-    std::cerr << name << ": FAILED: only " << r.Covered << " covered pixels, expected >= " << minCovered << "\n";
+    std::cerr << name << ": FAILED: only " << r.Covered
+              << " covered pixels, expected >= " << minCovered << "\n";
     ok = false;
   }
   if (r.MismatchFraction() > 0.005)
@@ -238,7 +257,10 @@ bool CheckReference(const ReferenceResult& r, const std::string& name, long minC
   return ok;
 }
 
-void MakeWindow(vtkSmartPointer<vtkRenderWindow>& win, vtkSmartPointer<vtkRenderer>& ren, int width, int height)
+void MakeWindow(vtkSmartPointer<vtkRenderWindow>& win,
+  vtkSmartPointer<vtkRenderer>& ren,
+  int width,
+  int height)
 {
   win = vtkSmartPointer<vtkRenderWindow>::New();
   win->SetSize(width, height);

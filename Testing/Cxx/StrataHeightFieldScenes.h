@@ -22,12 +22,22 @@ namespace strata_test
 double FractalNoise(double x, double y, int seed, int octaves);
 
 /// An nx x ny height field with origin, spacing and rotation (degrees, about z), float heights.
-vtkSmartPointer<vtkImageData> MakeHorizon(int nx, int ny, double ox, double oy, double sx,
-  double sy, double rotationDeg, const std::vector<float>& heights);
+vtkSmartPointer<vtkImageData> MakeHorizon(int nx,
+  int ny,
+  double ox,
+  double oy,
+  double sx,
+  double sy,
+  double rotationDeg,
+  const std::vector<float>& heights);
 
 /// Three crossing fractal horizons with NaN holes on a 161 x 121 grid (the demo's stack).
-std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(
-  int nx = 161, int ny = 121, double ox = 0, double oy = 0, double spacing = 12.5, double rot = 0);
+std::vector<vtkSmartPointer<vtkImageData>> MakeDemoHorizons(int nx = 161,
+  int ny = 121,
+  double ox = 0,
+  double oy = 0,
+  double spacing = 12.5,
+  double rot = 0);
 
 struct ReferenceResult
 {
@@ -38,14 +48,20 @@ struct ReferenceResult
   double DepthBoundViolations = 0;
   std::vector<int> GpuIds, RefIds;
   std::vector<double> RefDepth; ///< window depth [0, 1] of the reference's hits, 1 where none
-  double MismatchFraction() const { return this->Covered ? double(this->Mismatched) / this->Covered : 0.0; }
+  double MismatchFraction() const
+  {
+    return this->Covered ? double(this->Mismatched) / this->Covered : 0.0;
+  }
 };
 
 /// Renders `mapper` (switched to HorizonId output) in `win`/`ren` and compares ids and depth,
 /// pixel by pixel, with vtkHeightFieldReferenceCaster on rays built from VTK's camera in
 /// double precision. `images` are the mapper's inputs (for the grid geometry).
-ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtkActor* actor,
-  vtkStackedHeightFieldMapper* mapper, const std::vector<vtkSmartPointer<vtkImageData>>& images,
+ReferenceResult CompareWithReference(vtkRenderWindow* win,
+  vtkRenderer* ren,
+  vtkActor* actor,
+  vtkStackedHeightFieldMapper* mapper,
+  const std::vector<vtkSmartPointer<vtkImageData>>& images,
   const std::string& name);
 
 /// Asserts the bounds on a comparison, printing the numbers: mismatches <= 0.5 % of
@@ -54,8 +70,10 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win, vtkRenderer* ren, vtk
 bool CheckReference(const ReferenceResult& r, const std::string& name, long minCovered);
 
 /// A 200 x 160 EGL window with one renderer, multisampling off.
-void MakeWindow(vtkSmartPointer<vtkRenderWindow>& win, vtkSmartPointer<vtkRenderer>& ren,
-  int width = 200, int height = 160);
+void MakeWindow(vtkSmartPointer<vtkRenderWindow>& win,
+  vtkSmartPointer<vtkRenderer>& ren,
+  int width = 200,
+  int height = 160);
 }
 
 #endif

@@ -14,27 +14,27 @@
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
-#include "vtkSphereSource.h"
 #include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
-#include "vtkMatrix4x4.h"
-#include "vtkMatrix3x3.h"
-#include "vtkMultiVolume.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
-#include "vtkPointData.h"
 #include "vtkLight.h"
-#include "vtkFloatArray.h"
-#include "vtkColorTransferFunction.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSphereSource.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -65,7 +65,9 @@ struct VolumeScene
     this->Multi->SetMapper(this->Mapper);
   }
   /// Adds an input on the next port, with a member volume carrying `property` and `transform`.
-  vtkVolume* Add(vtkImageData* image, vtkVolumeProperty* property, vtkTransform* transform = nullptr)
+  vtkVolume* Add(vtkImageData* image,
+    vtkVolumeProperty* property,
+    vtkTransform* transform = nullptr)
   {
     const int port = static_cast<int>(this->Images.size());
     this->Mapper->SetInputDataObject(port, image);
@@ -92,8 +94,8 @@ struct VolumeScene
   /// a rendered vtkGPUVolumeRayCastMapper).
   void Camera(const double pos[3], const double focal[3])
   {
-    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[3] = { -VTK_DOUBLE_MAX,
-      -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX },
+           hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
     for (size_t v = 0; v < this->Images.size(); ++v)
     {
       double b[6];
@@ -102,7 +104,9 @@ struct VolumeScene
       vtkMatrix4x4* m = this->Volumes[v]->GetMatrix();
       for (int corner = 0; corner < 8; ++corner)
       {
-        const double p[4] = { b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1.0 };
+        const double p[4] = {
+          b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1.0
+        };
         double w[4];
         m->MultiplyPoint(p, w);
         for (int c = 0; c < 3; ++c)
@@ -125,7 +129,8 @@ struct VolumeScene
     const double distance = 0.8 * radius / std::sin(15.0 * std::acos(-1.0) / 180.0);
     vtkCamera* cam = this->Ren->GetActiveCamera();
     cam->SetFocalPoint(centre);
-    cam->SetPosition(centre[0] + distance * dir[0] / len, centre[1] + distance * dir[1] / len,
+    cam->SetPosition(centre[0] + distance * dir[0] / len,
+      centre[1] + distance * dir[1] / len,
       centre[2] + distance * dir[2] / len);
     cam->SetViewUp(0, 0, 1);
     cam->SetViewAngle(30);
@@ -140,8 +145,16 @@ struct VolumeScene
   }
 };
 
-vtkSmartPointer<vtkImageData> Blob(int nx, int ny, int nz, double s0, double s1, double s2,
-  double o0, double o1, double o2, int seed)
+vtkSmartPointer<vtkImageData> Blob(int nx,
+  int ny,
+  int nz,
+  double s0,
+  double s1,
+  double s2,
+  double o0,
+  double o1,
+  double o2,
+  int seed)
 {
   const double s[3] = { s0, s1, s2 }, o[3] = { o0, o1, o2 };
   return MakeBlobVolume(nx, ny, nz, s, o, seed);
@@ -169,7 +182,8 @@ int RunMultiVolumeCase(const std::string& name)
     vtkSmartPointer<vtkRenderWindow> win;
     vtkSmartPointer<vtkRenderer> ren;
     MakeWindow(win, ren, Size, Size);
-    ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0); // as CompareVolumesWithReference
+    ren->SetBackground(
+      128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0); // as CompareVolumesWithReference
     vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
     vtkMapper->SetInputData(image);
     vtkMapper->AutoAdjustSampleDistancesOff();
@@ -183,7 +197,8 @@ int RunMultiVolumeCase(const std::string& name)
     const auto theirs = ReadRGB(win);
     const ChannelError diff = ImageError(r.Gpu, std::vector<double>(theirs.begin(), theirs.end()));
     const double rms = diff.Rms, mx = diff.Max;
-    std::cout << "Single vs vtkGPUVolumeRayCastMapper: RMS " << rms << ", max " << mx << " of 255\n";
+    std::cout << "Single vs vtkGPUVolumeRayCastMapper: RMS " << rms << ", max " << mx
+              << " of 255\n";
     // VTK samples from each ray's entry point rather than on one lattice: RMS 0.6 / max 3 allow
     // for that and its 8-bit rounding.
     if (rms > 0.6 || mx > 3)
@@ -196,7 +211,8 @@ int RunMultiVolumeCase(const std::string& name)
   {
     // Two overlapping volumes of different resolution and spacing, the second turned 30 degrees
     // about z. "UTM" renders the same scene near the origin and at x = 6e5, y = 6.7e6.
-    auto run = [&](double ox, double oy, const std::string& tag) {
+    auto run = [&](double ox, double oy, const std::string& tag)
+    {
       VolumeScene s;
       s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, ox, oy, 0, 1), MakeVolumeProperty(0));
       vtkNew<vtkTransform> t;
@@ -225,7 +241,8 @@ int RunMultiVolumeCase(const std::string& name)
         differ += d > 1;
         mx = std::max(mx, d);
       }
-      std::cout << "UTM vs origin: " << differ << " channel values differ by more than 1, max " << mx << "\n";
+      std::cout << "UTM vs origin: " << differ << " channel values differ by more than 1, max "
+                << mx << "\n";
       if (differ > 0)
       {
         std::cerr << "FAILED: the UTM-scale image differs from the one at the origin\n";
@@ -238,7 +255,8 @@ int RunMultiVolumeCase(const std::string& name)
     // Three volumes of different resolution, orientation and scalar type (float, unsigned
     // 16-bit, signed 16-bit: the integer ones hold the blob values rounded, which the
     // reference reads as well), all overlapping in the middle.
-    auto cast = [](vtkImageData* image, int type) {
+    auto cast = [](vtkImageData* image, int type)
+    {
       vtkNew<vtkImageCast> c;
       c->SetInputData(image);
       c->SetOutputScalarType(type);
@@ -252,7 +270,9 @@ int RunMultiVolumeCase(const std::string& name)
     vtkNew<vtkTransform> t1;
     t1->Translate(20, 14, 6);
     t1->RotateWXYZ(40, 1, 1, 0);
-    s.Add(cast(Blob(20, 22, 18, 1.5, 1.4, 1.3, 0, 0, 0, 2), VTK_UNSIGNED_SHORT), MakeVolumeProperty(1), t1);
+    s.Add(cast(Blob(20, 22, 18, 1.5, 1.4, 1.3, 0, 0, 0, 2), VTK_UNSIGNED_SHORT),
+      MakeVolumeProperty(1),
+      t1);
     vtkNew<vtkTransform> t2;
     t2->Translate(8, 24, -4);
     t2->RotateZ(-25);
@@ -412,23 +432,29 @@ int RunMultiVolumeCase(const std::string& name)
     vtkPiecewiseFunction* pwf = s.Volumes[0]->GetProperty()->GetScalarOpacity(0);
     pwf->AddPoint(0, 0.6);
     pwf->AddPoint(20, 0.6);
-    for (const auto& mode : { std::make_pair(2, false), std::make_pair(5, true), std::make_pair(5, false) })
+    for (const auto& mode :
+      { std::make_pair(2, false), std::make_pair(5, true), std::make_pair(5, false) })
     {
       s.Mapper->SetRaysPerPixel(mode.first);
       s.Mapper->SetRayCoherence(mode.second);
-      const std::string tag = "Rays" + std::to_string(mode.first) + (mode.second ? "-coherent" : "");
+      const std::string tag =
+        "Rays" + std::to_string(mode.first) + (mode.second ? "-coherent" : "");
       // Coherence is an accuracy knob: where a pixel straddles a silhouette, a sub-pixel ray can
       // enter the volume well before the centre ray's first non-empty sample and loses that
       // stretch. Measured here: 125 of 8075 covered pixels off by more than 4/255, at most 14.
       // Its bounds: RMS 1, max 16; without coherence the usual 0.4 and 2.
       const bool approx = mode.second;
-      ok = CheckVolumeComparison(s.Compare(tag, mode.first), tag, approx ? 1.0 : 0.4, approx ? 16 : 2, 3000) && ok;
+      ok = CheckVolumeComparison(
+             s.Compare(tag, mode.first), tag, approx ? 1.0 : 0.4, approx ? 16 : 2, 3000) &&
+           ok;
     }
     // The mean of 5 rays is not the centre ray: compared with the centre-only reference the
     // error must grow at the hard silhouettes (so the rays really are spread over the pixel).
     auto centre = s.Compare("Rays5-vs-centre", 1);
-    std::cout << "Rays5 against the centre-ray reference: RMS " << centre.Rms << ", max " << centre.Max << "\n";
-    Check(centre.Max > 2.0, "5 rays per pixel differ from one centre ray somewhere by more than 2/255");
+    std::cout << "Rays5 against the centre-ray reference: RMS " << centre.Rms << ", max "
+              << centre.Max << "\n";
+    Check(
+      centre.Max > 2.0, "5 rays per pixel differ from one centre ray somewhere by more than 2/255");
     ok = ok && Failures() == 0;
   }
   else if (name == "Shaded")
@@ -495,11 +521,13 @@ int RunMultiVolumeCase(const std::string& name)
     s.Ren->AddLight(light);
     s.Win->Render();
     const std::string src = s.Mapper->GetFragmentShaderSource(1);
-    Check(src.find("strataShade0") != std::string::npos && src.find("uLightDirection") != std::string::npos,
+    Check(src.find("strataShade0") != std::string::npos &&
+            src.find("uLightDirection") != std::string::npos,
       "a shaded volume's shader has gradient and lighting code");
 
     // Expected factor and specular term.
-    auto unit = [](double v[3]) {
+    auto unit = [](double v[3])
+    {
       const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       for (int c = 0; c < 3; ++c)
         v[c] /= l;
@@ -516,7 +544,8 @@ int RunMultiVolumeCase(const std::string& name)
     const double nl = std::abs(N[0] * L[0] + N[1] * L[1] + N[2] * L[2]);
     const double nh = std::abs(N[0] * H[0] + N[1] * H[1] + N[2] * H[2]);
     const double factor = ka + kd * nl, spec = ks * std::pow(nh, power);
-    std::cout << "Shaded: |N.L| " << nl << ", |N.H| " << nh << ": colour x " << factor << " + " << spec << "\n";
+    std::cout << "Shaded: |N.L| " << nl << ", |N.H| " << nh << ": colour x " << factor << " + "
+              << spec << "\n";
 
     vtkMultiVolumeReferenceIntegrator ref;
     auto rv = ToReferenceVolume(image, s.Volumes[0]);
@@ -530,9 +559,11 @@ int RunMultiVolumeCase(const std::string& name)
     long covered = 0;
     for (int i = 0; i < Size * Size; ++i)
       covered += rgba[4 * i + 3] > 1.0 / 255;
-    const ChannelError diff = ImageError(gpu, CompositeOver(rgba, std::vector<unsigned char>(gpu.size(), 0)));
+    const ChannelError diff =
+      ImageError(gpu, CompositeOver(rgba, std::vector<unsigned char>(gpu.size(), 0)));
     const double rms = diff.Rms, mx = diff.Max;
-    std::cout << "Shaded: covered " << covered << " px, RMS " << rms << ", max " << mx << " of 255\n";
+    std::cout << "Shaded: covered " << covered << " px, RMS " << rms << ", max " << mx
+              << " of 255\n";
     Check(covered > 3000, "the shaded volume covers > 3000 pixels");
     Check(rms <= 0.6 && mx <= 4, "shaded image within RMS 0.6 / max 4 of the analytic expectation");
     ok = Failures() == 0;
@@ -558,7 +589,8 @@ int RunMultiVolumeCase(const std::string& name)
     const auto bricked = ReadRGB(s.Win);
     const int mx = static_cast<int>(ImageError(bricked, plain).Max);
     std::cout << "Atlas: " << s.Mapper->GetNumberOfResidentBricks() << " resident bricks of "
-              << s.Mapper->GetNumberOfAtlasSlots() << " slots; max difference to plain textures " << mx << "\n";
+              << s.Mapper->GetNumberOfAtlasSlots() << " slots; max difference to plain textures "
+              << mx << "\n";
     Check(mx <= 1, "the bricked image equals the plain one (max difference <= 1)");
     Check(s.Mapper->GetNumberOfResidentBricks() > 0 && s.Mapper->GetNumberOfResidentBricks() <= 27,
       "at most the 27 level-0 bricks are resident, transparent ones not at all");
@@ -569,8 +601,8 @@ int RunMultiVolumeCase(const std::string& name)
     s.Win->Render();
     const auto coarse = ReadRGB(s.Win);
     const double coarseRms = ImageError(coarse, plain).Rms;
-    std::cout << "Atlas with 4 slots: " << s.Mapper->GetNumberOfResidentBricks() << " resident; RMS to full resolution "
-              << coarseRms << "\n";
+    std::cout << "Atlas with 4 slots: " << s.Mapper->GetNumberOfResidentBricks()
+              << " resident; RMS to full resolution " << coarseRms << "\n";
     Check(s.Mapper->GetNumberOfAtlasSlots() == 4 && s.Mapper->GetNumberOfResidentBricks() <= 4,
       "a 4-brick budget gives 4 slots and at most 4 resident bricks");
     Check(coarseRms < 8.0, "coarser levels stay close to the full-resolution image (RMS < 8)");
@@ -591,9 +623,12 @@ int RunMultiVolumeCase(const std::string& name)
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
         {
-          const double r1 = std::sqrt((x - 20.0) * (x - 20.0) + (y - 50.0) * (y - 50.0) + (z - 22.0) * (z - 22.0));
-          const double r2 = std::sqrt((x - 52.0) * (x - 52.0) + (y - 18.0) * (y - 18.0) + (z - 48.0) * (z - 48.0));
-          v[x + n * (y + n * z)] = static_cast<float>(255.0 * std::exp(-0.006 * std::min(r1, r2) * std::min(r1, r2)));
+          const double r1 =
+            std::sqrt((x - 20.0) * (x - 20.0) + (y - 50.0) * (y - 50.0) + (z - 22.0) * (z - 22.0));
+          const double r2 =
+            std::sqrt((x - 52.0) * (x - 52.0) + (y - 18.0) * (y - 18.0) + (z - 48.0) * (z - 48.0));
+          v[x + n * (y + n * z)] =
+            static_cast<float>(255.0 * std::exp(-0.006 * std::min(r1, r2) * std::min(r1, r2)));
         }
     s.Add(sparse, MakeVolumeProperty(0));
     vtkNew<vtkTransform> turn;
@@ -620,16 +655,19 @@ int RunMultiVolumeCase(const std::string& name)
           s.Win->Render();
           const auto skipped = ReadRGB(s.Win);
           const int mx = static_cast<int>(ImageError(skipped, plain).Max);
-          const long covered = static_cast<long>(std::count_if(plain.begin(), plain.end(), [](unsigned char c) { return c > 0; }));
+          const long covered = static_cast<long>(
+            std::count_if(plain.begin(), plain.end(), [](unsigned char c) { return c > 0; }));
           worst = std::max(worst, mx);
           const std::string what = std::string(c == C::PostClassification ? "post" : "pre") +
-            (o == O::FrontToBack ? ", front to back" : ", back to front") + (atlas ? ", atlas" : ", plain");
-          std::cout << "Skipping (" << what << "): " << covered << " non-black channels; max difference "
-                    << mx << "\n";
+                                   (o == O::FrontToBack ? ", front to back" : ", back to front") +
+                                   (atlas ? ", atlas" : ", plain");
+          std::cout << "Skipping (" << what << "): " << covered
+                    << " non-black channels; max difference " << mx << "\n";
           Check(covered > 3000 && mx <= 1, "skipping leaves the image unchanged (" + what + ")");
         }
     const std::string src = s.Mapper->GetFragmentShaderSource(1);
-    Check(src.find("strataEmptyUntil") != std::string::npos, "the skipping shader probes the skip grid");
+    Check(src.find("strataEmptyUntil") != std::string::npos,
+      "the skipping shader probes the skip grid");
     s.Mapper->EmptySpaceSkippingOff();
     s.Win->Render();
     Check(s.Mapper->GetFragmentShaderSource(1).find("uSkip") == std::string::npos,
@@ -680,10 +718,12 @@ int RunMultiVolumeCase(const std::string& name)
       hidden += sceneDepth[i] < 1.0f && rgba[4 * i + 3] > 0.05;
     const ChannelError diff = ImageError(gpu, CompositeOver(rgba, sceneRgb));
     const double rms = diff.Rms, mx = diff.Max;
-    std::cout << "Geometry: " << hidden << " sphere pixels behind > 5 % volume opacity; RMS " << rms << ", max " << mx << " of 255\n";
+    std::cout << "Geometry: " << hidden << " sphere pixels behind > 5 % volume opacity; RMS " << rms
+              << ", max " << mx << " of 255\n";
     Check(hidden > 200, "the sphere is partly inside the volume (> 200 pixels behind some of it)");
     // The sphere's own 8-bit colour enters twice (scene and expected): bound one step more.
-    Check(rms <= 0.5 && mx <= 3, "volume over geometry within RMS 0.5 / max 3 of the reference stopped at the scene depth");
+    Check(rms <= 0.5 && mx <= 3,
+      "volume over geometry within RMS 0.5 / max 3 of the reference stopped at the scene depth");
     ok = Failures() == 0;
   }
   else if (name == "ShaderSource")
@@ -700,27 +740,35 @@ int RunMultiVolumeCase(const std::string& name)
     s.Win->Render();
     const std::string one = s.Mapper->GetFragmentShaderSource(1);
     const std::string two = s.Mapper->GetFragmentShaderSource(2);
-    auto has = [](const std::string& src, const char* what) { return src.find(what) != std::string::npos; };
-    std::cout << "ShaderSource: " << s.Mapper->GetNumberOfFragments() << " fragments; 1-volume shader "
-              << one.size() << " chars, 2-volume shader " << two.size() << " chars\n";
+    auto has = [](const std::string& src, const char* what)
+    { return src.find(what) != std::string::npos; };
+    std::cout << "ShaderSource: " << s.Mapper->GetNumberOfFragments()
+              << " fragments; 1-volume shader " << one.size() << " chars, 2-volume shader "
+              << two.size() << " chars\n";
     Check(!one.empty() && !two.empty(), "shaders for 1 and 2 volumes were generated");
-    Check(has(one, "strataScalarAt0") && !has(one, "strataScalarAt1"), "1-volume shader samples exactly one volume");
-    Check(has(two, "strataScalarAt1") && !has(two, "strataScalarAt2"), "2-volume shader samples exactly two");
-    Check(has(one, "uAtlas") && has(one, "uIndex0"), "bricked volumes are read through their index texture and the atlas");
-    Check(!has(one, "uPreTable") && !has(one, "strataPair"), "post-classification has no pre-integration code");
-    Check(!has(one, "uAccumulation") || has(one, "uTerminationOpacity"), "early termination only with its threshold");
+    Check(has(one, "strataScalarAt0") && !has(one, "strataScalarAt1"),
+      "1-volume shader samples exactly one volume");
+    Check(has(two, "strataScalarAt1") && !has(two, "strataScalarAt2"),
+      "2-volume shader samples exactly two");
+    Check(has(one, "uAtlas") && has(one, "uIndex0"),
+      "bricked volumes are read through their index texture and the atlas");
+    Check(!has(one, "uPreTable") && !has(one, "strataPair"),
+      "post-classification has no pre-integration code");
+    Check(!has(one, "uAccumulation") || has(one, "uTerminationOpacity"),
+      "early termination only with its threshold");
     Check(!has(one, "ormal") && !has(one, "radient"), "unshaded: no gradient or normal code");
     s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PreIntegrated);
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
     s.Win->Render();
     const std::string pre = s.Mapper->GetFragmentShaderSource(1);
-    Check(has(pre, "uPreTable0") && !has(pre, "uTransfer0"), "pre-integrated shader reads the table, not the TF");
+    Check(has(pre, "uPreTable0") && !has(pre, "uTransfer0"),
+      "pre-integrated shader reads the table, not the TF");
     Check(!has(pre, "uTerminationOpacity"), "back-to-front: no early termination code");
     // Level-of-detail feedback exists only where something is paged: in-core scenes carry no
     // image load/store, no extension line and no feedback lookups.
     for (const std::string* src : { &one, &two, &pre })
       Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "gLack") &&
-          !has(*src, "imageAtomic") && !has(*src, "imageStore"),
+              !has(*src, "imageAtomic") && !has(*src, "imageStore"),
         "in core: no feedback code");
     // The same two volumes paged from pools: the shaders report the costliest lacking brick
     // of the feedback rays (fragments compare through the score image; front to back the
@@ -743,15 +791,19 @@ int RunMultiVolumeCase(const std::string& name)
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
     s.Win->Render();
     const std::string paged = s.Mapper->GetFragmentShaderSource(2);
-    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") && has(paged, "gLackVolume = better ? 1") &&
-        !has(paged, "uFeedbackSet2") && has(paged, "gLackScore > imageLoad(uFeedbackScore") &&
-        has(paged, "imageStore(uFeedback, texel") && has(paged, "strataPackPage") && !has(paged, "gFootprint"),
+    Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") &&
+            has(paged, "gLackVolume = better ? 1") && !has(paged, "uFeedbackSet2") &&
+            has(paged, "gLackScore > imageLoad(uFeedbackScore") &&
+            has(paged, "imageStore(uFeedback, texel") && has(paged, "strataPackPage") &&
+            !has(paged, "gFootprint"),
       "paged: the 2-volume shader reports lacking bricks of both volumes into the feedback image");
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
     s.Win->Render();
     const std::string pagedBack = s.Mapper->GetFragmentShaderSource(1);
-    Check(has(pagedBack, "gLackScore >= imageLoad(uFeedbackScore") && !has(pagedBack, "gTransmittance = (1.0 - prior)"),
-      "paged, back to front: on equal cost the nearer (later) report wins; no transmittance is known");
+    Check(has(pagedBack, "gLackScore >= imageLoad(uFeedbackScore") &&
+            !has(pagedBack, "gTransmittance = (1.0 - prior)"),
+      "paged, back to front: on equal cost the nearer (later) report wins; no transmittance is "
+      "known");
     s.Mapper->LevelOfDetailFeedbackOff();
     s.Win->Render();
     const std::string pagedOff = s.Mapper->GetFragmentShaderSource(1);
@@ -777,7 +829,8 @@ int RunMultiVolumeCase(const std::string& name)
     std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
     for (auto& p : inputs)
       list.emplace_back(p.first, p.second);
-    ok = CheckVolumeComparison(CompareVolumesWithReference(win, ren, list, "VolumeDemo"), "VolumeDemo", 0.4, 2, 4000);
+    ok = CheckVolumeComparison(
+      CompareVolumesWithReference(win, ren, list, "VolumeDemo"), "VolumeDemo", 0.4, 2, 4000);
     auto* mapper = vtkMultiVolumeRayCastMapper::SafeDownCast(multi->GetMapper());
     std::cout << "VolumeDemo: " << mapper->GetNumberOfFragments() << " fragments\n";
     // Baseline: same thresholds as TestHeightFieldDemo (vtkTesting 0.5, and at most 0.2 % of
@@ -791,7 +844,8 @@ int RunMultiVolumeCase(const std::string& name)
   }
   if (output->Errors || output->Warnings)
   {
-    std::cerr << "FAILED: VTK printed " << output->Errors << " errors and " << output->Warnings << " warnings\n";
+    std::cerr << "FAILED: VTK printed " << output->Errors << " errors and " << output->Warnings
+              << " warnings\n";
     ok = false;
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -29,8 +29,11 @@ vtkSmartPointer<vtkVolumeProperty> MakeRealVolumeProperty(const std::string& nam
 
 /// Camera from direction `dir` at the centre of the world bounds of the (image, volume) pairs,
 /// at `distanceFactor` times the distance from which their bounding sphere just fills the view.
-void FrameVolumes(vtkRenderer* ren, const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
-  const double dir[3], const double up[3], double distanceFactor);
+void FrameVolumes(vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  const double dir[3],
+  const double up[3],
+  double distanceFactor);
 
 /// Each data set's view: direction from the focal point towards the eye, and up.
 void RealVolumeView(const std::string& name, double dir[3], double up[3]);

@@ -22,7 +22,8 @@ bool CompareWithBaseline(vtkRenderWindow* win, const std::string& name, double t
 {
   vtkNew<vtkTesting> testing;
   const std::string baseline = TestDataDirectory() + "/Baseline/" + name + ".png";
-  for (const std::string& arg : { std::string("-V"), baseline, std::string("-T"), OutputDirectory() })
+  for (const std::string& arg :
+    { std::string("-V"), baseline, std::string("-T"), OutputDirectory() })
   {
     testing->AddArgument(arg.c_str());
   }
@@ -60,7 +61,8 @@ bool CompareWithBaseline(vtkRenderWindow* win, const std::string& name, double t
     int worst = 0;
     for (int c = 0; c < 3; ++c)
     {
-      worst = std::max(worst, std::abs(int(rgb[3 * i + c]) - int(pixels->GetValue(i * comps + std::min(c, comps - 1)))));
+      worst = std::max(worst,
+        std::abs(int(rgb[3 * i + c]) - int(pixels->GetValue(i * comps + std::min(c, comps - 1)))));
     }
     differing += worst > 24;
   }

@@ -6,8 +6,8 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPNGWriter.h"
+#include "vtkPagePoolFile.h"
 #include "vtkRenderWindow.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 
 namespace strata_test
 {
@@ -84,8 +84,10 @@ std::vector<int> DecodeIds(const std::vector<unsigned char>& rgb)
   return ids;
 }
 
-IdComparison CompareIds(
-  const std::vector<int>& test, const std::vector<int>& reference, int width, int height)
+IdComparison CompareIds(const std::vector<int>& test,
+  const std::vector<int>& reference,
+  int width,
+  int height)
 {
   IdComparison c;
   std::vector<char> bad(size_t(width) * height, 0);
@@ -133,8 +135,14 @@ void WritePNG(const std::string& path, const std::vector<unsigned char>& rgb, in
 
 void WriteIdPNG(const std::string& path, const std::vector<int>& ids, int width, int height)
 {
-  static const unsigned char palette[8][3] = { { 230, 60, 50 }, { 60, 180, 75 }, { 0, 130, 200 },
-    { 245, 130, 48 }, { 145, 30, 180 }, { 70, 240, 240 }, { 240, 50, 230 }, { 210, 245, 60 } };
+  static const unsigned char palette[8][3] = { { 230, 60, 50 },
+    { 60, 180, 75 },
+    { 0, 130, 200 },
+    { 245, 130, 48 },
+    { 145, 30, 180 },
+    { 70, 240, 240 },
+    { 240, 50, 230 },
+    { 210, 245, 60 } };
   std::vector<unsigned char> rgb(ids.size() * 3, 0);
   for (size_t i = 0; i < ids.size(); ++i)
   {
@@ -223,7 +231,8 @@ bool CopyFile(const std::string& from, const std::string& to, double fraction)
   if (!in)
     return false;
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t count = fraction >= 1.0 ? bytes.size() : static_cast<size_t>(bytes.size() * std::max(0.0, fraction));
+  const size_t count =
+    fraction >= 1.0 ? bytes.size() : static_cast<size_t>(bytes.size() * std::max(0.0, fraction));
   std::ofstream out(to, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(count));
   return static_cast<bool>(out);

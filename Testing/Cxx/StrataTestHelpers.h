@@ -72,17 +72,26 @@ std::vector<int> DecodeIds(const std::vector<unsigned char>& rgb);
 /// Statistics of a per-pixel id comparison.
 struct IdComparison
 {
-  long Covered = 0;    ///< pixels where either side has an id
-  long Mismatched = 0; ///< covered pixels whose ids differ
+  long Covered = 0;        ///< pixels where either side has an id
+  long Mismatched = 0;     ///< covered pixels whose ids differ
   bool WideRegion = false; ///< some 2x2 block of mismatches (a region wider than one pixel)
   int WideX = -1, WideY = -1;
-  double MismatchFraction() const { return this->Covered ? double(this->Mismatched) / this->Covered : 0.0; }
+  double MismatchFraction() const
+  {
+    return this->Covered ? double(this->Mismatched) / this->Covered : 0.0;
+  }
 };
 /// Compares ids (-1 = none) pixel by pixel; width*height each.
-IdComparison CompareIds(const std::vector<int>& test, const std::vector<int>& reference, int width, int height);
+IdComparison CompareIds(const std::vector<int>& test,
+  const std::vector<int>& reference,
+  int width,
+  int height);
 
 /// Writes an RGB image (bottom row first) as PNG, for looking at a failing case.
-void WritePNG(const std::string& path, const std::vector<unsigned char>& rgb, int width, int height);
+void WritePNG(const std::string& path,
+  const std::vector<unsigned char>& rgb,
+  int width,
+  int height);
 /// Writes a false-colour PNG of ids (-1 black) for the same reason.
 void WriteIdPNG(const std::string& path, const std::vector<int>& ids, int width, int height);
 

@@ -5,19 +5,19 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
-#include "vtkNew.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
-#include "vtkMultiVolume.h"
-#include "vtkMultiVolumeRayCastMapper.h"
-#include "vtkTransform.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -28,8 +28,12 @@
 
 namespace strata_test
 {
-vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx, int ny, int nz, const double spacing[3],
-  const double origin[3], int seed)
+vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx,
+  int ny,
+  int nz,
+  const double spacing[3],
+  const double origin[3],
+  int seed)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(nx, ny, nz);
@@ -50,7 +54,8 @@ vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx, int ny, int nz, const doubl
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
       {
-        const double u[3] = { nx > 1 ? double(i) / (nx - 1) : 0.5, ny > 1 ? double(j) / (ny - 1) : 0.5,
+        const double u[3] = { nx > 1 ? double(i) / (nx - 1) : 0.5,
+          ny > 1 ? double(j) / (ny - 1) : 0.5,
           nz > 1 ? double(k) / (nz - 1) : 0.5 };
         double v = 10.0 * u[0];
         for (int b = 0; b < 3; ++b)
@@ -71,7 +76,8 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDi
   auto p = vtkSmartPointer<vtkVolumeProperty>::New();
   vtkNew<vtkColorTransferFunction> ctf;
   const double palette[3][2][3] = { { { 0.1, 0.2, 1.0 }, { 1.0, 0.3, 0.1 } },
-    { { 0.1, 0.8, 0.2 }, { 1.0, 1.0, 0.3 } }, { { 0.6, 0.1, 0.8 }, { 0.2, 0.9, 1.0 } } };
+    { { 0.1, 0.8, 0.2 }, { 1.0, 1.0, 0.3 } },
+    { { 0.6, 0.1, 0.8 }, { 0.2, 0.9, 1.0 } } };
   const auto& pal = palette[variant % 3];
   ctf->AddRGBPoint(0, pal[0][0], pal[0][1], pal[0][2]);
   ctf->AddRGBPoint(100, pal[1][0], pal[1][1], pal[1][2]);
@@ -93,7 +99,9 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   image->GetDimensions(v.Dimensions);
   image->GetOrigin(v.Origin);
   image->GetSpacing(v.Spacing);
-  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9, v.Direction);
+  std::copy(image->GetDirectionMatrix()->GetData(),
+    image->GetDirectionMatrix()->GetData() + 9,
+    v.Direction);
   member->ComputeMatrix();
   std::copy(member->GetMatrix()->GetData(), member->GetMatrix()->GetData() + 16, v.ModelMatrix);
   vtkDataArray* s = image->GetPointData()->GetScalars();
@@ -102,8 +110,8 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
     v.FloatScalars[i] = static_cast<float>(s->GetComponent(i, 0));
   vtkVolumeProperty* p = member->GetProperty();
   v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
-    ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
-    : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
+                 ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
+                 : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
   // Exactly the mapper's table.
   double range[2];
   std::vector<float> rgb, alpha;
@@ -117,9 +125,12 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   return v;
 }
 
-VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
-  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
-  double stepFraction, int raysPerPixel)
+VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
+  vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  const std::string& name,
+  double stepFraction,
+  int raysPerPixel)
 {
   // Over mid grey, so that opacity errors show as well as colour errors.
   VolumeComparison r;
@@ -173,24 +184,27 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* 
 vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren)
 {
   vtkNew<vtkMatrix4x4> worldToClip;
-  worldToClip->DeepCopy(
-    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  worldToClip->DeepCopy(ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    ren->GetTiledAspectRatio(), -1, 1));
   auto clipToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
   vtkMatrix4x4::Invert(worldToClip, clipToWorld);
   return clipToWorld;
 }
 
-std::vector<double> CompositeOver(const std::vector<double>& rgba, const std::vector<unsigned char>& background)
+std::vector<double> CompositeOver(const std::vector<double>& rgba,
+  const std::vector<unsigned char>& background)
 {
   std::vector<double> out(background.size());
   for (size_t i = 0; i < out.size() / 3; ++i)
     for (int c = 0; c < 3; ++c)
       out[3 * i + c] =
-        255.0 * std::min(1.0, rgba[4 * i + c] + (1.0 - rgba[4 * i + 3]) * background[3 * i + c] / 255.0);
+        255.0 *
+        std::min(1.0, rgba[4 * i + c] + (1.0 - rgba[4 * i + 3]) * background[3 * i + c] / 255.0);
   return out;
 }
 
-ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected)
+ChannelError ImageError(const std::vector<unsigned char>& image,
+  const std::vector<double>& expected)
 {
   ChannelError e;
   double se = 0.0;
@@ -204,12 +218,15 @@ ChannelError ImageError(const std::vector<unsigned char>& image, const std::vect
   return e;
 }
 
-ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected)
+ChannelError ImageError(const std::vector<unsigned char>& image,
+  const std::vector<unsigned char>& expected)
 {
   return ImageError(image, std::vector<double>(expected.begin(), expected.end()));
 }
 
-long PixelsOff(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected, int threshold)
+long PixelsOff(const std::vector<unsigned char>& image,
+  const std::vector<unsigned char>& expected,
+  int threshold)
 {
   long n = 0;
   for (size_t p = 0; p + 2 < image.size() && p + 2 < expected.size(); p += 3)
@@ -222,7 +239,8 @@ long PixelsOff(const std::vector<unsigned char>& image, const std::vector<unsign
   return n;
 }
 
-vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,
+vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren,
+  const std::string& dataDir,
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs)
 {
   const std::string path = dataDir + "/volumes/bucky.raw";
@@ -245,7 +263,8 @@ vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::strin
   mapper->SetSampleDistance(0.25);
   auto multi = vtkSmartPointer<vtkMultiVolume>::New();
   multi->SetMapper(mapper);
-  auto add = [&](vtkImageData* image, vtkVolumeProperty* property, vtkTransform* transform) {
+  auto add = [&](vtkImageData* image, vtkVolumeProperty* property, vtkTransform* transform)
+  {
     const int port = static_cast<int>(inputs.size());
     mapper->SetInputDataObject(port, image);
     auto v = vtkSmartPointer<vtkVolume>::New();
@@ -304,15 +323,19 @@ vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::strin
   return multi;
 }
 
-bool CheckVolumeComparison(const VolumeComparison& c, const std::string& name, double rmsBound,
-  double maxBound, long minCovered)
+bool CheckVolumeComparison(const VolumeComparison& c,
+  const std::string& name,
+  double rmsBound,
+  double maxBound,
+  long minCovered)
 {
   std::cout << name << ": covered " << c.Covered << " px, RMS error " << c.Rms << " (bound "
             << rmsBound << "), max error " << c.Max << " (bound " << maxBound << ") of 255\n";
   bool ok = true;
   if (c.Covered < minCovered)
   {
-    std::cerr << name << ": FAILED: only " << c.Covered << " covered pixels, expected >= " << minCovered << "\n";
+    std::cerr << name << ": FAILED: only " << c.Covered
+              << " covered pixels, expected >= " << minCovered << "\n";
     ok = false;
   }
   if (c.Rms > rmsBound)

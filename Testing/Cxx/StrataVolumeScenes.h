@@ -23,8 +23,12 @@ namespace strata_test
 {
 /// A volume of nx x ny x nz float points: a sum of Gaussian blobs and a gentle ramp, values in
 /// about [0, 100], deterministic in `seed`.
-vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx, int ny, int nz, const double spacing[3],
-  const double origin[3], int seed);
+vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx,
+  int ny,
+  int nz,
+  const double spacing[3],
+  const double origin[3],
+  int seed);
 
 /// A property with a colour ramp (hue by `variant`) and a piecewise-linear opacity, linear
 /// interpolation, opacity per unit distance `unitDistance`.
@@ -36,9 +40,9 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
 
 struct VolumeComparison
 {
-  double Rms = 0.0;  ///< over all pixels and RGB channels, in 8-bit units
-  double Max = 0.0;  ///< largest channel difference, in 8-bit units
-  long Covered = 0;  ///< pixels where the reference's opacity is above 1 / 255
+  double Rms = 0.0;               ///< over all pixels and RGB channels, in 8-bit units
+  double Max = 0.0;               ///< largest channel difference, in 8-bit units
+  long Covered = 0;               ///< pixels where the reference's opacity is above 1 / 255
   std::vector<unsigned char> Gpu; ///< RGB, bottom row first
   std::vector<double> Reference;  ///< premultiplied RGBA
 };
@@ -48,7 +52,8 @@ vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren);
 
 /// The reference's premultiplied RGBA composited over `background` (RGB bytes, same pixel
 /// layout), in 8-bit units (not rounded).
-std::vector<double> CompositeOver(const std::vector<double>& rgba, const std::vector<unsigned char>& background);
+std::vector<double> CompositeOver(const std::vector<double>& rgba,
+  const std::vector<unsigned char>& background);
 
 /// RMS over all channels and largest channel difference, in 8-bit units, of `image` (RGB bytes)
 /// from `expected` (same layout, 8-bit units).
@@ -57,30 +62,42 @@ struct ChannelError
   double Rms = 0.0;
   double Max = 0.0;
 };
-ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<double>& expected);
+ChannelError ImageError(const std::vector<unsigned char>& image,
+  const std::vector<double>& expected);
 /// Two 8-bit images against each other.
-ChannelError ImageError(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected);
+ChannelError ImageError(const std::vector<unsigned char>& image,
+  const std::vector<unsigned char>& expected);
 /// RGB pixels of two 8-bit images with some channel off by more than `threshold`.
-long PixelsOff(const std::vector<unsigned char>& image, const std::vector<unsigned char>& expected, int threshold);
+long PixelsOff(const std::vector<unsigned char>& image,
+  const std::vector<unsigned char>& expected,
+  int threshold);
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with
 /// several rays per pixel the reference averages the same sub-pixel rays as the mapper.
-VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win, vtkRenderer* ren,
-  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes, const std::string& name,
-  double stepFraction = 1.0 / 16.0, int raysPerPixel = 1);
+VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
+  vtkRenderer* ren,
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
+  const std::string& name,
+  double stepFraction = 1.0 / 16.0,
+  int raysPerPixel = 1);
 
 /// The demo's multi-volume scene: the Bucky ball (real CT-like density, 32^3 uint8 read from
 /// `dataDir`/volumes/bucky.raw), an analytic 48 x 40 x 36 volume turned 25 degrees about (1, 1, 0)
 /// that overlaps it, and a coarse analytic 20^3 volume turned 60 degrees about z that overlaps the
 /// second, all in one vtkMultiVolume with vtkMultiVolumeRayCastMapper. Returns the multi-volume
-/// (nullptr if the Bucky ball cannot be read); `inputs` gets (image, member) pairs for the reference.
-vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren, const std::string& dataDir,
+/// (nullptr if the Bucky ball cannot be read); `inputs` gets (image, member) pairs for the
+/// reference.
+vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren,
+  const std::string& dataDir,
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs);
 
 /// Prints the comparison and asserts rms <= rmsBound, max <= maxBound, covered >= minCovered.
-bool CheckVolumeComparison(const VolumeComparison& c, const std::string& name, double rmsBound,
-  double maxBound, long minCovered);
+bool CheckVolumeComparison(const VolumeComparison& c,
+  const std::string& name,
+  double rmsBound,
+  double maxBound,
+  long minCovered);
 }
 
 #endif

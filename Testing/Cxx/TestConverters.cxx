@@ -482,7 +482,7 @@ int TestConverters(int, char*[])
     std::cout << "  " << log.Requests << " upstream requests, at most " << log.LargestTraces
               << " of " << 160 * 48 << " traces and " << log.LargestKiB << " KiB each\n";
     Check(log.Requests > 4 && log.LargestTraces % 48 == 0 &&
-        log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 2,
+            log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 2,
       "large SEG-Y: 4.9 times the memory limit, converted whole inlines at a time within it");
     std::remove(path.c_str());
   }

@@ -50,7 +50,8 @@ int TestEGLRenderWindow(int, char*[])
   std::cout << "platform " << egl->GetPlatformName() << ", renderer " << egl->GetRendererName()
             << "\n";
   int failures = 0;
-  auto check = [&](bool ok, const std::string& what) {
+  auto check = [&](bool ok, const std::string& what)
+  {
     if (!ok)
     {
       std::cerr << "FAILED: " << what << "\n";

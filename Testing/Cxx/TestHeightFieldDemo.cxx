@@ -64,8 +64,10 @@ int TestHeightFieldDemo(int, char*[])
   const auto rgbB = ReadRGB(win);
   const float tie = 1e-6f;
   const double margin = 1e-5;
-  auto sameColour = [&](const std::vector<unsigned char>& a, int i) {
-    return a[3 * i] == rgbB[3 * i] && a[3 * i + 1] == rgbB[3 * i + 1] && a[3 * i + 2] == rgbB[3 * i + 2];
+  auto sameColour = [&](const std::vector<unsigned char>& a, int i)
+  {
+    return a[3 * i] == rgbB[3 * i] && a[3 * i + 1] == rgbB[3 * i + 1] &&
+           a[3 * i + 2] == rgbB[3 * i + 2];
   };
   long geometryInFront = 0, horizonsInFront = 0, ties = 0, wrong = 0, wrongTruth = 0;
   for (int i = 0; i < w * h; ++i)
@@ -92,8 +94,9 @@ int TestHeightFieldDemo(int, char*[])
     }
   }
   std::cout << "Occlusion: geometry in front of horizons " << geometryInFront
-            << " px, horizons in front of geometry " << horizonsInFront << " px (by reference depth), ties "
-            << ties << ", pixels not the nearer of the two frames " << wrong
+            << " px, horizons in front of geometry " << horizonsInFront
+            << " px (by reference depth), ties " << ties
+            << ", pixels not the nearer of the two frames " << wrong
             << ", pixels showing the side the reference says is hidden " << wrongTruth << "\n";
   Check(geometryInFront >= 300, "the well or target is in front of a horizon in >= 300 pixels");
   Check(horizonsInFront >= 300, "a horizon hides the well or target in >= 300 pixels");

@@ -55,8 +55,8 @@ namespace
 const int Page = 33; // stride 32: the quadtree's 32-cell leaves never straddle tiles
 
 // The heights the paged mapper's cut holds now, as in-core images (its CPU reference lookup).
-std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(
-  vtkStackedHeightFieldMapper* paged, const std::vector<vtkSmartPointer<vtkImageData>>& full)
+std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(vtkStackedHeightFieldMapper* paged,
+  const std::vector<vtkSmartPointer<vtkImageData>>& full)
 {
   const vtkHeightFieldPager* pager = paged->GetPager();
   std::vector<vtkSmartPointer<vtkImageData>> out;
@@ -80,7 +80,8 @@ std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(
 }
 
 // One vtkPagePoolReader per pool in front of `m`, kept in `readers`.
-void PagedFrom(const std::vector<std::string>& pools, vtkStackedHeightFieldMapper* m,
+void PagedFrom(const std::vector<std::string>& pools,
+  vtkStackedHeightFieldMapper* m,
   std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers)
 {
   for (const auto& pool : pools)
@@ -99,20 +100,27 @@ long Seams(const vtkHeightFieldPager* pager, double tolerance)
   const int S = pager->GetPageSize() - 1;
   const int* tiles = pager->GetTiles();
   long bad = 0;
-  auto same = [&](float a, float b) { return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) <= tolerance; };
+  auto same = [&](float a, float b)
+  { return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) <= tolerance; };
   for (int h = 0; h < pager->GetNumberOfHorizons(); ++h)
   {
     for (int k = 1; k < tiles[0]; ++k) // vertical lines x = k S
       for (int j = 0; j < pager->GetNY(); ++j)
       {
         const int ty = std::min(j / S, tiles[1] - 1);
-        bad += same(pager->GetTileHeight(h, k - 1, ty, k * S, j), pager->GetTileHeight(h, k, ty, k * S, j)) ? 0 : 1;
+        bad += same(pager->GetTileHeight(h, k - 1, ty, k * S, j),
+                 pager->GetTileHeight(h, k, ty, k * S, j))
+                 ? 0
+                 : 1;
       }
     for (int k = 1; k < tiles[1]; ++k) // horizontal lines y = k S
       for (int i = 0; i < pager->GetNX(); ++i)
       {
         const int tx = std::min(i / S, tiles[0] - 1);
-        bad += same(pager->GetTileHeight(h, tx, k - 1, i, k * S), pager->GetTileHeight(h, tx, k, i, k * S)) ? 0 : 1;
+        bad += same(pager->GetTileHeight(h, tx, k - 1, i, k * S),
+                 pager->GetTileHeight(h, tx, k, i, k * S))
+                 ? 0
+                 : 1;
       }
   }
   return bad;
@@ -125,7 +133,8 @@ struct Difference
   long Covered = 0; ///< pixels that are not background in the reference
 };
 
-Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
+Difference Compare(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b,
   const std::vector<unsigned char>& background)
 {
   Difference d;
@@ -136,7 +145,9 @@ Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsign
       m = std::max(m, std::abs(int(a[p + c]) - int(b[p + c])));
     d.Max = std::max(d.Max, m);
     d.Differing += m > 8 ? 1 : 0;
-    d.Covered += (b[p] != background[p] || b[p + 1] != background[p + 1] || b[p + 2] != background[p + 2]) ? 1 : 0;
+    d.Covered +=
+      (b[p] != background[p] || b[p + 1] != background[p + 1] || b[p + 2] != background[p + 2]) ? 1
+                                                                                                : 0;
   }
   return d;
 }
@@ -150,12 +161,14 @@ struct CutFrames
   long WorstCoverage = 0;
   long SmallestCovered = 1L << 30;
   long Compared = 0;
-  Difference Add(const std::vector<unsigned char>& frame, const std::vector<unsigned char>& ofCut,
+  Difference Add(const std::vector<unsigned char>& frame,
+    const std::vector<unsigned char>& ofCut,
     const std::vector<unsigned char>& background)
   {
     const Difference d = Compare(frame, ofCut, background);
     this->WorstCoverage = std::max(this->WorstCoverage,
-      std::abs(Compare(ofCut, ofCut, background).Covered - Compare(frame, frame, background).Covered));
+      std::abs(
+        Compare(ofCut, ofCut, background).Covered - Compare(frame, frame, background).Covered));
     this->SmallestCovered = std::min(this->SmallestCovered, d.Covered);
     if (d.Differing > this->Worst.Differing || this->Compared == 0)
       this->Worst = d;
@@ -165,7 +178,8 @@ struct CutFrames
 };
 
 // Gives `twin` (an in-core mapper) exactly the heights `paged`'s cut holds now.
-void SetCutInputs(vtkStackedHeightFieldMapper* twin, vtkStackedHeightFieldMapper* paged,
+void SetCutInputs(vtkStackedHeightFieldMapper* twin,
+  vtkStackedHeightFieldMapper* paged,
   const std::vector<vtkSmartPointer<vtkImageData>>& full)
 {
   twin->RemoveAllInputConnections(0);
@@ -177,7 +191,9 @@ void SetCutInputs(vtkStackedHeightFieldMapper* twin, vtkStackedHeightFieldMapper
 // core: a path of frames each against the rendering of its own cut, then converged.
 void ReekPaged(const std::string& dir)
 {
-  const char* names[4] = { "reek_01_topreek_rota.gri", "reek_02_midreek_rota.gri", "reek_03_lowreek_rota.gri",
+  const char* names[4] = { "reek_01_topreek_rota.gri",
+    "reek_02_midreek_rota.gri",
+    "reek_03_lowreek_rota.gri",
     "reek_04_basereek_rota.gri" };
   std::vector<vtkSmartPointer<vtkImageData>> horizons;
   std::vector<std::string> pools;
@@ -233,7 +249,8 @@ void ReekPaged(const std::string& dir)
   actor->SetScale(1, 1, 8);
   actor->GetProperty()->SetSpecular(0.2);
   ren->AddActor(actor);
-  auto render = [&](vtkStackedHeightFieldMapper* m) {
+  auto render = [&](vtkStackedHeightFieldMapper* m)
+  {
     actor->SetMapper(m);
     win->Render();
     return ReadRGB(win);
@@ -253,7 +270,8 @@ void ReekPaged(const std::string& dir)
   const long coveredFull = Compare(render(incore), render(incore), background).Covered;
   const std::vector<unsigned char> roots = render(paged);
   const long coveredRoots = Compare(roots, roots, background).Covered;
-  std::cout << "HFPaging: Reek: first frame (roots only) covers " << coveredRoots << " pixels, in core " << coveredFull << "\n";
+  std::cout << "HFPaging: Reek: first frame (roots only) covers " << coveredRoots
+            << " pixels, in core " << coveredFull << "\n";
   Check(coveredRoots >= coveredFull, "the Reek roots cover what the full data cover");
 
   CutFrames cut;
@@ -285,21 +303,27 @@ void ReekPaged(const std::string& dir)
     WritePNG(dir + "/hf-paging-reek-paged.png", last, w, h);
     WritePNG(dir + "/hf-paging-reek-incore.png", incoreImage, w, h);
   }
-  std::cout << "HFPaging: Reek: 4 pools of 554 x 451 (" << holes << " no-data nodes); converged after " << frames
-            << " frames; " << cut.Compared << " frames compared with the rendering of their own cut (each >= "
-            << cut.SmallestCovered << " covered pixels): worst " << cut.Worst.Differing << " of " << cut.Worst.Covered
-            << " covered pixels differ by more than 8/255 (max " << cut.Worst.Max << "), coverage by at most " << cut.WorstCoverage
-            << " pixels, " << worstSeams << " seam points; converged: max difference " << d.Max << " (" << d.Differing << " pixels off by more than 8/255) over "
-            << d.Covered << " covered pixels; "
-            << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles << "; " << st.Failures << " failures\n";
+  std::cout << "HFPaging: Reek: 4 pools of 554 x 451 (" << holes
+            << " no-data nodes); converged after " << frames << " frames; " << cut.Compared
+            << " frames compared with the rendering of their own cut (each >= "
+            << cut.SmallestCovered << " covered pixels): worst " << cut.Worst.Differing << " of "
+            << cut.Worst.Covered << " covered pixels differ by more than 8/255 (max "
+            << cut.Worst.Max << "), coverage by at most " << cut.WorstCoverage << " pixels, "
+            << worstSeams << " seam points; converged: max difference " << d.Max << " ("
+            << d.Differing << " pixels off by more than 8/255) over " << d.Covered
+            << " covered pixels; " << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles
+            << "; " << st.Failures << " failures\n";
   Check(converged > 0, "the paged Reek horizons converge");
-  Check(holes > 0 && cut.Compared == frames && cut.SmallestCovered > 5000, "the Reek path's frames were compared, holes and all");
+  Check(holes > 0 && cut.Compared == frames && cut.SmallestCovered > 5000,
+    "the Reek path's frames were compared, holes and all");
   Check(worstSeams == 0, "Reek: no seams between tiles of different levels");
   Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000) && cut.WorstCoverage <= 10,
-    "every Reek frame is the rendering of its cut (<= 0.05 % of pixels, coverage within 10 pixels)");
+    "every Reek frame is the rendering of its cut (<= 0.05 % of pixels, coverage within 10 "
+    "pixels)");
   // Converged, the cut's heights render exactly as in core; the paged lookup's float arithmetic
   // on this UTM-scale grid may move a channel of a pixel by 1/255 (seen: one).
-  Check(d.Max <= 1 && d.Differing == 0 && d.Covered > 5000, "converged, the paged Reek scene equals the in-core one (max 1/255)");
+  Check(d.Max <= 1 && d.Differing == 0 && d.Covered > 5000,
+    "converged, the paged Reek scene equals the in-core one (max 1/255)");
   Check(st.Failures == 0 && st.RootPagesRead == 0, "Reek: no failures, roots from the readers");
   for (const auto& pool : pools)
     std::remove(pool.c_str());
@@ -334,8 +358,8 @@ int TestHeightFieldPaging(int, char*[])
   }
   vtkPagePoolFile probe;
   probe.Open(pools[0]);
-  std::cout << "HFPaging: " << scene.Horizons.size() << " pools of " << probe.GetNumberOfPages() << " tiles in "
-            << probe.GetNumberOfLevels() << " levels\n";
+  std::cout << "HFPaging: " << scene.Horizons.size() << " pools of " << probe.GetNumberOfPages()
+            << " tiles in " << probe.GetNumberOfLevels() << " levels\n";
   probe.Close();
 
   // In-core references: the demo mapper as is, and a twin that draws whatever heights it gets.
@@ -349,7 +373,8 @@ int TestHeightFieldPaging(int, char*[])
   paged->PrefetchOn(); // read-ahead on the path (the other mappers read on demand alone)
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   PagedFrom(pools, paged, readers);
-  auto render = [&](vtkStackedHeightFieldMapper* m) {
+  auto render = [&](vtkStackedHeightFieldMapper* m)
+  {
     scene.Stack->SetMapper(m);
     win->Render();
     return ReadRGB(win);
@@ -382,35 +407,42 @@ int TestHeightFieldPaging(int, char*[])
     if (f == 0)
     {
       Check(paged->GetPaged() && st.RootPagesRead == 0,
-        "paged from the pools; the roots came from the readers' coarsest levels (no read on the render thread)");
+        "paged from the pools; the roots came from the readers' coarsest levels (no read on the "
+        "render thread)");
       const long covered = Compare(image, image, background).Covered;
-      std::cout << "HFPaging: first frame (roots only): " << covered << " covered pixels, in-core " << coveredFull << "\n";
+      std::cout << "HFPaging: first frame (roots only): " << covered << " covered pixels, in-core "
+                << coveredFull << "\n";
     }
     worstSeams = std::max(worstSeams, Seams(paged->GetPager(), 1e-3));
     mixedFrames += st.FinestTiles < st.CutTiles ? 1 : 0;
     SetCutInputs(coarse, paged, scene.Horizons);
     const Difference d = cut.Add(image, render(coarse), background);
     if (std::getenv("STRATA_DEBUG_PAGING"))
-      std::cout << "  frame " << f << ": tiles " << st.CutTiles << " (finest " << st.FinestTiles << "), pending "
-                << st.PendingPages << ", entered " << st.Entered << ", differing " << d.Differing << ", max " << d.Max
-                << "\n";
+      std::cout << "  frame " << f << ": tiles " << st.CutTiles << " (finest " << st.FinestTiles
+                << "), pending " << st.PendingPages << ", entered " << st.Entered << ", differing "
+                << d.Differing << ", max " << d.Max << "\n";
     if (st.Converged && f >= 12)
       converged = f;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   std::cout << "HFPaging: converged after " << frames << " frames; " << cut.Compared
-            << " frames compared with the rendering of their own cut (each >= " << cut.SmallestCovered
-            << " covered pixels); worst: " << cut.Worst.Differing << " of " << cut.Worst.Covered
-            << " covered pixels differ by more than 8/255 (max " << cut.Worst.Max << "); coverage differs by at most "
-            << cut.WorstCoverage << " pixels; " << mixedFrames
-            << " frames mixed levels, worst " << worstSeams << " tile-line points where neighbouring pages disagree\n";
+            << " frames compared with the rendering of their own cut (each >= "
+            << cut.SmallestCovered << " covered pixels); worst: " << cut.Worst.Differing << " of "
+            << cut.Worst.Covered << " covered pixels differ by more than 8/255 (max "
+            << cut.Worst.Max << "); coverage differs by at most " << cut.WorstCoverage
+            << " pixels; " << mixedFrames << " frames mixed levels, worst " << worstSeams
+            << " tile-line points where neighbouring pages disagree\n";
   Check(converged > 0, "the paged horizons converge");
-  Check(worstSeams == 0 && mixedFrames >= 20, "no seams: where tiles of different levels meet, their pages agree");
+  Check(worstSeams == 0 && mixedFrames >= 20,
+    "no seams: where tiles of different levels meet, their pages agree");
   // Stitched, the search's surface is the cut's level-0 surface: no cracks at level seams (35
   // of 23033 pixels differed before stitching, where rays passed through them).
-  Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000), "every intermediate frame is the rendering of its cut (<= 0.05 % of pixels)");
-  Check(cut.WorstCoverage <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
-  Check(cut.Compared == frames && frames >= 20 && cut.SmallestCovered > 5000, "every frame of the path was compared and shows the horizons");
+  Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000),
+    "every intermediate frame is the rendering of its cut (<= 0.05 % of pixels)");
+  Check(
+    cut.WorstCoverage <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
+  Check(cut.Compared == frames && frames >= 20 && cut.SmallestCovered > 5000,
+    "every frame of the path was compared and shows the horizons");
 
   // 2. Converged: the in-core image, shaded and in ids.
   {
@@ -418,10 +450,11 @@ int TestHeightFieldPaging(int, char*[])
     const auto full = render(incore);
     const auto mine = render(paged);
     const Difference d = Compare(mine, full, background);
-    std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered << " covered pixels; "
-              << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles << "; " << st.BytesRead / 1024
-              << " KiB read\n";
-    Check(d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
+    std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered
+              << " covered pixels; " << st.FinestTiles << " level-0 tiles resident of "
+              << st.CutTiles << "; " << st.BytesRead / 1024 << " KiB read\n";
+    Check(
+      d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
     incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
     paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
     const Difference ids = Compare(render(paged), render(incore), background);
@@ -445,12 +478,15 @@ int TestHeightFieldPaging(int, char*[])
     }
     const auto sb = blind->GetPagingStatistics();
     const Difference db = Compare(render(blind), full, background);
-    std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " (" << st.FeedbackPages
-              << " tiles asked for), without " << sb.FinestTiles << "; without feedback max difference " << db.Max
-              << "; feedback reduction " << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
+    std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " ("
+              << st.FeedbackPages << " tiles asked for), without " << sb.FinestTiles
+              << "; without feedback max difference " << db.Max << "; feedback reduction "
+              << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
     Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
-    Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
-    Check(st.FinestTiles < sb.FinestTiles, "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
+    Check(
+      sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
+    Check(st.FinestTiles < sb.FinestTiles,
+      "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
 
     // Read back at the next frame instead of after the draw: the cut sees the same feedback.
     vtkNew<vtkStackedHeightFieldMapper> deferred;
@@ -467,10 +503,11 @@ int TestHeightFieldPaging(int, char*[])
     }
     const auto sd = deferred->GetPagingStatistics();
     const Difference dd = Compare(render(deferred), full, background);
-    std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, " << sd.FinestTiles
-              << " level-0 tiles, max difference " << dd.Max << "\n";
+    std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, "
+              << sd.FinestTiles << " level-0 tiles, max difference " << dd.Max << "\n";
     Check(sd.Converged && sd.FeedbackUsed && dd.Max == 0 && sd.FinestTiles < sb.FinestTiles,
-      "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles coarse");
+      "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles "
+      "coarse");
   }
   {
     // Refinement without pops: at a still camera, the largest change of any grid height from
@@ -505,9 +542,11 @@ int TestHeightFieldPaging(int, char*[])
         m->WaitForPages(1.0);
       }
     }
-    std::cout << "HFPaging: largest height change between two frames: " << jump[0] << " refining at once (" << settled[0]
-              << " frames), " << jump[1] << " blending over 4 frames (" << settled[1] << " frames)\n";
-    Check(jump[1] > 0.0 && jump[1] <= 0.6 * jump[0], "blended refinement: no frame jumps by more than 0.6 of the largest unblended pop");
+    std::cout << "HFPaging: largest height change between two frames: " << jump[0]
+              << " refining at once (" << settled[0] << " frames), " << jump[1]
+              << " blending over 4 frames (" << settled[1] << " frames)\n";
+    Check(jump[1] > 0.0 && jump[1] <= 0.6 * jump[0],
+      "blended refinement: no frame jumps by more than 0.6 of the largest unblended pop");
   }
   {
     // Zoomed into a corner: tiles out of view are never refined.
@@ -527,8 +566,8 @@ int TestHeightFieldPaging(int, char*[])
     const int* tiles = zoomed->GetPager()->GetTiles();
     const int all = tiles[0] * tiles[1] * static_cast<int>(pools.size());
     const Difference d = Compare(render(zoomed), render(incore), background);
-    std::cout << "HFPaging: zoomed in: " << st.FinestTiles << " of " << all << " level-0 tiles resident; max difference "
-              << d.Max << " to in-core\n";
+    std::cout << "HFPaging: zoomed in: " << st.FinestTiles << " of " << all
+              << " level-0 tiles resident; max difference " << d.Max << " to in-core\n";
     Check(st.Converged && st.FinestTiles < all / 2, "tiles out of view stay coarse");
     Check(d.Max == 0, "zoomed in, converged paged rendering equals the in-core one");
   }
@@ -551,7 +590,8 @@ int TestHeightFieldPaging(int, char*[])
     rootError = ImageError(render(m), full).Rms;
   }
   const std::string corrupt = dir + "/hf-paging-corrupt.spp";
-  Check(CopyFile(pools[1], corrupt) && CorruptPage(corrupt, 40, 9), "page 40 corrupted"); // a level-0 tile in view
+  Check(CopyFile(pools[1], corrupt) && CorruptPage(corrupt, 40, 9),
+    "page 40 corrupted"); // a level-0 tile in view
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
@@ -568,12 +608,16 @@ int TestHeightFieldPaging(int, char*[])
       worstRms = std::max(worstRms, ImageError(last, full).Rms);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    const bool named = errors->First.find("checksum") != std::string::npos && errors->First.find("coarser") != std::string::npos;
-    std::cout << "HFPaging: corrupt tile: " << m->GetPagingStatistics().Failures << " failed, " << errors->Errors
-              << " VTK error(s): \"" << errors->First << "\"; RMS to in-core: worst " << worstRms << ", last "
-              << ImageError(last, full).Rms << " (roots only " << rootError << ")\n";
-    Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named, "a corrupt tile: one clear error");
-    Check(worstRms <= rootError + 0.5, "with a corrupt tile the horizons stay a valid coarser rendering");
+    const bool named = errors->First.find("checksum") != std::string::npos &&
+                       errors->First.find("coarser") != std::string::npos;
+    std::cout << "HFPaging: corrupt tile: " << m->GetPagingStatistics().Failures << " failed, "
+              << errors->Errors << " VTK error(s): \"" << errors->First
+              << "\"; RMS to in-core: worst " << worstRms << ", last " << ImageError(last, full).Rms
+              << " (roots only " << rootError << ")\n";
+    Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named,
+      "a corrupt tile: one clear error");
+    Check(worstRms <= rootError + 0.5,
+      "with a corrupt tile the horizons stay a valid coarser rendering");
   }
   const std::string shrinking = dir + "/hf-paging-shrinking.spp";
   Check(CopyFile(pools[0], shrinking), "pool copied");
@@ -592,7 +636,8 @@ int TestHeightFieldPaging(int, char*[])
       file.Open(shrinking);
       const auto firstPage = file.GetPageEntry(0).Offset;
       file.Close();
-      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0, "pool truncated behind the reader's back");
+      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0,
+        "pool truncated behind the reader's back");
     }
     double worstRms = 0.0;
     for (int f = 0; f < 40; ++f)
@@ -601,9 +646,10 @@ int TestHeightFieldPaging(int, char*[])
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     const int failures = m->GetPagingStatistics().Failures;
-    std::cout << "HFPaging: pool truncated while rendering: " << failures << " failed tiles, " << errors->Errors
-              << " VTK errors; worst RMS " << worstRms << "\n";
-    Check(failures > 0 && errors->Errors == failures, "read errors while rendering: one VTK error per failed tile");
+    std::cout << "HFPaging: pool truncated while rendering: " << failures << " failed tiles, "
+              << errors->Errors << " VTK errors; worst RMS " << worstRms << "\n";
+    Check(failures > 0 && errors->Errors == failures,
+      "read errors while rendering: one VTK error per failed tile");
     Check(worstRms <= rootError + 0.5, "after read errors the horizons keep their coarser tiles");
   }
   for (const std::string& bad : { dir + "/hf-paging-truncated.spp", dir + "/hf-no-such-pool.spp" })
@@ -618,9 +664,10 @@ int TestHeightFieldPaging(int, char*[])
     for (auto& r : rs)
       errors->Watch(r);
     render(m);
-    std::cout << "HFPaging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors << " VTK error(s): \""
-              << errors->First << "\"\n";
-    Check(errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
+    std::cout << "HFPaging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors
+              << " VTK error(s): \"" << errors->First << "\"\n";
+    Check(
+      errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
   }
   for (const auto& pool : pools)
     std::remove(pool.c_str());

@@ -13,7 +13,8 @@
 int TestHeightFieldReferenceCaster(int, char*[])
 {
   int failures = 0;
-  auto check = [&](bool ok, const char* what) {
+  auto check = [&](bool ok, const char* what)
+  {
     if (!ok)
     {
       std::cerr << "FAILED: " << what << "\n";

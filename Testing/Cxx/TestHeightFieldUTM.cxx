@@ -1,5 +1,11 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 // Hard case "UTM" of the stacked height-field ray caster: see StrataHeightFieldCases.cxx.
 #include <string>
-namespace strata_test { int RunHeightFieldCase(const std::string& name); }
-int TestHeightFieldUTM(int, char*[]) { return strata_test::RunHeightFieldCase("UTM"); }
+namespace strata_test
+{
+int RunHeightFieldCase(const std::string& name);
+}
+int TestHeightFieldUTM(int, char*[])
+{
+  return strata_test::RunHeightFieldCase("UTM");
+}

@@ -62,15 +62,19 @@ Volume Smooth(int nx, int ny, int nz, bool noise)
 void Configure(vtkHybridVolumeBuilder& b, const Volume& v, int reads[1] = nullptr)
 {
   const double spacing[3] = { 1, 1, 2 }, origin[3] = { 0, 0, 0 };
-  b.SetInput(v.N, spacing, origin, [&v, reads](int first, int count, float* out) {
-    const size_t slice = static_cast<size_t>(v.N[0]) * v.N[1];
-    std::copy(v.V.begin() + first * slice, v.V.begin() + (first + count) * slice, out);
-    if (reads)
+  b.SetInput(v.N,
+    spacing,
+    origin,
+    [&v, reads](int first, int count, float* out)
     {
-      reads[0] += count;
-    }
-    return true;
-  });
+      const size_t slice = static_cast<size_t>(v.N[0]) * v.N[1];
+      std::copy(v.V.begin() + first * slice, v.V.begin() + (first + count) * slice, out);
+      if (reads)
+      {
+        reads[0] += count;
+      }
+      return true;
+    });
 }
 
 // Kernels as the builder documents them, written independently (not normalised here).
@@ -129,8 +133,12 @@ std::vector<double> BruteLow(const Volume& v, Filter filter, const int f[3], dou
 }
 
 // Brute-force trilinear reconstruction at original index (x, y, z).
-double BruteReconstruct(const std::vector<float>& low, const int l[3], const int f[3], int x,
-  int y, int z)
+double BruteReconstruct(const std::vector<float>& low,
+  const int l[3],
+  const int f[3],
+  int x,
+  int y,
+  int z)
 {
   const int p[3] = { x, y, z };
   double r = 0;
@@ -164,8 +172,8 @@ Errors BruteErrors(const Volume& v, const vtkHybridVolumeFile& out, const int st
       for (int x = 0; x < v.N[0]; x += step[0])
       {
         e.Pos.emplace_back(x, y, z);
-        e.E.push_back(v.At(x, y, z) - BruteReconstruct(out.LowResolution, out.LowDimensions,
-                                        out.Factor, x, y, z));
+        e.E.push_back(v.At(x, y, z) -
+                      BruteReconstruct(out.LowResolution, out.LowDimensions, out.Factor, x, y, z));
       }
   return e;
 }
@@ -183,8 +191,9 @@ std::vector<std::tuple<int, int, int>> Positions(const vtkHybridVolumeFile& out)
 bool SameOutput(const vtkHybridVolumeFile& a, const vtkHybridVolumeFile& b)
 {
   return a.LowResolution == b.LowResolution && a.Points.size() == b.Points.size() &&
-    std::memcmp(a.Points.data(), b.Points.data(),
-      a.Points.size() * sizeof(vtkHybridVolumeFile::Point)) == 0;
+         std::memcmp(a.Points.data(),
+           b.Points.data(),
+           a.Points.size() * sizeof(vtkHybridVolumeFile::Point)) == 0;
 }
 
 std::string Slurp(const std::string& path)
@@ -223,7 +232,7 @@ int TestHybridVolumeBuilder(int, char*[])
       worst = std::max(worst, std::fabs(ref[i] - out.LowResolution[i]));
     }
     Check(built && out.LowResolution.size() == ref.size() && worst < 1e-5 &&
-        out.LowDimensions[0] == 7 && out.LowDimensions[1] == 4 && out.LowDimensions[2] == 5,
+            out.LowDimensions[0] == 7 && out.LowDimensions[1] == 4 && out.LowDimensions[2] == 5,
       "filter " + std::to_string(static_cast<int>(filter)) + ": low dims 7x4x5 (13x11x9, factors " +
         "2,4,2), max difference " + std::to_string(worst));
   }
@@ -260,24 +269,30 @@ int TestHybridVolumeBuilder(int, char*[])
         expected.push_back(e.Pos[i]);
       }
     }
-    std::sort(expected.begin(), expected.end(),
-      [](const auto& a, const auto& b) {
+    std::sort(expected.begin(),
+      expected.end(),
+      [](const auto& a, const auto& b)
+      {
         return std::make_tuple(std::get<2>(a), std::get<1>(a), std::get<0>(a)) <
-          std::make_tuple(std::get<2>(b), std::get<1>(b), std::get<0>(b));
+               std::make_tuple(std::get<2>(b), std::get<1>(b), std::get<0>(b));
       });
     double worst = 0;
     for (const auto& p : out.Points)
     {
-      const double be = v.At(p.Position[0], p.Position[1], p.Position[2]) -
-        BruteReconstruct(out.LowResolution, out.LowDimensions, out.Factor, p.Position[0],
-          p.Position[1], p.Position[2]);
+      const double be =
+        v.At(p.Position[0], p.Position[1], p.Position[2]) - BruteReconstruct(out.LowResolution,
+                                                              out.LowDimensions,
+                                                              out.Factor,
+                                                              p.Position[0],
+                                                              p.Position[1],
+                                                              p.Position[2]);
       worst = std::max(worst, std::fabs(be - p.Error));
     }
     Check(Positions(out) == expected && worst < 1e-6 && !expected.empty(),
-      "error grid step " + std::to_string(steps[0]) + "," + std::to_string(steps[1]) + ",1: " +
-        std::to_string(out.Points.size()) + " points with |e| > " + std::to_string(threshold) +
-        " (brute force " + std::to_string(expected.size()) + "), stored errors within " +
-        std::to_string(worst));
+      "error grid step " + std::to_string(steps[0]) + "," + std::to_string(steps[1]) +
+        ",1: " + std::to_string(out.Points.size()) + " points with |e| > " +
+        std::to_string(threshold) + " (brute force " + std::to_string(expected.size()) +
+        "), stored errors within " + std::to_string(worst));
 
     // Budget: the N largest |e|, the same set as sorting the brute-force errors.
     const uint64_t budget = expected.size() / 3;
@@ -290,7 +305,8 @@ int TestHybridVolumeBuilder(int, char*[])
     {
       order[i] = i;
     }
-    std::stable_sort(order.begin(), order.end(),
+    std::stable_sort(order.begin(),
+      order.end(),
       [&](size_t a, size_t c) { return std::fabs(e.E[a]) > std::fabs(e.E[c]); });
     const double cut = std::fabs(e.E[order[budget - 1]]) - std::fabs(e.E[order[budget]]);
     std::vector<std::tuple<int, int, int>> best;
@@ -298,10 +314,13 @@ int TestHybridVolumeBuilder(int, char*[])
     {
       best.push_back(e.Pos[order[i]]);
     }
-    std::sort(best.begin(), best.end(), [](const auto& a, const auto& c) {
-      return std::make_tuple(std::get<2>(a), std::get<1>(a), std::get<0>(a)) <
-        std::make_tuple(std::get<2>(c), std::get<1>(c), std::get<0>(c));
-    });
+    std::sort(best.begin(),
+      best.end(),
+      [](const auto& a, const auto& c)
+      {
+        return std::make_tuple(std::get<2>(a), std::get<1>(a), std::get<0>(a)) <
+               std::make_tuple(std::get<2>(c), std::get<1>(c), std::get<0>(c));
+      });
     Check(Positions(top) == best && cut > 1e-6,
       "point budget " + std::to_string(budget) + ": the largest errors (gap at the cut " +
         std::to_string(cut) + ")");
@@ -319,8 +338,8 @@ int TestHybridVolumeBuilder(int, char*[])
     vtkHybridVolumeFile out;
     b.Build(out);
     Check(out.Points.size() == 1 && out.Points[0].Position[0] == 5 &&
-        out.Points[0].Position[1] == 6 && out.Points[0].Position[2] == 7 &&
-        out.Points[0].Value == 10.0f && out.Points[0].Error > 7.0f,
+            out.Points[0].Position[1] == 6 && out.Points[0].Position[2] == 7 &&
+            out.Points[0].Value == 10.0f && out.Points[0].Error > 7.0f,
       "budget 1 gives the spike at (5, 6, 7)");
     b.SetPointBudget(0);
     b.SetThreshold(0.05); // the spike adds 8 / 64 = 0.125 to its box-filtered neighbours
@@ -336,7 +355,8 @@ int TestHybridVolumeBuilder(int, char*[])
       }
     }
     Check(Positions(out) == expected && !expected.empty(),
-      "threshold 0.05: " + std::to_string(out.Points.size()) + " points, positions equal brute force");
+      "threshold 0.05: " + std::to_string(out.Points.size()) +
+        " points, positions equal brute force");
     // The spike's +x neighbour has a gradient towards -x (the spike is at lower x).
     bool normal = false;
     b.SetThreshold(0); // every non-zero error, so the neighbour is a point
@@ -390,8 +410,8 @@ int TestHybridVolumeBuilder(int, char*[])
     vtkHybridVolumeFile out;
     const bool built = b.Build(out);
     Check(built && out.Points.empty() && out.LowDimensions[0] == 3,
-      "filter " + std::to_string(static_cast<int>(filter)) + ", factors 8,4,2: " +
-        std::to_string(out.Points.size()) + " points");
+      "filter " + std::to_string(static_cast<int>(filter)) +
+        ", factors 8,4,2: " + std::to_string(out.Points.size()) + " points");
   }
 
   std::cout << "Bounded memory: a limit of a few slices gives the same output\n";
@@ -463,23 +483,26 @@ int TestHybridVolumeBuilder(int, char*[])
     const bool written = out.Write(path);
     const bool read = back.Read(path);
     bool same = read && SameOutput(out, back) && back.Filter == out.Filter &&
-      back.OverestimationBound == out.OverestimationBound && back.Threshold == out.Threshold;
+                back.OverestimationBound == out.OverestimationBound &&
+                back.Threshold == out.Threshold;
     for (int a = 0; a < 3; ++a)
     {
       same = same && back.Dimensions[a] == out.Dimensions[a] && back.Factor[a] == out.Factor[a] &&
-        back.Spacing[a] == out.Spacing[a] && back.Origin[a] == out.Origin[a] &&
-        back.LowDimensions[a] == out.LowDimensions[a] &&
-        back.ErrorGridStep[a] == out.ErrorGridStep[a];
+             back.Spacing[a] == out.Spacing[a] && back.Origin[a] == out.Origin[a] &&
+             back.LowDimensions[a] == out.LowDimensions[a] &&
+             back.ErrorGridStep[a] == out.ErrorGridStep[a];
     }
-    Check(written && same, "read back bit-exact: " + std::to_string(back.Points.size()) +
-        " points, " + std::to_string(back.LowResolution.size()) + " low-resolution values");
+    Check(written && same,
+      "read back bit-exact: " + std::to_string(back.Points.size()) + " points, " +
+        std::to_string(back.LowResolution.size()) + " low-resolution values");
     Check(!std::ifstream(path + ".partial").good(), "no temporary file left behind");
     const std::string bytes = Slurp(path);
     Check(bytes.size() == 160 + 4 * out.LowResolution.size() + 16 * out.Points.size(),
       "file size = 160 + 4 * low values + 16 * points = " + std::to_string(bytes.size()));
 
     const std::string bad = path + ".bad";
-    auto rejects = [&](const std::string& content, const std::string& what) {
+    auto rejects = [&](const std::string& content, const std::string& what)
+    {
       Spit(bad, content);
       vtkHybridVolumeFile f;
       const bool ok = f.Read(bad);

@@ -49,7 +49,8 @@ vtkSmartPointer<vtkImageData> ThinFeatures()
     for (int y = 0; y < 57; ++y)
       for (int x = 0; x < 65; ++x)
       {
-        const double r = std::sqrt((x - 32.0) * (x - 32.0) + (y - 28.0) * (y - 28.0) + (z - 24.0) * (z - 24.0));
+        const double r =
+          std::sqrt((x - 32.0) * (x - 32.0) + (y - 28.0) * (y - 28.0) + (z - 24.0) * (z - 24.0));
         double s = 90.0 * std::exp(-r * r / 300.0);
         if ((x == 20 && z == 30) || (y == 40 && z == 12) || (x == 45 && y == 15))
           s = 230.0; // one-voxel rods along three axes
@@ -128,8 +129,9 @@ int TestHybridVolumeMapper(int, char*[])
   vtkPolyData* points = filter->GetPointsOutput();
   vtkNew<vtkImageData> low;
   low->DeepCopy(filter->GetLowResolutionOutput());
-  std::cout << "Hybrid: low-resolution " << low->GetDimensions()[0] << "x" << low->GetDimensions()[1] << "x"
-            << low->GetDimensions()[2] << ", " << points->GetNumberOfPoints() << " points\n";
+  std::cout << "Hybrid: low-resolution " << low->GetDimensions()[0] << "x"
+            << low->GetDimensions()[1] << "x" << low->GetDimensions()[2] << ", "
+            << points->GetNumberOfPoints() << " points\n";
 
   vtkNew<vtkMultiVolumeRayCastMapper> lowMapper;
   lowMapper->SetInputData(low);
@@ -148,13 +150,18 @@ int TestHybridVolumeMapper(int, char*[])
   const auto splats = scene.Render(hybrid);
   const std::string splatFS = hybrid->GetPointFragmentShaderSource();
 
-  const double lowRms = ImageError(lowImage, full).Rms, squareRms = ImageError(squares, full).Rms, splatRms = ImageError(splats, full).Rms;
-  std::cout << "Hybrid: RMS against full resolution: low-resolution alone " << lowRms << ", squares " << squareRms
-            << ", splats " << splatRms << " (" << drawn << " points drawn)\n";
-  Check(points->GetNumberOfPoints() > 100 && drawn == points->GetNumberOfPoints(), "points were made and all drawn");
+  const double lowRms = ImageError(lowImage, full).Rms, squareRms = ImageError(squares, full).Rms,
+               splatRms = ImageError(splats, full).Rms;
+  std::cout << "Hybrid: RMS against full resolution: low-resolution alone " << lowRms
+            << ", squares " << squareRms << ", splats " << splatRms << " (" << drawn
+            << " points drawn)\n";
+  Check(points->GetNumberOfPoints() > 100 && drawn == points->GetNumberOfPoints(),
+    "points were made and all drawn");
   Check(lowRms > 2.0, "the thin features make the low-resolution image wrong (RMS > 2)");
-  Check(squareRms < 0.6 * lowRms, "squares bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
-  Check(splatRms < 0.6 * lowRms, "splats bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
+  Check(squareRms < 0.6 * lowRms,
+    "squares bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
+  Check(splatRms < 0.6 * lowRms,
+    "splats bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
 
   // Ranked by the opacity the low-resolution volume misses (the transfer function known at
   // preprocessing), on the volume plus a plate of -300 the transfer function hides: every point
@@ -170,7 +177,8 @@ int TestHybridVolumeMapper(int, char*[])
     fullMapper->SetInputData(plated);
     const auto platedFull = scene.Render(fullMapper);
     vtkPiecewiseFunction* f = property->GetScalarOpacity(0);
-    auto make = [&](vtkPiecewiseFunction* opacity, double threshold, vtkIdType budget) {
+    auto make = [&](vtkPiecewiseFunction* opacity, double threshold, vtkIdType budget)
+    {
       auto filter = vtkSmartPointer<vtkHybridVolumeFilter>::New();
       filter->SetInputData(plated);
       filter->SetFactor(4, 4, 4);
@@ -181,9 +189,11 @@ int TestHybridVolumeMapper(int, char*[])
       filter->Update();
       return filter;
     };
-    auto missing = [f](vtkPolyData* p, vtkIdType i) {
+    auto missing = [f](vtkPolyData* p, vtkIdType i)
+    {
       const double s = p->GetPointData()->GetArray("Value")->GetComponent(i, 0);
-      return f->GetValue(s) - f->GetValue(s - p->GetPointData()->GetArray("Error")->GetComponent(i, 0));
+      return f->GetValue(s) -
+             f->GetValue(s - p->GetPointData()->GetArray("Error")->GetComponent(i, 0));
     };
     auto weighted = make(f, 0.02, 0);
     auto all = make(nullptr, 0.0, 0); // every point with an error: the brute force
@@ -193,8 +203,8 @@ int TestHybridVolumeMapper(int, char*[])
       below += missing(wp, i) > 0.02 ? 0 : 1;
     for (vtkIdType i = 0; i < all->GetPointsOutput()->GetNumberOfPoints(); ++i)
       expected += missing(all->GetPointsOutput(), i) > 0.02 ? 1 : 0;
-    std::cout << "Hybrid: ranked by missing opacity > 0.02: " << wp->GetNumberOfPoints() << " points (brute force "
-              << expected << "), " << below << " below the threshold\n";
+    std::cout << "Hybrid: ranked by missing opacity > 0.02: " << wp->GetNumberOfPoints()
+              << " points (brute force " << expected << "), " << below << " below the threshold\n";
     Check(wp->GetNumberOfPoints() == expected && below == 0 && expected > 0,
       "opacity ranking keeps exactly the points missing more opacity than the threshold");
     const vtkIdType n = wp->GetNumberOfPoints();
@@ -207,9 +217,10 @@ int TestHybridVolumeMapper(int, char*[])
     const double weightedRms = ImageError(scene.Render(hybrid), platedFull).Rms;
     hybrid->SetPointsInputData(byError->GetPointsOutput());
     const double errorRms = ImageError(scene.Render(hybrid), platedFull).Rms;
-    std::cout << "Hybrid: " << n << " points: RMS ranked by missing opacity " << weightedRms << ", by |error| "
-              << errorRms << "\n";
-    Check(weightedRms < errorRms - 1.0, "with as many points, ranking by missing opacity gives the closer image (by > 1 RMS level)");
+    std::cout << "Hybrid: " << n << " points: RMS ranked by missing opacity " << weightedRms
+              << ", by |error| " << errorRms << "\n";
+    Check(weightedRms < errorRms - 1.0,
+      "with as many points, ranking by missing opacity gives the closer image (by > 1 RMS level)");
     hybrid->SetInputData(low);
     hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
   }
@@ -227,8 +238,11 @@ int TestHybridVolumeMapper(int, char*[])
   {
     hybrid->SetNumberOfSlabs(slabs);
     const int mx = static_cast<int>(ImageError(scene.Render(hybrid), lowImage).Max);
-    std::cout << "Hybrid: " << slabs << " slabs, points adding nothing: max difference to the low-resolution image " << mx << "\n";
-    Check(mx <= std::max(1, slabs / 4), "depth slabs recompose the low-resolution image (" + std::to_string(slabs) +
+    std::cout << "Hybrid: " << slabs
+              << " slabs, points adding nothing: max difference to the low-resolution image " << mx
+              << "\n";
+    Check(mx <= std::max(1, slabs / 4),
+      "depth slabs recompose the low-resolution image (" + std::to_string(slabs) +
         " slabs: max difference <= " + std::to_string(std::max(1, slabs / 4)) + " of 255)");
   }
 
@@ -253,7 +267,8 @@ int TestHybridVolumeMapper(int, char*[])
   Check(flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff == 0,
     "a constant volume gives no points and renders as the low-resolution volume alone");
 
-  auto has = [](const std::string& s, const char* what) { return s.find(what) != std::string::npos; };
+  auto has = [](const std::string& s, const char* what)
+  { return s.find(what) != std::string::npos; };
   Check(!has(squareFS, "gl_PointCoord") && !has(squareFS, "exp("), "squares: no splat kernel code");
   Check(has(splatFS, "gl_PointCoord") && has(splatFS, "exp("), "splats: the Gaussian kernel");
   Check(!has(squareVS, "ormal"), "shading off: no normals");

@@ -31,8 +31,8 @@ int TestMinMaxQuadtree(int, char*[])
   {
     for (int i = 0; i < nx; ++i)
     {
-      a[j * nx + i] = float(i);          // ramp 0..8
-      b[j * nx + i] = 10.0f;             // flat
+      a[j * nx + i] = float(i);                                                       // ramp 0..8
+      b[j * nx + i] = 10.0f;                                                          // flat
       c[j * nx + i] = i < 4 ? std::numeric_limits<float>::quiet_NaN() : float(3 + j); // holes left
     }
   }
@@ -58,10 +58,10 @@ int TestMinMaxQuadtree(int, char*[])
   const auto& i0 = tree.GetIntervals()[n00.IntervalOffset];
   const auto& i1 = tree.GetIntervals()[n00.IntervalOffset + 1];
   Check(i0.ZMin == 0.0f && i0.ZMax == 2.0f && i0.LayerCount == 1 &&
-      tree.GetLayerLists()[i0.LayerOffset] == 0,
+          tree.GetLayerLists()[i0.LayerOffset] == 0,
     "leaf (0,0) interval [0,2] = {a}");
   Check(i1.ZMin == 10.0f && i1.ZMax == 10.0f && i1.LayerCount == 1 &&
-      tree.GetLayerLists()[i1.LayerOffset] == 1,
+          tree.GetLayerLists()[i1.LayerOffset] == 1,
     "leaf (0,0) interval [10,10] = {b}");
 
   // Leaf (2,0): x in [4,6], y in [0,2] -> a [4,6], b 10, c [3,5]. End points 3,4,5,6,10:
@@ -73,7 +73,7 @@ int TestMinMaxQuadtree(int, char*[])
   Check(iv[0].ZMin == 3.0f && iv[0].ZMax == 4.0f && iv[0].LayerCount == 1, "[3,4] {c}");
   Check(iv[1].ZMin == 4.0f && iv[1].ZMax == 5.0f && iv[1].LayerCount == 2, "[4,5] {a,c}");
   Check(iv[2].ZMin == 5.0f && iv[2].ZMax == 6.0f && iv[2].LayerCount == 1 &&
-      tree.GetLayerLists()[iv[2].LayerOffset] == 0,
+          tree.GetLayerLists()[iv[2].LayerOffset] == 0,
     "[5,6] {a}");
   Check(iv[3].ZMin == 10.0f && iv[3].LayerCount == 1, "[10,10] {b}");
   for (int k = 0; k + 1 < n20.IntervalCount; ++k)
@@ -103,7 +103,8 @@ int TestMinMaxQuadtree(int, char*[])
           const auto& in = tree.GetIntervals()[n.IntervalOffset + q];
           for (int r = 0; r < in.LayerCount; ++r)
           {
-            found = found || (tree.GetLayerLists()[in.LayerOffset + r] == k && h >= in.ZMin && h <= in.ZMax);
+            found = found ||
+                    (tree.GetLayerLists()[in.LayerOffset + r] == k && h >= in.ZMin && h <= in.ZMax);
           }
         }
         Check(found, "point covered by an interval of its layer");
@@ -117,7 +118,7 @@ int TestMinMaxQuadtree(int, char*[])
   ribbon.Initialize(1, 4);
   ribbon.AddLayer(line.data());
   Check(ribbon.GetNX() == 2 && ribbon.GetNY() == 4 && ribbon.GetIndexOffset(0) == -0.5 &&
-      ribbon.GetHeight(0, 1, 3) == 4.0f,
+          ribbon.GetHeight(0, 1, 3) == 4.0f,
     "1 x N ribbon expansion");
   // Null values become holes; absurd sizes are refused.
   vtkHeightFieldStack nulls;
@@ -126,7 +127,8 @@ int TestMinMaxQuadtree(int, char*[])
   nulls.AddLayer(withNull.data(), true, -999.25);
   Check(nulls.GetNumberOfHoles(0) == 2 && std::isnan(nulls.GetHeight(0, 1, 0)), "null values");
   vtkHeightFieldStack absurd;
-  Check(!absurd.Initialize(100000, 100000) && !absurd.GetErrorMessage().empty(), "absurd size refused");
+  Check(
+    !absurd.Initialize(100000, 100000) && !absurd.GetErrorMessage().empty(), "absurd size refused");
   Check(!absurd.Initialize(0, 5), "empty grid refused");
 
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -148,7 +148,8 @@ int TestMultiVolumeFeedback(int, char*[])
     incore->SetInputDataObject(i, images[i]);
 
   // A paged mapper over fresh readers.
-  auto makePaged = [&](bool feedback) {
+  auto makePaged = [&](bool feedback)
+  {
     auto m = vtkSmartPointer<vtkMultiVolumeRayCastMapper>::New();
     Configure(m);
     m->SetLevelOfDetailFeedback(feedback);
@@ -178,17 +179,21 @@ int TestMultiVolumeFeedback(int, char*[])
     hidden[feedback] = paged->GetResidentBricksPerLevel(1);
     front[feedback] = paged->GetResidentBricksPerLevel(0);
     const std::string what = feedback ? "feedback" : "screen-space cut";
-    std::cout << "Feedback: hidden volume, " << what << ": converged after " << frames << " frames; resident bricks per "
-              << "level: front volume " << Levels(front[feedback]) << ", hidden volume " << Levels(hidden[feedback])
-              << " (in core " << Levels(incoreHidden) << "); max difference to in core " << e.Max << "\n";
+    std::cout << "Feedback: hidden volume, " << what << ": converged after " << frames
+              << " frames; resident bricks per "
+              << "level: front volume " << Levels(front[feedback]) << ", hidden volume "
+              << Levels(hidden[feedback]) << " (in core " << Levels(incoreHidden)
+              << "); max difference to in core " << e.Max << "\n";
     Check(frames > 0 && e.Max == 0, "converged to the in-core image (" + what + ")");
   }
   // The hidden volume: its 58 visible level-0 bricks (6 of 64 are transparent) with the
   // screen-space cut, as in core; its root alone with feedback. The front volume: with
   // feedback its far half of bricks is never reached (rays stop at their first sample, in its
   // near half) and stays at level 1.
-  Check(hidden[0] == incoreHidden && hidden[0][0] == 58, "screen-space cut: the hidden volume fully refined, as in core");
-  Check(Total(hidden[1]) == 1 && hidden[1].back() == 1, "feedback: the hidden volume keeps its root alone");
+  Check(hidden[0] == incoreHidden && hidden[0][0] == 58,
+    "screen-space cut: the hidden volume fully refined, as in core");
+  Check(Total(hidden[1]) == 1 && hidden[1].back() == 1,
+    "feedback: the hidden volume keeps its root alone");
   Check(front[1][0] > 0 && front[1][0] <= 32 && Total(front[1]) < Total(front[0]),
     "feedback: only the near half of the front volume's level-0 bricks is refined");
 
@@ -201,12 +206,14 @@ int TestMultiVolumeFeedback(int, char*[])
     s.Converge(cpu, cpuImage);
     auto cl = makePaged(true);
     s.Converge(cl, clImage);
-    std::cout << "Feedback: reduced on the " << (cl->GetPagingStatistics().FeedbackOpenCL ? "OpenCL device" : "CPU (no OpenCL)")
-              << " and on the CPU: front volume " << Levels(cl->GetResidentBricksPerLevel(0)) << " and "
-              << Levels(cpu->GetResidentBricksPerLevel(0)) << "\n";
+    std::cout << "Feedback: reduced on the "
+              << (cl->GetPagingStatistics().FeedbackOpenCL ? "OpenCL device" : "CPU (no OpenCL)")
+              << " and on the CPU: front volume " << Levels(cl->GetResidentBricksPerLevel(0))
+              << " and " << Levels(cpu->GetResidentBricksPerLevel(0)) << "\n";
     Check(!cpu->GetPagingStatistics().FeedbackOpenCL, "FeedbackOpenCL off: reduced on the CPU");
     Check(cpu->GetResidentBricksPerLevel(0) == cl->GetResidentBricksPerLevel(0) &&
-        cpu->GetResidentBricksPerLevel(1) == cl->GetResidentBricksPerLevel(1) && ImageError(cpuImage, clImage).Max == 0,
+            cpu->GetResidentBricksPerLevel(1) == cl->GetResidentBricksPerLevel(1) &&
+            ImageError(cpuImage, clImage).Max == 0,
       "CPU and OpenCL reductions drive the same cut and image");
     for (int scale : { 1, 8 })
     {
@@ -214,11 +221,14 @@ int TestMultiVolumeFeedback(int, char*[])
       m->SetFeedbackScale(scale);
       std::vector<unsigned char> image;
       const int frames = s.Converge(m, image);
-      std::cout << "Feedback: scale 1/" << scale << ": converged after " << frames << " frames; front volume "
-                << Levels(m->GetResidentBricksPerLevel(0)) << ", hidden volume " << Levels(m->GetResidentBricksPerLevel(1))
+      std::cout << "Feedback: scale 1/" << scale << ": converged after " << frames
+                << " frames; front volume " << Levels(m->GetResidentBricksPerLevel(0))
+                << ", hidden volume " << Levels(m->GetResidentBricksPerLevel(1))
                 << "; max difference " << ImageError(image, reference).Max << "\n";
-      Check(frames > 0 && Total(m->GetResidentBricksPerLevel(1)) == 1 && ImageError(image, reference).Max == 0,
-        "feedback scale 1/" + std::to_string(scale) + ": hidden volume at its root, image as in core");
+      Check(frames > 0 && Total(m->GetResidentBricksPerLevel(1)) == 1 &&
+              ImageError(image, reference).Max == 0,
+        "feedback scale 1/" + std::to_string(scale) +
+          ": hidden volume at its root, image as in core");
     }
   }
 
@@ -249,9 +259,10 @@ int TestMultiVolumeFeedback(int, char*[])
     std::vector<unsigned char> image;
     const int frames = s.Converge(coarse, image);
     const auto levels = coarse->GetResidentBricksPerLevel(0);
-    std::cout << "Feedback: ErrorThreshold 8 pixels: converged after " << frames << " frames; front volume "
-              << Levels(levels) << "\n";
-    Check(frames > 0 && levels[0] == 0 && levels[1] > 0, "ErrorThreshold 8: the front volume refined to level 1 only");
+    std::cout << "Feedback: ErrorThreshold 8 pixels: converged after " << frames
+              << " frames; front volume " << Levels(levels) << "\n";
+    Check(frames > 0 && levels[0] == 0 && levels[1] > 0,
+      "ErrorThreshold 8: the front volume refined to level 1 only");
   }
 
   for (const std::string& pool : pools)

@@ -3,13 +3,13 @@
 // The multi-volume ray caster paging a volume from a page pool (vtkPagePoolReader in front of
 // vtkMultiVolumeRayCastMapper): along a scripted camera path, every frame before the cache
 // settles is a valid coarser rendering (the in-core rendering of exactly the cut it drew, and
-// no further from the converged in-core image than the root-only rendering), and after it settles the paged image equals the
-// in-core rendering of the same data - with the screen-space cut, and with level-of-detail
-// feedback when every brick fits (see TestMultiVolumeFeedback for what feedback leaves
-// coarse). The roots come from the readers' pipeline output: the render thread reads no page.
-// Then the faults: a corrupt page, a pool truncated while
-// rendering, a truncated pool and a missing file give VTK errors and no crash, and the paged
-// volume keeps its coarser bricks.
+// no further from the converged in-core image than the root-only rendering), and after it settles
+// the paged image equals the in-core rendering of the same data - with the screen-space cut, and
+// with level-of-detail feedback when every brick fits (see TestMultiVolumeFeedback for what
+// feedback leaves coarse). The roots come from the readers' pipeline output: the render thread
+// reads no page. Then the faults: a corrupt page, a pool truncated while rendering, a truncated
+// pool and a missing file give VTK errors and no crash, and the paged volume keeps its coarser
+// bricks.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
@@ -94,7 +94,8 @@ struct CutDifference
   double Max = 0.0;
 };
 
-CutDifference CompareWithCut(const std::vector<unsigned char>& image, const std::vector<unsigned char>& ofCut)
+CutDifference CompareWithCut(const std::vector<unsigned char>& image,
+  const std::vector<unsigned char>& ofCut)
 {
   CutDifference d;
   const ChannelError e = ImageError(image, ofCut);
@@ -106,7 +107,7 @@ CutDifference CompareWithCut(const std::vector<unsigned char>& image, const std:
 
 // Renders the paged mapper until it reports convergence (at most `frames`), letting the
 // workers load between frames; returns the frames and calls `each` on every image.
-template <typename F>
+template<typename F>
 int RenderUntilConverged(Scene& s, vtkMultiVolumeRayCastMapper* paged, int frames, F each)
 {
   for (int f = 1; f <= frames; ++f)
@@ -116,8 +117,9 @@ int RenderUntilConverged(Scene& s, vtkMultiVolumeRayCastMapper* paged, int frame
     if (std::getenv("STRATA_DEBUG_PAGING")) // per-frame state, for looking into a failure
     {
       const auto st = paged->GetPagingStatistics();
-      std::cout << "  frame " << f << ": resident " << paged->GetNumberOfResidentBricks() << ", pending " << st.PendingPages
-                << ", misses " << st.MissesThisFrame << ", converged " << st.Converged << ", read " << st.BytesRead << "\n";
+      std::cout << "  frame " << f << ": resident " << paged->GetNumberOfResidentBricks()
+                << ", pending " << st.PendingPages << ", misses " << st.MissesThisFrame
+                << ", converged " << st.Converged << ", read " << st.BytesRead << "\n";
     }
     if (paged->GetPagingStatistics().Converged)
       return f;
@@ -141,7 +143,8 @@ int TestMultiVolumePaging(int, char*[])
     writer->SetFileName(pool.c_str());
     writer->SetPageSize(Page);
     Check(writer->Write(), "pool written");
-    std::cout << "Paging: pool of " << writer->GetNumberOfPages() << " pages, " << writer->GetFileSize() << " bytes\n";
+    std::cout << "Paging: pool of " << writer->GetNumberOfPages() << " pages, "
+              << writer->GetFileSize() << " bytes\n";
   }
   // Atlas of 48 bricks: the cut must choose (the volume has 6 x 5 x 4 level-0 bricks); the
   // large one holds all 143.
@@ -193,7 +196,8 @@ int TestMultiVolumePaging(int, char*[])
     Configure(paged, mode.Atlas);
     paged->SetLevelOfDetailFeedback(mode.Feedback);
     paged->SetPagesPerFrame(4); // refine slowly: many intermediate frames to check
-    paged->SetPrefetch(mode.Feedback); // read-ahead with feedback; the screen-space mode on demand alone
+    paged->SetPrefetch(
+      mode.Feedback); // read-ahead with feedback; the screen-space mode on demand alone
     const bool exact = mode.Reference == incoreAll;
     if (exact)
       property->SetInterpolationTypeToNearest();
@@ -210,57 +214,73 @@ int TestMultiVolumePaging(int, char*[])
       double worst = 0.0;
       CutDifference worstOfCut;
       std::vector<unsigned char> last;
-      const int frames = RenderUntilConverged(s, paged, 400, [&](const std::vector<unsigned char>& img) {
-        const double rms = ImageError(img, full).Rms;
-        worst = std::max(worst, rms);
-        intermediate += rms > 0.0 ? 1 : 0;
-        last = img;
-        // Every frame of the path against the in-core rendering of its own cut.
-        ofCut->SetFixedCut(0, paged->GetCutBricks(0));
-        const CutDifference d = CompareWithCut(img, s.Render(ofCut));
-        worstOfCut.Differing = std::max(worstOfCut.Differing, d.Differing);
-        worstOfCut.Rms = std::max(worstOfCut.Rms, d.Rms);
-        worstOfCut.Max = std::max(worstOfCut.Max, d.Max);
-        ++ofCutFrames;
-        Check(ofCut->GetCutBricks(0) == paged->GetCutBricks(0), "the in-core twin draws the paged frame's cut");
-      });
+      const int frames = RenderUntilConverged(s,
+        paged,
+        400,
+        [&](const std::vector<unsigned char>& img)
+        {
+          const double rms = ImageError(img, full).Rms;
+          worst = std::max(worst, rms);
+          intermediate += rms > 0.0 ? 1 : 0;
+          last = img;
+          // Every frame of the path against the in-core rendering of its own cut.
+          ofCut->SetFixedCut(0, paged->GetCutBricks(0));
+          const CutDifference d = CompareWithCut(img, s.Render(ofCut));
+          worstOfCut.Differing = std::max(worstOfCut.Differing, d.Differing);
+          worstOfCut.Rms = std::max(worstOfCut.Rms, d.Rms);
+          worstOfCut.Max = std::max(worstOfCut.Max, d.Max);
+          ++ofCutFrames;
+          Check(ofCut->GetCutBricks(0) == paged->GetCutBricks(0),
+            "the in-core twin draws the paged frame's cut");
+        });
       const ChannelError converged = ImageError(last, full);
       pathFrames += std::max(frames, 0);
       const std::string at = mode.Name + ", azimuth " + std::to_string(int(azimuth));
-      std::cout << "Paging (" << at << "): converged after " << frames << " frames (" << intermediate
-                << " differing from the in-core image), worst RMS " << worst << " vs root-only RMS " << rootRms
-                << "; converged RMS " << converged.Rms << ", max difference " << converged.Max << "; resident "
+      std::cout << "Paging (" << at << "): converged after " << frames << " frames ("
+                << intermediate << " differing from the in-core image), worst RMS " << worst
+                << " vs root-only RMS " << rootRms << "; converged RMS " << converged.Rms
+                << ", max difference " << converged.Max << "; resident "
                 << paged->GetNumberOfResidentBricks() << " bricks\n";
-      std::cout << "Paging (" << at << "): " << ofCutFrames << " frames against the in-core rendering of their own cut: worst "
-                << worstOfCut.Differing << " of " << Size * Size << " pixels off by more than 8/255, RMS " << worstOfCut.Rms
-                << ", max " << worstOfCut.Max << "\n";
+      std::cout << "Paging (" << at << "): " << ofCutFrames
+                << " frames against the in-core rendering of their own cut: worst "
+                << worstOfCut.Differing << " of " << Size * Size
+                << " pixels off by more than 8/255, RMS " << worstOfCut.Rms << ", max "
+                << worstOfCut.Max << "\n";
       Check(frames > 0, "the paged view converges (" + at + ")");
       Check(ofCutFrames == frames && worstOfCut.Max <= 2,
         "every intermediate frame is the in-core rendering of its own cut (" + at + ")");
-      Check(worst <= rootRms + 0.5, "every frame is at least as close as the root-only rendering (+0.5 RMS; " + at + ")");
+      Check(worst <= rootRms + 0.5,
+        "every frame is at least as close as the root-only rendering (+0.5 RMS; " + at + ")");
       if (exact || !mode.Feedback)
         Check(converged.Max == 0, "converged: the paged image equals the in-core one (" + at + ")");
       else
-        Check(converged.Rms < 0.1 * rootRms, "converged: within a tenth of the root-only RMS of the in-core image (" + at + ")");
+        Check(converged.Rms < 0.1 * rootRms,
+          "converged: within a tenth of the root-only RMS of the in-core image (" + at + ")");
       if (exact)
       {
         const auto levels = paged->GetResidentBricksPerLevel(0);
         const auto reference = incoreAll->GetResidentBricksPerLevel(0);
-        std::cout << "Paging (" << at << "): resident bricks per level " << Levels(levels) << ", in core " << Levels(reference)
-                  << "\n";
-        Check(levels == reference, "every brick the rays sample is at level 0, as in core (" + at + ")");
+        std::cout << "Paging (" << at << "): resident bricks per level " << Levels(levels)
+                  << ", in core " << Levels(reference) << "\n";
+        Check(levels == reference,
+          "every brick the rays sample is at level 0, as in core (" + at + ")");
       }
     }
     property->SetInterpolationTypeToLinear();
     const auto stats = paged->GetPagingStatistics();
-    std::cout << "Paging (" << mode.Name << "): " << pathFrames << " frames on the path; the reader's own output: level "
-              << reader->GetLevelRead() << ", " << reader->GetNumberOfPagesRead() << " page(s); roots: "
-              << stats.RootPagesFromPipeline << " from the pipeline, " << stats.RootPagesRead
-              << " read on the render thread; " << stats.BytesRead << " bytes read; " << stats.CacheBytes
-              << " bytes cached; last feedback: " << stats.FeedbackPages << " pages, " << stats.FeedbackPixels
-              << " pixels, " << stats.FeedbackMilliseconds << " ms (" << (stats.FeedbackOpenCL ? "OpenCL" : "CPU") << ")\n";
-    Check(reader->GetLevelRead() == reader->GetNumberOfLevels() - 1 && reader->GetNumberOfPagesRead() <= 1,
-      "through the pipeline the reader serves its coarsest level only (one page, then from its last output)");
+    std::cout << "Paging (" << mode.Name << "): " << pathFrames
+              << " frames on the path; the reader's own output: level " << reader->GetLevelRead()
+              << ", " << reader->GetNumberOfPagesRead()
+              << " page(s); roots: " << stats.RootPagesFromPipeline << " from the pipeline, "
+              << stats.RootPagesRead << " read on the render thread; " << stats.BytesRead
+              << " bytes read; " << stats.CacheBytes
+              << " bytes cached; last feedback: " << stats.FeedbackPages << " pages, "
+              << stats.FeedbackPixels << " pixels, " << stats.FeedbackMilliseconds << " ms ("
+              << (stats.FeedbackOpenCL ? "OpenCL" : "CPU") << ")\n";
+    Check(reader->GetLevelRead() == reader->GetNumberOfLevels() - 1 &&
+            reader->GetNumberOfPagesRead() <= 1,
+      "through the pipeline the reader serves its coarsest level only (one page, then from its "
+      "last output)");
     Check(stats.Failures == 0, "no failures (" + mode.Name + ")");
     totalRootsRead += stats.RootPagesRead;
     totalRootsFromPipeline += stats.RootPagesFromPipeline;
@@ -277,7 +297,8 @@ int TestMultiVolumePaging(int, char*[])
     MakeWindow(dwin, dren, Size, Size);
     std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>> inputs;
     auto demo = AddVolumeDemoScene(dren, TestDataDirectory(), inputs);
-    auto* demoMapper = demo ? vtkMultiVolumeRayCastMapper::SafeDownCast(demo->GetMapper()) : nullptr;
+    auto* demoMapper =
+      demo ? vtkMultiVolumeRayCastMapper::SafeDownCast(demo->GetMapper()) : nullptr;
     Check(demoMapper != nullptr, "the demo's volume scene loads");
     if (demoMapper)
     {
@@ -320,7 +341,8 @@ int TestMultiVolumePaging(int, char*[])
           dwin->Render();
           last = ReadRGB(dwin);
           for (size_t i = 0; i < inputs.size(); ++i)
-            twinMapper->SetFixedCut(static_cast<int>(i), demoMapper->GetCutBricks(static_cast<int>(i)));
+            twinMapper->SetFixedCut(
+              static_cast<int>(i), demoMapper->GetCutBricks(static_cast<int>(i)));
           twin->Render();
           const ChannelError e = ImageError(last, ReadRGB(twin));
           worstOfCut = std::max(worstOfCut, e.Max);
@@ -333,15 +355,19 @@ int TestMultiVolumePaging(int, char*[])
         const int mx = static_cast<int>(ImageError(last, incoreDemo).Max);
         std::cout << "Paging: demo volume scene, " << paged << " of " << inputs.size()
                   << " volumes paged: converged after " << frames + 1 << " frames; RMS " << rms
-                  << ", max difference " << mx << " to the in-core scene; every frame against the in-core rendering of its cuts: max difference "
+                  << ", max difference " << mx
+                  << " to the in-core scene; every frame against the in-core rendering of its "
+                     "cuts: max difference "
                   << worstOfCut << ", RMS " << worstOfCutRms << "\n";
         // The uint8 volumes' coarse bricks: the pool rounds them, the in-core tree does not.
         Check(worstOfCut <= 16 && worstOfCutRms <= 0.5,
-          "every frame of the paged demo scene is the rendering of its cuts (" + std::to_string(paged) + " paged; RMS <= 0.5, max <= 16)");
+          "every frame of the paged demo scene is the rendering of its cuts (" +
+            std::to_string(paged) + " paged; RMS <= 0.5, max <= 16)");
         // Integer volumes: the pool rounds coarse levels to the type, the in-core tree keeps
         // them in float; a coarse brick can differ by half a data unit.
         Check(frames < 400 && rms <= 0.25 && mx <= 2,
-          "the paged demo scene equals the in-core one (" + std::to_string(paged) + " paged; RMS <= 0.25, max <= 2)");
+          "the paged demo scene equals the in-core one (" + std::to_string(paged) +
+            " paged; RMS <= 0.25, max <= 2)");
       }
       for (size_t i = 0; i < inputs.size(); ++i)
         std::remove((dir + "/paging-demo-" + std::to_string(i) + ".spp").c_str());
@@ -350,7 +376,8 @@ int TestMultiVolumePaging(int, char*[])
 
   // --- Faults. A corrupt level-0 page (one stored byte flipped): one error, the rest converges.
   const std::string corrupt = dir + "/paging-corrupt.spp";
-  Check(CopyFile(pool, corrupt) && CorruptPage(corrupt, 7, 5), "page 7 corrupted"); // a level-0 page
+  Check(
+    CopyFile(pool, corrupt) && CorruptPage(corrupt, 7, 5), "page 7 corrupted"); // a level-0 page
   s.Camera(-60.0);
   std::vector<unsigned char> full;
   for (int i = 0; i < 3; ++i)
@@ -374,17 +401,22 @@ int TestMultiVolumePaging(int, char*[])
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     const bool named = errors->First.find("failed to load") != std::string::npos &&
-      errors->First.find("checksum") != std::string::npos;
-    std::cout << "Paging: corrupt page: " << m->GetPagingStatistics().Failures << " failed page(s), "
-              << errors->Errors << " VTK error(s): \"" << errors->First << "\"; RMS to in-core " << ImageError(last, full).Rms
-              << " (root-only " << ImageError(rootImage, full).Rms << ")\n";
+                       errors->First.find("checksum") != std::string::npos;
+    std::cout << "Paging: corrupt page: " << m->GetPagingStatistics().Failures
+              << " failed page(s), " << errors->Errors << " VTK error(s): \"" << errors->First
+              << "\"; RMS to in-core " << ImageError(last, full).Rms << " (root-only "
+              << ImageError(rootImage, full).Rms << ")\n";
     Check(m->GetPagingStatistics().Failures == 1 && errors->Errors == 1 && named,
       "a corrupt page: one clear error naming the failed load");
-    Check(worst <= ImageError(rootImage, full).Rms + 0.5, "with a corrupt page the volume stays a valid coarser rendering");
+    Check(worst <= ImageError(rootImage, full).Rms + 0.5,
+      "with a corrupt page the volume stays a valid coarser rendering");
     ofCut->SetFixedCut(0, m->GetCutBricks(0));
     const ChannelError e = ImageError(last, s.Render(ofCut));
-    std::cout << "Paging: corrupt page: the last frame against the in-core rendering of its cut: max difference " << e.Max << "\n";
-    Check(e.Max <= 2, "with a corrupt page the last frame is the rendering of its cut (the coarser brick stays)");
+    std::cout << "Paging: corrupt page: the last frame against the in-core rendering of its cut: "
+                 "max difference "
+              << e.Max << "\n";
+    Check(e.Max <= 2,
+      "with a corrupt page the last frame is the rendering of its cut (the coarser brick stays)");
   }
 
   // A pool truncated while it is being rendered: reads past the end fail, coarse bricks stay.
@@ -406,7 +438,8 @@ int TestMultiVolumePaging(int, char*[])
       file.Open(shrinking);
       const auto firstPage = file.GetPageEntry(0).Offset;
       file.Close();
-      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0, "pool truncated behind the reader's back");
+      Check(truncate(shrinking.c_str(), static_cast<off_t>(firstPage)) == 0,
+        "pool truncated behind the reader's back");
     }
     double worst = 0.0, worstOfCut = 0.0;
     for (int f = 0; f < 40; ++f)
@@ -417,13 +450,15 @@ int TestMultiVolumePaging(int, char*[])
       worstOfCut = std::max(worstOfCut, ImageError(img, s.Render(ofCut)).Max);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    std::cout << "Paging: pool truncated while rendering: " << m->GetPagingStatistics().Failures << " failed pages, "
-              << errors->Errors << " VTK errors; worst RMS " << worst << "; worst max difference to the rendering of its cut "
-              << worstOfCut << "\n";
+    std::cout << "Paging: pool truncated while rendering: " << m->GetPagingStatistics().Failures
+              << " failed pages, " << errors->Errors << " VTK errors; worst RMS " << worst
+              << "; worst max difference to the rendering of its cut " << worstOfCut << "\n";
     Check(worstOfCut <= 2, "after read errors every frame is the rendering of its cut");
-    Check(m->GetPagingStatistics().Failures > 0 && errors->Errors == m->GetPagingStatistics().Failures,
+    Check(
+      m->GetPagingStatistics().Failures > 0 && errors->Errors == m->GetPagingStatistics().Failures,
       "read errors while rendering: one VTK error per failed page");
-    Check(worst <= ImageError(rootImage, full).Rms + 0.5, "after read errors the volume keeps its coarser bricks");
+    Check(worst <= ImageError(rootImage, full).Rms + 0.5,
+      "after read errors the volume keeps its coarser bricks");
   }
 
   // A truncated pool and a missing file: errors from the reader, nothing drawn, no crash.
@@ -440,9 +475,10 @@ int TestMultiVolumePaging(int, char*[])
     errors->Watch(r);
     errors->Watch(m);
     s.Render(m);
-    std::cout << "Paging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors << " VTK error(s): \"" << errors->First
-              << "\"\n";
-    Check(errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
+    std::cout << "Paging: " << bad.substr(dir.size() + 1) << ": " << errors->Errors
+              << " VTK error(s): \"" << errors->First << "\"\n";
+    Check(
+      errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
   }
   std::remove(pool.c_str());
   std::remove(corrupt.c_str());

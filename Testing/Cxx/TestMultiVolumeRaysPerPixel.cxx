@@ -1,5 +1,11 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 // Case "RaysPerPixel" of the multi-volume ray caster: see StrataMultiVolumeCases.cxx.
 #include <string>
-namespace strata_test { int RunMultiVolumeCase(const std::string& name); }
-int TestMultiVolumeRaysPerPixel(int, char*[]) { return strata_test::RunMultiVolumeCase("RaysPerPixel"); }
+namespace strata_test
+{
+int RunMultiVolumeCase(const std::string& name);
+}
+int TestMultiVolumeRaysPerPixel(int, char*[])
+{
+  return strata_test::RunMultiVolumeCase("RaysPerPixel");
+}

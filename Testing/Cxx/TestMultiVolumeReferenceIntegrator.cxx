@@ -75,15 +75,22 @@ std::array<double, 9> Rotation(double ax, double ay, double az, double angle)
   ay /= n;
   az /= n;
   const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
-  return { t * ax * ax + c, t * ax * ay - s * az, t * ax * az + s * ay, t * ax * ay + s * az,
-    t * ay * ay + c, t * ay * az - s * ax, t * ax * az - s * ay, t * ay * az + s * ax,
+  return { t * ax * ax + c,
+    t * ax * ay - s * az,
+    t * ax * az + s * ay,
+    t * ax * ay + s * az,
+    t * ay * ay + c,
+    t * ay * az - s * ax,
+    t * ax * az - s * ay,
+    t * ay * az + s * ax,
     t * az * az + c };
 }
 
 void SetModel(Volume& v, const std::array<double, 9>& r, double tx, double ty, double tz)
 {
-  const double m[16] = { r[0], r[1], r[2], tx, r[3], r[4], r[5], ty, r[6], r[7], r[8], tz, 0, 0, 0,
-    1 };
+  const double m[16] = {
+    r[0], r[1], r[2], tx, r[3], r[4], r[5], ty, r[6], r[7], r[8], tz, 0, 0, 0, 1
+  };
   std::copy(m, m + 16, v.ModelMatrix);
 }
 
@@ -132,8 +139,16 @@ TransferFunction RichTF(double unit)
   return tf;
 }
 
-Volume MakeVolume(int nx, int ny, int nz, double sx, double sy, double sz, double ox, double oy,
-  double oz, double (*f)(int, int, int))
+Volume MakeVolume(int nx,
+  int ny,
+  int nz,
+  double sx,
+  double sy,
+  double sz,
+  double ox,
+  double oy,
+  double oz,
+  double (*f)(int, int, int))
 {
   Volume v;
   const int dims[3] = { nx, ny, nz };
@@ -229,36 +244,87 @@ Mat4 View(const double eye[3], const double centre[3], const double up[3])
   {
     x /= fn;
   }
-  double s[3] = { f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2],
-    f[0] * up[1] - f[1] * up[0] };
+  double s[3] = {
+    f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]
+  };
   const double sn = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
   for (double& x : s)
   {
     x /= sn;
   }
-  const double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
-    s[0] * f[1] - s[1] * f[0] };
-  return { s[0], s[1], s[2], -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]), u[0], u[1], u[2],
-    -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]), -f[0], -f[1], -f[2],
-    f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 0, 0, 0, 1 };
+  const double u[3] = {
+    s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]
+  };
+  return { s[0],
+    s[1],
+    s[2],
+    -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]),
+    u[0],
+    u[1],
+    u[2],
+    -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]),
+    -f[0],
+    -f[1],
+    -f[2],
+    f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2],
+    0,
+    0,
+    0,
+    1 };
 }
 
 // World -> clip of an OpenGL perspective camera.
-Mat4 WorldToClip(const double eye[3], const double centre[3], const double up[3], double fovyDeg,
-  double nearZ, double farZ)
+Mat4 WorldToClip(const double eye[3],
+  const double centre[3],
+  const double up[3],
+  double fovyDeg,
+  double nearZ,
+  double farZ)
 {
   const double t = 1.0 / std::tan(0.5 * fovyDeg * 3.14159265358979323846 / 180.0);
-  const Mat4 proj = { t, 0, 0, 0, 0, t, 0, 0, 0, 0, (farZ + nearZ) / (nearZ - farZ),
-    2.0 * farZ * nearZ / (nearZ - farZ), 0, 0, -1, 0 };
+  const Mat4 proj = { t,
+    0,
+    0,
+    0,
+    0,
+    t,
+    0,
+    0,
+    0,
+    0,
+    (farZ + nearZ) / (nearZ - farZ),
+    2.0 * farZ * nearZ / (nearZ - farZ),
+    0,
+    0,
+    -1,
+    0 };
   return Mul(proj, View(eye, centre, up));
 }
 
 // World -> clip of an OpenGL orthographic camera showing [-half, half]^2.
-Mat4 WorldToClipOrtho(const double eye[3], const double centre[3], const double up[3], double half,
-  double nearZ, double farZ)
+Mat4 WorldToClipOrtho(const double eye[3],
+  const double centre[3],
+  const double up[3],
+  double half,
+  double nearZ,
+  double farZ)
 {
-  const Mat4 proj = { 1.0 / half, 0, 0, 0, 0, 1.0 / half, 0, 0, 0, 0, -2.0 / (farZ - nearZ),
-    -(farZ + nearZ) / (farZ - nearZ), 0, 0, 0, 1 };
+  const Mat4 proj = { 1.0 / half,
+    0,
+    0,
+    0,
+    0,
+    1.0 / half,
+    0,
+    0,
+    0,
+    0,
+    -2.0 / (farZ - nearZ),
+    -(farZ + nearZ) / (farZ - nearZ),
+    0,
+    0,
+    0,
+    1 };
   return Mul(proj, View(eye, centre, up));
 }
 
@@ -307,8 +373,11 @@ Box BoxOf(const Volume& v, double sigma, const double color[3])
 }
 
 // Segments between all box entries and exits; each is a homogeneous medium.
-RGBA ExactBoxes(
-  const std::vector<Box>& boxes, const double o[3], const double d[3], double t0, double t1)
+RGBA ExactBoxes(const std::vector<Box>& boxes,
+  const double o[3],
+  const double d[3],
+  double t0,
+  double t1)
 {
   std::vector<double> ev = { t0, t1 };
   std::vector<std::array<double, 2>> span;
@@ -429,7 +498,15 @@ void AddOverlapScene(Integrator& integ, double tx, double ty, double tz)
   a.Classification = RichTF(2.0);
   SetModel(a, Rotation(0.3, -0.2, 1.0, 0.6), 0.5 + tx, -0.25 + ty, 0.125 + tz);
   Add(integ, a);
-  Volume b = MakeVolume(9, 11, 7, 0.8, 0.7, 0.9, 0.0 + tx, -1.5 + ty, -2.0 + tz,
+  Volume b = MakeVolume(9,
+    11,
+    7,
+    0.8,
+    0.7,
+    0.9,
+    0.0 + tx,
+    -1.5 + ty,
+    -2.0 + tz,
     [](int i, int j, int k) { return 0.3 + 0.05 * i - 0.02 * j + 0.04 * k; });
   const std::array<double, 9> r = Rotation(1.0, 1.0, 0.2, -0.5);
   std::copy(r.begin(), r.end(), b.Direction);
@@ -458,7 +535,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     // At s = 0.3: alpha = 0.22 per 2 units, c = (0.76, 0.32, 0.37).
     const double tau = Tau(0.22, 2.0);
     const double c[3] = { 0.76, 0.32, 0.37 };
-    auto expected = [&](double len) {
+    auto expected = [&](double len)
+    {
       const double a = 1.0 - std::exp(-tau * len);
       return RGBA{ c[0] * a, c[1] * a, c[2] * a, a };
     };
@@ -474,7 +552,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     // Rotated: a ray from index point pa (face i = 0) to pb (face i = 10); the chord is the world
     // distance between them (rigid transforms).
     const double pa[3] = { 0.0, 3.2, 2.5 }, pb[3] = { 10.0, 5.1, 4.4 };
-    auto rotatedCase = [&](const Volume& rv, const char* what) {
+    auto rotatedCase = [&](const Volume& rv, const char* what)
+    {
       Integrator integ;
       Add(integ, rv);
       double wa[3], wb[3], d[3], o[3];
@@ -535,7 +614,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       cv.Classification.Opacity = { cs.A0, cs.A1 };
       cv.Classification.Color = { cs.C0[0], cs.C0[1], cs.C0[2], cs.C1[0], cs.C1[1], cs.C1[2] };
       const double a = cs.A0, b = cs.A1 - cs.A0, beta = b / 8.0;
-      auto lambda = [&](double x) {
+      auto lambda = [&](double x)
+      {
         if (b == 0.0)
         {
           return -std::log(1.0 - a) * x;
@@ -544,10 +624,12 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
         return (F(1.0 - a - beta * x) - F(1.0 - a)) / beta;
       };
       // int_0^X exp(-Lambda): composite 8-point Gauss-Legendre.
-      static const double gx[4] = { 0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-        0.9602898564975363 };
-      static const double gw[4] = { 0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-        0.1012285362903763 };
+      static const double gx[4] = {
+        0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363
+      };
+      static const double gw[4] = {
+        0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763
+      };
       double integralT = 0.0;
       const int panels = 64;
       for (int p = 0; p < panels; ++p)
@@ -594,7 +676,13 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       }
       std::printf("    %s: A %.12f (exact %.12f), h = 1/64: err A %.3e C %.3e, "
                   "h = 1/128: err %.3e (ratio %.2f)\n",
-        cs.Name, got[3], exact[3], errA, errC, errFine, MaxDiff(got, exact) / errFine);
+        cs.Name,
+        got[3],
+        exact[3],
+        errA,
+        errC,
+        errFine,
+        MaxDiff(got, exact) / errFine);
       char label[128];
       std::snprintf(label, sizeof(label), "%s, alpha error", cs.Name);
       Check(label, errA, std::max(bound.Alpha, 1e-13));
@@ -669,16 +757,19 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     const RGBA got = shared.IntegrateRay(o, dz, 0.0, 10.0);
     const double TA = std::exp(-4.0 * tA), TB = std::exp(-4.0 * tB);
     const RGBA expect = { 1.0 * (1.0 - TA) + TA * 0.0 * (1.0 - TB),
-      0.5 * (1.0 - TA) + TA * 0.5 * (1.0 - TB), 0.0 * (1.0 - TA) + TA * 1.0 * (1.0 - TB),
+      0.5 * (1.0 - TA) + TA * 0.5 * (1.0 - TB),
+      0.0 * (1.0 - TA) + TA * 1.0 * (1.0 - TB),
       1.0 - TA * TB };
     std::printf("    shared face: alpha %.15f, 1 - T_A T_B = %.15f\n", got[3], expect[3]);
-    Check("(c) shared face, ray along the normal vs T_A T_B, max |dRGBA|", MaxDiff(got, expect),
+    Check("(c) shared face, ray along the normal vs T_A T_B, max |dRGBA|",
+      MaxDiff(got, expect),
       exactTol);
     const double cl[3] = { 1.0, 0.5, 0.0 }, cu[3] = { 0.0, 0.5, 1.0 };
     const std::vector<Box> faceBoxes = { BoxOf(lower, tA, cl), BoxOf(upper, tB, cu) };
     shared.IntegrateImage(cam.data(), W, H, img);
     Check("(c) shared face, image vs closed form, max |dRGBA|",
-      MaxDiff(img, ExactImage(faceBoxes, cam, W, H)), exactTol);
+      MaxDiff(img, ExactImage(faceBoxes, cam, W, H)),
+      exactTol);
   }
 
   // (d) A 90-degree rotation about z in the direction matrix equals the permuted data:
@@ -692,7 +783,15 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     Volume v1 = MakeVolume(nx, ny, nz, sx, sy, sz, 2.0, 1.0, -3.0, Smooth);
     const double rz[9] = { 0, -1, 0, 1, 0, 0, 0, 0, 1 };
     std::copy(rz, rz + 9, v1.Direction);
-    Volume v2 = MakeVolume(ny, nx, nz, sy, sx, sz, 2.0 - (ny - 1) * sy, 1.0, -3.0,
+    Volume v2 = MakeVolume(ny,
+      nx,
+      nz,
+      sy,
+      sx,
+      sz,
+      2.0 - (ny - 1) * sy,
+      1.0,
+      -3.0,
       [](int i2, int j2, int k) { return Smooth(j2, 7 - 1 - i2, k); });
     for (Volume* v : { &v1, &v2 })
     {
@@ -711,7 +810,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     std::printf("    %s: max alpha %.4f\n", nearest ? "nearest" : "trilinear", MaxAlpha(img1));
     Check(nearest ? "(d) rotated vs permuted (nearest), max |dRGBA|"
                   : "(d) rotated vs permuted (trilinear), max |dRGBA|",
-      MaxDiff(img1, img2), exactTol);
+      MaxDiff(img1, img2),
+      exactTol);
   }
 
   // (e) Translation to UTM coordinates: the scene (model-matrix translation for one volume,
@@ -732,7 +832,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     utm.GetLocalOrigin(lo);
     std::printf("    UTM local origin (%.1f, %.1f, %.1f)\n", lo[0], lo[1], lo[2]);
     const Mat4 shift = { 1, 0, 0, tr[0], 0, 1, 0, tr[1], 0, 0, 1, tr[2], 0, 0, 0, 1 };
-    auto untranslate = [&](const Mat4& m) {
+    auto untranslate = [&](const Mat4& m)
+    {
       Mat4 back = m;
       for (int r = 0; r < 3; ++r)
       {
@@ -763,10 +864,12 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
         "    %s: max alpha %.4f\n", o ? "orthographic" : "perspective", MaxAlpha(imgLocal));
       Check(o ? "(e) orthographic, same camera translated, max |dRGBA|"
               : "(e) perspective, same camera translated, max |dRGBA|",
-        MaxDiff(imgUTM, imgSame), exactTol);
+        MaxDiff(imgUTM, imgSame),
+        exactTol);
       Check(o ? "(e) orthographic, T * camera rounded at UTM, max |dRGBA|"
               : "(e) perspective, T * camera rounded at UTM, max |dRGBA|",
-        MaxDiff(imgUTM, imgLocal), 1e-8);
+        MaxDiff(imgUTM, imgLocal),
+        1e-8);
     }
   }
 
@@ -789,10 +892,13 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     const RGBA expect = { (0.2 + 0.8 * s) * a, (0.4 + 0.4 * s) * a, 0.6 * (1.0 - s) * a, a };
     const RGBA got = integ.IntegrateRay(o, d, 0.0, 4.0);
     std::printf("    %s: alpha %.15f, 1 - exp(-tau sz) = %.15f\n",
-      nearest ? "nearest" : "trilinear", got[3], a);
+      nearest ? "nearest" : "trilinear",
+      got[3],
+      a);
     Check(nearest ? "(f) thin volume along z (nearest), max |dRGBA|"
                   : "(f) thin volume along z (trilinear), max |dRGBA|",
-      MaxDiff(got, expect), exactTol);
+      MaxDiff(got, expect),
+      exactTol);
   }
 
   // (g) Convergence on the overlap scene: halving h changes the image by at most
@@ -815,10 +921,15 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
     integ.IntegrateImage(cam.data(), W, H, fine);
     const double d1 = MaxDiff(coarse, mid), d2 = MaxDiff(mid, fine);
     std::printf("    max |I(1/8) - I(1/16)| = %.3e, max |I(1/16) - I(1/32)| = %.3e, ratio %.2f\n",
-      d1, d2, d1 / d2);
+      d1,
+      d2,
+      d1 / d2);
     std::printf(
       "    stated bounds B(1/8): alpha %.3e colour %.3e; B(1/16): alpha %.3e colour %.3e\n",
-      b8.Alpha, b8.Color, b16.Alpha, b16.Color);
+      b8.Alpha,
+      b8.Color,
+      b16.Alpha,
+      b16.Color);
     Check("(g) |I(1/8) - I(1/16)| vs 1.25 B(1/8)", d1, 1.25 * std::max(b8.Alpha, b8.Color));
     Check("(g) |I(1/16) - I(1/32)| vs 1.25 B(1/16)", d2, 1.25 * std::max(b16.Alpha, b16.Color));
     Check("(g) second order: |ratio - 4|", d1 / d2 - 4.0, 1.0);
@@ -851,7 +962,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
         }
         const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         const double t0 = 0.25 + 0.002 * px, t1 = 0.4 + 0.003 * py;
-        auto depthAt = [&](double t) {
+        auto depthAt = [&](double t)
+        {
           double q[3];
           Transform(worldToClip, a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2], q);
           return 0.5 * (q[2] + 1.0);
@@ -865,7 +977,8 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
         stopOnly[idx] = integ.IntegrateRay(a, d, 0.0, t1);
       }
     }
-    auto compare = [&](const std::vector<double>& img, const std::vector<RGBA>& ref) {
+    auto compare = [&](const std::vector<double>& img, const std::vector<RGBA>& ref)
+    {
       double m = 0.0;
       for (int idx = 0; idx < w * h; ++idx)
       {

@@ -1,5 +1,11 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 // Case "Thin" of the multi-volume ray caster: see StrataMultiVolumeCases.cxx.
 #include <string>
-namespace strata_test { int RunMultiVolumeCase(const std::string& name); }
-int TestMultiVolumeThin(int, char*[]) { return strata_test::RunMultiVolumeCase("Thin"); }
+namespace strata_test
+{
+int RunMultiVolumeCase(const std::string& name);
+}
+int TestMultiVolumeThin(int, char*[])
+{
+  return strata_test::RunMultiVolumeCase("Thin");
+}

@@ -164,7 +164,8 @@ void TestKeys()
 void TestGridNeighbours()
 {
   std::cout << "Grid neighbours\n";
-  auto pages = [](const std::vector<Key>& keys) {
+  auto pages = [](const std::vector<Key>& keys)
+  {
     std::vector<std::pair<int, int64_t>> out;
     for (const Key& k : keys)
       out.emplace_back(k.Level, k.Page);
@@ -175,13 +176,16 @@ void TestGridNeighbours()
   const int grid[3] = { 4, 3, 2 }, coarse[3] = { 2, 2, 1 };
   std::vector<Key> more;
   vtkPageCache::AddGridNeighbours(K(5, 2, 21), grid, coarse, more);
-  const std::vector<std::pair<int, int64_t>> expected = { { 2, 9 }, { 2, 17 }, { 2, 20 }, { 2, 22 }, { 3, 2 } };
+  const std::vector<std::pair<int, int64_t>> expected = {
+    { 2, 9 }, { 2, 17 }, { 2, 20 }, { 2, 22 }, { 3, 2 }
+  };
   Check(pages(more) == expected && more[0].Dataset == 5,
     "a brick's face neighbours inside the grid (x -1/+1, y -1, z -1) and its parent (0, 1, 0)");
   more.clear();
   const int tiles[3] = { 3, 1, 1 };
   vtkPageCache::AddGridNeighbours(K(0, 4, 0), tiles, nullptr, more);
-  Check(pages(more) == std::vector<std::pair<int, int64_t>>{ { 4, 1 } }, "a corner tile of the coarsest level: one neighbour, no parent");
+  Check(pages(more) == std::vector<std::pair<int, int64_t>>{ { 4, 1 } },
+    "a corner tile of the coarsest level: one neighbour, no parent");
   more.clear();
   vtkPageCache::AddGridNeighbours(K(0, 0, 3), tiles, nullptr, more);
   Check(more.empty(), "a page outside the grid has none");

@@ -406,9 +406,9 @@ void CheckTiles(const std::string& dir, int nx, int ny, int layers, int B)
         }
         for (int cx = 0; cx < c[0]; ++cx)
         {
-          coarse[(static_cast<size_t>(layer) * c[1] + cy) * c[0] + cx] = weight[cx] > 0.0
-            ? static_cast<T>(acc[cx] / weight[cx])
-            : std::numeric_limits<T>::quiet_NaN();
+          coarse[(static_cast<size_t>(layer) * c[1] + cy) * c[0] + cx] =
+            weight[cx] > 0.0 ? static_cast<T>(acc[cx] / weight[cx])
+                             : std::numeric_limits<T>::quiet_NaN();
         }
       }
     }

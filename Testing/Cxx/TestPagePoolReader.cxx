@@ -100,7 +100,7 @@ bool SameValues(vtkImageData* full, vtkImageData* part, bool geometry)
     for (int a = 0; a < 3; ++a)
     {
       if (full->GetSpacing()[a] != part->GetSpacing()[a] ||
-        std::fabs(full->GetOrigin()[a] - part->GetOrigin()[a]) > 1e-9)
+          std::fabs(full->GetOrigin()[a] - part->GetOrigin()[a]) > 1e-9)
       {
         std::cerr << "  geometry differs on axis " << a << "\n";
         return false;
@@ -126,7 +126,8 @@ bool SameValues(vtkImageData* full, vtkImageData* part, bool geometry)
         const vtkIdType fi = full->ComputePointId(ijk);
         const vtkIdType pi = part->ComputePointId(ijk);
         if (std::memcmp(static_cast<char*>(fa->GetVoidPointer(0)) + fi * size,
-              static_cast<char*>(pa->GetVoidPointer(0)) + pi * size, size) != 0)
+              static_cast<char*>(pa->GetVoidPointer(0)) + pi * size,
+              size) != 0)
         {
           std::cerr << "  value differs at (" << i << ", " << j << ", " << k << ")\n";
           return false;
@@ -135,8 +136,10 @@ bool SameValues(vtkImageData* full, vtkImageData* part, bool geometry)
   return true;
 }
 
-vtkSmartPointer<vtkImageData> Read(const std::string& path, const int* extent = nullptr,
-  double resolution = -1, vtkPagePoolReader* keep = nullptr)
+vtkSmartPointer<vtkImageData> Read(const std::string& path,
+  const int* extent = nullptr,
+  double resolution = -1,
+  vtkPagePoolReader* keep = nullptr)
 {
   vtkNew<vtkPagePoolReader> local;
   vtkPagePoolReader* reader = keep ? keep : local.Get();
@@ -251,7 +254,7 @@ int TestPagePoolReader(int, char*[])
     else
     {
       Check(reader->GetLevelRead() == reader->GetNumberOfLevels() - 1 &&
-          reader->GetNumberOfPagesRead() == 1,
+              reader->GetNumberOfPagesRead() == 1,
         "resolution 0 reads the single root page");
     }
     Check(sameBounds, "coarse read covers the same physical bounds");
@@ -269,8 +272,8 @@ int TestPagePoolReader(int, char*[])
       for (int i = 0; i < 61; ++i)
       {
         const bool hole = (i - 30) * (i - 30) + (j - 20) * (j - 20) < 49 || (i + j) % 17 == 0;
-        p[j * 61 + i] = hole ? std::numeric_limits<float>::quiet_NaN()
-                             : 1500.0f + 3.7f * std::sin(0.1f * i) * j;
+        p[j * 61 + i] =
+          hole ? std::numeric_limits<float>::quiet_NaN() : 1500.0f + 3.7f * std::sin(0.1f * i) * j;
       }
     const std::string path = out + "/grid.spp";
     Convert(nullptr, grid, path, 8);
@@ -278,7 +281,8 @@ int TestPagePoolReader(int, char*[])
     vtkNew<vtkPagePoolReader> reader;
     reader->SetFileName(path.c_str());
     reader->UpdateInformation();
-    Check(reader->GetIsTilePool() && reader->GetNumberOfLayers() == 1, "2-D input gives a tile pool");
+    Check(
+      reader->GetIsTilePool() && reader->GetNumberOfLayers() == 1, "2-D input gives a tile pool");
   }
 
   // ---- bucky.raw (32^3 uint8) through a streaming vtkImageReader2. ----
@@ -316,7 +320,7 @@ int TestPagePoolReader(int, char*[])
     Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
       "missing file: error and empty output");
     Check(!vtkPagePoolReader::CanReadFile((out + "/does-not-exist.spp").c_str()) &&
-        vtkPagePoolReader::CanReadFile(volPath.c_str()),
+            vtkPagePoolReader::CanReadFile(volPath.c_str()),
       "CanReadFile");
 
     // Corrupt the first page of a copy: full reads fail, reads not touching it succeed.

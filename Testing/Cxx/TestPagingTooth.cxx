@@ -80,8 +80,9 @@ int TestPagingTooth(int, char*[])
   // Brick pools: the tooth in 16^3 bricks, its 26 x 24 x 41 factor-4 volume in 8^3.
   const std::string dir = OutputDirectory();
   const std::string toothPool = dir + "/paging-tooth.spp", lowPool = dir + "/paging-tooth-low.spp";
-  const std::pair<vtkImageData*, std::pair<std::string, int>> pools[2] = { { tooth, { toothPool, 16 } },
-    { low, { lowPool, 8 } } };
+  const std::pair<vtkImageData*, std::pair<std::string, int>> pools[2] = {
+    { tooth, { toothPool, 16 } }, { low, { lowPool, 8 } }
+  };
   for (const auto& p : pools)
   {
     vtkNew<vtkImageToPagePoolWriter> writer;
@@ -89,9 +90,10 @@ int TestPagingTooth(int, char*[])
     writer->SetFileName(p.second.first.c_str());
     writer->SetPageSize(p.second.second);
     Check(writer->Write(), "pool written: " + p.second.first);
-    std::cout << "PagingTooth: " << p.second.first.substr(dir.size() + 1) << ": " << p.first->GetDimensions()[0] << "x"
-              << p.first->GetDimensions()[1] << "x" << p.first->GetDimensions()[2] << ", " << writer->GetNumberOfPages()
-              << " pages of " << p.second.second << "^3\n";
+    std::cout << "PagingTooth: " << p.second.first.substr(dir.size() + 1) << ": "
+              << p.first->GetDimensions()[0] << "x" << p.first->GetDimensions()[1] << "x"
+              << p.first->GetDimensions()[2] << ", " << writer->GetNumberOfPages() << " pages of "
+              << p.second.second << "^3\n";
   }
   vtkNew<vtkPagePoolReader> toothReader, lowReader;
   toothReader->SetFileName(toothPool.c_str());
@@ -108,7 +110,8 @@ int TestPagingTooth(int, char*[])
   vtkCamera* cam = ren->GetActiveCamera();
 
   // Full resolution and the factor-4 volume: plain ray casters.
-  vtkNew<vtkMultiVolumeRayCastMapper> fullPaged, fullInCore, fullOfCut, lowPaged, lowInCore, lowOfCut;
+  vtkNew<vtkMultiVolumeRayCastMapper> fullPaged, fullInCore, fullOfCut, lowPaged, lowInCore,
+    lowOfCut;
   fullPaged->SetInputConnection(toothReader->GetOutputPort());
   fullInCore->SetInputData(tooth);
   fullOfCut->SetInputData(tooth);
@@ -133,10 +136,15 @@ int TestPagingTooth(int, char*[])
   const Case cases[] = {
     { "full resolution", fullPaged, fullInCore, fullOfCut, fullPaged, fullOfCut },
     { "factor 4", lowPaged, lowInCore, lowOfCut, lowPaged, lowOfCut },
-    { "hybrid", hybridPaged, hybridInCore, hybridOfCut, hybridPaged->GetVolumeMapper(),
+    { "hybrid",
+      hybridPaged,
+      hybridInCore,
+      hybridOfCut,
+      hybridPaged->GetVolumeMapper(),
       hybridOfCut->GetVolumeMapper() },
   };
-  auto render = [&](vtkVolumeMapper* m) {
+  auto render = [&](vtkVolumeMapper* m)
+  {
     volume->SetMapper(m);
     win->Render();
     return ReadRGB(win);
@@ -163,8 +171,8 @@ int TestPagingTooth(int, char*[])
     m->HoldCutOff();
     for (int f = 0; f < 5; ++f)
       render(m);
-    std::cout << "PagingTooth: held cut: " << first.size() << " bricks over 5 held renders, " << m->GetCutBricks(0).size()
-              << " after 5 more unheld\n";
+    std::cout << "PagingTooth: held cut: " << first.size() << " bricks over 5 held renders, "
+              << m->GetCutBricks(0).size() << " after 5 more unheld\n";
     Check(kept, "a held cut stays as it is");
     Check(m->GetCutBricks(0).size() > first.size(), "released, the cut refines again");
   }
@@ -210,11 +218,13 @@ int TestPagingTooth(int, char*[])
     std::string perLevel;
     for (size_t l = 0; l < levels.size(); ++l)
       perLevel += (l ? "/" : "") + std::to_string(levels[l]);
-    std::cout << "PagingTooth (" << c.Name << "): converged after " << frames << " frames; " << compared
-              << " frames against the in-core rendering of their own cut: worst RMS " << worstRms << ", max " << worstMax
-              << ", " << worstDiffering << " of " << Size * Size << " pixels off by more than 8/255; converged: RMS " << e.Rms
-              << ", max difference " << e.Max << " to in-core; bricks per level " << perLevel << "; roots from the pipeline "
-              << st.RootPagesFromPipeline << ", read on the render thread " << st.RootPagesRead << "; " << st.Failures
+    std::cout << "PagingTooth (" << c.Name << "): converged after " << frames << " frames; "
+              << compared << " frames against the in-core rendering of their own cut: worst RMS "
+              << worstRms << ", max " << worstMax << ", " << worstDiffering << " of " << Size * Size
+              << " pixels off by more than 8/255; converged: RMS " << e.Rms << ", max difference "
+              << e.Max << " to in-core; bricks per level " << perLevel
+              << "; roots from the pipeline " << st.RootPagesFromPipeline
+              << ", read on the render thread " << st.RootPagesRead << "; " << st.Failures
               << " failures\n";
     Check(converged > 0, "the paged " + c.Name + " view converges");
     Check(compared == frames, "the path's frames were compared (" + c.Name + ")");
@@ -222,12 +232,15 @@ int TestPagingTooth(int, char*[])
     // brick may differ by half a data unit, which the transfer function's slope turns into a
     // few levels of colour (6 at most here). No hole or garbage brick fits under these bounds.
     Check(worstRms <= 0.5 && worstMax <= 16,
-      "every intermediate frame is the rendering of its own cut (" + c.Name + "; RMS <= 0.5, max <= 16)");
-    Check(e.Rms <= 0.25 && e.Max <= 2, "converged, the paged image equals the in-core one (" + c.Name + "; RMS <= 0.25, max <= 2)");
-    Check(st.RootPagesRead == 0 && st.Failures == 0, "the root from the reader, no failures (" + c.Name + ")");
+      "every intermediate frame is the rendering of its own cut (" + c.Name +
+        "; RMS <= 0.5, max <= 16)");
+    Check(e.Rms <= 0.25 && e.Max <= 2,
+      "converged, the paged image equals the in-core one (" + c.Name + "; RMS <= 0.25, max <= 2)");
+    Check(st.RootPagesRead == 0 && st.Failures == 0,
+      "the root from the reader, no failures (" + c.Name + ")");
   }
   Check(toothReader->GetLevelRead() == toothReader->GetNumberOfLevels() - 1 &&
-      lowReader->GetLevelRead() == lowReader->GetNumberOfLevels() - 1,
+          lowReader->GetLevelRead() == lowReader->GetNumberOfLevels() - 1,
     "through the pipeline the readers serve their coarsest levels only");
   Check(output->Errors == 0 && output->Warnings == 0, "no VTK errors or warnings");
   std::remove(toothPool.c_str());

@@ -634,13 +634,15 @@ int TestVolumeCut(int, char*[])
     }
     // The slab's 64 bricks and their 64 siblings (i == 1) at level 0, then 16 level-1 and 4
     // level-2 nodes beside them.
-    std::cout << "Priority function: " << asked.size() << " bricks asked for, cut of " << cut.GetCost()
-              << " bricks after " << updates << " updates\n";
+    std::cout << "Priority function: " << asked.size() << " bricks asked for, cut of "
+              << cut.GetCost() << " bricks after " << updates << " updates\n";
     Check(askedFinest && exact && CoversOnce(cut, 0) && cut.GetCost() == 2 * 64 + 16 + 4,
-      "a priority function: only nodes with demand split; the asked bricks finest, the rest coarse");
+      "a priority function: only nodes with demand split; the asked bricks finest, the rest "
+      "coarse");
     cut.SetVolumePriority(0, nullptr);
     cut.Update(camera);
-    Check(cut.GetCost() > 2 * 64 + 16 + 4, "without it the screen-space error refines the rest again");
+    Check(
+      cut.GetCost() > 2 * 64 + 16 + 4, "without it the screen-space error refines the rest again");
   }
 
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -28,17 +28,23 @@ double Step(double level, double, double hi)
   return hi > level ? 1.0 : 0.0;
 }
 
-void CheckGrid(const std::vector<float>& v, const int dims[3], int C, double level, const std::string& name)
+void CheckGrid(const std::vector<float>& v,
+  const int dims[3],
+  int C,
+  double level,
+  const std::string& name)
 {
   vtkVolumeSkipGrid grid;
   grid.Build(v.data(), dims, C);
-  const long long visible = grid.Classify([level](double lo, double hi) { return Step(level, lo, hi); });
+  const long long visible =
+    grid.Classify([level](double lo, double hi) { return Step(level, lo, hi); });
   const int* cd = grid.GetCellDimensions();
   int expected[3];
   for (int a = 0; a < 3; ++a)
     expected[a] = std::max(1, (dims[a] - 1 + C - 1) / C);
   Check(cd[0] == expected[0] && cd[1] == expected[1] && cd[2] == expected[2],
-    name + ": cells " + std::to_string(cd[0]) + "x" + std::to_string(cd[1]) + "x" + std::to_string(cd[2]));
+    name + ": cells " + std::to_string(cd[0]) + "x" + std::to_string(cd[1]) + "x" +
+      std::to_string(cd[2]));
   // Brute-force ranges and visibility.
   std::vector<char> seen(size_t(cd[0]) * cd[1] * cd[2]);
   long long rangeErrors = 0, bruteVisible = 0;
@@ -63,8 +69,10 @@ void CheckGrid(const std::vector<float>& v, const int dims[3], int C, double lev
         seen[c] = lo <= hi && hi > level;
         bruteVisible += seen[c];
       }
-  Check(rangeErrors == 0, name + ": cell ranges equal brute force (" + std::to_string(rangeErrors) + " differ)");
-  Check(visible == bruteVisible, name + ": visible cells " + std::to_string(visible) + " (brute force " +
+  Check(rangeErrors == 0,
+    name + ": cell ranges equal brute force (" + std::to_string(rangeErrors) + " differ)");
+  Check(visible == bruteVisible,
+    name + ": visible cells " + std::to_string(visible) + " (brute force " +
       std::to_string(bruteVisible) + ")");
   long long distErrors = 0;
   int maxDist = 0;
@@ -77,12 +85,14 @@ void CheckGrid(const std::vector<float>& v, const int dims[3], int C, double lev
           for (int y = 0; y < cd[1]; ++y)
             for (int x = 0; x < cd[0]; ++x)
               if (seen[x + size_t(cd[0]) * (y + size_t(cd[1]) * z)])
-                best = std::min(best, std::max({ std::abs(x - i), std::abs(y - j), std::abs(z - k) }));
+                best =
+                  std::min(best, std::max({ std::abs(x - i), std::abs(y - j), std::abs(z - k) }));
         const int got = grid.GetDistances()[i + size_t(cd[0]) * (j + size_t(cd[1]) * k)];
         distErrors += got != best ? 1 : 0;
         maxDist = std::max(maxDist, got);
       }
-  Check(distErrors == 0, name + ": chessboard distances equal brute force (" + std::to_string(distErrors) +
+  Check(distErrors == 0,
+    name + ": chessboard distances equal brute force (" + std::to_string(distErrors) +
       " differ, largest " + std::to_string(maxDist) + ")");
 }
 }

@@ -65,6 +65,10 @@ int main()
   const double slack = 99 * ppu + 49 * ppu + 1;
   const bool ok = std::abs(covered - expected) <= slack;
   std::printf("downstream: window %s, covered %ld px, expected %.1f +- %.1f: %s\n",
-    win->GetClassName(), covered, expected, slack, ok ? "ok" : "FAILED");
+    win->GetClassName(),
+    covered,
+    expected,
+    slack,
+    ok ? "ok" : "FAILED");
   return ok && std::strcmp(win->GetClassName(), "vtkStrataEGLRenderWindow") == 0 ? 0 : 1;
 }
