@@ -48,13 +48,13 @@
 #ifndef vtkHorizonColumnReader_h
 #define vtkHorizonColumnReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class STRATA_EXPORT vtkHorizonColumnReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkHorizonColumnReader : public vtkImageAlgorithm
 {
 public:
   static vtkHorizonColumnReader* New();

@@ -27,14 +27,14 @@
 #ifndef vtkHybridVolumeAlgorithm_h
 #define vtkHybridVolumeAlgorithm_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkAlgorithm.h"
 
 class vtkHybridVolumeFile;
 class vtkImageData;
 class vtkPolyData;
 
-class STRATA_EXPORT vtkHybridVolumeAlgorithm : public vtkAlgorithm
+class STRATAIO_EXPORT vtkHybridVolumeAlgorithm : public vtkAlgorithm
 {
 public:
   vtkTypeMacro(vtkHybridVolumeAlgorithm, vtkAlgorithm);

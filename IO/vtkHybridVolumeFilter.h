@@ -32,14 +32,14 @@
 #ifndef vtkHybridVolumeFilter_h
 #define vtkHybridVolumeFilter_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkHybridVolumeAlgorithm.h"
 #include "vtkHybridVolumeFile.h" // For FilterType
 
 class vtkHybridVolumeBuilder;
 class vtkPiecewiseFunction;
 
-class STRATA_EXPORT vtkHybridVolumeFilter : public vtkHybridVolumeAlgorithm
+class STRATAIO_EXPORT vtkHybridVolumeFilter : public vtkHybridVolumeAlgorithm
 {
 public:
   using FilterType = vtkHybridVolumeFile::FilterType;

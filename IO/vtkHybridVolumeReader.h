@@ -16,14 +16,14 @@
 #ifndef vtkHybridVolumeReader_h
 #define vtkHybridVolumeReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkHybridVolumeAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 
 class vtkHybridVolumeFile;
 
-class STRATA_EXPORT vtkHybridVolumeReader : public vtkHybridVolumeAlgorithm
+class STRATAIO_EXPORT vtkHybridVolumeReader : public vtkHybridVolumeAlgorithm
 {
 public:
   static vtkHybridVolumeReader* New();

@@ -27,10 +27,10 @@
 #ifndef vtkImageToPagePoolWriter_h
 #define vtkImageToPagePoolWriter_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
-class STRATA_EXPORT vtkImageToPagePoolWriter : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkImageToPagePoolWriter : public vtkImageAlgorithm
 {
 public:
   static vtkImageToPagePoolWriter* New();

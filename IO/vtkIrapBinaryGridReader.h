@@ -35,10 +35,10 @@
 #ifndef vtkIrapBinaryGridReader_h
 #define vtkIrapBinaryGridReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
-class STRATA_EXPORT vtkIrapBinaryGridReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkIrapBinaryGridReader : public vtkImageAlgorithm
 {
 public:
   static vtkIrapBinaryGridReader* New();

@@ -35,12 +35,12 @@
 #ifndef vtkNumpyGridReader_h
 #define vtkNumpyGridReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 
-class STRATA_EXPORT vtkNumpyGridReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkNumpyGridReader : public vtkImageAlgorithm
 {
 public:
   static vtkNumpyGridReader* New();

@@ -39,7 +39,7 @@
 #ifndef vtkPagePoolReader_h
 #define vtkPagePoolReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
 class vtkInformationIntegerKey;
@@ -54,7 +54,7 @@ class vtkInformationDoubleKey;
 class vtkInformationStringKey;
 class vtkInformationVector;
 
-class STRATA_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
 {
 public:
   static vtkPagePoolReader* New();

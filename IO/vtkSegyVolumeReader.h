@@ -60,12 +60,12 @@
 #ifndef vtkSegyVolumeReader_h
 #define vtkSegyVolumeReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 
-class STRATA_EXPORT vtkSegyVolumeReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkSegyVolumeReader : public vtkImageAlgorithm
 {
 public:
   static vtkSegyVolumeReader* New();

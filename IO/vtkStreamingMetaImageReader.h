@@ -28,12 +28,12 @@
 #ifndef vtkStreamingMetaImageReader_h
 #define vtkStreamingMetaImageReader_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 
-class STRATA_EXPORT vtkStreamingMetaImageReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkStreamingMetaImageReader : public vtkImageAlgorithm
 {
 public:
   static vtkStreamingMetaImageReader* New();

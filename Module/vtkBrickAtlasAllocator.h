@@ -23,7 +23,7 @@
 #ifndef vtkBrickAtlasAllocator_h
 #define vtkBrickAtlasAllocator_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <array>         // For std::array
 #include <cstddef>       // For size_t
@@ -31,7 +31,7 @@
 #include <unordered_map> // For std::unordered_map
 #include <vector>        // For std::vector
 
-class STRATA_EXPORT vtkBrickAtlasAllocator
+class STRATACORE_EXPORT vtkBrickAtlasAllocator
 {
 public:
   struct Key

@@ -42,7 +42,7 @@
 #ifndef vtkFeedbackReduction_h
 #define vtkFeedbackReduction_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstddef>    // For size_t
 #include <cstdint>    // For uint32_t
@@ -51,7 +51,7 @@
 #include <string>     // For std::string
 #include <vector>     // For std::vector
 
-class STRATA_EXPORT vtkFeedbackReduction
+class STRATACORE_EXPORT vtkFeedbackReduction
 {
 public:
   struct Entry

@@ -42,7 +42,7 @@
 #ifndef vtkHeightFieldPager_h
 #define vtkHeightFieldPager_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 #include "vtkVolumeCut.h" // For vtkVolumeCut::Camera
 
 #include <cstdint> // For uint16_t, uint32_t
@@ -52,7 +52,7 @@
 
 class vtkMinMaxQuadtree;
 
-class STRATA_EXPORT vtkHeightFieldPager
+class STRATACORE_EXPORT vtkHeightFieldPager
 {
 public:
   /// One horizon: a layer of a tile pool and, optionally, its coarsest level already read.

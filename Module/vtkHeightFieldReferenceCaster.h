@@ -12,14 +12,14 @@
 #ifndef vtkHeightFieldReferenceCaster_h
 #define vtkHeightFieldReferenceCaster_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <limits> // For infinity
 #include <vector> // For std::vector
 
 class vtkHeightFieldStack;
 
-class STRATA_EXPORT vtkHeightFieldReferenceCaster
+class STRATACORE_EXPORT vtkHeightFieldReferenceCaster
 {
 public:
   explicit vtkHeightFieldReferenceCaster(const vtkHeightFieldStack& stack);

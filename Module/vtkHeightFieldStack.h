@@ -20,14 +20,14 @@
 #ifndef vtkHeightFieldStack_h
 #define vtkHeightFieldStack_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstddef> // For size_t
 #include <memory>  // For std::unique_ptr
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkHeightFieldStack
+class STRATACORE_EXPORT vtkHeightFieldStack
 {
 public:
   vtkHeightFieldStack() = default;

@@ -39,7 +39,7 @@
 #ifndef vtkHybridVolumeBuilder_h
 #define vtkHybridVolumeBuilder_h
 
-#include "StrataModule.h"        // For export macro
+#include "StrataCoreModule.h"        // For export macro
 #include "vtkHybridVolumeFile.h" // For the output and FilterType
 
 #include <cstddef>    // For size_t
@@ -47,7 +47,7 @@
 #include <functional> // For std::function
 #include <string>     // For std::string
 
-class STRATA_EXPORT vtkHybridVolumeBuilder
+class STRATACORE_EXPORT vtkHybridVolumeBuilder
 {
 public:
   using FilterType = vtkHybridVolumeFile::FilterType;

@@ -55,13 +55,13 @@
 #ifndef vtkHybridVolumeFile_h
 #define vtkHybridVolumeFile_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstdint> // For fixed-width types
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkHybridVolumeFile
+class STRATACORE_EXPORT vtkHybridVolumeFile
 {
 public:
   enum class FilterType : uint32_t

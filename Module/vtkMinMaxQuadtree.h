@@ -22,7 +22,7 @@
 #ifndef vtkMinMaxQuadtree_h
 #define vtkMinMaxQuadtree_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <array>   // For std::array
 #include <cstddef> // For size_t
@@ -30,7 +30,7 @@
 
 class vtkHeightFieldStack;
 
-class STRATA_EXPORT vtkMinMaxQuadtree
+class STRATACORE_EXPORT vtkMinMaxQuadtree
 {
 public:
   struct Node

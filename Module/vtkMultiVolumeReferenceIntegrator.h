@@ -74,14 +74,14 @@
 #ifndef vtkMultiVolumeReferenceIntegrator_h
 #define vtkMultiVolumeReferenceIntegrator_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <array>  // For std::array
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
-class STRATA_EXPORT vtkMultiVolumeReferenceIntegrator
+class STRATACORE_EXPORT vtkMultiVolumeReferenceIntegrator
 {
 public:
   enum class Interpolation

@@ -48,7 +48,7 @@
 #ifndef vtkPageCache_h
 #define vtkPageCache_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstddef>    // For size_t
 #include <cstdint>    // For int64_t, uint8_t, uint64_t
@@ -57,7 +57,7 @@
 #include <string>     // For std::string
 #include <vector>     // For std::vector
 
-class STRATA_EXPORT vtkPageCache
+class STRATACORE_EXPORT vtkPageCache
 {
 public:
   /**

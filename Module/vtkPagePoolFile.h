@@ -17,7 +17,7 @@
 #ifndef vtkPagePoolFile_h
 #define vtkPagePoolFile_h
 
-#include "StrataModule.h"      // For export macro
+#include "StrataCoreModule.h"      // For export macro
 #include "vtkPagePoolFormat.h" // For the header and table types
 
 #include <cstdint> // For fixed-width types
@@ -25,7 +25,7 @@
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkPagePoolFile
+class STRATACORE_EXPORT vtkPagePoolFile
 {
 public:
   using Header = vtkPagePoolFormat::Header;

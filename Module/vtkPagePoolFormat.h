@@ -77,14 +77,14 @@
 #ifndef vtkPagePoolFormat_h
 #define vtkPagePoolFormat_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstddef> // For size_t
 #include <cstdint> // For fixed-width types
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkPagePoolFormat
+class STRATACORE_EXPORT vtkPagePoolFormat
 {
 public:
   static constexpr uint32_t Version = 1;

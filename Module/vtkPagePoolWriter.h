@@ -33,14 +33,14 @@
 #ifndef vtkPagePoolWriter_h
 #define vtkPagePoolWriter_h
 
-#include "StrataModule.h"      // For export macro
+#include "StrataCoreModule.h"      // For export macro
 #include "vtkPagePoolFormat.h" // For the format's enums and header
 
 #include <cstdint>    // For fixed-width types
 #include <functional> // For std::function
 #include <string>     // For std::string
 
-class STRATA_EXPORT vtkPagePoolWriter
+class STRATACORE_EXPORT vtkPagePoolWriter
 {
 public:
   using Kind = vtkPagePoolFormat::Kind;

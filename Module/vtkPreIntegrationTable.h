@@ -47,13 +47,13 @@
 #ifndef vtkPreIntegrationTable_h
 #define vtkPreIntegrationTable_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <array>   // For std::array
 #include <cstdint> // For std::uint64_t
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkPreIntegrationTable
+class STRATACORE_EXPORT vtkPreIntegrationTable
 {
 public:
   vtkPreIntegrationTable();

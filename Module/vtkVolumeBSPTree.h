@@ -33,12 +33,12 @@
 #ifndef vtkVolumeBSPTree_h
 #define vtkVolumeBSPTree_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <array>  // For std::array
 #include <vector> // For std::vector
 
-class STRATA_EXPORT vtkVolumeBSPTree
+class STRATACORE_EXPORT vtkVolumeBSPTree
 {
 public:
   using Vector3 = std::array<double, 3>;

@@ -33,14 +33,14 @@
 #ifndef vtkVolumeBrickTree_h
 #define vtkVolumeBrickTree_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstddef> // For size_t
 #include <cstdint> // For fixed-width scalar types
 #include <string>  // For std::string
 #include <vector>  // For std::vector
 
-class STRATA_EXPORT vtkVolumeBrickTree
+class STRATACORE_EXPORT vtkVolumeBrickTree
 {
 public:
   enum class ScalarType

@@ -33,7 +33,7 @@
 #ifndef vtkVolumeCut_h
 #define vtkVolumeCut_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstdint>    // For uint16_t
 #include <functional> // For std::function
@@ -43,7 +43,7 @@
 class vtkBrickAtlasAllocator;
 class vtkVolumeBrickTree;
 
-class STRATA_EXPORT vtkVolumeCut
+class STRATACORE_EXPORT vtkVolumeCut
 {
 public:
   /**

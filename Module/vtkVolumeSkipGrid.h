@@ -19,13 +19,13 @@
 #ifndef vtkVolumeSkipGrid_h
 #define vtkVolumeSkipGrid_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataCoreModule.h" // For export macro
 
 #include <cstdint>    // For uint8_t
 #include <functional> // For std::function
 #include <vector>     // For std::vector
 
-class STRATA_EXPORT vtkVolumeSkipGrid
+class STRATACORE_EXPORT vtkVolumeSkipGrid
 {
 public:
   /// Maximum opacity of the transfer function over scalars [lo, hi].

@@ -12,7 +12,7 @@
 #ifndef vtkFeedbackReadBack_h
 #define vtkFeedbackReadBack_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataRenderingModule.h" // For export macro
 
 #include <cstddef>    // For size_t
 #include <cstdint>    // For uint32_t
@@ -20,7 +20,7 @@
 
 class vtkOpenGLRenderWindow;
 
-class STRATA_EXPORT vtkFeedbackReadBack
+class STRATARENDERING_EXPORT vtkFeedbackReadBack
 {
 public:
   /// Creates `buffer` if 0 and sizes it (stream read) for `count` ids, contents undefined.

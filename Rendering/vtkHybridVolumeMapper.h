@@ -32,7 +32,7 @@
 #ifndef vtkHybridVolumeMapper_h
 #define vtkHybridVolumeMapper_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataRenderingModule.h" // For export macro
 #include "vtkVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr
@@ -41,7 +41,7 @@
 class vtkMultiVolumeRayCastMapper;
 class vtkPolyData;
 
-class STRATA_EXPORT vtkHybridVolumeMapper : public vtkVolumeMapper
+class STRATARENDERING_EXPORT vtkHybridVolumeMapper : public vtkVolumeMapper
 {
 public:
   static vtkHybridVolumeMapper* New();

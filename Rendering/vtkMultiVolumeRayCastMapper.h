@@ -29,7 +29,7 @@
 #ifndef vtkMultiVolumeRayCastMapper_h
 #define vtkMultiVolumeRayCastMapper_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataRenderingModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkSmartPointer.h" // For UploadTransferTable
 #include "vtkVolumeCut.h"    // For vtkVolumeCut::Camera
@@ -44,7 +44,7 @@ class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
 
-class STRATA_EXPORT vtkMultiVolumeRayCastMapper : public vtkGPUVolumeRayCastMapper
+class STRATARENDERING_EXPORT vtkMultiVolumeRayCastMapper : public vtkGPUVolumeRayCastMapper
 {
 public:
   static vtkMultiVolumeRayCastMapper* New();

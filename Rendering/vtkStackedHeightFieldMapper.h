@@ -45,7 +45,7 @@
 #ifndef vtkStackedHeightFieldMapper_h
 #define vtkStackedHeightFieldMapper_h
 
-#include "StrataModule.h"        // For export macro
+#include "StrataRenderingModule.h"        // For export macro
 #include "vtkHeightFieldPager.h" // For vtkHeightFieldPager::Statistics
 #include "vtkMapper.h"
 
@@ -59,7 +59,7 @@ class vtkMatrix4x4;
 class vtkScalarsToColors;
 class vtkWindow;
 
-class STRATA_EXPORT vtkStackedHeightFieldMapper : public vtkMapper
+class STRATARENDERING_EXPORT vtkStackedHeightFieldMapper : public vtkMapper
 {
 public:
   static vtkStackedHeightFieldMapper* New();

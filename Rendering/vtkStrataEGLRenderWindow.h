@@ -19,13 +19,13 @@
 #ifndef vtkStrataEGLRenderWindow_h
 #define vtkStrataEGLRenderWindow_h
 
-#include "StrataModule.h" // For export macro
+#include "StrataRenderingModule.h" // For export macro
 #include "vtkGenericOpenGLRenderWindow.h"
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class STRATA_EXPORT vtkStrataEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class STRATARENDERING_EXPORT vtkStrataEGLRenderWindow : public vtkGenericOpenGLRenderWindow
 {
 public:
   static vtkStrataEGLRenderWindow* New();

@@ -4,7 +4,7 @@
 // VTK::RenderingCore). Written by hand rather than by vtk_object_factory_configure because
 // whether the EGL window replaces VTK's X window is decided at run time.
 
-#include "StrataModule.h"
+#include "StrataRenderingModule.h"
 #include "vtkObjectFactory.h"
 #include "vtkStrataEGLRenderWindow.h"
 #include "vtkVersion.h"
@@ -43,7 +43,7 @@ protected:
 unsigned int StrataFactoryCount = 0;
 }
 
-STRATA_EXPORT void Strata_AutoInit_Construct()
+STRATARENDERING_EXPORT void StrataRendering_AutoInit_Construct()
 {
   if (++StrataFactoryCount != 1 || !vtkStrataEGLRenderWindow::ShouldOverrideRenderWindow())
   {
