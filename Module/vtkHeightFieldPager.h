@@ -43,7 +43,7 @@
 #define vtkHeightFieldPager_h
 
 #include "StrataCoreModule.h" // For export macro
-#include "vtkVolumeCut.h" // For vtkVolumeCut::Camera
+#include "vtkVolumeCut.h"     // For vtkVolumeCut::Camera
 
 #include <cstdint> // For uint16_t, uint32_t
 #include <memory>  // For std::unique_ptr

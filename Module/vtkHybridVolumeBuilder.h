@@ -39,7 +39,7 @@
 #ifndef vtkHybridVolumeBuilder_h
 #define vtkHybridVolumeBuilder_h
 
-#include "StrataCoreModule.h"        // For export macro
+#include "StrataCoreModule.h"    // For export macro
 #include "vtkHybridVolumeFile.h" // For the output and FilterType
 
 #include <cstddef>    // For size_t

@@ -17,7 +17,7 @@
 #ifndef vtkPagePoolFile_h
 #define vtkPagePoolFile_h
 
-#include "StrataCoreModule.h"      // For export macro
+#include "StrataCoreModule.h"  // For export macro
 #include "vtkPagePoolFormat.h" // For the header and table types
 
 #include <cstdint> // For fixed-width types

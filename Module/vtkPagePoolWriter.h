@@ -33,7 +33,7 @@
 #ifndef vtkPagePoolWriter_h
 #define vtkPagePoolWriter_h
 
-#include "StrataCoreModule.h"      // For export macro
+#include "StrataCoreModule.h"  // For export macro
 #include "vtkPagePoolFormat.h" // For the format's enums and header
 
 #include <cstdint>    // For fixed-width types

@@ -2,6 +2,8 @@
 #include "vtkHybridVolumeMapper.h"
 
 #include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkStrataRenderUtilities.h"
+#include "vtkTransferFunctionTable.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
@@ -141,10 +143,7 @@ public:
   vtkIdType Count = 0;
   vtkIdType Drawn = 0;
 
-  vtkSmartPointer<vtkTextureObject> Transfer;
-  vtkMTimeType TransferTime = 0;
-  vtkVolumeProperty* TransferProperty = nullptr;
-  double TableRange[3] = { 0, 1, 0 };
+  vtkTransferFunctionTable Transfer; ///< the volume property's table, as the ray caster's
 
   std::string VS;
   std::string FS;
@@ -161,10 +160,7 @@ public:
     this->VaoProgram = nullptr;
     this->PointsInput = nullptr;
     this->PointsTime = 0;
-    if (this->Transfer)
-      this->Transfer->ReleaseGraphicsResources(window);
-    this->Transfer = nullptr;
-    this->TransferProperty = nullptr;
+    this->Transfer.ReleaseGraphicsResources(window);
   }
 };
 
@@ -370,16 +366,7 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // --- The transfer table of the volume property, as the ray caster samples it.
-  const vtkMTimeType tfTime = vtkMultiVolumeRayCastMapper::GetTransferFunctionMTime(property);
-  if (!in.Transfer || in.TransferProperty != property || in.TransferTime < tfTime)
-  {
-    double range[2];
-    std::vector<float> table, alpha;
-    vtkMultiVolumeRayCastMapper::UploadTransferTable(
-      renWin, property, in.Transfer, in.TableRange, range, table, alpha);
-    in.TransferProperty = property;
-    in.TransferTime = tfTime;
-  }
+  in.Transfer.Update(renWin, property);
 
   // --- Slabs: depth along the view direction over the volume's and the points' extent.
   vtkCamera* camera = ren->GetActiveCamera();
@@ -544,16 +531,16 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformMatrix4x4("uLocalToClip", mat);
       program->SetUniformf("uCellSize", static_cast<float>(cell * scale));
       program->SetUniformf("uPixelsPerUnit", static_cast<float>(p11 * vp[3] / 2.0));
-      in.Transfer->Activate();
-      program->SetUniformi("uTransfer", in.Transfer->GetTextureUnit());
-      const float range[3] = {
-        float(in.TableRange[0]), float(in.TableRange[1]), float(in.TableRange[2])
-      };
+      in.Transfer.GetTexture()->Activate();
+      program->SetUniformi("uTransfer", in.Transfer.GetTexture()->GetTextureUnit());
+      const float range[3] = { float(in.Transfer.GetTableRange()[0]),
+        float(in.Transfer.GetTableRange()[1]),
+        float(in.Transfer.GetTableRange()[2]) };
       program->SetUniform3f("uTableRange", range);
       if (shaded)
       {
         std::vector<float> lightDirections, lightColors;
-        vtkMultiVolumeRayCastMapper::GetLights(ren, lightDirections, lightColors);
+        vtkStrataRenderUtilities::GetLights(ren, lightDirections, lightColors);
         program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
         if (!lightDirections.empty())
         {
@@ -585,8 +572,8 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     {
       renWin->GetShaderCache()->ReadyShaderProgram(program, nullptr);
       glBindVertexArray(in.VAO);
-      in.Transfer->Activate();
-      program->SetUniformi("uTransfer", in.Transfer->GetTextureUnit());
+      in.Transfer.GetTexture()->Activate();
+      program->SetUniformi("uTransfer", in.Transfer.GetTexture()->GetTextureUnit());
     }
     vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
     vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
@@ -603,7 +590,7 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       reinterpret_cast<const void*>(first * sizeof(unsigned int)));
     glDisable(GL_PROGRAM_POINT_SIZE);
     glBindVertexArray(0);
-    in.Transfer->Deactivate();
+    in.Transfer.GetTexture()->Deactivate();
     in.Drawn += static_cast<vtkIdType>(last - first);
   }
   in.Volume->SetClippingPlanes(planes);

@@ -9,6 +9,8 @@
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkStrataRenderUtilities.h"
+#include "vtkTransferFunctionTable.h"
 #include "vtkVolumeBSPTree.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeCut.h"
@@ -65,7 +67,7 @@
 
 namespace
 {
-constexpr int TransferTableSize = vtkMultiVolumeRayCastMapper::TransferTableSize;
+constexpr int TransferTableSize = vtkTransferFunctionTable::TableSize;
 constexpr int MaxPlanes = 64;
 
 void Replace(std::string& source, const std::string& tag, const std::string& code)
@@ -130,8 +132,8 @@ bool RootFromImage(vtkImageData* image, const int dims[3], int B, float* page)
 // holds the bricks per axis of each level, and the level-l brick over level-0 brick b is b >> l
 // (vtkVolumeCut::MapToAtlas), with index (z ny + y) nx + x, the tree's node order. Fragments
 // compare their best with the texel's through a second (score) image. `footprint`: the wanted
-// level follows the pixel footprint (ErrorThreshold > 0); otherwise level 0 is wanted and no
-// footprint code exists.
+// level follows the pixel footprint (LevelOfDetailThreshold > 0); otherwise level 0 is wanted and
+// no footprint code exists.
 std::string FeedbackGlobals(bool footprint)
 {
   std::ostringstream dec;
@@ -623,21 +625,19 @@ struct StrataVolumeEntry
 struct StrataVolumeTextures
 {
   vtkSmartPointer<vtkTextureObject> Data;
-  vtkSmartPointer<vtkTextureObject> Transfer;
+  vtkTransferFunctionTable Table; ///< the transfer function as the shaders sample it
   vtkMTimeType DataTime = 0;
-  vtkMTimeType TransferTime = 0;
   vtkImageData* DataInput = nullptr;
   double Range[3] = { 0,
     1,
     0 }; ///< scalar -> table coordinate: (s - Range[0]) * Range[1] + Range[2]
-  double ScalarRange[2] = { 0, 1 };
   vtkPreIntegrationTable PreIntegration;
   std::vector<float> Scalars;               ///< the input as float; the brick tree borrows it
   std::unique_ptr<vtkVolumeBrickTree> Tree; ///< bricks and octree (brick atlas on)
   unsigned int IndexTexture = 0;            ///< RGBA16UI, one texel per level-0 brick
   vtkVolumeSkipGrid Skip;                   ///< cell ranges and distances to visible cells
   unsigned int SkipTexture = 0;             ///< R8UI distances, one texel per cell
-  vtkMTimeType SkipTime = 0;                ///< distances classified for this transfer table
+  unsigned long SkipTime = 0;               ///< distances classified for this table build
   vtkMTimeType SkipDataTime = 0;            ///< cell ranges built from this data
   // Paged volumes: the pool, the pages held for the cut and its ancestors (held pages are never
   // evicted, so a collapse always finds its parent), the root read when the pool was opened.
@@ -649,17 +649,18 @@ struct StrataVolumeTextures
   // entries whose interpolation intervals meet it (clamped at the ends, as the texture is).
   double MaxOpacity(double lo, double hi) const
   {
-    const int n = static_cast<int>(this->Alpha.size());
+    const std::vector<float>& alpha = this->Table.GetOpacity();
+    const int n = static_cast<int>(alpha.size());
     if (n == 0)
       return 1.0;
-    const double scale = (n - 1) / (this->ScalarRange[1] - this->ScalarRange[0]);
-    const double x0 = std::floor((lo - this->ScalarRange[0]) * scale);
-    const double x1 = std::ceil((hi - this->ScalarRange[0]) * scale);
+    const double* range = this->Table.GetScalarRange();
+    const double scale = (n - 1) / (range[1] - range[0]);
+    const double x0 = std::floor((lo - range[0]) * scale);
+    const double x1 = std::ceil((hi - range[0]) * scale);
     const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
     const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
-    return *std::max_element(this->Alpha.begin() + i0, this->Alpha.begin() + i1 + 1);
+    return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
   }
-  std::vector<float> Alpha; ///< the tabulated opacity, TransferTableSize entries
   double EmptyScalar = 0.0; ///< a scalar of zero opacity
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table
@@ -861,8 +862,7 @@ public:
     {
       if (t.second.Data)
         t.second.Data->ReleaseGraphicsResources(window);
-      if (t.second.Transfer)
-        t.second.Transfer->ReleaseGraphicsResources(window);
+      t.second.Table.ReleaseGraphicsResources(window);
       if (t.second.PreTable)
         t.second.PreTable->ReleaseGraphicsResources(window);
     }
@@ -921,101 +921,6 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 }
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper() = default;
-
-vtkMTimeType vtkMultiVolumeRayCastMapper::GetTransferFunctionMTime(vtkVolumeProperty* property)
-{
-  // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
-  const bool rgb = property->GetColorChannels(0) == 3;
-  const vtkMTimeType color = rgb ? property->GetRGBTransferFunction(0)->GetMTime()
-                                 : property->GetGrayTransferFunction(0)->GetMTime();
-  return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
-}
-
-void vtkMultiVolumeRayCastMapper::UploadTransferTable(vtkOpenGLRenderWindow* renWin,
-  vtkVolumeProperty* property,
-  vtkSmartPointer<vtkTextureObject>& texture,
-  double tableRange[3],
-  double range[2],
-  std::vector<float>& rgbTau,
-  std::vector<float>& opacity)
-{
-  TabulateExtinction(property, TransferTableSize, range, rgbTau, opacity);
-  if (!texture)
-    texture = vtkSmartPointer<vtkTextureObject>::New();
-  texture->SetContext(renWin);
-  texture->ReleaseGraphicsResources(renWin);
-  texture->SetContext(renWin);
-  texture->Create2DFromRaw(TransferTableSize, 1, 4, VTK_FLOAT, rgbTau.data());
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetMinificationFilter(vtkTextureObject::Linear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  // Entry i sits at scalar range[0] + i (range[1] - range[0]) / (N - 1), texel centre (i + 0.5) /
-  // N.
-  tableRange[0] = range[0];
-  tableRange[1] = (TransferTableSize - 1.0) / (TransferTableSize * (range[1] - range[0]));
-  tableRange[2] = 0.5 / TransferTableSize;
-}
-
-void vtkMultiVolumeRayCastMapper::TabulateExtinction(vtkVolumeProperty* property,
-  int size,
-  double range[2],
-  std::vector<float>& rgbTau,
-  std::vector<float>& opacity)
-{
-  std::vector<float> rgb;
-  TabulateTransferFunction(property, size, range, rgb, opacity);
-  // Opacity 1 would be infinite extinction: 1 - 1e-6 keeps it finite (a unit length then
-  // lets 1e-6 through).
-  const double unit = std::max(property->GetScalarOpacityUnitDistance(0), 1e-30);
-  rgbTau.resize(4 * size_t(size));
-  for (int i = 0; i < size; ++i)
-  {
-    const double a = std::min(std::max(double(opacity[i]), 0.0), 1.0 - 1e-6);
-    for (int c = 0; c < 3; ++c)
-      rgbTau[4 * i + c] = rgb[3 * i + c];
-    rgbTau[4 * i + 3] = static_cast<float>(-std::log(1.0 - a) / unit);
-  }
-}
-
-void vtkMultiVolumeRayCastMapper::TabulateTransferFunction(vtkVolumeProperty* property,
-  int size,
-  double range[2],
-  std::vector<float>& rgb,
-  std::vector<float>& opacity)
-{
-  // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
-  const bool useRgb = property->GetColorChannels(0) == 3;
-  vtkColorTransferFunction* color = useRgb ? property->GetRGBTransferFunction(0) : nullptr;
-  vtkPiecewiseFunction* gray = useRgb ? nullptr : property->GetGrayTransferFunction(0);
-  vtkPiecewiseFunction* alpha = property->GetScalarOpacity(0);
-  alpha->GetRange(range);
-  double cr[2];
-  if (useRgb)
-    color->GetRange(cr);
-  else
-    gray->GetRange(cr);
-  range[0] = std::min(range[0], cr[0]);
-  range[1] = std::max(range[1], cr[1]);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0;
-  }
-  rgb.resize(3 * size_t(size));
-  opacity.resize(size);
-  if (useRgb)
-  {
-    color->GetTable(range[0], range[1], size, rgb.data());
-  }
-  else
-  {
-    std::vector<float> g(size);
-    gray->GetTable(range[0], range[1], size, g.data());
-    for (int i = 0; i < size; ++i)
-      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = g[i];
-  }
-  alpha->GetTable(range[0], range[1], size, opacity.data());
-}
 
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
 {
@@ -1151,51 +1056,6 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
   }
   this->Superclass::Render(ren, vol);
-}
-
-vtkVolumeCut::Camera vtkMultiVolumeRayCastMapper::GetCutCamera(vtkRenderer* ren)
-{
-  vtkCamera* camera = ren->GetActiveCamera();
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkVolumeCut::Camera cutCamera;
-  camera->GetPosition(cutCamera.Position);
-  if (camera->GetParallelProjection())
-    cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
-  else
-    cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
-  cutCamera.UseFrustum = true;
-  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
-  return cutCamera;
-}
-
-void vtkMultiVolumeRayCastMapper::GetLights(vtkRenderer* ren,
-  std::vector<float>& lightDirections,
-  std::vector<float>& lightColors)
-{
-  lightDirections.clear();
-  lightColors.clear();
-  vtkLightCollection* lights = ren->GetLights();
-  vtkCollectionSimpleIterator lit_it;
-  lights->InitTraversal(lit_it);
-  while (vtkLight* light = lights->GetNextLight(lit_it))
-  {
-    if (!light->GetSwitch() || lightDirections.size() >= 24)
-      continue;
-    double pos[3], fp[3];
-    light->GetTransformedPosition(pos);
-    light->GetTransformedFocalPoint(fp);
-    double dir[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
-    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    if (len <= 0.0)
-      continue;
-    const double* c = light->GetDiffuseColor();
-    for (int a = 0; a < 3; ++a)
-    {
-      lightDirections.push_back(static_cast<float>(dir[a] / len));
-      lightColors.push_back(static_cast<float>(c[a] * light->GetIntensity()));
-    }
-  }
 }
 
 vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(vtkInformation* request,
@@ -1481,14 +1341,11 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Data->SetMinificationFilter(vtkTextureObject::Linear);
       tex.Data->SetMagnificationFilter(vtkTextureObject::Linear);
     }
-    const vtkMTimeType tfTime = GetTransferFunctionMTime(e.Property);
-    if (!tex.Transfer || tex.TransferTime < tfTime)
+    if (tex.Table.Update(renWin, e.Property))
     {
-      double range[2];
-      std::vector<float> alpha, table;
-      UploadTransferTable(renWin, e.Property, tex.Transfer, tex.Range, range, table, alpha);
-      tex.ScalarRange[0] = range[0];
-      tex.ScalarRange[1] = range[1];
+      const double* range = tex.Table.GetScalarRange();
+      const std::vector<float>& table = tex.Table.GetRGBTau();
+      const std::vector<float>& alpha = tex.Table.GetOpacity();
       std::vector<double> rgbD(3 * TransferTableSize), tauD(TransferTableSize);
       for (int i = 0; i < TransferTableSize; ++i)
       {
@@ -1500,7 +1357,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         range[0], range[1], TransferTableSize, rgbD.data(), tauD.data());
       // What the shader reads: for the cut's transparent bricks, the skip grid and the scalar an
       // empty brick reads.
-      tex.Alpha = alpha;
       tex.EmptyScalar = range[0];
       for (int i = 0; i < TransferTableSize; ++i)
       {
@@ -1510,7 +1366,6 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           break;
         }
       }
-      tex.TransferTime = tfTime;
     }
   }
 
@@ -1541,7 +1396,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       tex.Skip.Build(tex.Scalars.data(), volumes[v].Dims, this->SkipCellSize);
       tex.SkipDataTime = tex.DataTime;
     }
-    if (build || tex.SkipTime != tex.TransferTime || !tex.SkipTexture)
+    if (build || tex.SkipTime != tex.Table.GetBuildCount() || !tex.SkipTexture)
     {
       tex.Skip.Classify([&tex](double lo, double hi) { return tex.MaxOpacity(lo, hi); });
       const int* cd = tex.Skip.GetCellDimensions();
@@ -1563,7 +1418,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glBindTexture(GL_TEXTURE_3D, 0);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-      tex.SkipTime = tex.TransferTime;
+      tex.SkipTime = tex.Table.GetBuildCount();
     }
   }
 
@@ -1700,7 +1555,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
         in.Demand.clear();
         in.FeedbackPending = false;
       }
-      in.Cut.SetErrorThreshold(feedback ? 0.0 : this->ErrorThreshold);
+      in.Cut.SetErrorThreshold(feedback ? 0.0 : this->LevelOfDetailThreshold);
       for (size_t v = 0; v < volumes.size(); ++v)
       {
         in.Cut.SetVolumeMatrix(static_cast<int>(v), volumes[v].IndexToWorld->GetData());
@@ -1810,7 +1665,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
           tex.Held[root] = page;
         }
       }
-      const vtkVolumeCut::Camera cutCamera = GetCutCamera(ren);
+      const vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
       in.Paging.MissesThisFrame = 0;
       in.RequestLimit = 4 * this->PagesPerFrame;
       if (in.FixedCutsChanged)
@@ -2064,7 +1919,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     }
   }
   std::vector<float> lightDirections, lightColors;
-  GetLights(ren, lightDirections, lightColors);
+  vtkStrataRenderUtilities::GetLights(ren, lightDirections, lightColors);
   const bool lit = ren->GetLights()->GetNumberOfItems() > 0;
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   in.Sources.clear();
@@ -2074,7 +1929,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   // and its R32F cost, on image units 0 and 1 for the whole frame; the ids' pixel buffer is
   // read at the next frame.
   const int feedbackScale = this->FeedbackScale;
-  const bool footprint = feedback && this->ErrorThreshold > 0.0;
+  const bool footprint = feedback && this->LevelOfDetailThreshold > 0.0;
   float feedbackFootprint[2] = { 0.f, 0.f };
   float feedbackEye[3] = { 0.f, 0.f, 0.f };
   std::vector<std::array<float, 2>> feedbackLod(volumes.size());
@@ -2132,7 +1987,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     glBindImageTexture(1, in.FeedbackScoreTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     // The size of one pixel at distance r from the eye, times the error threshold: what a
     // voxel of the wanted level may cover.
-    const double tau = this->ErrorThreshold;
+    const double tau = this->LevelOfDetailThreshold;
     if (camera->GetParallelProjection())
       feedbackFootprint[0] = static_cast<float>(tau * 2.0 * camera->GetParallelScale() / height);
     else
@@ -2359,18 +2214,20 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       }
       if (this->Classification == Classifications::PostClassification)
       {
-        tex.Transfer->Activate();
-        program->SetUniformi(("uTransfer" + n).c_str(), tex.Transfer->GetTextureUnit());
-        const float range[3] = { float(tex.Range[0]), float(tex.Range[1]), float(tex.Range[2]) };
+        tex.Table.GetTexture()->Activate();
+        program->SetUniformi(("uTransfer" + n).c_str(), tex.Table.GetTexture()->GetTextureUnit());
+        const double* r = tex.Table.GetTableRange();
+        const float range[3] = { float(r[0]), float(r[1]), float(r[2]) };
         program->SetUniform3f(("uTableRange" + n).c_str(), range);
       }
       else
       {
         tex.PreTable->Activate();
         program->SetUniformi(("uPreTable" + n).c_str(), tex.PreTable->GetTextureUnit());
-        const float preRange[3] = { float(tex.ScalarRange[0]),
-          float(1.0 / (tex.ScalarRange[1] - tex.ScalarRange[0])),
-          float(tex.PreIntegration.GetTableSize()) };
+        const double* sr = tex.Table.GetScalarRange();
+        const float preRange[3] = {
+          float(sr[0]), float(1.0 / (sr[1] - sr[0])), float(tex.PreIntegration.GetTableSize())
+        };
         program->SetUniform3f(("uPreRange" + n).c_str(), preRange);
         if (this->Classification == Classifications::PreIntegrated)
           program->SetUniformf(("uPreStep" + n).c_str(), static_cast<float>(sampleDistance));
@@ -2398,7 +2255,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       if (tex.Data && !atlas)
         tex.Data->Deactivate();
       if (this->Classification == Classifications::PostClassification)
-        tex.Transfer->Deactivate();
+        tex.Table.GetTexture()->Deactivate();
       else
         tex.PreTable->Deactivate();
     }
@@ -2496,6 +2353,6 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << "\n";
   os << indent << "FeedbackScale: " << this->FeedbackScale << "\n";
   os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";
-  os << indent << "ErrorThreshold: " << this->ErrorThreshold << " pixels\n";
+  os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << " pixels\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

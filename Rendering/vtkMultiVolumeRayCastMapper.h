@@ -31,17 +31,12 @@
 
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
-#include "vtkSmartPointer.h" // For UploadTransferTable
-#include "vtkVolumeCut.h"    // For vtkVolumeCut::Camera
 
 #include <array>  // For std::array
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
-class vtkOpenGLRenderWindow;
-class vtkTextureObject;
-class vtkVolumeProperty;
 class vtkWindow;
 
 class STRATARENDERING_EXPORT vtkMultiVolumeRayCastMapper : public vtkGPUVolumeRayCastMapper
@@ -97,7 +92,7 @@ public:
   vtkBooleanMacro(UseBrickAtlas, bool);
   vtkSetClampMacro(BrickSize, int, 4, 256);
   vtkGetMacro(BrickSize, int);
-  vtkSetClampMacro(AtlasBudget, double, 0.001, 65536.0);
+  vtkSetClampMacro(AtlasBudget, double, 0.001, 1048576.0);
   vtkGetMacro(AtlasBudget, double);
   ///@}
 
@@ -160,18 +155,18 @@ public:
    * 1/4 x 1/4 of the viewport) writes, with image load/store into an R32UI texture, the packed
    * id (vtkFeedbackReduction: volume, level, brick) of one brick it reads data from (samples
    * and gradient taps) before it terminates whose cut level is coarser than the level its
-   * footprint asks for (see ErrorThreshold): the one that costs the ray most, the transmittance
-   * in front of the sample times 2^(levels too coarse), nearest first on ties. Why a lacking
-   * brick rather than a fixed sample (say where the opacity crosses 1/2): the report moves on
-   * as the cut refines, so over a few frames a ray walks all its bricks and every brick it
-   * reads before it is opaque reaches the wanted level - the converged image along those rays
-   * is exactly the image with every brick at that level - while one id per pixel suffices;
-   * a brick behind opaque material or outside the view is never asked for, so it stays
-   * coarse. Why the costliest one rather than the first: under a tight atlas a ray would keep
-   * asking for a near brick the budget cannot give and never for the coarse ones behind it; by
-   * cost the budget goes where coarseness shows (bench: lower error than the screen-space cut
-   * at every atlas budget). The price: convergence takes a frame or two per brick a ray
-   * crosses, where the screen-space cut asks for all at once.
+   * footprint asks for (see LevelOfDetailThreshold): the one that costs the ray most, the
+   * transmittance in front of the sample times 2^(levels too coarse), nearest first on ties. Why a
+   * lacking brick rather than a fixed sample (say where the opacity crosses 1/2): the report moves
+   * on as the cut refines, so over a few frames a ray walks all its bricks and every brick it reads
+   * before it is opaque reaches the wanted level - the converged image along those rays is exactly
+   * the image with every brick at that level - while one id per pixel suffices; a brick behind
+   * opaque material or outside the view is never asked for, so it stays coarse. Why the costliest
+   * one rather than the first: under a tight atlas a ray would keep asking for a near brick the
+   * budget cannot give and never for the coarse ones behind it; by cost the budget goes where
+   * coarseness shows (bench: lower error than the screen-space cut at every atlas budget). The
+   * price: convergence takes a frame or two per brick a ray crosses, where the screen-space cut
+   * asks for all at once.
    *
    * The buffer is read back through a pixel buffer object at the next frame (the GPU is not
    * waited on), reduced to (page, pixels) by vtkFeedbackReduction (OpenCL when FeedbackOpenCL
@@ -199,8 +194,8 @@ public:
    * split; with feedback a ray asks for the coarsest level whose voxels cover at most this
    * many pixels at the sample (level 0 when 0).
    */
-  vtkSetClampMacro(ErrorThreshold, double, 0.0, 1.0e6);
-  vtkGetMacro(ErrorThreshold, double);
+  vtkSetClampMacro(LevelOfDetailThreshold, double, 0.0, 1.0e6);
+  vtkGetMacro(LevelOfDetailThreshold, double);
   ///@}
 
   struct PagingStatistics
@@ -307,64 +302,6 @@ public:
    */
   static void GetRayOffset(int ray, int rays, double offset[2]);
 
-  /**
-   * The transfer-function table this mapper samples for `property` (component 0): `size`
-   * entries evenly over `range` (the union of the colour and opacity functions' ranges), RGB
-   * colour and opacity per unit distance, as VTK's GetTable computes them. References use it
-   * to integrate exactly what the GPU sees.
-   */
-  static void TabulateTransferFunction(vtkVolumeProperty* property,
-    int size,
-    double range[2],
-    std::vector<float>& rgb,
-    std::vector<float>& opacity);
-
-  /**
-   * The table the shaders read: TabulateTransferFunction's, with the opacity turned into
-   * extinction per unit length (-ln(1 - a) / unit distance; a capped at 1 - 1e-6 so that it
-   * stays finite), interleaved RGBA per entry. `opacity` gets the tabulated opacity.
-   */
-  static void TabulateExtinction(vtkVolumeProperty* property,
-    int size,
-    double range[2],
-    std::vector<float>& rgbTau,
-    std::vector<float>& opacity);
-
-  /**
-   * TabulateExtinction's table of `property` uploaded into `texture` (created if null; RGBA32F,
-   * linear, clamped), as the shaders sample it: `tableRange` maps a scalar s to its texture
-   * coordinate (s - tableRange[0]) * tableRange[1] + tableRange[2]; `range` is the table's
-   * scalar range, `rgbTau` and `opacity` the table itself.
-   */
-  static void UploadTransferTable(vtkOpenGLRenderWindow* renWin,
-    vtkVolumeProperty* property,
-    vtkSmartPointer<vtkTextureObject>& texture,
-    double tableRange[3],
-    double range[2],
-    std::vector<float>& rgbTau,
-    std::vector<float>& opacity);
-  /// When `property`'s transfer functions last changed (those of its colour kind only).
-  static vtkMTimeType GetTransferFunctionMTime(vtkVolumeProperty* property);
-
-  /**
-   * The scene's lights as the shaders use them: directions towards each switched-on light (a
-   * positional light counts as directional from its position to its focal point) and colour
-   * times intensity, 3 floats each, at most 8.
-   */
-  static void GetLights(vtkRenderer* ren,
-    std::vector<float>& directions,
-    std::vector<float>& colors);
-
-  /**
-   * The renderer's active camera as vtkVolumeCut sees it: eye, pixels per radian (or per
-   * world unit in parallel projection) for the tiled viewport's height, and the frustum
-   * planes. Shared by every mapper that pages through a cut.
-   */
-  static vtkVolumeCut::Camera GetCutCamera(vtkRenderer* ren);
-
-  /// Entries of the tables the mapper builds (TabulateTransferFunction's size).
-  static constexpr int TransferTableSize = 1024;
-
   /// Number of BSP fragments drawn in the last frame.
   int GetNumberOfFragments() const;
 
@@ -409,7 +346,7 @@ protected:
   bool LevelOfDetailFeedback = true;
   int FeedbackScale = 4;
   bool FeedbackOpenCL = true;
-  double ErrorThreshold = 0.0;
+  double LevelOfDetailThreshold = 0.0;
   bool HoldCut = false;
 
 private:

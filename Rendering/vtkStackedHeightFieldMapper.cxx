@@ -19,7 +19,6 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMinMaxQuadtree.h"
-#include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLError.h"
@@ -33,6 +32,7 @@
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
@@ -81,16 +81,6 @@ void DefaultDepthColor(double s, double rgb[3])
   {
     rgb[c] = stops[k][c] * (1.0 - f) + stops[k + 1][c] * f;
   }
-}
-
-// One reduction for every mapper of the process: its OpenCL set-up (context, program build)
-// is paid once, not per mapper.
-vtkFeedbackReduction& SharedReduction(std::unique_lock<std::mutex>& lock)
-{
-  static vtkFeedbackReduction reduction;
-  static std::mutex mutex;
-  lock = std::unique_lock<std::mutex>(mutex);
-  return reduction;
 }
 
 // The feedback write (paged horizons): one pixel per FeedbackScale^2 lattice cell asks for the
@@ -155,6 +145,7 @@ public:
   // the tile atlas and page table on the GPU.
   bool Paged = false;
   vtkHeightFieldPager Pager;
+  vtkFeedbackReduction Reduction; ///< this mapper's (OpenCL set up on first use)
   std::vector<std::vector<float>> RootValues;
   unsigned int AtlasTexture = 0;
   unsigned int PageTableTexture = 0;
@@ -569,7 +560,7 @@ bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
     this->ReadFeedback();
   }
   // The cut refines by the size of a tile's points on screen, under this camera.
-  const vtkVolumeCut::Camera cutCamera = vtkMultiVolumeRayCastMapper::GetCutCamera(ren);
+  const vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
   vtkNew<vtkMatrix4x4> modelGrid;
   vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
   std::vector<vtkHeightFieldPager::Upload> uploads;
@@ -983,7 +974,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
                "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, "
                "layer), 0).r; }");
   // Feedback: image load/store (GL 4.2 or the ARB extension), at most 63 horizons (page ids).
-  bool feedback = in.Paged && this->Feedback && layers <= vtkFeedbackReduction::MaxDataSets;
+  bool feedback =
+    in.Paged && this->LevelOfDetailFeedback && layers <= vtkFeedbackReduction::MaxDataSets;
   if (feedback)
   {
     GLint major = 0, minor = 0;
@@ -1377,12 +1369,14 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkFeedbackReduction::Entry> list;
+  bool openCL = false;
   vtkFeedbackReadBack::Map(in.FeedbackBuffer,
     count,
     [&](const uint32_t* ids)
     {
-      std::unique_lock<std::mutex> lock;
-      SharedReduction(lock).Reduce(ids, count, list);
+      openCL = this->FeedbackOpenCL && in.Reduction.ReduceOpenCL(ids, count, list);
+      if (!openCL)
+        in.Reduction.ReduceCPU(ids, count, list);
     });
   std::vector<uint32_t> pages(list.size()), coverage(list.size());
   for (size_t e = 0; e < list.size(); ++e)
@@ -1392,8 +1386,9 @@ void vtkStackedHeightFieldMapper::ReadFeedback()
   }
   in.Pager.SetFeedback(pages, coverage, this->FeedbackScale * this->FeedbackScale, viewChanged);
   ++in.FeedbackFrame;
-  in.Paging.FeedbackSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  in.Paging.FeedbackMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  in.Paging.FeedbackOpenCL = openCL;
 }
 
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -1407,8 +1402,8 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightArrayName: " << this->HeightArrayName << "\n";
   os << indent << "ColorMode: " << static_cast<int>(this->ColorMode) << "\n";
   os << indent << "OutputMode: " << static_cast<int>(this->OutputMode) << "\n";
-  os << indent << "Feedback: " << this->Feedback << ", scale " << this->FeedbackScale
-     << ", deferred read-back " << this->DeferFeedbackReadBack << "\n";
+  os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << ", scale "
+     << this->FeedbackScale << ", deferred read-back " << this->DeferFeedbackReadBack << "\n";
   os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << "\n";
   os << indent << "PageCacheBudget: " << this->PageCacheBudget
      << ", AtlasBudget: " << this->AtlasBudget << ", PagesPerFrame: " << this->PagesPerFrame

@@ -45,8 +45,8 @@
 #ifndef vtkStackedHeightFieldMapper_h
 #define vtkStackedHeightFieldMapper_h
 
-#include "StrataRenderingModule.h"        // For export macro
-#include "vtkHeightFieldPager.h" // For vtkHeightFieldPager::Statistics
+#include "StrataRenderingModule.h" // For export macro
+#include "vtkHeightFieldPager.h"   // For vtkHeightFieldPager::Statistics
 #include "vtkMapper.h"
 
 #include <memory> // For std::unique_ptr
@@ -150,17 +150,19 @@ public:
 
   ///@{
   /**
-   * Paging budgets, used when the inputs are tile pools: RAM page cache in MiB (default 256),
-   * GPU tile atlas in MiB (default 128, floats) and tiles uploaded per frame (default 64).
+   * Paging budgets, used when the inputs are tile pools, with the names and defaults of
+   * vtkMultiVolumeRayCastMapper's: RAM page cache in MiB (default 512), GPU tile atlas in MiB
+   * (default 256, floats; never more tiles than the GPU's array layers) and tiles uploaded per
+   * frame (default 64).
    * Prefetch (default off): after a tile loads on demand, page-cache workers also read its four
    * neighbours and its parent ahead of a moving camera. Measured: the demo path of
    * TestHeightFieldPaging (3 tiles a frame) settles in 67 instead of 78 frames, but the
    * paper-size fly-through of scripts/bench paging reads 0.86 instead of 0.63 MB a frame for the
    * same 17 frames to settle and the same frame times, hence off.
    */
-  vtkSetClampMacro(PageCacheBudget, double, 1.0, 1.0e6);
+  vtkSetClampMacro(PageCacheBudget, double, 1.0, 1048576.0);
   vtkGetMacro(PageCacheBudget, double);
-  vtkSetClampMacro(AtlasBudget, double, 1.0, 1.0e6);
+  vtkSetClampMacro(AtlasBudget, double, 0.001, 1048576.0);
   vtkGetMacro(AtlasBudget, double);
   vtkSetClampMacro(PagesPerFrame, int, 1, 65536);
   vtkGetMacro(PagesPerFrame, int);
@@ -188,12 +190,17 @@ public:
    * of the viewport per axis (default 4; one pixel of each lattice cell per frame, cycling),
    * reduced to a (tile, pixels) list that drives the cut, so tiles hidden under other horizons
    * or out of view stay coarse. Off: every tile is refined by its screen-space error.
+   * FeedbackOpenCL (default on): reduce the buffer with OpenCL when a device is found, else on
+   * the CPU (vtkFeedbackReduction; both give the same list).
    */
-  vtkSetMacro(Feedback, bool);
-  vtkGetMacro(Feedback, bool);
-  vtkBooleanMacro(Feedback, bool);
-  vtkSetClampMacro(FeedbackScale, int, 1, 16);
+  vtkSetMacro(LevelOfDetailFeedback, bool);
+  vtkGetMacro(LevelOfDetailFeedback, bool);
+  vtkBooleanMacro(LevelOfDetailFeedback, bool);
+  vtkSetClampMacro(FeedbackScale, int, 1, 64);
   vtkGetMacro(FeedbackScale, int);
+  vtkSetMacro(FeedbackOpenCL, bool);
+  vtkGetMacro(FeedbackOpenCL, bool);
+  vtkBooleanMacro(FeedbackOpenCL, bool);
   ///@}
 
   ///@{
@@ -216,7 +223,7 @@ public:
    * finest level wherever a ray hits, so the converged image is the in-core one. 1 stops at
    * about one cell per pixel, saving the I/O of sub-pixel detail.
    */
-  vtkSetClampMacro(LevelOfDetailThreshold, double, 0.0, 1.0e3);
+  vtkSetClampMacro(LevelOfDetailThreshold, double, 0.0, 1.0e6);
   vtkGetMacro(LevelOfDetailThreshold, double);
   ///@}
 
@@ -226,10 +233,11 @@ public:
   struct PagingStatistics : vtkHeightFieldPager::Statistics
   {
     bool Paged = false;
-    int AtlasSlots = 0;          ///< tiles the atlas holds
-    long long BytesUploaded = 0; ///< this frame, tiles and stitched borders
-    bool FeedbackUsed = false;   ///< the cut was driven by feedback this frame
-    double FeedbackSeconds = 0;  ///< mapping and reduction of the last buffer
+    int AtlasSlots = 0;                ///< tiles the atlas holds
+    long long BytesUploaded = 0;       ///< this frame, tiles and stitched borders
+    bool FeedbackUsed = false;         ///< the cut was driven by feedback this frame
+    double FeedbackMilliseconds = 0.0; ///< mapping and reduction of the last buffer
+    bool FeedbackOpenCL = false;       ///< whether OpenCL reduced it (else the CPU)
   };
   PagingStatistics GetPagingStatistics() const;
   /// Forgets failed page loads so that they are tried again.
@@ -287,14 +295,15 @@ private:
   double NullValue = -999.25;
   bool UseNullValue = false;
   std::string HeightArrayName;
-  double PageCacheBudget = 256.0;
-  double AtlasBudget = 128.0;
+  double PageCacheBudget = 512.0;
+  double AtlasBudget = 256.0;
   int PagesPerFrame = 64;
   bool Prefetch = false;
   int MorphFrames = 4;
-  bool Feedback = true;
+  bool LevelOfDetailFeedback = true;
   int FeedbackScale = 4;
   double LevelOfDetailThreshold = 0.0;
+  bool FeedbackOpenCL = true;
   bool DeferFeedbackReadBack = false;
   ColorModes ColorMode = ColorModes::Solid;
   OutputModes OutputMode = OutputModes::Shaded;

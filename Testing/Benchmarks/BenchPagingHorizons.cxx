@@ -334,7 +334,7 @@ int Accuracy(const std::string& dir)
       vtkNew<vtkStackedHeightFieldMapper> paged;
       setUp(paged);
       paged->SetAtlasBudget(atlasMB);
-      paged->SetFeedback(feedbackScale > 0);
+      paged->SetLevelOfDetailFeedback(feedbackScale > 0);
       paged->SetFeedbackScale(std::max(1, feedbackScale));
       paged->SetPagesPerFrame(32);
       std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
@@ -401,7 +401,7 @@ int Accuracy(const std::string& dir)
         100.0 * differing / (image.size() / 3),
         uploaded,
         feedbackScale > 0
-          ? ("feedback reduction " + std::to_string(st.FeedbackSeconds * 1e3) + " ms").c_str()
+          ? ("feedback reduction " + std::to_string(st.FeedbackMilliseconds) + " ms").c_str()
           : "screen-space cut",
         Size,
         Size);

@@ -772,8 +772,8 @@ int RunMultiVolumeCase(const std::string& name)
         "in core: no feedback code");
     // The same two volumes paged from pools: the shaders report the costliest lacking brick
     // of the feedback rays (fragments compare through the score image; front to back the
-    // nearer wins a tie); with ErrorThreshold 0 level 0 is wanted everywhere, so there is no
-    // footprint code.
+    // nearer wins a tie); with LevelOfDetailThreshold 0 level 0 is wanted everywhere, so there is
+    // no footprint code.
     std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
     for (int i = 0; i < 2; ++i)
     {

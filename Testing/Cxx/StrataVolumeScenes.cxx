@@ -17,6 +17,7 @@
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkTransferFunctionTable.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -115,8 +116,7 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   // Exactly the mapper's table.
   double range[2];
   std::vector<float> rgb, alpha;
-  vtkMultiVolumeRayCastMapper::TabulateTransferFunction(
-    p, vtkMultiVolumeRayCastMapper::TransferTableSize, range, rgb, alpha);
+  vtkTransferFunctionTable::Tabulate(p, vtkTransferFunctionTable::TableSize, range, rgb, alpha);
   v.Classification.Range[0] = range[0];
   v.Classification.Range[1] = range[1];
   v.Classification.Opacity.assign(alpha.begin(), alpha.end());

@@ -468,7 +468,7 @@ int TestHeightFieldPaging(int, char*[])
     // coarse: fewer level-0 tiles, the same image.
     vtkNew<vtkStackedHeightFieldMapper> blind;
     blind->SetTileSize(32);
-    blind->FeedbackOff();
+    blind->LevelOfDetailFeedbackOff();
     for (const auto& r : readers)
       blind->AddInputConnection(r->GetOutputPort());
     for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)
@@ -481,7 +481,7 @@ int TestHeightFieldPaging(int, char*[])
     std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " ("
               << st.FeedbackPages << " tiles asked for), without " << sb.FinestTiles
               << "; without feedback max difference " << db.Max << "; feedback reduction "
-              << paged->GetPagingStatistics().FeedbackSeconds * 1e3 << " ms\n";
+              << paged->GetPagingStatistics().FeedbackMilliseconds << " ms\n";
     Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
     Check(
       sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");

@@ -6,8 +6,8 @@
 // interior stays coarse, while the screen-space cut refines both everywhere; both images equal
 // the in-core rendering with every brick. Seen from the other side (the hidden volume now in
 // front, semi-transparent) the feedback refines it. Also: the CPU and OpenCL reductions drive
-// the same cut, every feedback scale hides the same volume, and ErrorThreshold makes the rays
-// ask for a coarser level.
+// the same cut, every feedback scale hides the same volume, and LevelOfDetailThreshold makes the
+// rays ask for a coarser level.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
@@ -250,19 +250,19 @@ int TestMultiVolumeFeedback(int, char*[])
       "seen from the other side the blob is refined and the image equals the in-core one");
   }
 
-  // --- ErrorThreshold: voxels of the front face cover about 2.4 pixels here (distance 90,
+  // --- LevelOfDetailThreshold: voxels of the front face cover about 2.4 pixels here (distance 90,
   // 239 pixels per radian); a threshold of 8 pixels asks for level 1 (4.8 pixels), not 0.
   {
     s.Camera(true);
     auto coarse = makePaged(true);
-    coarse->SetErrorThreshold(8.0);
+    coarse->SetLevelOfDetailThreshold(8.0);
     std::vector<unsigned char> image;
     const int frames = s.Converge(coarse, image);
     const auto levels = coarse->GetResidentBricksPerLevel(0);
-    std::cout << "Feedback: ErrorThreshold 8 pixels: converged after " << frames
+    std::cout << "Feedback: LevelOfDetailThreshold 8 pixels: converged after " << frames
               << " frames; front volume " << Levels(levels) << "\n";
     Check(frames > 0 && levels[0] == 0 && levels[1] > 0,
-      "ErrorThreshold 8: the front volume refined to level 1 only");
+      "LevelOfDetailThreshold 8: the front volume refined to level 1 only");
   }
 
   for (const std::string& pool : pools)

@@ -1,0 +1,60 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkStrataRenderUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkRenderer.h"
+
+#include <cmath>
+
+vtkVolumeCut::Camera vtkStrataRenderUtilities::GetCutCamera(vtkRenderer* ren)
+{
+  vtkCamera* camera = ren->GetActiveCamera();
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkVolumeCut::Camera cutCamera;
+  camera->GetPosition(cutCamera.Position);
+  if (camera->GetParallelProjection())
+    cutCamera.PixelsPerUnit = height / (2.0 * camera->GetParallelScale());
+  else
+    cutCamera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle());
+  cutCamera.UseFrustum = true;
+  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), cutCamera.FrustumPlanes);
+  return cutCamera;
+}
+
+void vtkStrataRenderUtilities::GetLights(
+  vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors)
+{
+  directions.clear();
+  colors.clear();
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || directions.size() >= 24)
+      continue;
+    double pos[3], fp[3];
+    light->GetTransformedPosition(pos);
+    light->GetTransformedFocalPoint(fp);
+    double dir[3] = { pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2] };
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (len <= 0.0)
+      continue;
+    const double* c = light->GetDiffuseColor();
+    for (int a = 0; a < 3; ++a)
+    {
+      directions.push_back(static_cast<float>(dir[a] / len));
+      colors.push_back(static_cast<float>(c[a] * light->GetIntensity()));
+    }
+  }
+}
+
+void vtkStrataRenderUtilities::ToColumnMajor(const double rowMajor[16], float columnMajor[16])
+{
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      columnMajor[4 * c + r] = static_cast<float>(rowMajor[4 * r + c]);
+}

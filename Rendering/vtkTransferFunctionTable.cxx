@@ -1,0 +1,127 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkTransferFunctionTable.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkTextureObject.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+
+vtkTransferFunctionTable::vtkTransferFunctionTable() = default;
+vtkTransferFunctionTable::~vtkTransferFunctionTable() = default;
+
+vtkTextureObject* vtkTransferFunctionTable::GetTexture() const
+{
+  return this->Texture;
+}
+
+vtkMTimeType vtkTransferFunctionTable::GetMTime(vtkVolumeProperty* property)
+{
+  const bool rgb = property->GetColorChannels(0) == 3;
+  const vtkMTimeType color = rgb ? property->GetRGBTransferFunction(0)->GetMTime()
+                                 : property->GetGrayTransferFunction(0)->GetMTime();
+  return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
+}
+
+void vtkTransferFunctionTable::Tabulate(vtkVolumeProperty* property,
+  int size,
+  double range[2],
+  std::vector<float>& rgb,
+  std::vector<float>& opacity)
+{
+  // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
+  const bool useRgb = property->GetColorChannels(0) == 3;
+  vtkColorTransferFunction* color = useRgb ? property->GetRGBTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* gray = useRgb ? nullptr : property->GetGrayTransferFunction(0);
+  vtkPiecewiseFunction* alpha = property->GetScalarOpacity(0);
+  alpha->GetRange(range);
+  double cr[2];
+  if (useRgb)
+    color->GetRange(cr);
+  else
+    gray->GetRange(cr);
+  range[0] = std::min(range[0], cr[0]);
+  range[1] = std::max(range[1], cr[1]);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  rgb.resize(3 * size_t(size));
+  opacity.resize(size);
+  if (useRgb)
+  {
+    color->GetTable(range[0], range[1], size, rgb.data());
+  }
+  else
+  {
+    std::vector<float> g(size);
+    gray->GetTable(range[0], range[1], size, g.data());
+    for (int i = 0; i < size; ++i)
+      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = g[i];
+  }
+  alpha->GetTable(range[0], range[1], size, opacity.data());
+}
+
+void vtkTransferFunctionTable::TabulateExtinction(vtkVolumeProperty* property,
+  int size,
+  double range[2],
+  std::vector<float>& rgbTau,
+  std::vector<float>& opacity)
+{
+  std::vector<float> rgb;
+  Tabulate(property, size, range, rgb, opacity);
+  const double unit = std::max(property->GetScalarOpacityUnitDistance(0), 1e-30);
+  rgbTau.resize(4 * size_t(size));
+  for (int i = 0; i < size; ++i)
+  {
+    const double a = std::min(std::max(double(opacity[i]), 0.0), 1.0 - 1e-6);
+    for (int c = 0; c < 3; ++c)
+      rgbTau[4 * i + c] = rgb[3 * i + c];
+    rgbTau[4 * i + 3] = static_cast<float>(-std::log(1.0 - a) / unit);
+  }
+}
+
+bool vtkTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property)
+{
+  const vtkMTimeType time = GetMTime(property);
+  if (this->Texture && this->Property == property && this->Time >= time)
+  {
+    return false;
+  }
+  TabulateExtinction(property, TableSize, this->ScalarRange, this->RGBTau, this->Opacity);
+  if (!this->Texture)
+  {
+    this->Texture = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  this->Texture->SetContext(renWin);
+  this->Texture->ReleaseGraphicsResources(renWin);
+  this->Texture->SetContext(renWin);
+  this->Texture->Create2DFromRaw(TableSize, 1, 4, VTK_FLOAT, this->RGBTau.data());
+  this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->Texture->SetMinificationFilter(vtkTextureObject::Linear);
+  this->Texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  // Entry i sits at scalar r0 + i (r1 - r0) / (N - 1), its texel centre at (i + 0.5) / N.
+  const double* r = this->ScalarRange;
+  this->TableRange[0] = r[0];
+  this->TableRange[1] = (TableSize - 1.0) / (TableSize * (r[1] - r[0]));
+  this->TableRange[2] = 0.5 / TableSize;
+  this->Property = property;
+  this->Time = time;
+  ++this->BuildCount;
+  return true;
+}
+
+void vtkTransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Texture)
+  {
+    this->Texture->ReleaseGraphicsResources(window);
+  }
+  this->Texture = nullptr;
+  this->Property = nullptr;
+  this->Time = 0;
+}
