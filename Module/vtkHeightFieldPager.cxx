@@ -7,6 +7,7 @@
 #include "vtkMinMaxQuadtree.h"
 #include "vtkPageCache.h"
 #include "vtkPagePoolFile.h"
+#include "vtkPagedPools.h"
 #include "vtkVolumeBrickTree.h"
 
 #include <algorithm>
@@ -61,10 +62,7 @@ public:
   std::vector<std::unique_ptr<Pool>> Pools;
   std::vector<Horizon> Horizons;
   std::vector<std::pair<std::string, int>> OpenedSources;
-  std::mutex PoolsMutex; ///< guards PoolFiles against the cache's workers
-  std::vector<std::shared_ptr<vtkPagePoolFile>> PoolFiles;
-  std::vector<std::vector<std::array<int, 3>>> PoolGrids; ///< tiles per level of each pool (idem)
-  std::atomic<bool> Prefetch{ false };
+  vtkPagedPools Paging; ///< the pools (by index in Pools), RAM cache, requests and roots
   int MorphFrames = 0;
   static constexpr int MaxMorphingPages = 64;
   std::vector<std::vector<char>> WasInCut; ///< per horizon and node, after the last Update()
@@ -80,7 +78,6 @@ public:
   int Tiles[2] = { 0, 0 };
   int AtlasSlots = 512;
   int InitializedSlots = -1;
-  double CacheMiB = 256.0;
   int PagesPerFrame = 64;
   int TileSize = 64;
   int Leaf = 64;
@@ -90,7 +87,6 @@ public:
   double NoData = 0.0;
   vtkPagePoolFile::Header Header;
   vtkHeightFieldPager::Statistics Stats;
-  int RequestLimit = 256;
 
   // Feedback: page id -> (coverage, frame last asked for); per horizon, the requests summed
   // over each node's subtree.
@@ -124,44 +120,6 @@ public:
            n = tree.GetParent(n))
         this->SubtreeRequests[h][n] += r.second.first;
     }
-  }
-
-  vtkInternals()
-  {
-    // After a tile loaded on demand: its four neighbours and its parent, ahead of the camera.
-    this->Cache.SetNeighbourFunction(
-      [this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more)
-      {
-        if (!this->Prefetch)
-          return;
-        std::lock_guard<std::mutex> lock(this->PoolsMutex);
-        if (key.Dataset < 0 || key.Dataset >= static_cast<int>(this->PoolGrids.size()))
-          return;
-        const auto& grid = this->PoolGrids[key.Dataset];
-        if (key.Level < 0 || key.Level >= static_cast<int>(grid.size()))
-          return;
-        const bool parent = key.Level + 1 < static_cast<int>(grid.size());
-        vtkPageCache::AddGridNeighbours(
-          key, grid[key.Level].data(), parent ? grid[key.Level + 1].data() : nullptr, more);
-      });
-    this->Cache.SetLoadFunction(
-      [this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error)
-      {
-        std::shared_ptr<vtkPagePoolFile> file;
-        {
-          std::lock_guard<std::mutex> lock(this->PoolsMutex);
-          if (key.Dataset >= 0 && key.Dataset < static_cast<int>(this->PoolFiles.size()))
-            file = this->PoolFiles[key.Dataset];
-        }
-        if (!file)
-        {
-          error = "no tile pool " + std::to_string(key.Dataset);
-          return false;
-        }
-        out.resize(file->GetPageValues() * sizeof(float));
-        return file->ReadPage(
-          key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
-      });
   }
 
   bool IsHole(float v) const
@@ -719,18 +677,180 @@ public:
     return true;
   }
 
+  /// Opens tile pool `fileName` as the next pool, checks it against the first one's grid and
+  /// builds its quadtree from the page table (nothing read). False with `error` set.
+  bool AddPool(const std::string& fileName, std::string& error)
+  {
+    auto pool = std::make_unique<Pool>();
+    pool->Name = fileName;
+    pool->File = this->Paging.OpenPool(static_cast<int>(this->Pools.size()), fileName, error);
+    if (!pool->File)
+    {
+      error = "cannot open \"" + fileName + "\": " + error;
+      return false;
+    }
+    const auto& header = pool->File->GetHeader();
+    if (header.PoolKind != vtkPagePoolFormat::Kind::TilePool)
+    {
+      error = "\"" + fileName + "\" is a brick pool, not a tile pool of horizons";
+      return false;
+    }
+    if (this->Pools.empty())
+    {
+      this->Header = header;
+    }
+    else if (!this->SameGrid(header))
+    {
+      error = "\"" + fileName + "\" lies on another grid than \"" + this->Pools[0]->Name +
+              "\" (dimensions, page size, spacing, origin or direction differ)";
+      return false;
+    }
+    if (header.Dimensions[0] < 2 || header.Dimensions[1] < 2)
+    {
+      error = "\"" + fileName + "\" is a line of points; paging needs at least 2 x 2";
+      return false;
+    }
+    if (!vtkPagedPools::BuildTree(*pool->File, pool->Tree))
+    {
+      error = "\"" + fileName + "\": its tiles do not form the expected quadtree";
+      return false;
+    }
+    this->Pools.push_back(std::move(pool));
+    return true;
+  }
+
+  /// Whether a pool lies on the first pool's grid (dimensions, page size, geometry).
+  bool SameGrid(const vtkPagePoolFile::Header& header) const
+  {
+    const auto& h0 = this->Header;
+    bool same = header.Dimensions[0] == h0.Dimensions[0] &&
+                header.Dimensions[1] == h0.Dimensions[1] && header.PageSize == h0.PageSize;
+    for (int a = 0; a < 3 && same; ++a)
+      same =
+        std::abs(header.Spacing[a] - h0.Spacing[a]) <= 1e-9 * std::abs(h0.Spacing[a]) &&
+        std::abs(header.Origin[a] - h0.Origin[a]) <= 1e-6 * std::max(1.0, std::abs(h0.Spacing[a]));
+    for (int a = 0; a < 9 && same; ++a)
+      same = std::abs(header.Direction[a] - h0.Direction[a]) <= 1e-9;
+    return same;
+  }
+
+  /// The stack's grid, tiles, no-data value, value range and whether it may have holes.
+  void SetGeometry()
+  {
+    this->NX = this->Header.Dimensions[0];
+    this->NY = this->Header.Dimensions[1];
+    this->B = this->Header.PageSize;
+    this->S = this->B - 1;
+    const int* tiles = this->Pools[0]->Tree.GetLevelBricks(0);
+    this->Tiles[0] = tiles[0];
+    this->Tiles[1] = tiles[1];
+    this->HasNoData = this->Header.HasNoDataValue;
+    this->NoData = this->Header.NoDataValue;
+    this->ValueRange[0] = 0.0;
+    this->ValueRange[1] = -1.0;
+    this->Holes = false;
+    for (const auto& pool : this->Pools)
+    {
+      const auto& header = pool->File->GetHeader();
+      if (header.ValueRange[0] <= header.ValueRange[1])
+      {
+        if (this->ValueRange[0] > this->ValueRange[1])
+        {
+          this->ValueRange[0] = header.ValueRange[0];
+          this->ValueRange[1] = header.ValueRange[1];
+        }
+        this->ValueRange[0] = std::min(this->ValueRange[0], header.ValueRange[0]);
+        this->ValueRange[1] = std::max(this->ValueRange[1], header.ValueRange[1]);
+      }
+      this->Holes = this->Holes || header.HasNoDataValue ||
+                    header.Type == vtkPagePoolFormat::ScalarType::Float32;
+      const auto& t = pool->Tree;
+      for (int n = 0; n < t.GetNumberOfNodes() && !this->Holes; ++n)
+        this->Holes = !(t.GetNode(n).Min <= t.GetNode(n).Max);
+    }
+  }
+
+  /// Horizon h's quadtree in the cut, under the shared budget: visible where it has data,
+  /// split by feedback requests (the pixels that asked below a tile) or, without feedback,
+  /// its screen-space error; a tile is available once its page is in RAM.
+  void AddToCut(int h)
+  {
+    const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const vtkVolumeBrickTree* tree = &this->Pools[this->Horizons[h].PoolIndex]->Tree;
+    const int v = this->Cut.AddVolume(tree, identity);
+    this->Cut.SetVolumeOpacity(v, [](double lo, double hi) { return lo <= hi ? 1.0 : 0.0; });
+    this->Cut.SetVolumePriority(v,
+      [this, tree, h](int node, double screenSpaceError)
+      {
+        if (!this->UseFeedback)
+          return screenSpaceError;
+        int children[8];
+        const int count = tree->GetChildren(node, children);
+        double asked = 0.0;
+        for (int c = 0; c < count; ++c)
+          asked += this->SubtreeRequests[h][children[c]];
+        return asked;
+      });
+    this->Cut.SetVolumeAvailability(v,
+      [this, h](int node, double priority)
+      {
+        Horizon& hz = this->Horizons[h];
+        if (hz.Pages.count(node))
+          return true;
+        const vtkVolumeBrickTree& t = this->Pools[hz.PoolIndex]->Tree;
+        const auto& n = t.GetNode(node);
+        vtkPageCache::Key key;
+        key.Dataset = hz.PoolIndex;
+        key.Level = n.Level;
+        key.Page = node - t.GetLevelOffset(n.Level);
+        vtkPageCache::Page page = this->Paging.Acquire(key, priority);
+        if (!page)
+          return false;
+        Held held;
+        held.Data = page;
+        held.Offset = static_cast<size_t>(hz.Layer) * this->B * this->B;
+        hz.Pages[node] = std::move(held);
+        return true;
+      });
+  }
+
+  /// Horizon h's root tile: the reader's coarsest level when given, else read here once.
+  bool HoldRoot(int h, const vtkHeightFieldPager::Source& src, std::string& error)
+  {
+    Horizon& hz = this->Horizons[h];
+    Pool& pool = *this->Pools[hz.PoolIndex];
+    const int root = pool.Tree.GetRootId();
+    const int rootLevel = pool.Tree.GetNode(root).Level;
+    const int* rootDims = pool.Tree.GetLevelDimensions(rootLevel);
+    Held held;
+    if (src.RootValues && src.RootDims[0] == rootDims[0] && src.RootDims[1] == rootDims[1])
+    {
+      const int dims[3] = { rootDims[0], rootDims[1], 1 };
+      const int page[3] = { this->B, this->B, 1 };
+      held.Data = vtkPagedPools::PadRoot(src.RootValues, dims, page);
+      held.Offset = 0;
+    }
+    else
+    {
+      std::string why;
+      held.Data = this->Paging.ReadRoot(hz.PoolIndex, rootLevel, 0, why);
+      if (!held.Data)
+      {
+        error = "cannot read the root tile of \"" + pool.Name + "\": " + why;
+        return false;
+      }
+      held.Offset = static_cast<size_t>(hz.Layer) * this->B * this->B;
+    }
+    hz.Pages[root] = std::move(held);
+    return true;
+  }
+
   void Close()
   {
     this->UseFeedback = false;
     this->Requests.clear();
     this->SubtreeRequests.clear();
-    this->Cache.Stop();
-    this->Cache.EvictAll();
-    {
-      std::lock_guard<std::mutex> lock(this->PoolsMutex);
-      this->PoolFiles.clear();
-      this->PoolGrids.clear();
-    }
+    this->Paging.Close();
     this->Pools.clear();
     this->Horizons.clear();
     this->OpenedSources.clear();
@@ -753,10 +873,7 @@ vtkHeightFieldPager::vtkHeightFieldPager()
 {
 }
 
-vtkHeightFieldPager::~vtkHeightFieldPager()
-{
-  this->Internals->Cache.Stop();
-}
+vtkHeightFieldPager::~vtkHeightFieldPager() = default;
 
 bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
 {
@@ -779,64 +896,18 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
   if (static_cast<int>(sources.size()) > 2047)
     return fail("too many horizons");
   std::map<std::string, int> poolOf;
+  std::string error;
   for (size_t h = 0; h < sources.size(); ++h)
   {
     const Source& src = sources[h];
     auto found = poolOf.find(src.FileName);
-    int p;
     if (found == poolOf.end())
     {
-      auto pool = std::make_unique<vtkInternals::Pool>();
-      pool->File = std::make_shared<vtkPagePoolFile>();
-      pool->Name = src.FileName;
-      if (!pool->File->Open(src.FileName))
-        return fail("cannot open \"" + src.FileName + "\": " + pool->File->GetErrorMessage());
-      const auto& header = pool->File->GetHeader();
-      if (header.PoolKind != vtkPagePoolFormat::Kind::TilePool)
-        return fail("\"" + src.FileName + "\" is a brick pool, not a tile pool of horizons");
-      if (in.Pools.empty())
-      {
-        in.Header = header;
-      }
-      else
-      {
-        const auto& h0 = in.Header;
-        bool same = header.Dimensions[0] == h0.Dimensions[0] &&
-                    header.Dimensions[1] == h0.Dimensions[1] && header.PageSize == h0.PageSize;
-        for (int a = 0; a < 3 && same; ++a)
-          same = std::abs(header.Spacing[a] - h0.Spacing[a]) <= 1e-9 * std::abs(h0.Spacing[a]) &&
-                 std::abs(header.Origin[a] - h0.Origin[a]) <=
-                   1e-6 * std::max(1.0, std::abs(h0.Spacing[a]));
-        for (int a = 0; a < 9 && same; ++a)
-          same = std::abs(header.Direction[a] - h0.Direction[a]) <= 1e-9;
-        if (!same)
-          return fail("\"" + src.FileName + "\" lies on another grid than \"" + in.Pools[0]->Name +
-                      "\" (dimensions, page size, spacing, origin or direction differ)");
-      }
-      // The pool's quadtree, its ranges straight from the page table: nothing is read.
-      const uint64_t pages = pool->File->GetNumberOfPages();
-      std::vector<float> mins(pages), maxs(pages);
-      for (uint64_t id = 0; id < pages; ++id)
-      {
-        const auto& e = pool->File->GetPageEntry(id);
-        mins[id] = e.Min;
-        maxs[id] = e.Max;
-      }
-      const int dims[3] = { header.Dimensions[0], header.Dimensions[1], 1 };
-      if (dims[0] < 2 || dims[1] < 2)
-        return fail("\"" + src.FileName + "\" is a line of points; paging needs at least 2 x 2");
-      if (!pool->Tree.BuildStructure(dims, header.PageSize, mins.data(), maxs.data()) ||
-          pool->Tree.GetNumberOfNodes() != static_cast<int>(pages))
-        return fail("\"" + src.FileName + "\": its tiles do not form the expected quadtree");
-      p = static_cast<int>(in.Pools.size());
-      poolOf[src.FileName] = p;
-      in.Pools.push_back(std::move(pool));
+      if (!in.AddPool(src.FileName, error))
+        return fail(error);
+      found = poolOf.emplace(src.FileName, static_cast<int>(in.Pools.size()) - 1).first;
     }
-    else
-    {
-      p = found->second;
-    }
-    const int layers = in.Pools[p]->File->GetHeader().Dimensions[2];
+    const int layers = in.Pools[found->second]->File->GetHeader().Dimensions[2];
     if (src.Layer < 0 || src.Layer >= layers)
     {
       std::ostringstream msg;
@@ -845,145 +916,17 @@ bool vtkHeightFieldPager::Open(const std::vector<Source>& sources)
       return fail(msg.str());
     }
     vtkInternals::Horizon hz;
-    hz.PoolIndex = p;
+    hz.PoolIndex = found->second;
     hz.Layer = src.Layer;
     in.Horizons.push_back(std::move(hz));
   }
-  {
-    std::lock_guard<std::mutex> lock(in.PoolsMutex);
-    for (const auto& pool : in.Pools)
-    {
-      in.PoolFiles.push_back(pool->File);
-      std::vector<std::array<int, 3>> grid;
-      for (int l = 0; l < pool->Tree.GetNumberOfLevels(); ++l)
-      {
-        const int* t = pool->Tree.GetLevelBricks(l);
-        grid.push_back({ t[0], t[1], 1 });
-      }
-      in.PoolGrids.push_back(grid);
-    }
-  }
-  in.NX = in.Header.Dimensions[0];
-  in.NY = in.Header.Dimensions[1];
-  in.B = in.Header.PageSize;
-  in.S = in.B - 1;
-  const int* tiles = in.Pools[0]->Tree.GetLevelBricks(0);
-  in.Tiles[0] = tiles[0];
-  in.Tiles[1] = tiles[1];
-  in.HasNoData = in.Header.HasNoDataValue;
-  in.NoData = in.Header.NoDataValue;
-  in.ValueRange[0] = 0.0;
-  in.ValueRange[1] = -1.0;
-  in.Holes = false;
-  for (const auto& pool : in.Pools)
-  {
-    const auto& header = pool->File->GetHeader();
-    if (header.ValueRange[0] <= header.ValueRange[1])
-    {
-      if (in.ValueRange[0] > in.ValueRange[1])
-      {
-        in.ValueRange[0] = header.ValueRange[0];
-        in.ValueRange[1] = header.ValueRange[1];
-      }
-      in.ValueRange[0] = std::min(in.ValueRange[0], header.ValueRange[0]);
-      in.ValueRange[1] = std::max(in.ValueRange[1], header.ValueRange[1]);
-    }
-    in.Holes =
-      in.Holes || header.HasNoDataValue || header.Type == vtkPagePoolFormat::ScalarType::Float32;
-    const auto& t = pool->Tree;
-    for (int n = 0; n < t.GetNumberOfNodes() && !in.Holes; ++n)
-      in.Holes = !(t.GetNode(n).Min <= t.GetNode(n).Max);
-  }
+  in.SetGeometry();
   this->SetTileSize(in.TileSize);
-
-  // Cut: one quadtree per horizon under one budget; a tile is visible when it has data.
   for (size_t h = 0; h < in.Horizons.size(); ++h)
   {
-    const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-    const int v = in.Cut.AddVolume(&in.Pools[in.Horizons[h].PoolIndex]->Tree, identity);
-    in.Cut.SetVolumeOpacity(v, [](double lo, double hi) { return lo <= hi ? 1.0 : 0.0; });
-    vtkInternals* internals = &in;
-    const int hi = static_cast<int>(h);
-    // With feedback, split a tile when rays asked for tiles below it: the pixels that did are
-    // its priority. Without, its screen-space error.
-    const vtkVolumeBrickTree* tree = &in.Pools[in.Horizons[h].PoolIndex]->Tree;
-    in.Cut.SetVolumePriority(v,
-      [internals, tree, hi](int node, double screenSpaceError)
-      {
-        if (!internals->UseFeedback)
-          return screenSpaceError;
-        int children[8];
-        const int count = tree->GetChildren(node, children);
-        double asked = 0.0;
-        for (int c = 0; c < count; ++c)
-          asked += internals->SubtreeRequests[hi][children[c]];
-        return asked;
-      });
-    in.Cut.SetVolumeAvailability(v,
-      [internals, hi](int node, double priority)
-      {
-        vtkInternals::Horizon& hz = internals->Horizons[hi];
-        if (hz.Pages.count(node))
-          return true;
-        const vtkVolumeBrickTree& tree = internals->Pools[hz.PoolIndex]->Tree;
-        const auto& n = tree.GetNode(node);
-        vtkPageCache::Key key;
-        key.Dataset = hz.PoolIndex;
-        key.Level = n.Level;
-        key.Page = node - tree.GetLevelOffset(n.Level);
-        if (vtkPageCache::Page page = internals->Cache.Find(key))
-        {
-          vtkInternals::Held held;
-          held.Data = page;
-          held.Offset = static_cast<size_t>(hz.Layer) * internals->B * internals->B;
-          hz.Pages[node] = std::move(held);
-          return true;
-        }
-        // No more than a few frames' worth of uploads queued: a longer queue would load pages
-        // that the cache evicts again before the cut can use them.
-        if (internals->Stats.MissesThisFrame < internals->RequestLimit)
-          internals->Cache.Request(key, priority);
-        ++internals->Stats.MissesThisFrame;
-        return false;
-      });
-  }
-
-  // Roots: given by the caller (the reader's coarsest level) or read here, once.
-  for (size_t h = 0; h < in.Horizons.size(); ++h)
-  {
-    vtkInternals::Horizon& hz = in.Horizons[h];
-    vtkInternals::Pool& pool = *in.Pools[hz.PoolIndex];
-    const int root = pool.Tree.GetRootId();
-    const int rootLevel = pool.Tree.GetNode(root).Level;
-    const int* rootDims = pool.Tree.GetLevelDimensions(rootLevel);
-    const Source& src = sources[h];
-    vtkInternals::Held held;
-    if (src.RootValues && src.RootDims[0] == rootDims[0] && src.RootDims[1] == rootDims[1])
-    {
-      // The page repeats the level's last point beyond it, as the writer pads.
-      auto page =
-        std::make_shared<std::vector<uint8_t>>(static_cast<size_t>(in.B) * in.B * sizeof(float));
-      float* out = reinterpret_cast<float*>(page->data());
-      for (int y = 0; y < in.B; ++y)
-        for (int x = 0; x < in.B; ++x)
-          out[static_cast<size_t>(y) * in.B + x] =
-            src.RootValues[static_cast<size_t>(std::min(y, rootDims[1] - 1)) * rootDims[0] +
-                           std::min(x, rootDims[0] - 1)];
-      held.Data = page;
-      held.Offset = 0;
-    }
-    else
-    {
-      auto page =
-        std::make_shared<std::vector<uint8_t>>(pool.File->GetPageValues() * sizeof(float));
-      std::string error;
-      if (!pool.File->ReadPage(rootLevel, 0, reinterpret_cast<float*>(page->data()), &error))
-        return fail("cannot read the root tile of \"" + pool.Name + "\": " + error);
-      held.Data = page;
-      held.Offset = static_cast<size_t>(hz.Layer) * in.B * in.B;
-      ++in.Stats.RootPagesRead;
-    }
-    hz.Pages[root] = std::move(held);
+    in.AddToCut(static_cast<int>(h));
+    if (!in.HoldRoot(static_cast<int>(h), sources[h], error))
+      return fail(error);
   }
   in.OpenedSources = wanted;
   in.Open = true;
@@ -1068,17 +1011,18 @@ void vtkHeightFieldPager::InvalidateAtlas()
 
 void vtkHeightFieldPager::SetCacheBudgetMiB(double mib)
 {
-  this->Internals->CacheMiB = std::max(1.0, mib);
+  this->Internals->Paging.SetCacheBudgetMiB(std::max(1.0, mib));
 }
 
 void vtkHeightFieldPager::SetPagesPerFrame(int pages)
 {
   this->Internals->PagesPerFrame = std::max(1, pages);
+  this->Internals->Paging.SetPagesPerFrame(this->Internals->PagesPerFrame);
 }
 
 void vtkHeightFieldPager::SetPrefetch(bool prefetch)
 {
-  this->Internals->Prefetch = prefetch;
+  this->Internals->Paging.SetPrefetch(prefetch);
 }
 
 void vtkHeightFieldPager::SetMorphFrames(int frames)
@@ -1124,9 +1068,7 @@ bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
     in.InitializedSlots = in.AtlasSlots;
     in.TableLevels.clear();
   }
-  in.Cache.SetBudgetMiB(in.CacheMiB);
-  in.Cache.Start();
-  in.Cache.BeginFrame();
+  in.Paging.BeginFrame();
 
   // The tree's index space is (x, y, 0): place it at the middle of the value range, where
   // the screen-space error of a tile is best estimated without its heights.
@@ -1153,8 +1095,6 @@ bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
       pl[3] += std::abs(pl[0] * span[0] + pl[1] * span[1] + pl[2] * span[2]);
     }
   }
-  in.Stats.MissesThisFrame = 0;
-  in.RequestLimit = 4 * in.PagesPerFrame;
   in.Cut.SetMaxNewBricksPerUpdate(in.PagesPerFrame);
   const int entered = in.Cut.Update(cutCamera);
 
@@ -1164,7 +1104,7 @@ bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
     vtkInternals::Horizon& hz = in.Horizons[h];
     vtkCutPages::Prune(hz.Pages, in.Cut, h, in.Pools[hz.PoolIndex]->Tree);
   }
-  in.Cache.CancelStale(in.Cache.GetFrame());
+  in.Paging.EndFrame();
 
   in.Atlas.BeginFrame();
   std::vector<vtkVolumeCut::Upload> cutUploads;
@@ -1197,10 +1137,7 @@ bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
     rebuilt = in.RebuildTree(treeChanged || in.MorphEnded);
   }
 
-  const vtkPageCache::Statistics cs = in.Cache.GetStatistics();
-  in.Stats.PendingPages = static_cast<int>(cs.QueueLength + cs.InFlight);
-  in.Stats.BytesRead = cs.BytesRead;
-  in.Stats.CacheBytes = static_cast<long long>(cs.CurrentBytes);
+  static_cast<vtkPagedPools::Statistics&>(in.Stats) = in.Paging.GetStatistics();
   in.Stats.Entered = entered;
   in.Stats.CutTiles = in.Cut.GetCost();
   in.Stats.FinestTiles = 0;
@@ -1319,7 +1256,7 @@ std::vector<std::string> vtkHeightFieldPager::TakeNewFailures()
 {
   vtkInternals& in = *this->Internals;
   std::vector<std::string> messages;
-  for (const auto& f : in.Cache.TakeNewFailures())
+  for (const auto& f : in.Paging.TakeNewFailures())
   {
     std::ostringstream msg;
     const std::string name =
@@ -1329,14 +1266,14 @@ std::vector<std::string> vtkHeightFieldPager::TakeNewFailures()
     msg << "tile " << f.PageKey.Page << " of level " << f.PageKey.Level << " of \"" << name
         << "\": " << f.Error;
     messages.push_back(msg.str());
-    ++in.Stats.Failures;
   }
+  in.Stats.Failures = in.Paging.GetStatistics().Failures;
   return messages;
 }
 
 void vtkHeightFieldPager::RetryFailedPages()
 {
-  this->Internals->Cache.RetryAll();
+  this->Internals->Paging.RetryFailedPages();
 }
 
 vtkHeightFieldPager::Statistics vtkHeightFieldPager::GetStatistics() const
@@ -1346,7 +1283,7 @@ vtkHeightFieldPager::Statistics vtkHeightFieldPager::GetStatistics() const
 
 bool vtkHeightFieldPager::WaitForIdle(double seconds)
 {
-  return this->Internals->Cache.WaitForIdle(seconds);
+  return this->Internals->Paging.WaitForIdle(seconds);
 }
 
 float vtkHeightFieldPager::GetTileHeight(int horizon, int tileX, int tileY, int i, int j) const

@@ -11,6 +11,8 @@
  * - Each horizon is one layer of a tile pool (vtkPagePoolFormat TilePool); all share one grid
  *   (dimensions, page size, geometry). A pool with several layers is read once per page and
  *   shared by its horizons (one cache key per pool page).
+ * - Pools, the RAM cache, page requests and roots are vtkPagedPools, as for volumes
+ *   (vtkVolumePager).
  * - The cut is a vtkVolumeCut over each horizon's tile quadtree (a brick tree one point thick),
  *   all horizons under one atlas budget, refined greedily by screen-space error; a tile enters
  *   the cut only once its page is in RAM (vtkPageCache, worker threads), so the render thread
@@ -43,6 +45,7 @@
 #define vtkHeightFieldPager_h
 
 #include "StrataCoreModule.h" // For export macro
+#include "vtkPagedPools.h"    // For vtkPagedPools::Statistics
 #include "vtkVolumeCut.h"     // For vtkVolumeCut::Camera
 
 #include <cstdint> // For uint16_t, uint32_t
@@ -73,20 +76,16 @@ public:
     int Slot;
   };
 
-  struct Statistics
+  /// vtkPagedPools' counts (pending, misses, bytes read and cached, roots read, failures,
+  /// since Open()) and the cut's.
+  struct Statistics : vtkPagedPools::Statistics
   {
-    int PendingPages = 0;     ///< queued or loading in the cache
-    int MissesThisFrame = 0;  ///< cut splits that waited for a page this frame
-    bool Converged = false;   ///< cut settled, nothing missing or pending
-    long long BytesRead = 0;  ///< by the cache's workers, since Open()
-    long long CacheBytes = 0; ///< resident in RAM now
-    int RootPagesRead = 0;    ///< roots this object read itself (no RootValues given)
-    int Failures = 0;         ///< pages whose load failed, since Open()
-    int CutTiles = 0;         ///< resident cut tiles over all horizons
-    int FinestTiles = 0;      ///< of which level 0
-    int Entered = 0;          ///< tiles that entered the cut this frame
-    int FeedbackPages = 0;    ///< distinct tiles the feedback asked for (last cycle)
-    int MorphingTiles = 0;    ///< tiles still blending from their parent's surface
+    bool Converged = false; ///< cut settled, nothing missing, pending or blending
+    int CutTiles = 0;       ///< resident cut tiles over all horizons
+    int FinestTiles = 0;    ///< of which level 0
+    int Entered = 0;        ///< tiles that entered the cut this frame
+    int FeedbackPages = 0;  ///< distinct tiles the feedback asked for (last cycle)
+    int MorphingTiles = 0;  ///< tiles still blending from their parent's surface
   };
 
   vtkHeightFieldPager();

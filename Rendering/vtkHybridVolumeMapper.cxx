@@ -2,7 +2,10 @@
 #include "vtkHybridVolumeMapper.h"
 
 #include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkStrataGLObject.h"
 #include "vtkStrataRenderUtilities.h"
+#include "vtkStrataResourceFreeCallback.h"
+#include "vtkStrataShaderCache.h"
 #include "vtkTransferFunctionTable.h"
 
 #include "vtkAlgorithm.h"
@@ -17,7 +20,6 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPlane.h"
@@ -32,98 +34,88 @@
 #include "vtk_glew.h"
 
 #include "vtkHybridPointsFS.h"
+#include "vtkHybridPointsShadeDec.h"
+#include "vtkHybridPointsShadeImpl.h"
+#include "vtkHybridPointsSplatFS.h"
+#include "vtkHybridPointsSplatVS.h"
 #include "vtkHybridPointsVS.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace
 {
+using PointKey = std::pair<bool, bool>; ///< (Gaussian splats, shaded): all a point program uses
+
 void Replace(std::string& source, const std::string& tag, const std::string& code)
 {
-  const size_t at = source.find(tag);
-  if (at != std::string::npos)
-    source.replace(at, tag.size(), code);
+  vtkStrataShaderCache<PointKey>::Replace(source, tag, code);
 }
 
 // The point shaders for one shape, with or without shading: nothing else is compiled.
-void BuildPointShaders(bool splats, bool shaded, std::string& vs, std::string& fs)
+void BuildPointShaders(const PointKey& key, std::string& vs, std::string& fs)
 {
+  const bool splats = key.first, shaded = key.second;
   vs = vtkHybridPointsVS;
   fs = vtkHybridPointsFS;
-  if (splats)
-  {
-    // A Gaussian of standard deviation sigma = size / sqrt(2 pi) integrates to size^2, the
-    // square's area; the sprite spans +- 3 sigma.
-    Replace(vs, "//STRATA::Splat::VSDec", "out float vSigma;\nout float vSide;");
-    Replace(vs,
-      "//STRATA::Splat::VSImpl",
-      "float px = max(size, 1.0);\n"
-      "  vSigma = px * 0.3989422804;\n"
-      "  vSide = ceil(6.0 * vSigma);\n"
-      "  gl_PointSize = vSide;\n"
-      "  vColor = vec4(c, a) * min(size * size / (px * px), 1.0);");
-    Replace(fs, "//STRATA::Splat::FSDec", "in float vSigma;\nin float vSide;");
-    Replace(fs,
-      "//STRATA::Splat::FSImpl",
-      "vec2 r = (gl_PointCoord - 0.5) * vSide;\n"
-      "  gl_FragData[0] = vColor * exp(-dot(r, r) / (2.0 * vSigma * vSigma));");
-  }
-  else
-  {
-    Replace(vs, "//STRATA::Splat::VSDec", "");
-    Replace(vs,
-      "//STRATA::Splat::VSImpl",
-      "float side = max(ceil(size), 1.0);\n"
-      "  gl_PointSize = side;\n"
-      "  vColor = vec4(c, a) * min(size * size / (side * side), 1.0);");
-    Replace(fs, "//STRATA::Splat::FSDec", "");
-    Replace(fs, "//STRATA::Splat::FSImpl", "gl_FragData[0] = vColor;");
-  }
-  if (shaded)
-  {
-    // Two-sided Blinn-Phong with the scene's directional lights, as the ray caster shades.
-    Replace(vs,
-      "//STRATA::Normal::Dec",
-      "in vec3 pointNormal;\n"
-      "uniform mat3 uNormalToWorld;\n"
-      "uniform vec4 uMaterial; // ambient, diffuse, specular, specular power\n"
-      "uniform int uNumLights;\n"
-      "uniform vec3 uLightDirection[8];\n"
-      "uniform vec3 uLightColor[8];\n"
-      "uniform vec3 uViewDirection; // towards the eye");
-    Replace(vs,
-      "//STRATA::Normal::Impl",
-      "vec3 N = normalize(uNormalToWorld * pointNormal);\n"
-      "  vec3 diffuse = vec3(0.0);\n  vec3 specular = vec3(0.0);\n"
-      "  for (int l = 0; l < uNumLights; ++l)\n  {\n"
-      "    diffuse += abs(dot(N, uLightDirection[l])) * uLightColor[l];\n"
-      "    specular += pow(abs(dot(N, normalize(uLightDirection[l] + uViewDirection))), "
-      "uMaterial.w) * uLightColor[l];\n"
-      "  }\n"
-      "  c = c * (uMaterial.x + uMaterial.y * diffuse) + uMaterial.z * specular * a;");
-  }
-  else
-  {
-    Replace(vs, "//STRATA::Normal::Dec", "");
-    Replace(vs, "//STRATA::Normal::Impl", "");
-  }
+  Replace(vs, "//STRATA::Splat::VSDec", splats ? "out float vSigma;\nout float vSide;" : "");
+  Replace(vs,
+    "//STRATA::Splat::VSImpl",
+    splats ? vtkHybridPointsSplatVS
+           : "float side = max(ceil(size), 1.0);\n"
+             "  gl_PointSize = side;\n"
+             "  vColor = vec4(c, a) * min(size * size / (side * side), 1.0);");
+  Replace(fs, "//STRATA::Splat::FSDec", splats ? "in float vSigma;\nin float vSide;" : "");
+  Replace(
+    fs, "//STRATA::Splat::FSImpl", splats ? vtkHybridPointsSplatFS : "gl_FragData[0] = vColor;");
+  Replace(vs, "//STRATA::Normal::Dec", shaded ? vtkHybridPointsShadeDec : "");
+  Replace(vs, "//STRATA::Normal::Impl", shaded ? vtkHybridPointsShadeImpl : "");
 }
 
-void ToFloat(const double m[16], float out[16])
+// Points sorted far to near by depth along the view direction, in S slabs of SubBuckets
+// buckets each (a counting sort): slab s (0 nearest) is order[start[(S - 1 - s) * SubBuckets]
+// .. start[(S - s) * SubBuckets]).
+constexpr int SubBuckets = 64;
+void SortPoints(const std::vector<double>& depth,
+  double lo,
+  double width,
+  int S,
+  std::vector<unsigned int>& order,
+  std::vector<size_t>& start)
 {
-  // Row-major double -> column-major float, as glUniformMatrix4fv wants it.
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      out[4 * c + r] = static_cast<float>(m[4 * r + c]);
+  const int buckets = S * SubBuckets;
+  const size_t count = depth.size();
+  std::vector<unsigned int> bucketOf(count);
+  start.assign(buckets + 1, 0);
+  for (size_t i = 0; i < count; ++i)
+  {
+    const int nearToFar =
+      std::min(buckets - 1, std::max(0, int((depth[i] - lo) / width * buckets)));
+    bucketOf[i] = static_cast<unsigned int>(buckets - 1 - nearToFar);
+    ++start[bucketOf[i] + 1];
+  }
+  for (int k = 0; k < buckets; ++k)
+    start[k + 1] += start[k];
+  order.resize(count);
+  std::vector<size_t> fill(start.begin(), start.end() - 1);
+  for (size_t i = 0; i < count; ++i)
+    order[fill[bucketOf[i]]++] = static_cast<unsigned int>(i);
 }
 }
 
 class vtkHybridVolumeMapper::vtkInternals
 {
 public:
+  using Self = vtkHybridVolumeMapper;
+  explicit vtkInternals(Self* self)
+    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+  {
+  }
+
+  vtkStrataResourceFreeCallback<Self> ResourceCallback;
   vtkNew<vtkMultiVolumeRayCastMapper> Volume;
   vtkNew<vtkPlaneCollection> Slab;
   vtkNew<vtkPlane> Near;
@@ -136,45 +128,320 @@ public:
   std::array<double, 3> Origin = { 0, 0, 0 };
   std::vector<double> Positions; // double, relative to Origin, for the per-frame depth sort
   bool HasNormals = false;
-  unsigned int VBO = 0;
-  unsigned int IBO = 0;
-  unsigned int VAO = 0;
+  vtkStrataGLObject VBO{ vtkStrataGLObject::Kinds::Buffer };
+  vtkStrataGLObject IBO{ vtkStrataGLObject::Kinds::Buffer };
+  vtkStrataGLObject VAO{ vtkStrataGLObject::Kinds::VertexArray };
   vtkShaderProgram* VaoProgram = nullptr;
   vtkIdType Count = 0;
   vtkIdType Drawn = 0;
 
   vtkTransferFunctionTable Transfer; ///< the volume property's table, as the ray caster's
+  vtkStrataShaderCache<PointKey> Programs;
+  PointKey LastKey{ false, false };
 
-  std::string VS;
-  std::string FS;
+  /// What a frame draws with: the points sorted into slabs, the depths they span, the
+  /// projection of a cell and the program's key.
+  struct Frame
+  {
+    double Lo = 1e300, Hi = -1e300;
+    std::vector<unsigned int> Order;
+    std::vector<size_t> Start;
+    double Cell = 0.0;
+    bool Shaded = false;
+    PointKey Key{ false, false };
+    float LocalToClip[16];
+    vtkNew<vtkMatrix4x4> Linear; ///< the prop's linear part
+    double Scale = 1.0;          ///< cube root of its |determinant|
+    double PixelsPerUnit = 0.0;
+    double Eye[3], Direction[3];
+  };
+
+  void UploadPoints(vtkPolyData* points,
+    vtkDataArray* values,
+    vtkDataArray* errors,
+    vtkDataArray* normals,
+    vtkIdType count);
+  void Sort(Self* self, vtkRenderer* ren, vtkVolume* vol, Frame& frame);
+  vtkShaderProgram* ReadyPoints(vtkOpenGLRenderWindow* renWin, Frame& frame, bool first);
+  void SetUniforms(vtkRenderer* ren, vtkVolume* vol, vtkShaderProgram* program, Frame& frame);
+  void DrawSlabPoints(vtkOpenGLRenderWindow* renWin, size_t first, size_t last);
+  void SetSlabPlanes(vtkPlaneCollection* planes,
+    const Frame& frame,
+    int s,
+    int S,
+    vtkPlaneCollection* slab);
+  void SetUpProjection(vtkRenderer* ren, vtkVolume* vol, Frame& frame);
 
   void Release(vtkWindow* window)
   {
-    if (this->VBO)
-      glDeleteBuffers(1, &this->VBO);
-    if (this->IBO)
-      glDeleteBuffers(1, &this->IBO);
-    if (this->VAO)
-      glDeleteVertexArrays(1, &this->VAO);
-    this->VBO = this->IBO = this->VAO = 0;
+    this->VBO.Release();
+    this->IBO.Release();
+    this->VAO.Release();
     this->VaoProgram = nullptr;
     this->PointsInput = nullptr;
     this->PointsTime = 0;
     this->Transfer.ReleaseGraphicsResources(window);
+    this->Programs.ReleaseGraphicsResources();
   }
 };
+
+// --- Points: uploaded when they change (position relative to their centre, value, error and,
+// shaded, normal).
+void vtkHybridVolumeMapper::vtkInternals::UploadPoints(vtkPolyData* points,
+  vtkDataArray* values,
+  vtkDataArray* errors,
+  vtkDataArray* normals,
+  vtkIdType count)
+{
+  const bool shaded = normals != nullptr;
+  if (this->PointsInput == points && this->PointsTime >= points->GetMTime() &&
+      this->Count == count && this->HasNormals == shaded)
+    return;
+  double b[6];
+  points->GetBounds(b);
+  this->Origin = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  const int stride = shaded ? 8 : 5;
+  std::vector<float> vbo(size_t(count) * stride);
+  this->Positions.resize(3 * size_t(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    float* v = &vbo[size_t(i) * stride];
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Positions[3 * size_t(i) + c] = p[c] - this->Origin[c];
+      v[c] = static_cast<float>(p[c] - this->Origin[c]);
+    }
+    v[3] = static_cast<float>(values->GetComponent(i, 0));
+    v[4] = static_cast<float>(errors->GetComponent(i, 0));
+    for (int c = 0; shaded && c < 3; ++c)
+      v[5 + c] = static_cast<float>(normals->GetComponent(i, c));
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, this->VBO.Get());
+  glBufferData(GL_ARRAY_BUFFER, vbo.size() * sizeof(float), vbo.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  this->PointsInput = points;
+  this->PointsTime = points->GetMTime();
+  this->Count = count;
+  this->HasNormals = shaded;
+  this->VaoProgram = nullptr;
+}
+
+// --- Slabs: depth along the view direction over the volume's and the points' extent, and
+// the points sorted into them far to near.
+void vtkHybridVolumeMapper::vtkInternals::Sort(Self* self,
+  vtkRenderer* ren,
+  vtkVolume* vol,
+  Frame& frame)
+{
+  vtkCamera* camera = ren->GetActiveCamera();
+  camera->GetPosition(frame.Eye);
+  camera->GetDirectionOfProjection(frame.Direction);
+  const double* eye = frame.Eye;
+  const double* dir = frame.Direction;
+  const double* m = vol->GetMatrix()->GetData();
+  const double* vb = vol->GetBounds();
+  for (int k = 0; k < 8; ++k)
+  {
+    const double corner[3] = { vb[k & 1], vb[2 + ((k >> 1) & 1)], vb[4 + ((k >> 2) & 1)] };
+    double d = 0.0;
+    for (int c = 0; c < 3; ++c)
+      d += (corner[c] - eye[c]) * dir[c];
+    frame.Lo = std::min(frame.Lo, d);
+    frame.Hi = std::max(frame.Hi, d);
+  }
+  std::vector<double> depth(static_cast<size_t>(this->Count));
+  for (vtkIdType i = 0; i < this->Count; ++i)
+  {
+    // local (relative to the points' origin) -> world by the prop's matrix -> depth.
+    const double* local = &this->Positions[3 * size_t(i)];
+    double d = 0.0;
+    for (int r = 0; r < 3; ++r)
+    {
+      double w = m[4 * r + 3];
+      for (int c = 0; c < 3; ++c)
+        w += m[4 * r + c] * (local[c] + this->Origin[c]);
+      d += (w - eye[r]) * dir[r];
+    }
+    depth[i] = d;
+    frame.Lo = std::min(frame.Lo, d);
+    frame.Hi = std::max(frame.Hi, d);
+  }
+  SortPoints(depth,
+    frame.Lo,
+    std::max(frame.Hi - frame.Lo, 1e-300),
+    self->NumberOfSlabs,
+    frame.Order,
+    frame.Start);
+}
+
+// The point program (bound, its vertex array set up for it); the first slab of a frame also
+// uploads the frame's point order and sets the uniforms.
+vtkShaderProgram* vtkHybridVolumeMapper::vtkInternals::ReadyPoints(vtkOpenGLRenderWindow* renWin,
+  Frame& frame,
+  bool first)
+{
+  vtkShaderProgram* program = this->Programs.Ready(renWin,
+    frame.Key,
+    [](const PointKey& key, std::string& vs, std::string& fs) { BuildPointShaders(key, vs, fs); });
+  if (!program)
+    return nullptr;
+  this->LastKey = frame.Key;
+  glBindVertexArray(this->VAO.Get());
+  if (!first)
+    return program;
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, this->IBO.Get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+    frame.Order.size() * sizeof(unsigned int),
+    frame.Order.data(),
+    GL_STREAM_DRAW);
+  if (this->VaoProgram != program)
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, this->VBO.GetName());
+    const GLsizei stride = (frame.Shaded ? 8 : 5) * sizeof(float);
+    auto attribute = [&](const char* name, int size, size_t offset)
+    {
+      const GLint location = glGetAttribLocation(program->GetHandle(), name);
+      if (location >= 0)
+      {
+        glEnableVertexAttribArray(location);
+        glVertexAttribPointer(location,
+          size,
+          GL_FLOAT,
+          GL_FALSE,
+          stride,
+          reinterpret_cast<const void*>(offset * sizeof(float)));
+      }
+    };
+    attribute("vertexLocal", 3, 0);
+    attribute("pointValue", 1, 3);
+    attribute("pointError", 1, 4);
+    if (frame.Shaded)
+      attribute("pointNormal", 3, 5);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    this->VaoProgram = program;
+  }
+  return program;
+}
+
+// The frame's point uniforms: projection, cell size in pixels, the transfer table and, shaded,
+// the lights and material.
+void vtkHybridVolumeMapper::vtkInternals::SetUniforms(vtkRenderer* ren,
+  vtkVolume* vol,
+  vtkShaderProgram* program,
+  Frame& frame)
+{
+  int vp[4];
+  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
+  program->SetUniformMatrix4x4("uLocalToClip", frame.LocalToClip);
+  program->SetUniformf("uCellSize", static_cast<float>(frame.Cell * frame.Scale));
+  program->SetUniformf("uPixelsPerUnit", static_cast<float>(frame.PixelsPerUnit * vp[3] / 2.0));
+  const double* r = this->Transfer.GetTableRange();
+  const float range[3] = { float(r[0]), float(r[1]), float(r[2]) };
+  program->SetUniform3f("uTableRange", range);
+  if (!frame.Shaded)
+    return;
+  std::vector<float> lightDirections, lightColors;
+  vtkStrataRenderUtilities::GetLights(ren, lightDirections, lightColors);
+  program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
+  if (!lightDirections.empty())
+  {
+    program->SetUniform3fv("uLightDirection",
+      static_cast<int>(lightDirections.size() / 3),
+      reinterpret_cast<const float(*)[3]>(lightDirections.data()));
+    program->SetUniform3fv("uLightColor",
+      static_cast<int>(lightColors.size() / 3),
+      reinterpret_cast<const float(*)[3]>(lightColors.data()));
+  }
+  // Normals go to world by the inverse transpose of the prop's linear part.
+  vtkNew<vtkMatrix4x4> inv;
+  vtkMatrix4x4::Invert(frame.Linear, inv);
+  float n3[9];
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c)
+      n3[3 * c + i] = static_cast<float>(inv->GetElement(c, i)); // column-major transpose
+  program->SetUniformMatrix3x3("uNormalToWorld", n3);
+  vtkVolumeProperty* property = vol->GetProperty();
+  const float material[4] = { float(property->GetAmbient(0)),
+    float(property->GetDiffuse(0)),
+    float(property->GetSpecular(0)),
+    float(property->GetSpecularPower(0)) };
+  program->SetUniform4f("uMaterial", material);
+  const float view[3] = {
+    float(-frame.Direction[0]), float(-frame.Direction[1]), float(-frame.Direction[2])
+  };
+  program->SetUniform3f("uViewDirection", view);
+}
+
+// The points of one slab, far to near, blended over it (premultiplied), depth-tested against
+// the scene but not written.
+void vtkHybridVolumeMapper::vtkInternals::DrawSlabPoints(vtkOpenGLRenderWindow* renWin,
+  size_t first,
+  size_t last)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glDrawElements(GL_POINTS,
+    static_cast<GLsizei>(last - first),
+    GL_UNSIGNED_INT,
+    reinterpret_cast<const void*>(first * sizeof(unsigned int)));
+  glDisable(GL_PROGRAM_POINT_SIZE);
+  glBindVertexArray(0);
+  this->Drawn += static_cast<vtkIdType>(last - first);
+}
+
+// Slab s of S: the volume between depths lo + s w / S and lo + (s + 1) w / S; the nearest
+// slab is open towards the eye and the farthest away from it; the user's planes too.
+void vtkHybridVolumeMapper::vtkInternals::SetSlabPlanes(vtkPlaneCollection* planes,
+  const Frame& frame,
+  int s,
+  int S,
+  vtkPlaneCollection* slab)
+{
+  const double* eye = frame.Eye;
+  const double* dir = frame.Direction;
+  for (int i = 0; i < planes->GetNumberOfItems(); ++i)
+    slab->AddItem(planes->GetItem(i));
+  const double width = std::max(frame.Hi - frame.Lo, 1e-300);
+  const double d0 = frame.Lo + width * s / S, d1 = frame.Lo + width * (s + 1) / S;
+  if (s > 0)
+  {
+    this->Near->SetOrigin(eye[0] + d0 * dir[0], eye[1] + d0 * dir[1], eye[2] + d0 * dir[2]);
+    this->Near->SetNormal(frame.Direction);
+    slab->AddItem(this->Near);
+  }
+  if (s < S - 1)
+  {
+    this->Far->SetOrigin(eye[0] + d1 * dir[0], eye[1] + d1 * dir[1], eye[2] + d1 * dir[2]);
+    this->Far->SetNormal(-dir[0], -dir[1], -dir[2]);
+    slab->AddItem(this->Far);
+  }
+}
 
 vtkStandardNewMacro(vtkHybridVolumeMapper);
 
 vtkHybridVolumeMapper::vtkHybridVolumeMapper()
-  : Internals(new vtkInternals)
+  : Internals(new vtkInternals(this))
 {
   this->SetNumberOfInputPorts(2);
   this->Internals->Slab->AddItem(this->Internals->Near);
   this->Internals->Slab->AddItem(this->Internals->Far);
 }
 
-vtkHybridVolumeMapper::~vtkHybridVolumeMapper() = default;
+vtkHybridVolumeMapper::~vtkHybridVolumeMapper()
+{
+  // GL names die in their own context: the callback makes it current if the window lives.
+  this->Internals->ResourceCallback.Release();
+}
 
 int vtkHybridVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -230,12 +497,24 @@ vtkIdType vtkHybridVolumeMapper::GetNumberOfPointsDrawn() const
 
 std::string vtkHybridVolumeMapper::GetPointVertexShaderSource() const
 {
-  return this->Internals->VS;
+  const auto* entry = this->Internals->Programs.Find(this->Internals->LastKey);
+  return entry ? entry->Vertex : std::string();
 }
 
 std::string vtkHybridVolumeMapper::GetPointFragmentShaderSource() const
 {
-  return this->Internals->FS;
+  const auto* entry = this->Internals->Programs.Find(this->Internals->LastKey);
+  return entry ? entry->Fragment : std::string();
+}
+
+int vtkHybridVolumeMapper::GetNumberOfShaderSourcesBuilt() const
+{
+  return this->Internals->Programs.GetSourcesBuilt();
+}
+
+int vtkHybridVolumeMapper::GetNumberOfShaderCompilations() const
+{
+  return this->Internals->Programs.GetCompilations();
 }
 
 void vtkHybridVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
@@ -245,15 +524,11 @@ void vtkHybridVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
-void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+// The inputs of a frame: a page pool behind input 0 is paged by the volume mapper from the
+// reader's output port; otherwise the low-resolution image is its input.
+vtkImageData* vtkHybridVolumeMapper::UpdateInputs(vtkPolyData*& points)
 {
   vtkInternals& in = *this->Internals;
-  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    vtkErrorMacro("vtkHybridVolumeMapper needs an OpenGL render window.");
-    return;
-  }
   for (int port = 0; port < 2; ++port)
   {
     if (this->GetNumberOfInputConnections(port) == 0)
@@ -263,15 +538,14 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->GetInputAlgorithm(port, 0)->Update();
   }
   auto* low = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkPolyData* points = this->GetNumberOfInputConnections(1) > 0
-                          ? vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0))
-                          : nullptr;
+  points = this->GetNumberOfInputConnections(1) > 0
+             ? vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0))
+             : nullptr;
   if (!low)
   {
     vtkErrorMacro("No low-resolution volume on input 0.");
-    return;
+    return nullptr;
   }
-  // A page pool behind input 0: the volume mapper pages it from the reader's output port.
   vtkInformation* lowInfo = this->GetInputInformation(0, 0);
   if (lowInfo && lowInfo->Has(vtkPagePoolReader::POOL_FILE_NAME()))
   {
@@ -282,25 +556,56 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     in.Volume->SetInputData(low);
   }
+  return low;
+}
+
+// The world size of the cell a point stands for: PointSpacing, or the geometric mean of the
+// points' field data "PointSpacing"; 0 when there is neither.
+double vtkHybridVolumeMapper::GetCellSize(vtkPolyData* points)
+{
+  if (this->PointSpacing > 0.0)
+    return this->PointSpacing;
+  vtkDataArray* spacing = points->GetFieldData()->GetArray("PointSpacing");
+  if (!spacing || spacing->GetNumberOfTuples() * spacing->GetNumberOfComponents() < 3)
+  {
+    vtkErrorMacro(
+      "No PointSpacing: set it, or give the points field data \"PointSpacing\" (3 values).");
+    return 0.0;
+  }
+  double g[3];
+  for (int c = 0; c < 3; ++c)
+    g[c] = spacing->GetNumberOfComponents() >= 3 ? spacing->GetComponent(0, c)
+                                                 : spacing->GetComponent(c, 0);
+  return std::cbrt(std::abs(g[0] * g[1] * g[2]));
+}
+
+// One frame: the points uploaded and sorted into depth slabs; then, far to near, each slab of
+// the volume ray cast (one cut for the whole frame) and the slab's points blended over it.
+void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    vtkErrorMacro("vtkHybridVolumeMapper needs an OpenGL render window.");
+    return;
+  }
+  in.ResourceCallback.RegisterGraphicsResources(renWin);
+  vtkPolyData* points = nullptr;
+  if (!this->UpdateInputs(points))
+    return;
   in.Volume->HoldCutOff();
   // The user's clipping planes apply to the volume and, through the slabs, to nothing else:
   // points are dropped by the depth sort only.
   vtkNew<vtkPlaneCollection> planes;
-  if (this->ClippingPlanes)
-  {
-    for (int i = 0; i < this->ClippingPlanes->GetNumberOfItems(); ++i)
-      planes->AddItem(this->ClippingPlanes->GetItem(i));
-  }
-
-  // --- Points: uploaded when they change.
+  for (int i = 0; this->ClippingPlanes && i < this->ClippingPlanes->GetNumberOfItems(); ++i)
+    planes->AddItem(this->ClippingPlanes->GetItem(i));
   vtkDataArray* values = points ? points->GetPointData()->GetArray("Value") : nullptr;
   vtkDataArray* errors = points ? points->GetPointData()->GetArray("Error") : nullptr;
   const vtkIdType count = values && errors ? points->GetNumberOfPoints() : 0;
   if (points && count == 0 && points->GetNumberOfPoints() > 0)
-  {
     vtkErrorMacro(
       "The points input has no \"Value\" and \"Error\" point data: drawing the volume alone.");
-  }
   in.Drawn = 0;
   if (count == 0)
   {
@@ -308,292 +613,71 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Volume->Render(ren, vol);
     return;
   }
-  double cell = this->PointSpacing;
-  if (cell <= 0.0)
-  {
-    vtkDataArray* spacing = points->GetFieldData()->GetArray("PointSpacing");
-    if (!spacing || spacing->GetNumberOfTuples() * spacing->GetNumberOfComponents() < 3)
-    {
-      vtkErrorMacro(
-        "No PointSpacing: set it, or give the points field data \"PointSpacing\" (3 values).");
-      return;
-    }
-    double g[3];
-    for (int c = 0; c < 3; ++c)
-      g[c] = spacing->GetNumberOfComponents() >= 3 ? spacing->GetComponent(0, c)
-                                                   : spacing->GetComponent(c, 0);
-    cell = std::cbrt(std::abs(g[0] * g[1] * g[2]));
-  }
+  vtkInternals::Frame frame;
+  frame.Cell = this->GetCellSize(points);
+  if (frame.Cell <= 0.0)
+    return;
   vtkDataArray* normals = points->GetPointData()->GetArray("Normals");
   vtkVolumeProperty* property = vol->GetProperty();
-  const bool shaded = property->GetShade(0) != 0 && normals &&
-                      normals->GetNumberOfComponents() == 3 &&
-                      ren->GetLights()->GetNumberOfItems() > 0;
-  if (in.PointsInput != points || in.PointsTime < points->GetMTime() || in.Count != count ||
-      in.HasNormals != shaded)
-  {
-    double b[6];
-    points->GetBounds(b);
-    in.Origin = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
-    const int stride = shaded ? 8 : 5;
-    std::vector<float> vbo(size_t(count) * stride);
-    in.Positions.resize(3 * size_t(count));
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      double p[3];
-      points->GetPoint(i, p);
-      float* v = &vbo[size_t(i) * stride];
-      for (int c = 0; c < 3; ++c)
-      {
-        in.Positions[3 * size_t(i) + c] = p[c] - in.Origin[c];
-        v[c] = static_cast<float>(p[c] - in.Origin[c]);
-      }
-      v[3] = static_cast<float>(values->GetComponent(i, 0));
-      v[4] = static_cast<float>(errors->GetComponent(i, 0));
-      for (int c = 0; shaded && c < 3; ++c)
-        v[5 + c] = static_cast<float>(normals->GetComponent(i, c));
-    }
-    if (!in.VBO)
-      glGenBuffers(1, &in.VBO);
-    glBindBuffer(GL_ARRAY_BUFFER, in.VBO);
-    glBufferData(GL_ARRAY_BUFFER, vbo.size() * sizeof(float), vbo.data(), GL_STATIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    in.PointsInput = points;
-    in.PointsTime = points->GetMTime();
-    in.Count = count;
-    in.HasNormals = shaded;
-    in.VaoProgram = nullptr;
-  }
-
-  // --- The transfer table of the volume property, as the ray caster samples it.
+  frame.Shaded = property->GetShade(0) != 0 && normals && normals->GetNumberOfComponents() == 3 &&
+                 ren->GetLights()->GetNumberOfItems() > 0;
+  frame.Key = { this->PointShape == PointShapes::GaussianSplats, frame.Shaded };
+  in.UploadPoints(points, values, errors, frame.Shaded ? normals : nullptr, count);
   in.Transfer.Update(renWin, property);
-
-  // --- Slabs: depth along the view direction over the volume's and the points' extent.
-  vtkCamera* camera = ren->GetActiveCamera();
-  double eye[3], focal[3], dir[3];
-  camera->GetPosition(eye);
-  camera->GetFocalPoint(focal);
-  camera->GetDirectionOfProjection(dir);
-  const double* m = vol->GetMatrix()->GetData();
-  auto depthOf = [&](const double local[3])
-  {
-    // local (relative to the points' origin) -> world by the prop's matrix -> depth.
-    double d = 0.0;
-    for (int r = 0; r < 3; ++r)
-    {
-      double w = m[4 * r + 3];
-      for (int c = 0; c < 3; ++c)
-        w += m[4 * r + c] * (local[c] + in.Origin[c]);
-      d += (w - eye[r]) * dir[r];
-    }
-    return d;
-  };
-  double lo = 1e300, hi = -1e300;
-  const double* vb = vol->GetBounds();
-  for (int k = 0; k < 8; ++k)
-  {
-    const double corner[3] = { vb[k & 1], vb[2 + ((k >> 1) & 1)], vb[4 + ((k >> 2) & 1)] };
-    double d = 0.0;
-    for (int c = 0; c < 3; ++c)
-      d += (corner[c] - eye[c]) * dir[c];
-    lo = std::min(lo, d);
-    hi = std::max(hi, d);
-  }
-  std::vector<double> depth(static_cast<size_t>(count));
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    depth[i] = depthOf(&in.Positions[3 * size_t(i)]);
-    lo = std::min(lo, depth[i]);
-    hi = std::max(hi, depth[i]);
-  }
+  in.Sort(this, ren, vol, frame);
+  in.SetUpProjection(ren, vol, frame);
   const int S = this->NumberOfSlabs;
-  const double width = std::max(hi - lo, 1e-300);
-  // Counting sort, far to near: slab s (0 nearest) in SubBuckets buckets of its own.
-  constexpr int SubBuckets = 64;
-  const int buckets = S * SubBuckets;
-  std::vector<unsigned int> bucketOf(static_cast<size_t>(count));
-  std::vector<size_t> start(buckets + 1, 0);
-  for (vtkIdType i = 0; i < count; ++i)
+  bool first = true;
+  for (int s = S - 1; s >= 0; --s)
   {
-    const int nearToFar =
-      std::min(buckets - 1, std::max(0, int((depth[i] - lo) / width * buckets)));
-    bucketOf[i] = static_cast<unsigned int>(buckets - 1 - nearToFar);
-    ++start[bucketOf[i] + 1];
+    vtkNew<vtkPlaneCollection> slabPlanes;
+    in.SetSlabPlanes(planes, frame, s, S, slabPlanes);
+    in.Volume->SetClippingPlanes(slabPlanes);
+    in.Volume->Render(ren, vol);
+    in.Volume->HoldCutOn(); // one cut for the whole frame
+    const size_t begin = frame.Start[size_t(S - 1 - s) * SubBuckets];
+    const size_t end = frame.Start[size_t(S - s) * SubBuckets];
+    if (end == begin)
+      continue;
+    vtkShaderProgram* program = in.ReadyPoints(renWin, frame, first);
+    if (!program)
+    {
+      vtkErrorMacro("The hybrid point shader did not compile or link.");
+      return;
+    }
+    if (first)
+      in.SetUniforms(ren, vol, program, frame);
+    first = false;
+    in.Transfer.GetTexture()->Activate();
+    program->SetUniformi("uTransfer", in.Transfer.GetTexture()->GetTextureUnit());
+    in.DrawSlabPoints(renWin, begin, end);
+    in.Transfer.GetTexture()->Deactivate();
   }
-  for (int k = 0; k < buckets; ++k)
-    start[k + 1] += start[k];
-  std::vector<unsigned int> order(static_cast<size_t>(count));
-  {
-    std::vector<size_t> fill(start.begin(), start.end() - 1);
-    for (vtkIdType i = 0; i < count; ++i)
-      order[fill[bucketOf[i]]++] = static_cast<unsigned int>(i);
-  }
-  if (!in.IBO)
-    glGenBuffers(1, &in.IBO);
+  in.Volume->SetClippingPlanes(planes);
+}
 
-  // --- The point program.
-  const bool splats = this->PointShape == PointShapes::GaussianSplats;
-  BuildPointShaders(splats, shaded, in.VS, in.FS);
-  vtkOpenGLState* state = renWin->GetState();
-  vtkShaderProgram* program = nullptr;
-
-  // Projection: a cell of size g at clip w covers g * P11 * height / 2 / w pixels.
-  int vp[4];
-  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
+// Projection: points relative to their origin to clip space by the prop's matrix; a cell of
+// size g at clip w covers g * P11 * height / 2 / w pixels, times the prop's scale.
+void vtkHybridVolumeMapper::vtkInternals::SetUpProjection(vtkRenderer* ren,
+  vtkVolume* vol,
+  Frame& frame)
+{
+  vtkInternals& in = *this;
+  vtkCamera* camera = ren->GetActiveCamera();
   const double aspect = ren->GetTiledAspectRatio();
-  vtkNew<vtkMatrix4x4> toLocal, localToClip;
+  vtkNew<vtkMatrix4x4> toLocal, localToClip, shift;
   vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  const double p11 = camera->GetProjectionTransformMatrix(aspect, -1, 1)->GetElement(1, 1);
+  frame.PixelsPerUnit = camera->GetProjectionTransformMatrix(aspect, -1, 1)->GetElement(1, 1);
   toLocal->DeepCopy(vol->GetMatrix());
-  vtkNew<vtkMatrix4x4> shift;
   for (int c = 0; c < 3; ++c)
     shift->SetElement(c, 3, in.Origin[c]);
   vtkMatrix4x4::Multiply4x4(toLocal, shift, toLocal);
   vtkMatrix4x4::Multiply4x4(worldToClip, toLocal, localToClip);
-  float mat[16];
-  ToFloat(localToClip->GetData(), mat);
-  // The prop's scale: a cell of size g in data units is g times its cube root of |det| in world.
-  vtkNew<vtkMatrix4x4> linear;
-  linear->DeepCopy(vol->GetMatrix());
+  vtkStrataRenderUtilities::ToColumnMajor(localToClip->GetData(), frame.LocalToClip);
+  frame.Linear->DeepCopy(vol->GetMatrix());
   for (int c = 0; c < 3; ++c)
-    linear->SetElement(c, 3, 0.0);
-  const double scale = std::cbrt(std::abs(linear->Determinant()));
-
-  for (int s = S - 1; s >= 0; --s)
-  {
-    // The volume between depths lo + s w / S and lo + (s + 1) w / S; the nearest slab is open
-    // towards the eye and the farthest away from it.
-    vtkNew<vtkPlaneCollection> slabPlanes;
-    for (int i = 0; i < planes->GetNumberOfItems(); ++i)
-      slabPlanes->AddItem(planes->GetItem(i));
-    const double d0 = lo + width * s / S, d1 = lo + width * (s + 1) / S;
-    if (s > 0)
-    {
-      in.Near->SetOrigin(eye[0] + d0 * dir[0], eye[1] + d0 * dir[1], eye[2] + d0 * dir[2]);
-      in.Near->SetNormal(dir);
-      slabPlanes->AddItem(in.Near);
-    }
-    if (s < S - 1)
-    {
-      in.Far->SetOrigin(eye[0] + d1 * dir[0], eye[1] + d1 * dir[1], eye[2] + d1 * dir[2]);
-      in.Far->SetNormal(-dir[0], -dir[1], -dir[2]);
-      slabPlanes->AddItem(in.Far);
-    }
-    in.Volume->SetClippingPlanes(slabPlanes);
-    in.Volume->Render(ren, vol);
-    in.Volume->HoldCutOn(); // one cut for the whole frame
-
-    // Then the slab's points, far to near, over it.
-    const size_t first = start[size_t(S - 1 - s) * SubBuckets];
-    const size_t last = start[size_t(S - s) * SubBuckets];
-    if (last == first)
-      continue;
-    if (!program)
-    {
-      program = renWin->GetShaderCache()->ReadyShaderProgram(in.VS.c_str(), in.FS.c_str(), "");
-      if (!program)
-      {
-        vtkErrorMacro("The hybrid point shader did not compile or link.");
-        return;
-      }
-      if (!in.VAO)
-        glGenVertexArrays(1, &in.VAO);
-      glBindVertexArray(in.VAO);
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, in.IBO);
-      glBufferData(
-        GL_ELEMENT_ARRAY_BUFFER, order.size() * sizeof(unsigned int), order.data(), GL_STREAM_DRAW);
-      if (in.VaoProgram != program)
-      {
-        glBindBuffer(GL_ARRAY_BUFFER, in.VBO);
-        const GLsizei stride = (shaded ? 8 : 5) * sizeof(float);
-        auto attribute = [&](const char* name, int size, size_t offset)
-        {
-          const GLint location = glGetAttribLocation(program->GetHandle(), name);
-          if (location >= 0)
-          {
-            glEnableVertexAttribArray(location);
-            glVertexAttribPointer(location,
-              size,
-              GL_FLOAT,
-              GL_FALSE,
-              stride,
-              reinterpret_cast<const void*>(offset * sizeof(float)));
-          }
-        };
-        attribute("vertexLocal", 3, 0);
-        attribute("pointValue", 1, 3);
-        attribute("pointError", 1, 4);
-        if (shaded)
-          attribute("pointNormal", 3, 5);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-        in.VaoProgram = program;
-      }
-      program->SetUniformMatrix4x4("uLocalToClip", mat);
-      program->SetUniformf("uCellSize", static_cast<float>(cell * scale));
-      program->SetUniformf("uPixelsPerUnit", static_cast<float>(p11 * vp[3] / 2.0));
-      in.Transfer.GetTexture()->Activate();
-      program->SetUniformi("uTransfer", in.Transfer.GetTexture()->GetTextureUnit());
-      const float range[3] = { float(in.Transfer.GetTableRange()[0]),
-        float(in.Transfer.GetTableRange()[1]),
-        float(in.Transfer.GetTableRange()[2]) };
-      program->SetUniform3f("uTableRange", range);
-      if (shaded)
-      {
-        std::vector<float> lightDirections, lightColors;
-        vtkStrataRenderUtilities::GetLights(ren, lightDirections, lightColors);
-        program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
-        if (!lightDirections.empty())
-        {
-          program->SetUniform3fv("uLightDirection",
-            static_cast<int>(lightDirections.size() / 3),
-            reinterpret_cast<const float(*)[3]>(lightDirections.data()));
-          program->SetUniform3fv("uLightColor",
-            static_cast<int>(lightColors.size() / 3),
-            reinterpret_cast<const float(*)[3]>(lightColors.data()));
-        }
-        // Normals go to world by the inverse transpose of the prop's linear part.
-        vtkNew<vtkMatrix4x4> inv;
-        vtkMatrix4x4::Invert(linear, inv);
-        float n3[9];
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c)
-            n3[3 * c + r] = static_cast<float>(inv->GetElement(c, r)); // column-major transpose
-        program->SetUniformMatrix3x3("uNormalToWorld", n3);
-        const float material[4] = { float(property->GetAmbient(0)),
-          float(property->GetDiffuse(0)),
-          float(property->GetSpecular(0)),
-          float(property->GetSpecularPower(0)) };
-        program->SetUniform4f("uMaterial", material);
-        const float view[3] = { float(-dir[0]), float(-dir[1]), float(-dir[2]) };
-        program->SetUniform3f("uViewDirection", view);
-      }
-    }
-    else
-    {
-      renWin->GetShaderCache()->ReadyShaderProgram(program, nullptr);
-      glBindVertexArray(in.VAO);
-      in.Transfer.GetTexture()->Activate();
-      program->SetUniformi("uTransfer", in.Transfer.GetTexture()->GetTextureUnit());
-    }
-    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglDepthMask depthMask(state);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglEnable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-    glDrawElements(GL_POINTS,
-      static_cast<GLsizei>(last - first),
-      GL_UNSIGNED_INT,
-      reinterpret_cast<const void*>(first * sizeof(unsigned int)));
-    glDisable(GL_PROGRAM_POINT_SIZE);
-    glBindVertexArray(0);
-    in.Transfer.GetTexture()->Deactivate();
-    in.Drawn += static_cast<vtkIdType>(last - first);
-  }
-  in.Volume->SetClippingPlanes(planes);
+    frame.Linear->SetElement(c, 3, 0.0);
+  frame.Scale = std::cbrt(std::abs(frame.Linear->Determinant()));
 }
 
 void vtkHybridVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)

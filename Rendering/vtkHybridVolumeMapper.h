@@ -38,6 +38,7 @@
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
+class vtkImageData;
 class vtkMultiVolumeRayCastMapper;
 class vtkPolyData;
 
@@ -89,6 +90,15 @@ public:
   std::string GetPointVertexShaderSource() const;
   std::string GetPointFragmentShaderSource() const;
 
+  ///@{
+  /**
+   * Point shader sources built and programs compiled since the mapper was made (its volume
+   * mapper counts its own): a frame that draws what the last one drew adds nothing.
+   */
+  int GetNumberOfShaderSourcesBuilt() const;
+  int GetNumberOfShaderCompilations() const;
+  ///@}
+
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   /// Asks a page-pool reader on input 0 for its coarsest level (the volume mapper pages it).
   vtkTypeBool ProcessRequest(vtkInformation* request,
@@ -107,6 +117,11 @@ protected:
 
 private:
   vtkHybridVolumeMapper(const vtkHybridVolumeMapper&) = delete;
+  /// Updates both inputs (a pool's reader at its coarsest level) and hands input 0 to the
+  /// volume mapper; the low-resolution image, null (an error given) without one.
+  vtkImageData* UpdateInputs(vtkPolyData*& points);
+  /// The world size of the cell a point stands for; 0 (an error given) when unknown.
+  double GetCellSize(vtkPolyData* points);
   void operator=(const vtkHybridVolumeMapper&) = delete;
 
   class vtkInternals;

@@ -31,6 +31,7 @@
 
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkVolumePager.h" // For vtkVolumePager::Statistics
 
 #include <array>  // For std::array
 #include <memory> // For std::unique_ptr
@@ -198,21 +199,11 @@ public:
   vtkGetMacro(LevelOfDetailThreshold, double);
   ///@}
 
-  struct PagingStatistics
+  /// vtkVolumePager's counts (cut, cache, reads, roots, failures, feedback) and what the
+  /// mapper adds on the GPU side; all zero when no input is paged.
+  struct PagingStatistics : vtkVolumePager::Statistics
   {
-    int PendingPages = 0; ///< queued or loading after the last frame
-    /// The last frame's cut did not change, nothing is pending, and (with feedback) the
-    /// feedback it used was rendered from the same view and cut.
-    bool Converged = false;
-    long long BytesRead = 0;       ///< in all, root pages included
-    long long BytesUploaded = 0;   ///< to the atlas in the last frame (paged or not)
-    long long CacheBytes = 0;      ///< resident in the page cache
-    int RootPagesRead = 0;         ///< pages the render thread read itself (roots not in the input)
-    int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest-level images
-    int Failures = 0;              ///< pages that failed to load
-    int MissesThisFrame = 0;       ///< bricks the last frame's cut wanted but had no page for
-    int FeedbackPages = 0;         ///< distinct pages in the last feedback buffer reduced
-    int FeedbackPixels = 0;        ///< its pixels that asked for a page
+    long long BytesUploaded = 0;       ///< to the atlas in the last frame (paged or not)
     double FeedbackMilliseconds = 0.0; ///< its read-back and reduction (propagation included)
     bool FeedbackOpenCL = false;       ///< whether OpenCL reduced it (else the CPU)
   };
@@ -304,6 +295,16 @@ public:
 
   /// Number of BSP fragments drawn in the last frame.
   int GetNumberOfFragments() const;
+
+  ///@{
+  /**
+   * Shader sources built and programs compiled (handed to VTK's shader cache, or compiled
+   * again after a release) since the mapper was made, counted by its composer
+   * (vtkMultiVolumeShaderComposer): a frame that draws what the last one drew adds nothing.
+   */
+  int GetNumberOfShaderSourcesBuilt() const;
+  int GetNumberOfShaderCompilations() const;
+  ///@}
 
   /**
    * Fragment shader source for a fragment covered by `numberOfVolumes` volumes with the current

@@ -1,16 +1,25 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkStackedHeightFieldMapper.h"
 
+#include "vtkFeedbackBuffer.h"
+#include "vtkFeedbackReduction.h"
+#include "vtkHeightFieldPager.h"
+#include "vtkHeightFieldShaderComposer.h"
+#include "vtkHeightFieldStack.h"
+#include "vtkHeightFieldStackBuffers.h"
+#include "vtkHeightFieldTileAtlas.h"
+#include "vtkMinMaxQuadtree.h"
+#include "vtkPagePoolReader.h"
+#include "vtkStrataRenderUtilities.h"
+#include "vtkStrataResourceFreeCallback.h"
+#include "vtkVolumeCut.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
-#include "vtkFeedbackReadBack.h"
-#include "vtkFeedbackReduction.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldPager.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
@@ -18,38 +27,25 @@
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMinMaxQuadtree.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
-#include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
-#include "vtkStrataRenderUtilities.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
-#include "vtkVolumeCut.h"
 #include "vtk_glew.h"
-
-#include "vtkStackedHeightFieldFS.h"
-#include "vtkStackedHeightFieldPagedLookup.h"
-#include "vtkStackedHeightFieldVS.h"
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <mutex>
-#include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkStackedHeightFieldMapper);
@@ -83,49 +79,17 @@ void DefaultDepthColor(double s, double rgb[3])
   }
 }
 
-// The feedback write (paged horizons): one pixel per FeedbackScale^2 lattice cell asks for the
-// tile its hit lies in, at the level whose cells cover about uLodScale pixels' worth of the
-// pixel's footprint (one pixel unprojected at the hit's depth, in level-0 cells).
-const char* FeedbackDeclarations = R"(layout(r32ui) uniform uimage2D uFeedback;
-uniform int uFeedbackScale;
-uniform ivec2 uFeedbackOffset;
-uniform float uLodScale;
-uniform int uPageLevels;
-uniform int uLevelTilesX[32];
-)";
-const char* FeedbackWrite =
-  R"(if (all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, uFeedbackOffset)))
-  {
-    vec3 n0 = clip.xyz / clip.w;
-    vec4 gx = uClipToGrid * vec4(n0 + vec3(2.0 / uViewport.z, 0.0, 0.0), 1.0);
-    vec4 gy = uClipToGrid * vec4(n0 + vec3(0.0, 2.0 / uViewport.w, 0.0), 1.0);
-    float footprint = max(length(gx.xy / gx.w - pGrid.xy), length(gy.xy / gy.w - pGrid.xy)) * uLodScale;
-    int want = footprint >= 2.0 ? min(int(floor(log2(footprint))), uPageLevels - 1) : 0;
-    ivec2 tile = min(max(ivec2(floor(pGrid.xy)), ivec2(0)) / uPageStride, uPageTiles - 1) >> want;
-    uint id = strataPackPage(uint(hitLayer), uint(want), uint(tile.y * uLevelTilesX[want] + tile.x));
-    imageStore(uFeedback, ivec2(gl_FragCoord.xy) / uFeedbackScale, uvec4(id, 0u, 0u, 0u));
-  })";
-
-void Replace(std::string& source, const std::string& tag, const std::string& code)
-{
-  vtkShaderProgram::Substitute(source, tag, code, true);
-}
-
-void ToFloat(vtkMatrix4x4* m, float out[16], bool transpose)
-{
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      out[transpose ? c * 4 + r : r * 4 + c] = static_cast<float>(m->GetElement(r, c));
-    }
-  }
-}
 }
 
 class vtkStackedHeightFieldMapper::vtkInternals
 {
 public:
+  using Self = vtkStackedHeightFieldMapper;
+  explicit vtkInternals(Self* self)
+    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+  {
+  }
+
   // CPU side
   vtkHeightFieldStack Stack;
   vtkMinMaxQuadtree Tree;
@@ -136,64 +100,85 @@ public:
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   std::map<int, std::array<double, 3>> HorizonColors;
   vtkSmartPointer<vtkScalarsToColors> Lut;
+  vtkTimeStamp ColorsModified;
   // What the renderer draws, in core or paged: grid size, horizons, value range, holes.
   int NX = 0, NY = 0, Layers = 0;
   double ZRange[2] = { 0.0, -1.0 };
   bool Holes = false;
 
-  // Paging (tile pools behind the inputs): the pager, the readers' coarsest levels as roots,
-  // the tile atlas and page table on the GPU.
+  // Paging (tile pools behind the inputs): the pager and the readers' coarsest levels as roots.
   bool Paged = false;
   vtkHeightFieldPager Pager;
-  vtkFeedbackReduction Reduction; ///< this mapper's (OpenCL set up on first use)
   std::vector<std::vector<float>> RootValues;
-  unsigned int AtlasTexture = 0;
-  unsigned int PageTableTexture = 0;
-  int AtlasSlots = 0;
-  // Level-of-detail feedback: the buffer, the lattice phase and the view it was written from.
-  unsigned int FeedbackTexture = 0;
-  unsigned int FeedbackBuffer = 0; ///< pixel buffer the texture is copied into after a frame
-  bool FeedbackPending = false;    ///< the buffer holds a frame not read yet
-  bool PendingViewChanged = false; ///< that frame's view differed from the one before
-  int FeedbackSize[2] = { 0, 0 };
+  bool TreeDirty = true; ///< the pager's quadtree changed since it was uploaded
+  // Level-of-detail feedback: the lattice phase, the view the queued buffer was written from.
+  bool PendingViewChanged = false; ///< the queued frame's view differed from the one before
   int64_t FeedbackFrame = 0;
   bool FeedbackActive = false; ///< this frame's shader writes the buffer
   bool FeedbackUnsupportedWarned = false;
   std::array<double, 16> LastView{};
   vtkStackedHeightFieldMapper::PagingStatistics Paging;
-  bool TreeDirty = true;
 
-  // GPU side
-  unsigned int HeightTexture = 0;
-  vtkNew<vtkOpenGLBufferObject> NodeBuffer, IntervalBuffer, LayerListBuffer, ColorBuffer;
-  vtkNew<vtkTextureObject> NodeTexture, IntervalTexture, LayerListTexture, ColorTexture;
-  vtkNew<vtkOpenGLBufferObject> BoxVertices, BoxIndices;
-  unsigned int VAO = 0;
-  vtkShaderProgram* LastProgram = nullptr;
+  // GPU side: the parts, and what of the data they hold.
+  vtkStrataResourceFreeCallback<Self> ResourceCallback;
+  vtkHeightFieldStackBuffers Buffers;
+  vtkHeightFieldTileAtlas Atlas;
+  vtkFeedbackBuffer Feedback{ false };
+  vtkHeightFieldShaderComposer Composer;
+  vtkHeightFieldShaderComposer::Key LastKey;
+  bool HasLastKey = false;
   vtkMTimeType UploadTime = 0;
   vtkMTimeType ColorTime = 0;
-  std::string FragmentSource;
-  std::string VertexSource;
-  vtkTimeStamp ColorsModified;
+
+  /// What this frame draws with, and how.
+  struct Frame
+  {
+    bool Shaded = true;
+    bool LookupTable = false;
+    bool Lit = false;
+    double LutRange[2] = { 0.0, 1.0 };
+    vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;
+    int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
+  };
+
+  bool Upload(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
+  bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
+  void UpdateColors(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  bool UseFeedback(Self* self);
+  vtkShaderProgram* ReadyProgram(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    vtkOpenGLRenderer* oglRen,
+    const Frame& frame);
+  bool SetUniforms(Self* self,
+    vtkRenderer* ren,
+    vtkActor* actor,
+    vtkShaderProgram* program,
+    Frame& frame);
+  void SetLightingUniforms(vtkOpenGLRenderer* ren,
+    vtkActor* actor,
+    vtkShaderProgram* program,
+    const Frame& frame);
+  void PrepareFeedback(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    vtkShaderProgram* program,
+    const Frame& frame);
+  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program, const Frame& frame);
+  void ReadFeedback(Self* self);
 };
 
 vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
-  : Internals(new vtkInternals)
+  : Internals(new vtkInternals(this))
 {
   this->SetNumberOfInputPorts(1);
   this->Static = 0;
   this->Internals->ColorsModified.Modified();
-  for (auto* bo : { this->Internals->NodeBuffer.Get(),
-         this->Internals->IntervalBuffer.Get(),
-         this->Internals->LayerListBuffer.Get(),
-         this->Internals->ColorBuffer.Get() })
-  {
-    bo->SetType(vtkOpenGLBufferObject::TextureBuffer);
-  }
-  this->Internals->BoxIndices->SetType(vtkOpenGLBufferObject::ElementArrayBuffer);
 }
 
-vtkStackedHeightFieldMapper::~vtkStackedHeightFieldMapper() = default;
+vtkStackedHeightFieldMapper::~vtkStackedHeightFieldMapper()
+{
+  // GL names die in their own context: the callback makes it current if the window lives.
+  this->Internals->ResourceCallback.Release();
+}
 
 int vtkStackedHeightFieldMapper::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -236,7 +221,18 @@ void vtkStackedHeightFieldMapper::SetHeightLookupTable(vtkScalarsToColors* lut)
 
 std::string vtkStackedHeightFieldMapper::GetFragmentShaderSource() const
 {
-  return this->Internals->FragmentSource;
+  const vtkInternals& in = *this->Internals;
+  return in.HasLastKey ? in.Composer.GetFragmentSource(in.LastKey) : std::string();
+}
+
+int vtkStackedHeightFieldMapper::GetNumberOfShaderSourcesBuilt() const
+{
+  return this->Internals->Composer.GetNumberOfSourcesBuilt();
+}
+
+int vtkStackedHeightFieldMapper::GetNumberOfShaderCompilations() const
+{
+  return this->Internals->Composer.GetNumberOfCompilations();
 }
 
 void vtkStackedHeightFieldMapper::GetGridToWorld(double m[16])
@@ -510,137 +506,6 @@ bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageDat
   return true;
 }
 
-bool vtkStackedHeightFieldMapper::UpdatePages(vtkRenderer* ren, vtkActor* actor)
-{
-  vtkInternals& in = *this->Internals;
-  const int B = in.Pager.GetPageSize();
-  // The atlas: as many B x B float tiles as the budget holds, within the GPU's layer limit.
-  GLint maxLayers = 0, maxSize = 0;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  const double tileBytes = double(B) * B * sizeof(float);
-  const int slots = static_cast<int>(
-    std::min<double>(maxLayers, std::floor(this->AtlasBudget * 1048576.0 / tileBytes)));
-  if (slots < 1 || B > maxSize)
-  {
-    vtkErrorMacro("An atlas of " << this->AtlasBudget << " MiB holds no tile of " << B << " x " << B
-                                 << " heights: raise AtlasBudget.");
-    return false;
-  }
-  if (slots != in.AtlasSlots || !in.AtlasTexture)
-  {
-    if (!in.AtlasTexture)
-    {
-      glGenTextures(1, &in.AtlasTexture);
-    }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, B, B, slots, 0, GL_RED, GL_FLOAT, nullptr);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    if (glGetError() != GL_NO_ERROR)
-    {
-      vtkErrorMacro("Could not allocate a tile atlas of "
-                    << slots << " tiles of " << B << " x " << B
-                    << " (out of GPU memory?): lower AtlasBudget.");
-      return false;
-    }
-    in.AtlasSlots = slots;
-    in.Pager.SetAtlasSlots(slots);
-    in.Pager.InvalidateAtlas();
-  }
-  in.Pager.SetCacheBudgetMiB(this->PageCacheBudget);
-  in.Pager.SetPagesPerFrame(this->PagesPerFrame);
-  in.Pager.SetPrefetch(this->Prefetch);
-  in.Pager.SetMorphFrames(this->MorphFrames);
-
-  // The last frame's feedback when its read-back was deferred (DeferFeedbackReadBack).
-  if (in.FeedbackPending)
-  {
-    this->ReadFeedback();
-  }
-  // The cut refines by the size of a tile's points on screen, under this camera.
-  const vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
-  vtkNew<vtkMatrix4x4> modelGrid;
-  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
-  std::vector<vtkHeightFieldPager::Upload> uploads;
-  const bool changed = in.Pager.Update(cutCamera, modelGrid->GetData(), uploads);
-
-  in.Paging.BytesUploaded = 0;
-  if (!uploads.empty())
-  {
-    std::vector<float> values;
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (const auto& u : uploads)
-    {
-      in.Pager.GetUploadValues(u, values);
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, B, 1, GL_RED, GL_FLOAT, values.data());
-      in.Paging.BytesUploaded += static_cast<long long>(values.size() * sizeof(float));
-    }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  }
-  // Borders stitched anew to coarser neighbours: two columns and two rows per page.
-  if (!in.Pager.GetBorderUploads().empty())
-  {
-    std::vector<float> border;
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (const auto& u : in.Pager.GetBorderUploads())
-    {
-      if (u.Slot < 0)
-        continue;
-      in.Pager.GetBorderValues(u, border);
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data());
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, B - 1, 0, u.Slot, 1, B, 1, GL_RED, GL_FLOAT, border.data() + B);
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, 0, 0, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 2 * B);
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, 0, B - 1, u.Slot, B, 1, 1, GL_RED, GL_FLOAT, border.data() + 3 * B);
-      in.Paging.BytesUploaded += static_cast<long long>(border.size() * sizeof(float));
-    }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  }
-  if (changed || !in.PageTableTexture)
-  {
-    const std::vector<uint16_t>& table = in.Pager.GetPageTable();
-    const int* tiles = in.Pager.GetTiles();
-    if (!in.PageTableTexture)
-    {
-      glGenTextures(1, &in.PageTableTexture);
-    }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.PageTableTexture);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY,
-      0,
-      GL_RGBA16UI,
-      tiles[0],
-      tiles[1],
-      in.Layers,
-      0,
-      GL_RGBA_INTEGER,
-      GL_UNSIGNED_SHORT,
-      table.data());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    in.TreeDirty = true;
-  }
-  for (const std::string& failure : in.Pager.TakeNewFailures())
-  {
-    vtkErrorMacro("Could not load " << failure << "; showing the coarser level.");
-  }
-  static_cast<vtkHeightFieldPager::Statistics&>(in.Paging) = in.Pager.GetStatistics();
-  in.Paging.Paged = true;
-  in.Paging.AtlasSlots = in.AtlasSlots;
-  in.Paging.FeedbackUsed = in.FeedbackActive;
-  return true;
-}
-
 vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPagingStatistics()
   const
 {
@@ -678,53 +543,381 @@ double* vtkStackedHeightFieldMapper::GetBounds()
   return this->Bounds;
 }
 
+// --- Paged: the atlas for the budget, the pager's frame (feedback read first if it was
+// deferred), the tiles and borders it uploads, the page table when the cut changed.
+bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
+  vtkRenderer* ren,
+  vtkActor* actor,
+  vtkOpenGLRenderWindow* renWin)
+{
+  std::string error;
+  const int allocated = this->Atlas.Allocate(self->AtlasBudget, this->Pager.GetPageSize(), error);
+  if (allocated < 0)
+  {
+    vtkErrorWithObjectMacro(self, << error);
+    return false;
+  }
+  if (allocated > 0)
+  {
+    this->Pager.SetAtlasSlots(this->Atlas.GetSlots());
+    this->Pager.InvalidateAtlas();
+  }
+  this->Pager.SetCacheBudgetMiB(self->PageCacheBudget);
+  this->Pager.SetPagesPerFrame(self->PagesPerFrame);
+  this->Pager.SetPrefetch(self->Prefetch);
+  this->Pager.SetMorphFrames(self->MorphFrames);
+  // The last frame's feedback when its read-back was deferred (DeferFeedbackReadBack).
+  if (this->Feedback.IsPending())
+  {
+    this->ReadFeedback(self);
+  }
+  // The cut refines by the size of a tile's points on screen, under this camera.
+  vtkNew<vtkMatrix4x4> modelGrid;
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), this->GridToWorld, modelGrid);
+  std::vector<vtkHeightFieldPager::Upload> uploads;
+  const bool changed =
+    this->Pager.Update(vtkStrataRenderUtilities::GetCutCamera(ren), modelGrid->GetData(), uploads);
+  this->Paging.BytesUploaded = this->Atlas.Upload(this->Pager, uploads);
+  if (changed || !this->Atlas.HasPageTable())
+  {
+    this->Atlas.UploadPageTable(this->Pager);
+    this->TreeDirty = true;
+  }
+  for (const std::string& failure : this->Pager.TakeNewFailures())
+  {
+    vtkErrorWithObjectMacro(self, "Could not load " << failure << "; showing the coarser level.");
+  }
+  static_cast<vtkHeightFieldPager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
+  this->Paging.Paged = true;
+  this->Paging.AtlasSlots = this->Atlas.GetSlots();
+  this->Paging.FeedbackUsed = this->FeedbackActive;
+  (void)renWin;
+  return true;
+}
+
+// --- The stack on the GPU: paged, the pager's frame, the box and the tree when they changed;
+// in core, the heights, the tree and the box when the inputs changed.
+bool vtkStackedHeightFieldMapper::vtkInternals::Upload(Self* self,
+  vtkRenderer* ren,
+  vtkActor* actor,
+  vtkOpenGLRenderWindow* renWin)
+{
+  if (this->Paged)
+  {
+    if (!this->UpdatePages(self, ren, actor, renWin))
+      return false;
+    if (this->UploadTime < this->BuildTime)
+    {
+      this->Buffers.UploadBox(this->NX, this->NY, this->ZRange);
+      this->UploadTime = this->BuildTime;
+    }
+    if (this->TreeDirty)
+    {
+      this->Buffers.UploadTree(renWin, this->Pager.GetTree());
+      this->TreeDirty = false;
+    }
+    return true;
+  }
+  if (this->UploadTime >= this->BuildTime && this->Buffers.HasHeights())
+    return true;
+  std::string error;
+  if (!this->Buffers.UploadHeights(renWin, this->Stack, error))
+  {
+    vtkErrorWithObjectMacro(self, << error);
+    return false;
+  }
+  this->Buffers.UploadTree(renWin, this->Tree);
+  this->Buffers.UploadBox(this->NX, this->NY, this->ZRange);
+  this->UploadTime = this->BuildTime;
+  return true;
+}
+
+// --- Colours: one per horizon (SetHorizonColor or the palette) or 1024 entries of the lookup
+// table (or the default depth map) over its range or the stack's.
+void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
+  vtkOpenGLRenderWindow* renWin,
+  Frame& frame)
+{
+  frame.Shaded = self->OutputMode == OutputModes::Shaded;
+  frame.LookupTable = frame.Shaded && self->ColorMode == ColorModes::LookupTable;
+  frame.LutRange[0] = this->ZRange[0];
+  frame.LutRange[1] = this->ZRange[1];
+  if (this->Lut && frame.LookupTable)
+  {
+    const double* r = this->Lut->GetRange();
+    if (r[0] < r[1])
+    {
+      frame.LutRange[0] = r[0];
+      frame.LutRange[1] = r[1];
+    }
+  }
+  if (frame.LutRange[1] <= frame.LutRange[0])
+    frame.LutRange[1] = frame.LutRange[0] + 1.0;
+  if (!frame.Shaded ||
+      (this->ColorTime >= this->ColorsModified.GetMTime() && this->ColorTime >= this->BuildTime &&
+        (!this->Lut || this->ColorTime >= this->Lut->GetMTime())))
+    return;
+  std::vector<float> colors;
+  if (frame.LookupTable)
+  {
+    const int entries = 1024;
+    for (int e = 0; e < entries; ++e)
+    {
+      const double s = (e + 0.5) / entries;
+      double rgb[3];
+      if (this->Lut)
+        this->Lut->GetColor(frame.LutRange[0] + s * (frame.LutRange[1] - frame.LutRange[0]), rgb);
+      else
+        DefaultDepthColor(s, rgb);
+      colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+    }
+  }
+  else
+  {
+    for (int k = 0; k < this->Layers; ++k)
+    {
+      auto it = this->HorizonColors.find(k);
+      const double* rgb =
+        it != this->HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
+      colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+    }
+  }
+  this->Buffers.UploadColors(renWin, colors);
+  this->ColorTime = std::max(this->ColorsModified.GetMTime(), this->BuildTime);
+  if (this->Lut)
+    this->ColorTime = std::max(this->ColorTime, this->Lut->GetMTime());
+}
+
+// Feedback needs paging, image load/store (GL 4.2 or the ARB extension) and at most 63
+// horizons (page ids); without it the pager goes back to screen-space priorities.
+bool vtkStackedHeightFieldMapper::vtkInternals::UseFeedback(Self* self)
+{
+  bool feedback =
+    this->Paged && self->LevelOfDetailFeedback && this->Layers <= vtkFeedbackReduction::MaxDataSets;
+  if (feedback)
+  {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 42)
+    {
+      if (!this->FeedbackUnsupportedWarned)
+      {
+        vtkWarningWithObjectMacro(self,
+          "OpenGL " << major << "." << minor
+                    << " has no image load/store: paging without feedback.");
+        this->FeedbackUnsupportedWarned = true;
+      }
+      feedback = false;
+    }
+  }
+  this->FeedbackActive = feedback;
+  if (!feedback)
+  {
+    this->Pager.ClearFeedback();
+    this->Feedback.Drop();
+  }
+  return feedback;
+}
+
+// --- The program for exactly this scene's features (the composer's, by key).
+vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* self,
+  vtkOpenGLRenderWindow* renWin,
+  vtkOpenGLRenderer* oglRen,
+  const Frame& frame)
+{
+  vtkHeightFieldShaderComposer::Key key;
+  key.Paged = this->Paged;
+  key.Feedback = this->UseFeedback(self);
+  key.Holes = this->Holes;
+  key.Shaded = frame.Shaded;
+  key.LookupTable = frame.LookupTable;
+  key.Lit = frame.Lit;
+  key.LightingComplexity = frame.Lit ? oglRen->GetLightingComplexity() : 0;
+  key.LightCount = frame.Lit ? oglRen->GetLightingCount() : 0;
+  vtkShaderProgram* program = this->Composer.ReadyProgram(
+    renWin, key, frame.Lit ? oglRen->GetLightingUniforms() : std::string());
+  if (!program)
+  {
+    vtkErrorWithObjectMacro(self, "The height-field ray casting shader did not compile or link.");
+    return nullptr;
+  }
+  this->LastKey = key;
+  this->HasLastKey = true;
+  return program;
+}
+
+// --- Matrices, composed in double so UTM-scale coordinates lose nothing: the GPU only sees
+// grid space (cells and heights) and clip space; then the grid, the search and the tree.
+bool vtkStackedHeightFieldMapper::vtkInternals::SetUniforms(Self* self,
+  vtkRenderer* ren,
+  vtkActor* actor,
+  vtkShaderProgram* program,
+  Frame& frame)
+{
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> worldToClip, modelGrid;
+  worldToClip->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), this->GridToWorld, modelGrid);
+  vtkMatrix4x4::Multiply4x4(worldToClip, modelGrid, frame.GridToClip);
+  vtkMatrix4x4::Invert(frame.GridToClip, frame.ClipToGrid);
+  vtkMatrix4x4::Multiply4x4(camera->GetViewTransformMatrix(), modelGrid, frame.GridToView);
+  float m[16];
+  vtkStrataRenderUtilities::ToColumnMajor(frame.GridToClip->GetData(), m);
+  program->SetUniformMatrix4x4("uGridToClip", m);
+  vtkStrataRenderUtilities::ToColumnMajor(frame.ClipToGrid->GetData(), m);
+  program->SetUniformMatrix4x4("uClipToGrid", m);
+  int* vp = frame.Viewport;
+  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
+  const float viewport[4] = { float(vp[0]), float(vp[1]), float(vp[2]), float(vp[3]) };
+  program->SetUniform4f("uViewport", viewport);
+  const float gridMax[2] = { float(this->NX - 1), float(this->NY - 1) };
+  program->SetUniform2f("uGridMax", gridMax);
+  const bool range = this->ZRange[0] <= this->ZRange[1];
+  const double zr[2] = { range ? this->ZRange[0] : 0.0, range ? this->ZRange[1] : 0.0 };
+  const float zRange[2] = { float(zr[0]), float(zr[1]) };
+  program->SetUniform2f("uZRange", zRange);
+  // Bilinear interpolation in float is within a few ulps of the corner range; 1e-5 relative
+  // of the largest magnitude is far above that and far below anything visible.
+  program->SetUniformf("uZEps", float(1e-5 * std::max({ 1.0, std::abs(zr[0]), std::abs(zr[1]) })));
+  program->SetUniformf("uStep", float(self->LinearSearchStep));
+  // Ties: hits closer than 1e-6 of the near-to-far segment (t spans [0, 1]) are one hit.
+  program->SetUniformf("uTieEps", 1e-6f);
+  const vtkMinMaxQuadtree& tree = this->Paged ? this->Pager.GetTree() : this->Tree;
+  program->SetUniformi("uTileSize", tree.GetTileSize());
+  const int levels = tree.GetNumberOfLevels();
+  if (levels > 16)
+  {
+    vtkErrorWithObjectMacro(self, "Quadtree of " << levels << " levels: raise TileSize.");
+    return false;
+  }
+  program->SetUniformi("uNumLevels", levels);
+  int offsets[16] = { 0 };
+  int levelDims[32] = { 0 };
+  for (int l = 0; l < levels; ++l)
+  {
+    offsets[l] = tree.GetLevelOffset(l);
+    levelDims[2 * l] = tree.GetLevelNX(l);
+    levelDims[2 * l + 1] = tree.GetLevelNY(l);
+  }
+  program->SetUniform1iv("uLevelOffset", 16, offsets);
+  glUniform2iv(program->FindUniform("uLevelDims"), 16, levelDims);
+  return true;
+}
+
+// The actor's material and the renderer's lights, in view coordinates.
+void vtkStackedHeightFieldMapper::vtkInternals::SetLightingUniforms(vtkOpenGLRenderer* ren,
+  vtkActor* actor,
+  vtkShaderProgram* program,
+  const Frame& frame)
+{
+  vtkNew<vtkMatrix3x3> normal;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      normal->SetElement(r, c, frame.GridToView->GetElement(r, c));
+  normal->Invert();
+  normal->Transpose();
+  float n9[9];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      n9[c * 3 + r] = static_cast<float>(normal->GetElement(r, c));
+  program->SetUniformMatrix3x3("uNormalMatrix", n9);
+  float m[16];
+  vtkStrataRenderUtilities::ToColumnMajor(frame.GridToView->GetData(), m);
+  program->SetUniformMatrix4x4("uGridToView", m);
+  program->SetUniformi("uParallel", ren->GetActiveCamera()->GetParallelProjection() ? 1 : 0);
+  vtkProperty* prop = actor->GetProperty();
+  program->SetUniformf("uAmbient", float(prop->GetAmbient()));
+  program->SetUniformf("uDiffuse", float(prop->GetDiffuse()));
+  program->SetUniformf("uSpecular", float(prop->GetSpecular()));
+  program->SetUniformf("uSpecularPower", float(prop->GetSpecularPower()));
+  const double* sc = prop->GetSpecularColor();
+  const float specColor[3] = { float(sc[0]), float(sc[1]), float(sc[2]) };
+  program->SetUniform3f("uSpecularColor", specColor);
+  ren->UpdateLightingUniforms(program);
+}
+
+// --- Feedback: the buffer cleared, on image unit 0, and what the rays need to name a tile;
+// the lattice phase cycles so that every pixel asks once per FeedbackScale^2 frames.
+void vtkStackedHeightFieldMapper::vtkInternals::PrepareFeedback(Self* self,
+  vtkOpenGLRenderWindow* renWin,
+  vtkShaderProgram* program,
+  const Frame& frame)
+{
+  const int s = self->FeedbackScale;
+  this->Feedback.Allocate(renWin, frame.Viewport[2], frame.Viewport[3], s);
+  this->Feedback.Clear(renWin);
+  this->Feedback.BindImages(false);
+  program->SetUniformi("uFeedback", 0);
+  program->SetUniformi("uFeedbackScale", s);
+  const int phase = static_cast<int>(this->FeedbackFrame % (s * s));
+  glUniform2i(program->FindUniform("uFeedbackOffset"), phase % s, phase / s);
+  program->SetUniformf("uLodScale", float(self->LevelOfDetailThreshold));
+  const int levelsPaged =
+    std::min(this->Pager.GetNumberOfLevels(), vtkFeedbackReduction::MaxLevels);
+  program->SetUniformi("uPageLevels", levelsPaged);
+  int tilesX[32] = { 0 };
+  for (int l = 0; l < levelsPaged; ++l)
+    tilesX[l] = this->Pager.GetLevelTiles(l)[0];
+  program->SetUniform1iv("uLevelTilesX", 32, tilesX);
+}
+
+// --- The box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
+void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renWin,
+  vtkShaderProgram* program,
+  const Frame& frame)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  this->Buffers.BindBox(program);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  state->vtkglEnable(GL_CULL_FACE);
+  state->vtkglCullFace(GL_FRONT);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_CLAMP);
+  this->Buffers.DrawBox();
+  glDisable(GL_DEPTH_CLAMP);
+  state->vtkglCullFace(GL_BACK);
+  (void)frame;
+}
+
+// The queued feedback, mapped and reduced, handed to the pager (a (tile, pixels) list).
+void vtkStackedHeightFieldMapper::vtkInternals::ReadFeedback(Self* self)
+{
+  const bool viewChanged = this->PendingViewChanged;
+  // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<vtkFeedbackReduction::Entry> list;
+  this->Feedback.SetUseOpenCL(self->FeedbackOpenCL);
+  this->Feedback.Read(list);
+  std::vector<uint32_t> pages(list.size()), coverage(list.size());
+  for (size_t e = 0; e < list.size(); ++e)
+  {
+    pages[e] = list[e].Page;
+    coverage[e] = list[e].Coverage;
+  }
+  this->Pager.SetFeedback(pages, coverage, self->FeedbackScale * self->FeedbackScale, viewChanged);
+  ++this->FeedbackFrame;
+  this->Paging.FeedbackMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  this->Paging.FeedbackOpenCL = this->Feedback.GetLastReadUsedOpenCL();
+}
+
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
-  for (unsigned int* texture :
-    { &in.HeightTexture, &in.AtlasTexture, &in.PageTableTexture, &in.FeedbackTexture })
-  {
-    if (*texture)
-    {
-      glDeleteTextures(1, texture);
-      *texture = 0;
-    }
-  }
-  if (in.FeedbackBuffer)
-  {
-    glDeleteBuffers(1, &in.FeedbackBuffer);
-    in.FeedbackBuffer = 0;
-  }
-  in.FeedbackPending = false;
-  in.AtlasSlots = 0;
-  in.FeedbackSize[0] = in.FeedbackSize[1] = 0;
-  for (auto* t : { in.NodeTexture.Get(),
-         in.IntervalTexture.Get(),
-         in.LayerListTexture.Get(),
-         in.ColorTexture.Get() })
-  {
-    t->ReleaseGraphicsResources(win);
-  }
-  for (auto* b : { in.NodeBuffer.Get(),
-         in.IntervalBuffer.Get(),
-         in.LayerListBuffer.Get(),
-         in.ColorBuffer.Get(),
-         in.BoxVertices.Get(),
-         in.BoxIndices.Get() })
-  {
-    b->ReleaseGraphicsResources();
-  }
-  if (in.VAO)
-  {
-    glDeleteVertexArrays(1, &in.VAO);
-    in.VAO = 0;
-  }
-  in.LastProgram = nullptr;
+  in.Buffers.ReleaseGraphicsResources(win);
+  in.Atlas.ReleaseGraphicsResources();
+  in.Feedback.ReleaseGraphicsResources();
+  in.Composer.ReleaseGraphicsResources();
   in.UploadTime = 0;
   in.ColorTime = 0;
   this->Modified();
 }
 
+// One frame: the stack and colours on the GPU, the program for the scene's features, its
+// uniforms and textures, the box drawn, and the feedback read or queued.
 void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
 {
   vtkInternals& in = *this->Internals;
@@ -739,656 +932,75 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     vtkErrorMacro("vtkStackedHeightFieldMapper needs an OpenGL render window.");
     return;
   }
-  vtkOpenGLState* state = renWin->GetState();
+  in.ResourceCallback.RegisterGraphicsResources(renWin);
   vtkOpenGLClearErrorMacro();
-  const int nx = in.NX;
-  const int ny = in.NY;
-  const int layers = in.Layers;
-
-  auto uploadBuffer =
-    [&](vtkOpenGLBufferObject* bo, vtkTextureObject* tex, const std::vector<float>& data, int comps)
+  if (!in.Upload(this, ren, actor, renWin))
   {
-    tex->SetContext(renWin);
-    bo->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
-    tex->CreateTextureBuffer(static_cast<unsigned int>(data.size() / comps), comps, VTK_FLOAT, bo);
-  };
-  auto uploadTree = [&](const vtkMinMaxQuadtree& tree)
-  {
-    // Ints stored as floats are exact below 2^24, far above any tree built here.
-    std::vector<float> nodes, intervals, lists;
-    for (const auto& node : tree.GetNodes())
-    {
-      nodes.insert(
-        nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
-    }
-    for (const auto& iv : tree.GetIntervals())
-    {
-      intervals.insert(
-        intervals.end(), { iv.ZMin, iv.ZMax, float(iv.LayerOffset), float(iv.LayerCount) });
-    }
-    for (int id : tree.GetLayerLists())
-    {
-      lists.push_back(float(id));
-    }
-    if (intervals.empty())
-    {
-      intervals.assign(4, 0.0f);
-    }
-    if (lists.empty())
-    {
-      lists.assign(1, 0.0f);
-    }
-    uploadBuffer(in.NodeBuffer, in.NodeTexture, nodes, 4);
-    uploadBuffer(in.IntervalBuffer, in.IntervalTexture, intervals, 4);
-    uploadBuffer(in.LayerListBuffer, in.LayerListTexture, lists, 1);
-  };
-  auto uploadBox = [&]()
-  {
-    // Proxy box, slightly taller than the data so that flat stacks still have back faces.
-    double zr[2] = { in.ZRange[0], in.ZRange[1] };
-    if (zr[0] > zr[1])
-    {
-      zr[0] = zr[1] = 0.0;
-    }
-    const double pad = std::max(1e-3, 1e-3 * (zr[1] - zr[0]));
-    const float x1 = float(nx - 1), y1 = float(ny - 1);
-    const float z0 = float(zr[0] - pad), z1 = float(zr[1] + pad);
-    const std::vector<float> verts = {
-      0, 0, z0, x1, 0, z0, 0, y1, z0, x1, y1, z0, 0, 0, z1, x1, 0, z1, 0, y1, z1, x1, y1, z1
-    };
-    const std::vector<unsigned int> faces = { 0,
-      2,
-      1,
-      1,
-      2,
-      3,
-      4,
-      5,
-      6,
-      5,
-      7,
-      6,
-      0,
-      1,
-      4,
-      1,
-      5,
-      4,
-      2,
-      6,
-      3,
-      3,
-      6,
-      7,
-      0,
-      4,
-      2,
-      2,
-      4,
-      6,
-      1,
-      3,
-      5,
-      3,
-      7,
-      5 };
-    in.BoxVertices->Upload(verts, vtkOpenGLBufferObject::ArrayBuffer);
-    in.BoxIndices->Upload(faces, vtkOpenGLBufferObject::ElementArrayBuffer);
-    in.LastProgram = nullptr; // attribute bindings must be redone
-  };
-
-  if (in.Paged)
-  {
-    if (!this->UpdatePages(ren, actor))
-    {
-      return;
-    }
-    if (in.UploadTime < in.BuildTime)
-    {
-      uploadBox();
-      in.UploadTime = in.BuildTime;
-    }
-    if (in.TreeDirty)
-    {
-      uploadTree(in.Pager.GetTree());
-      in.TreeDirty = false;
-    }
-  }
-  // --- Upload the stack and the tree when they changed.
-  else if (in.UploadTime < in.BuildTime || !in.HeightTexture)
-  {
-    GLint maxSize = 0, maxLayers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    if (nx > maxSize || ny > maxSize || layers > maxLayers)
-    {
-      vtkErrorMacro("A grid of " << nx << " x " << ny << " x " << layers
-                                 << " horizons exceeds this GPU's texture limits (" << maxSize
-                                 << " per side, " << maxLayers
-                                 << " layers); page it from a tile pool instead.");
-      return;
-    }
-    if (!in.HeightTexture)
-    {
-      glGenTextures(1, &in.HeightTexture);
-    }
-    state->vtkglActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, nx, ny, layers, 0, GL_RED, GL_FLOAT, nullptr);
-    for (int k = 0; k < layers; ++k)
-    {
-      glTexSubImage3D(
-        GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT, in.Stack.GetLayer(k));
-    }
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    if (glGetError() != GL_NO_ERROR)
-    {
-      vtkErrorMacro("Could not upload " << layers << " horizons of " << nx << " x " << ny
-                                        << " heights (out of GPU memory?).");
-      return;
-    }
-
-    uploadTree(in.Tree);
-    uploadBox();
-    in.UploadTime = in.BuildTime;
-  }
-  const vtkMinMaxQuadtree& tree = in.Paged ? in.Pager.GetTree() : in.Tree;
-
-  // --- Colours: per-horizon table or lookup table over height.
-  const bool shaded = this->OutputMode == OutputModes::Shaded;
-  const bool useLut = shaded && this->ColorMode == ColorModes::LookupTable;
-  double lutRange[2] = { in.ZRange[0], in.ZRange[1] };
-  if (in.Lut && useLut)
-  {
-    const double* r = in.Lut->GetRange();
-    if (r[0] < r[1])
-    {
-      lutRange[0] = r[0];
-      lutRange[1] = r[1];
-    }
-  }
-  if (lutRange[1] <= lutRange[0])
-  {
-    lutRange[1] = lutRange[0] + 1.0;
-  }
-  if (shaded && (in.ColorTime < in.ColorsModified.GetMTime() || in.ColorTime < in.BuildTime ||
-                  (in.Lut && in.ColorTime < in.Lut->GetMTime())))
-  {
-    std::vector<float> colors;
-    if (useLut)
-    {
-      const int entries = 1024;
-      for (int e = 0; e < entries; ++e)
-      {
-        const double s = (e + 0.5) / entries;
-        double rgb[3];
-        if (in.Lut)
-        {
-          in.Lut->GetColor(lutRange[0] + s * (lutRange[1] - lutRange[0]), rgb);
-        }
-        else
-        {
-          DefaultDepthColor(s, rgb);
-        }
-        colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
-      }
-    }
-    else
-    {
-      for (int k = 0; k < layers; ++k)
-      {
-        auto it = in.HorizonColors.find(k);
-        const double* rgb =
-          it != in.HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
-        colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
-      }
-    }
-    in.ColorTexture->SetContext(renWin);
-    in.ColorBuffer->Upload(colors, vtkOpenGLBufferObject::TextureBuffer);
-    in.ColorTexture->CreateTextureBuffer(
-      static_cast<unsigned int>(colors.size() / 4), 4, VTK_FLOAT, in.ColorBuffer);
-    in.ColorTime = std::max(in.ColorsModified.GetMTime(), in.BuildTime);
-    if (in.Lut)
-    {
-      in.ColorTime = std::max(in.ColorTime, in.Lut->GetMTime());
-    }
-  }
-
-  // --- Shader for exactly this scene's features.
-  vtkProperty* prop = actor->GetProperty();
-  const int complexity = oglRen->GetLightingComplexity();
-  const bool lit = shaded && prop->GetLighting() && complexity > 0;
-  const bool holes = in.Holes;
-  std::string vs = vtkStackedHeightFieldVS;
-  std::string fs = vtkStackedHeightFieldFS;
-  // Data lookup: one function, so that paging can swap in a virtual-texture lookup.
-  Replace(fs,
-    "//STRATA::HeightLookup::Dec",
-    in.Paged ? vtkStackedHeightFieldPagedLookup
-             : "uniform sampler2DArray uHeights;\n"
-               "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, "
-               "layer), 0).r; }");
-  // Feedback: image load/store (GL 4.2 or the ARB extension), at most 63 horizons (page ids).
-  bool feedback =
-    in.Paged && this->LevelOfDetailFeedback && layers <= vtkFeedbackReduction::MaxDataSets;
-  if (feedback)
-  {
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (major * 10 + minor < 42)
-    {
-      if (!in.FeedbackUnsupportedWarned)
-      {
-        vtkWarningMacro("OpenGL " << major << "." << minor
-                                  << " has no image load/store: paging without feedback.");
-        in.FeedbackUnsupportedWarned = true;
-      }
-      feedback = false;
-    }
-  }
-  in.FeedbackActive = feedback;
-  if (!feedback)
-  {
-    in.Pager.ClearFeedback();
-    in.FeedbackPending = false;
-  }
-  Replace(fs,
-    "//STRATA::Extensions::Dec",
-    feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
-  Replace(fs,
-    "//STRATA::Feedback::Dec",
-    feedback ? std::string(FeedbackDeclarations) + vtkFeedbackReduction::GetGLSLPackFunction()
-             : "");
-  Replace(fs, "//STRATA::Feedback::Impl", feedback ? FeedbackWrite : "");
-  if (in.Paged)
-  {
-    Replace(fs,
-      "//STRATA::CellCorners::Dec",
-      "vec4 strataCellCorners(int layer, ivec2 c)\n"
-      "{\n"
-      "  ivec2 q = c - gPageBase;\n"
-      "  return vec4(strataTexel(gPageSlot, q), strataTexel(gPageSlot, q + ivec2(1, 0)),\n"
-      "    strataTexel(gPageSlot, q + ivec2(0, 1)), strataTexel(gPageSlot, q + ivec2(1, 1)));\n"
-      "}");
-    Replace(fs,
-      "//STRATA::SearchLevel::Impl",
-      "lv = strataLeafPage(layer, cLo0);\n"
-      "  if (lv < 0)\n"
-      "  {\n"
-      "    return BIG; // an empty tile, or one without a slot: a hole\n"
-      "  }");
-  }
-  else
-  {
-    Replace(fs,
-      "//STRATA::CellCorners::Dec",
-      "vec4 strataCellCorners(int layer, ivec2 c) { return strataCorners(layer, c); }");
-    Replace(fs, "//STRATA::SearchLevel::Impl", "");
-  }
-  // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
-  Replace(fs,
-    "//STRATA::Hole::Impl",
-    !holes     ? ""
-    : in.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));"
-               : "valid = !any(isnan(h));");
-  if (!shaded)
-  {
-    Replace(fs, "//STRATA::Color::Dec", "");
-    Replace(fs, "//STRATA::Color::Impl", "");
-    Replace(fs, "//STRATA::Shading::Dec", "");
-    Replace(fs, "//STRATA::Shading::Impl", "");
-    Replace(fs,
-      "//STRATA::Output::Impl",
-      "int id = hitLayer + 1;\n"
-      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), "
-      "255.0) / 255.0;");
-  }
-  else
-  {
-    if (useLut)
-    {
-      Replace(fs,
-        "//STRATA::Color::Dec",
-        "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
-      Replace(fs,
-        "//STRATA::Color::Impl",
-        "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
-        "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
-    }
-    else
-    {
-      Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // one per horizon");
-      Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = texelFetch(uColors, hitLayer).rgb;");
-    }
-    if (lit)
-    {
-      std::ostringstream dec, impl;
-      dec << "uniform mat3 uNormalMatrix; // grid -> view, inverse transpose\n"
-             "uniform mat4 uGridToView;\n"
-             "uniform int uParallel;\n"
-             "uniform float uAmbient, uDiffuse, uSpecular, uSpecularPower;\n"
-             "uniform vec3 uSpecularColor;\n"
-          << oglRen->GetLightingUniforms();
-      impl << "vec4 hc = strataCorners(hitLayer, hitCell);\n"
-              "  vec2 huv = clamp(pGrid.xy - vec2(hitCell), 0.0, 1.0);\n"
-              "  vec3 nGrid = vec3(-mix(hc.y - hc.x, hc.w - hc.z, huv.y), -mix(hc.z - hc.x, hc.w - "
-              "hc.y, huv.x), 1.0);\n"
-              "  vec3 normalVC = normalize(uNormalMatrix * nGrid);\n"
-              "  vec3 posVC = (uGridToView * vec4(pGrid, 1.0)).xyz;\n"
-              "  vec3 viewDirectionVC = uParallel != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-posVC);\n"
-              "  if (dot(normalVC, viewDirectionVC) < 0.0) normalVC = -normalVC; // two-sided\n"
-              "  vec3 diffuse = vec3(0.0), specular = vec3(0.0);\n";
-      if (complexity == 1)
-      {
-        impl << "  float df = max(0.0, normalVC.z);\n"
-                "  diffuse = df * lightColor0;\n"
-                "  specular = pow(df, uSpecularPower) * lightColor0;\n";
-      }
-      else
-      {
-        for (int l = 0; l < oglRen->GetLightingCount(); ++l)
-        {
-          impl << "  {\n    vec3 L = lightDirectionVC" << l << ";\n    float att = 1.0;\n";
-          if (complexity == 3)
-          {
-            impl << "    if (lightPositional" << l << " != 0)\n    {\n"
-                 << "      vec3 toP = posVC - lightPositionVC" << l << ";\n"
-                 << "      float dist = length(toP);\n"
-                 << "      float coneDot = dot(normalize(toP), lightDirectionVC" << l << ");\n"
-                 << "      L = normalize(toP);\n"
-                 << "      att = 1.0 / (lightAttenuation" << l << ".x + lightAttenuation" << l
-                 << ".y * dist + lightAttenuation" << l << ".z * dist * dist);\n"
-                 << "      if (lightConeAngle" << l << " < 90.0)\n"
-                 << "        att *= coneDot >= cos(radians(lightConeAngle" << l
-                 << ")) ? pow(coneDot, lightExponent" << l << ") : 0.0;\n"
-                 << "    }\n";
-          }
-          impl << "    float df = max(0.0, dot(normalVC, -L));\n"
-               << "    diffuse += att * df * lightColor" << l << ";\n"
-               << "    if (df > 0.0)\n"
-               << "      specular += att * pow(max(0.0, dot(reflect(L, normalVC), "
-                  "viewDirectionVC)), uSpecularPower) * lightColor"
-               << l << ";\n  }\n";
-        }
-      }
-      impl << "  vec3 shadedColor = uAmbient * baseColor + uDiffuse * diffuse * baseColor + "
-              "uSpecular * specular * uSpecularColor;";
-      Replace(fs, "//STRATA::Shading::Dec", dec.str());
-      Replace(fs, "//STRATA::Shading::Impl", impl.str());
-      Replace(
-        fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
-    }
-    else
-    {
-      Replace(fs, "//STRATA::Shading::Dec", "");
-      Replace(fs, "//STRATA::Shading::Impl", "");
-      Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, 1.0);");
-    }
-  }
-  vtkShaderProgram* program =
-    renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), "");
-  if (!program)
-  {
-    vtkErrorMacro("The height-field ray casting shader did not compile or link.");
     return;
   }
-  in.VertexSource = vs;
-  in.FragmentSource = fs;
-  if (program != in.LastProgram || !in.VAO)
+  vtkInternals::Frame frame;
+  in.UpdateColors(this, renWin, frame);
+  frame.Lit =
+    frame.Shaded && actor->GetProperty()->GetLighting() && oglRen->GetLightingComplexity() > 0;
+  vtkShaderProgram* program = in.ReadyProgram(this, renWin, oglRen, frame);
+  if (!program || !in.SetUniforms(this, ren, actor, program, frame))
   {
-    // A plain VAO: the box has one attribute, and its element buffer is part of its state.
-    if (!in.VAO)
-    {
-      glGenVertexArrays(1, &in.VAO);
-    }
-    glBindVertexArray(in.VAO);
-    in.BoxVertices->Bind();
-    const GLint location = glGetAttribLocation(program->GetHandle(), "vertexGrid");
-    glEnableVertexAttribArray(location);
-    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-    in.BoxIndices->Bind();
-    glBindVertexArray(0);
-    in.LastProgram = program;
-  }
-
-  // --- Matrices, composed in double so UTM-scale coordinates lose nothing: the GPU only sees
-  // grid space (cells and heights) and clip space.
-  vtkCamera* camera = ren->GetActiveCamera();
-  const double aspect = ren->GetTiledAspectRatio();
-  vtkNew<vtkMatrix4x4> worldToClip, gridToClip, clipToGrid, gridToView, modelGrid;
-  worldToClip->DeepCopy(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1));
-  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), in.GridToWorld, modelGrid);
-  vtkMatrix4x4::Multiply4x4(worldToClip, modelGrid, gridToClip);
-  vtkMatrix4x4::Invert(gridToClip, clipToGrid);
-  vtkMatrix4x4::Multiply4x4(camera->GetViewTransformMatrix(), modelGrid, gridToView);
-  float m[16];
-  ToFloat(gridToClip, m, true);
-  program->SetUniformMatrix4x4("uGridToClip", m);
-  ToFloat(clipToGrid, m, true);
-  program->SetUniformMatrix4x4("uClipToGrid", m);
-
-  int vp[4];
-  ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
-  const float viewport[4] = { float(vp[0]), float(vp[1]), float(vp[2]), float(vp[3]) };
-  program->SetUniform4f("uViewport", viewport);
-  const float gridMax[2] = { float(nx - 1), float(ny - 1) };
-  program->SetUniform2f("uGridMax", gridMax);
-  const double zr[2] = { in.ZRange[0] <= in.ZRange[1] ? in.ZRange[0] : 0.0,
-    in.ZRange[0] <= in.ZRange[1] ? in.ZRange[1] : 0.0 };
-  const float zRange[2] = { float(zr[0]), float(zr[1]) };
-  program->SetUniform2f("uZRange", zRange);
-  // Bilinear interpolation in float is within a few ulps of the corner range; 1e-5 relative
-  // of the largest magnitude is far above that and far below anything visible.
-  program->SetUniformf("uZEps", float(1e-5 * std::max({ 1.0, std::abs(zr[0]), std::abs(zr[1]) })));
-  program->SetUniformf("uStep", float(this->LinearSearchStep));
-  // Ties: hits closer than 1e-6 of the near-to-far segment (t spans [0, 1]) are one hit.
-  program->SetUniformf("uTieEps", 1e-6f);
-  program->SetUniformi("uTileSize", tree.GetTileSize());
-  const int levels = tree.GetNumberOfLevels();
-  if (levels > 16)
-  {
-    vtkErrorMacro("Quadtree of " << levels << " levels: raise TileSize.");
     return;
   }
-  program->SetUniformi("uNumLevels", levels);
-  int offsets[16] = { 0 };
-  int levelDims[32] = { 0 };
-  for (int l = 0; l < levels; ++l)
+  if (frame.Lit)
   {
-    offsets[l] = tree.GetLevelOffset(l);
-    levelDims[2 * l] = tree.GetLevelNX(l);
-    levelDims[2 * l + 1] = tree.GetLevelNY(l);
+    in.SetLightingUniforms(oglRen, actor, program, frame);
   }
-  program->SetUniform1iv("uLevelOffset", 16, offsets);
-  glUniform2iv(program->FindUniform("uLevelDims"), 16, levelDims);
-
-  if (lit)
-  {
-    vtkNew<vtkMatrix3x3> normal;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        normal->SetElement(r, c, gridToView->GetElement(r, c));
-    normal->Invert();
-    normal->Transpose();
-    float n9[9];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        n9[c * 3 + r] = static_cast<float>(normal->GetElement(r, c));
-    program->SetUniformMatrix3x3("uNormalMatrix", n9);
-    ToFloat(gridToView, m, true);
-    program->SetUniformMatrix4x4("uGridToView", m);
-    program->SetUniformi("uParallel", camera->GetParallelProjection() ? 1 : 0);
-    program->SetUniformf("uAmbient", float(prop->GetAmbient()));
-    program->SetUniformf("uDiffuse", float(prop->GetDiffuse()));
-    program->SetUniformf("uSpecular", float(prop->GetSpecular()));
-    program->SetUniformf("uSpecularPower", float(prop->GetSpecularPower()));
-    const double* sc = prop->GetSpecularColor();
-    const float specColor[3] = { float(sc[0]), float(sc[1]), float(sc[2]) };
-    program->SetUniform3f("uSpecularColor", specColor);
-    oglRen->UpdateLightingUniforms(program);
-  }
-
-  // --- Textures.
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
-  const int heightUnit = units->Allocate();
-  const int tableUnit = in.Paged ? units->Allocate() : -1;
-  state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
+  int heightUnit = -1;
   if (in.Paged)
   {
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.AtlasTexture);
-    program->SetUniformi("uAtlas", heightUnit);
-    state->vtkglActiveTexture(GL_TEXTURE0 + tableUnit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.PageTableTexture);
-    program->SetUniformi("uPageTable", tableUnit);
-    program->SetUniformi("uPageStride", in.Pager.GetPageSize() - 1);
-    const int* tiles = in.Pager.GetTiles();
-    glUniform2i(program->FindUniform("uPageTiles"), tiles[0], tiles[1]);
+    in.Atlas.Bind(renWin, program, in.Pager);
   }
   else
   {
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.HeightTexture);
+    heightUnit = units->Allocate();
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.Buffers.GetHeightTexture());
     program->SetUniformi("uHeights", heightUnit);
   }
-  in.NodeTexture->Activate();
-  program->SetUniformi("uNodes", in.NodeTexture->GetTextureUnit());
-  in.IntervalTexture->Activate();
-  program->SetUniformi("uIntervals", in.IntervalTexture->GetTextureUnit());
-  in.LayerListTexture->Activate();
-  program->SetUniformi("uLayerLists", in.LayerListTexture->GetTextureUnit());
-  if (shaded)
+  in.Buffers.Activate(program, frame.Shaded);
+  if (frame.LookupTable)
   {
-    in.ColorTexture->Activate();
-    program->SetUniformi("uColors", in.ColorTexture->GetTextureUnit());
-    if (useLut)
-    {
-      const float lr[2] = { float(lutRange[0]), float(lutRange[1]) };
-      program->SetUniform2f("uLutRange", lr);
-    }
+    const float lr[2] = { float(frame.LutRange[0]), float(frame.LutRange[1]) };
+    program->SetUniform2f("uLutRange", lr);
   }
-
-  if (feedback)
+  if (in.FeedbackActive)
   {
-    const int s = this->FeedbackScale;
-    const int fw = (vp[2] + s - 1) / s, fh = (vp[3] + s - 1) / s;
-    if (!in.FeedbackTexture || fw != in.FeedbackSize[0] || fh != in.FeedbackSize[1])
-    {
-      if (!in.FeedbackTexture)
-      {
-        glGenTextures(1, &in.FeedbackTexture);
-      }
-      glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, fw, fh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-      vtkFeedbackReadBack::Allocate(in.FeedbackBuffer, size_t(fw) * fh);
-      in.FeedbackSize[0] = fw;
-      in.FeedbackSize[1] = fh;
-      in.FeedbackPending = false;
-    }
-    const std::vector<uint32_t> zeros(size_t(fw) * fh, 0u);
-    glBindTexture(GL_TEXTURE_2D, in.FeedbackTexture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fw, fh, GL_RED_INTEGER, GL_UNSIGNED_INT, zeros.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glBindImageTexture(0, in.FeedbackTexture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
-    program->SetUniformi("uFeedback", 0);
-    program->SetUniformi("uFeedbackScale", s);
-    // The lattice phase cycles so that every pixel asks once per s^2 frames.
-    const int phase = static_cast<int>(in.FeedbackFrame % (s * s));
-    glUniform2i(program->FindUniform("uFeedbackOffset"), phase % s, phase / s);
-    program->SetUniformf("uLodScale", float(this->LevelOfDetailThreshold));
-    const int levelsPaged = std::min(in.Pager.GetNumberOfLevels(), vtkFeedbackReduction::MaxLevels);
-    program->SetUniformi("uPageLevels", levelsPaged);
-    int tilesX[32] = { 0 };
-    for (int l = 0; l < levelsPaged; ++l)
-    {
-      tilesX[l] = in.Pager.GetLevelTiles(l)[0];
-    }
-    program->SetUniform1iv("uLevelTilesX", 32, tilesX);
+    in.PrepareFeedback(this, renWin, program, frame);
   }
-
-  // --- Draw the box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
-  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
-  state->vtkglEnable(GL_CULL_FACE);
-  state->vtkglCullFace(GL_FRONT);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_CLAMP);
-  glBindVertexArray(in.VAO);
-  glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_INT, nullptr);
-  glBindVertexArray(0);
-  glDisable(GL_DEPTH_CLAMP);
-  state->vtkglCullFace(GL_BACK);
-
-  in.NodeTexture->Deactivate();
-  in.IntervalTexture->Deactivate();
-  in.LayerListTexture->Deactivate();
-  if (shaded)
+  in.Draw(renWin, program, frame);
+  in.Buffers.Deactivate(frame.Shaded);
+  if (in.Paged)
   {
-    in.ColorTexture->Deactivate();
+    in.Atlas.Unbind(renWin);
   }
-  state->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  units->Free(heightUnit);
-  if (tableUnit >= 0)
+  else
   {
-    state->vtkglActiveTexture(GL_TEXTURE0 + tableUnit);
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    units->Free(tableUnit);
+    units->Free(heightUnit);
   }
-  if (feedback)
+  if (in.FeedbackActive)
   {
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    in.Feedback.UnbindImages();
     std::array<double, 16> view;
-    std::copy_n(gridToClip->GetData(), 16, view.begin());
+    std::copy_n(frame.GridToClip->GetData(), 16, view.begin());
     // Copied into the pixel buffer now; mapped at once or at the next frame (ReadFeedback).
-    vtkFeedbackReadBack::Queue(renWin, in.FeedbackTexture, in.FeedbackBuffer);
-    in.FeedbackPending = true;
+    in.Feedback.Queue(renWin);
     in.PendingViewChanged = view != in.LastView;
     in.LastView = view;
     if (!this->DeferFeedbackReadBack)
     {
-      this->ReadFeedback();
+      in.ReadFeedback(this);
     }
   }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
-}
-
-void vtkStackedHeightFieldMapper::ReadFeedback()
-{
-  vtkInternals& in = *this->Internals;
-  in.FeedbackPending = false;
-  const bool viewChanged = in.PendingViewChanged;
-  const size_t count = size_t(in.FeedbackSize[0]) * in.FeedbackSize[1];
-  // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<vtkFeedbackReduction::Entry> list;
-  bool openCL = false;
-  vtkFeedbackReadBack::Map(in.FeedbackBuffer,
-    count,
-    [&](const uint32_t* ids)
-    {
-      openCL = this->FeedbackOpenCL && in.Reduction.ReduceOpenCL(ids, count, list);
-      if (!openCL)
-        in.Reduction.ReduceCPU(ids, count, list);
-    });
-  std::vector<uint32_t> pages(list.size()), coverage(list.size());
-  for (size_t e = 0; e < list.size(); ++e)
-  {
-    pages[e] = list[e].Page;
-    coverage[e] = list[e].Coverage;
-  }
-  in.Pager.SetFeedback(pages, coverage, this->FeedbackScale * this->FeedbackScale, viewChanged);
-  ++in.FeedbackFrame;
-  in.Paging.FeedbackMilliseconds =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  in.Paging.FeedbackOpenCL = openCL;
 }
 
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)

@@ -256,6 +256,16 @@ public:
   /// The fragment shader source of the last render (empty before).
   std::string GetFragmentShaderSource() const;
 
+  ///@{
+  /**
+   * Shader sources built and programs compiled (handed to VTK's shader cache, or compiled
+   * again after a release) since the mapper was made, counted by its composer
+   * (vtkHeightFieldShaderComposer): a frame that draws what the last one drew adds nothing.
+   */
+  int GetNumberOfShaderSourcesBuilt() const;
+  int GetNumberOfShaderCompilations() const;
+  ///@}
+
   /**
    * The 4x4 matrix (row-major) from grid space (x, y in cells, z = scalar) to world space,
    * before the actor's matrix; valid after the inputs were read (a render or GetBounds).
@@ -286,8 +296,6 @@ private:
   bool UpdatePagedStack(const std::vector<vtkImageData*>& images);
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
-  bool UpdatePages(vtkRenderer* ren, vtkActor* actor);
-  void ReadFeedback();
 
   int TileSize = 64;
   double LinearSearchStep = 0.5;

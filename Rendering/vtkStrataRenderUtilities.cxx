@@ -24,8 +24,9 @@ vtkVolumeCut::Camera vtkStrataRenderUtilities::GetCutCamera(vtkRenderer* ren)
   return cutCamera;
 }
 
-void vtkStrataRenderUtilities::GetLights(
-  vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors)
+void vtkStrataRenderUtilities::GetLights(vtkRenderer* ren,
+  std::vector<float>& directions,
+  std::vector<float>& colors)
 {
   directions.clear();
   colors.clear();

@@ -33,8 +33,9 @@ public:
    * light (a positional light counts as directional from its position to its focal point) and
    * colour times intensity, 3 floats each, at most 8.
    */
-  static void GetLights(
-    vtkRenderer* ren, std::vector<float>& directions, std::vector<float>& colors);
+  static void GetLights(vtkRenderer* ren,
+    std::vector<float>& directions,
+    std::vector<float>& colors);
 
   /// A row-major double matrix (vtkMatrix4x4::GetData()) as the column-major floats that
   /// vtkShaderProgram::SetUniformMatrix4x4 hands to glUniformMatrix4fv.

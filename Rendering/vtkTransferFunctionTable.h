@@ -39,8 +39,11 @@ public:
    * the colour and opacity functions' ranges, widened to one unit when empty): RGB colour
    * (grey repeated for a grey function) and opacity per unit distance.
    */
-  static void Tabulate(vtkVolumeProperty* property, int size, double range[2],
-    std::vector<float>& rgb, std::vector<float>& opacity);
+  static void Tabulate(vtkVolumeProperty* property,
+    int size,
+    double range[2],
+    std::vector<float>& rgb,
+    std::vector<float>& opacity);
 
   /**
    * Tabulate's table with the opacity turned into extinction per unit length,
@@ -48,8 +51,11 @@ public:
    * unit length then lets 1e-6 through), interleaved RGBA per entry; `opacity` gets the
    * tabulated opacity.
    */
-  static void TabulateExtinction(vtkVolumeProperty* property, int size, double range[2],
-    std::vector<float>& rgbTau, std::vector<float>& opacity);
+  static void TabulateExtinction(vtkVolumeProperty* property,
+    int size,
+    double range[2],
+    std::vector<float>& rgbTau,
+    std::vector<float>& opacity);
 
   /// When `property`'s transfer functions last changed (those of its colour kind only: VTK's
   /// getters of the other kind would create, and switch to, a default).

@@ -1,0 +1,245 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkPagedPools.h"
+
+#include "vtkPagePoolFile.h"
+#include "vtkVolumeBrickTree.h"
+
+#include <algorithm>
+#include <atomic>
+#include <map>
+#include <mutex>
+
+class vtkPagedPools::vtkInternals
+{
+public:
+  struct Pool
+  {
+    std::shared_ptr<vtkPagePoolFile> File;
+    std::string Name;
+  };
+  vtkPageCache Cache;
+  mutable std::mutex Mutex; ///< guards Pools against the cache's workers
+  std::map<int, Pool> Pools;
+  std::atomic<bool> Prefetch{ false };
+
+  std::shared_ptr<vtkPagePoolFile> Find(int id) const
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    auto it = this->Pools.find(id);
+    return it == this->Pools.end() ? nullptr : it->second.File;
+  }
+
+  vtkInternals()
+  {
+    this->Cache.SetLoadFunction(
+      [this](const vtkPageCache::Key& key, std::vector<uint8_t>& out, std::string& error)
+      {
+        const std::shared_ptr<vtkPagePoolFile> pool = this->Find(key.Dataset);
+        if (!pool)
+        {
+          error = "no page pool " + std::to_string(key.Dataset);
+          return false;
+        }
+        out.resize(pool->GetPageValues() * sizeof(float));
+        return pool->ReadPage(
+          key.Level, static_cast<uint64_t>(key.Page), reinterpret_cast<float*>(out.data()), &error);
+      });
+    // After a page loaded on demand: its face neighbours and its parent, ahead of the camera.
+    this->Cache.SetNeighbourFunction(
+      [this](const vtkPageCache::Key& key, std::vector<vtkPageCache::Key>& more)
+      {
+        if (!this->Prefetch)
+          return;
+        const std::shared_ptr<vtkPagePoolFile> pool = this->Find(key.Dataset);
+        if (!pool || key.Level < 0 || key.Level >= pool->GetNumberOfLevels())
+          return;
+        const bool parent = key.Level + 1 < pool->GetNumberOfLevels();
+        vtkPageCache::AddGridNeighbours(key,
+          pool->GetLevel(key.Level).Pages,
+          parent ? pool->GetLevel(key.Level + 1).Pages : nullptr,
+          more);
+      });
+  }
+};
+
+vtkPagedPools::vtkPagedPools()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkPagedPools::~vtkPagedPools()
+{
+  this->Internals->Cache.Stop();
+}
+
+std::shared_ptr<vtkPagePoolFile> vtkPagedPools::OpenPool(int id,
+  const std::string& fileName,
+  std::string& error)
+{
+  vtkInternals& in = *this->Internals;
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    auto it = in.Pools.find(id);
+    if (it != in.Pools.end() && it->second.Name == fileName)
+      return it->second.File;
+  }
+  auto file = std::make_shared<vtkPagePoolFile>();
+  if (!file->Open(fileName))
+  {
+    error = file->GetErrorMessage();
+    return nullptr;
+  }
+  bool replaced = false;
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    replaced = in.Pools.count(id) > 0;
+    in.Pools[id] = { file, fileName };
+  }
+  if (replaced)
+  {
+    in.Cache.EvictAll(); // pages of the old file under the same keys
+  }
+  return file;
+}
+
+vtkPagePoolFile* vtkPagedPools::GetPool(int id) const
+{
+  return this->Internals->Find(id).get();
+}
+
+std::string vtkPagedPools::GetPoolName(int id) const
+{
+  std::lock_guard<std::mutex> lock(this->Internals->Mutex);
+  auto it = this->Internals->Pools.find(id);
+  return it == this->Internals->Pools.end() ? std::string() : it->second.Name;
+}
+
+void vtkPagedPools::Close()
+{
+  vtkInternals& in = *this->Internals;
+  in.Cache.Stop();
+  in.Cache.EvictAll();
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    in.Pools.clear();
+  }
+  this->Stats = Statistics();
+}
+
+bool vtkPagedPools::BuildTree(const vtkPagePoolFile& pool, vtkVolumeBrickTree& tree)
+{
+  const uint64_t pages = pool.GetNumberOfPages();
+  std::vector<float> lo(pages), hi(pages);
+  for (uint64_t id = 0; id < pages; ++id)
+  {
+    lo[id] = pool.GetPageEntry(id).Min;
+    hi[id] = pool.GetPageEntry(id).Max;
+  }
+  const int* d = pool.GetDimensions();
+  // A tile pool's layers live inside its pages: its hierarchy is a quadtree over x and y.
+  const int dims[3] = {
+    d[0], d[1], pool.GetKind() == vtkPagePoolFormat::Kind::TilePool ? 1 : d[2]
+  };
+  return tree.BuildStructure(dims, pool.GetPageSize(), lo.data(), hi.data()) &&
+         static_cast<uint64_t>(tree.GetNumberOfNodes()) == pages;
+}
+
+void vtkPagedPools::SetPrefetch(bool prefetch)
+{
+  this->Internals->Prefetch = prefetch;
+}
+
+void vtkPagedPools::BeginFrame()
+{
+  vtkPageCache& cache = this->Internals->Cache;
+  cache.SetBudgetMiB(this->CacheMiB);
+  cache.Start();
+  cache.BeginFrame();
+  this->Stats.MissesThisFrame = 0;
+}
+
+vtkPageCache::Page vtkPagedPools::Acquire(const vtkPageCache::Key& key, double priority)
+{
+  vtkPageCache& cache = this->Internals->Cache;
+  if (vtkPageCache::Page page = cache.Find(key))
+  {
+    return page;
+  }
+  if (this->Stats.MissesThisFrame < this->RequestLimit)
+  {
+    cache.Request(key, priority);
+  }
+  ++this->Stats.MissesThisFrame;
+  return nullptr;
+}
+
+void vtkPagedPools::EndFrame()
+{
+  // Requests this frame's cut did not renew are for views gone by.
+  vtkPageCache& cache = this->Internals->Cache;
+  cache.CancelStale(cache.GetFrame());
+}
+
+vtkPagedPools::Statistics vtkPagedPools::GetStatistics() const
+{
+  Statistics stats = this->Stats;
+  const vtkPageCache::Statistics s = this->Internals->Cache.GetStatistics();
+  stats.PendingPages = static_cast<int>(s.QueueLength + s.InFlight);
+  stats.BytesRead = s.BytesRead;
+  stats.CacheBytes = static_cast<long long>(s.CurrentBytes);
+  return stats;
+}
+
+std::vector<vtkPageCache::Failure> vtkPagedPools::TakeNewFailures()
+{
+  std::vector<vtkPageCache::Failure> failures = this->Internals->Cache.TakeNewFailures();
+  this->Stats.Failures += static_cast<int>(failures.size());
+  return failures;
+}
+
+vtkPageCache::Page vtkPagedPools::PadRoot(const float* values,
+  const int dims[3],
+  const int pageDims[3])
+{
+  const size_t count = static_cast<size_t>(pageDims[0]) * pageDims[1] * pageDims[2];
+  auto page = std::make_shared<std::vector<uint8_t>>(count * sizeof(float));
+  float* out = reinterpret_cast<float*>(page->data());
+  for (int k = 0; k < pageDims[2]; ++k)
+    for (int j = 0; j < pageDims[1]; ++j)
+      for (int i = 0; i < pageDims[0]; ++i)
+      {
+        const size_t at =
+          (static_cast<size_t>(std::min(k, dims[2] - 1)) * dims[1] + std::min(j, dims[1] - 1)) *
+            dims[0] +
+          std::min(i, dims[0] - 1);
+        out[(static_cast<size_t>(k) * pageDims[1] + j) * pageDims[0] + i] = values[at];
+      }
+  return page;
+}
+
+vtkPageCache::Page vtkPagedPools::ReadRoot(int id, int level, uint64_t index, std::string& error)
+{
+  const std::shared_ptr<vtkPagePoolFile> pool = this->Internals->Find(id);
+  if (!pool)
+  {
+    error = "no page pool " + std::to_string(id);
+    return nullptr;
+  }
+  auto page = std::make_shared<std::vector<uint8_t>>(pool->GetPageValues() * sizeof(float));
+  if (!pool->ReadPage(level, index, reinterpret_cast<float*>(page->data()), &error))
+  {
+    return nullptr;
+  }
+  ++this->Stats.RootPagesRead;
+  return page;
+}
+
+void vtkPagedPools::RetryFailedPages()
+{
+  this->Internals->Cache.RetryAll();
+}
+
+bool vtkPagedPools::WaitForIdle(double seconds)
+{
+  return this->Internals->Cache.WaitForIdle(seconds);
+}

@@ -1,0 +1,124 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkPagedPools
+ * @brief   What both pagers share: the open page pools, the RAM page cache and its loaders,
+ *          pages asked for under a request limit, roots, failures and the statistics of it.
+ *
+ * vtkVolumePager (bricks) and vtkHeightFieldPager (tiles) differ in their cuts, page tables
+ * and feedback; everything between a pool on disk and a page in RAM is this one piece:
+ * - Pools are kept by id, the cache key's data set (the volume's input port, or the horizon
+ *   stack's pool index). The cache's workers read them (vtkPagePoolFile::ReadPage, as floats)
+ *   and, with prefetch on, queue a loaded page's face neighbours and parent (vtkPageCache::
+ *   AddGridNeighbours on the pool's level grids); the map of pools is guarded for them.
+ * - Acquire() is the cut's availability answer: the page if it is in RAM, else a request at
+ *   the node's priority. Requests per frame are capped at four frames' worth of uploads
+ *   (4 x PagesPerFrame): a longer queue would load pages the cache evicts again before the cut
+ *   could use them. Misses are counted either way.
+ * - Roots, the pages every frame can always show, are never waited for: PadRoot() makes one
+ *   from the coarsest level a reader already produced, ReadRoot() reads it on the calling
+ *   thread once when there is none.
+ * - BeginFrame() and EndFrame() bracket a cut update: the budget and workers are set, and at
+ *   the end requests the frame did not renew (views gone by) are dropped.
+ *
+ * Thread contract: everything but the loaders runs on the render thread; the loaders only read
+ * the pool map under its lock. Destruction stops the workers first.
+ *
+ * @sa vtkPageCache vtkPagePoolFile vtkVolumePager vtkHeightFieldPager vtkCutPages
+ */
+#ifndef vtkPagedPools_h
+#define vtkPagedPools_h
+
+#include "StrataCoreModule.h" // For export macro
+#include "vtkPageCache.h"     // For vtkPageCache::Key, Page, Failure
+
+#include <memory> // For std::unique_ptr, std::shared_ptr
+#include <string> // For std::string
+#include <vector> // For std::vector
+
+class vtkPagePoolFile;
+class vtkVolumeBrickTree;
+
+class STRATACORE_EXPORT vtkPagedPools
+{
+public:
+  struct Statistics
+  {
+    int PendingPages = 0;     ///< queued or loading after the last frame
+    int MissesThisFrame = 0;  ///< pages the last frame's cut wanted and had no page for
+    long long BytesRead = 0;  ///< by the cache's workers, in all
+    long long CacheBytes = 0; ///< resident in the page cache now
+    int RootPagesRead = 0;    ///< roots the render thread read itself (ReadRoot)
+    int Failures = 0;         ///< pages whose load failed, in all (TakeNewFailures)
+  };
+
+  vtkPagedPools();
+  ~vtkPagedPools();
+  vtkPagedPools(const vtkPagedPools&) = delete;
+  vtkPagedPools& operator=(const vtkPagedPools&) = delete;
+
+  /**
+   * Opens `fileName` as pool `id`, or keeps the pool already open under that id and name.
+   * Returns null with `error` set when the file cannot be opened.
+   */
+  std::shared_ptr<vtkPagePoolFile> OpenPool(int id,
+    const std::string& fileName,
+    std::string& error);
+  /// The pool of `id`, null if none.
+  vtkPagePoolFile* GetPool(int id) const;
+  /// The file name pool `id` was opened from (empty if none).
+  std::string GetPoolName(int id) const;
+  /// Stops the workers, drops every page and forgets every pool and statistic.
+  void Close();
+
+  /**
+   * The structure of a pool's page hierarchy: node i is page i, its range the page's min and
+   * max (the page table's, so nothing is read). False when the pages do not form the tree its
+   * dimensions imply.
+   */
+  static bool BuildTree(const vtkPagePoolFile& pool, vtkVolumeBrickTree& tree);
+
+  ///@{
+  /// Budgets: RAM cache in MiB, pages uploaded per frame (requests: 4x), prefetch.
+  void SetCacheBudgetMiB(double mib) { this->CacheMiB = mib; }
+  void SetPagesPerFrame(int pages) { this->RequestLimit = 4 * pages; }
+  void SetPrefetch(bool prefetch);
+  ///@}
+
+  /// Before a cut update: applies the budget, starts the workers, counts misses from 0.
+  void BeginFrame();
+  /**
+   * Page `key` if it is in RAM (pinned for this frame); otherwise null, counted as a miss,
+   * and requested at `priority` while the frame's requests are under the limit.
+   */
+  vtkPageCache::Page Acquire(const vtkPageCache::Key& key, double priority);
+  /// After the cut update: drops the requests it did not renew.
+  void EndFrame();
+  /// Load failures not reported before, oldest first (each counts in Failures).
+  std::vector<vtkPageCache::Failure> TakeNewFailures();
+
+  /**
+   * A root page from the coarsest level a reader produced: `values` of dims[0] x dims[1] x
+   * dims[2] points, x fastest, padded to `pageDims` by repeating the level's last point (as
+   * the pool writer pads).
+   */
+  static vtkPageCache::Page PadRoot(const float* values, const int dims[3], const int pageDims[3]);
+  /// Page `index` of `level` of pool `id` read on the calling thread (the root when no reader
+  /// produced it); null with `error` set on failure. Counts in RootPagesRead.
+  vtkPageCache::Page ReadRoot(int id, int level, uint64_t index, std::string& error);
+
+  /// The counts so far, the cache's (pending, bytes read and resident) as of now.
+  Statistics GetStatistics() const;
+  /// Loads failed pages again (after a transient error).
+  void RetryFailedPages();
+  /// Waits (tests, benchmarks) until no load is queued or running.
+  bool WaitForIdle(double seconds);
+
+private:
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+  double CacheMiB = 512.0;
+  int RequestLimit = 256;
+  Statistics Stats;
+};
+
+#endif

@@ -1,0 +1,521 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkVolumePager.h"
+
+#include "vtkBrickAtlasAllocator.h"
+#include "vtkCutPages.h"
+#include "vtkPagePoolFile.h"
+#include "vtkVolumeBrickTree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+class vtkVolumePager::vtkInternals
+{
+public:
+  /// A paged port: its pool's tree, and the pages held for the cut and its ancestors (held
+  /// pages are never evicted, so a collapse always finds its parent), by node id.
+  struct Paged
+  {
+    std::unique_ptr<vtkVolumeBrickTree> Tree;
+    std::map<int, vtkPageCache::Page> Held;
+  };
+  vtkPagedPools Pools;
+  std::map<int, Paged> Ports;
+  vtkVolumeCut Cut;
+  vtkBrickAtlasAllocator Atlas;
+  std::vector<Volume> Volumes; ///< of the frame, trees resolved
+  int BrickSize = 0;
+  double Budget = 0.0;
+  Statistics Stats;
+  /// Per volume and node: the pixels that asked for detail below the node (split priority).
+  std::vector<std::vector<double>> Demand;
+  std::map<int, std::vector<std::array<int, 2>>> FixedCuts;
+  bool FixedCutsChanged = false;
+
+  Paged* PagedPort(int port)
+  {
+    auto it = this->Ports.find(port);
+    return it == this->Ports.end() ? nullptr : &it->second;
+  }
+
+  /// Node of the frame's volume that a packed page id names, -1 if none.
+  int NodeOf(uint32_t page, int& volume) const
+  {
+    volume = vtkFeedbackReduction::GetDataSet(page);
+    if (volume < 0 || volume >= static_cast<int>(this->Volumes.size()))
+      return -1;
+    const vtkVolumeBrickTree* tree = this->Volumes[volume].Tree;
+    const int level = vtkFeedbackReduction::GetLevel(page);
+    if (level >= tree->GetNumberOfLevels())
+      return -1;
+    const int* b = tree->GetLevelBricks(level);
+    const uint32_t index = vtkFeedbackReduction::GetPageIndex(page);
+    if (index >= static_cast<uint32_t>(b[0]) * b[1] * b[2])
+      return -1;
+    return tree->GetLevelOffset(level) + static_cast<int>(index);
+  }
+
+  /// Split exactly the strict ancestors of a fixed cut's bricks, before anything else.
+  vtkVolumeCut::PriorityFunction FixedPriority(const vtkVolumeBrickTree* tree,
+    const std::vector<std::array<int, 2>>& bricks) const
+  {
+    auto split = std::make_shared<std::vector<char>>(tree->GetNumberOfNodes(), 0);
+    for (const auto& b : bricks)
+    {
+      if (b[0] < 0 || b[0] >= tree->GetNumberOfLevels() || b[1] < 0)
+        continue;
+      const int* n = tree->GetLevelBricks(b[0]);
+      if (b[1] >= n[0] * n[1] * n[2])
+        continue;
+      for (int a = tree->GetParent(tree->GetLevelOffset(b[0]) + b[1]); a >= 0 && !(*split)[a];
+           a = tree->GetParent(a))
+        (*split)[a] = 1;
+    }
+    return [split](int node, double) { return (*split)[node] ? 1e30 : 0.0; };
+  }
+
+  /// A paged brick may enter the cut only with its page in RAM: found now (and held), or
+  /// requested at the node's priority for a later frame.
+  vtkVolumeCut::AvailabilityFunction Availability(int port, Paged* paged)
+  {
+    return [this, port, paged](int node, double priority)
+    {
+      if (paged->Held.count(node))
+        return true;
+      const auto& n = paged->Tree->GetNode(node);
+      vtkPageCache::Key key;
+      key.Dataset = port;
+      key.Level = n.Level;
+      key.Page = node - paged->Tree->GetLevelOffset(n.Level);
+      if (vtkPageCache::Page page = this->Pools.Acquire(key, priority))
+      {
+        paged->Held[node] = page;
+        return true;
+      }
+      return false;
+    };
+  }
+
+  /// The cut's priority, opacity and availability of every volume for this frame.
+  void Configure(const Settings& settings)
+  {
+    this->Cut.SetErrorThreshold(settings.Feedback ? 0.0 : settings.ErrorThreshold);
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
+    {
+      const Volume& volume = this->Volumes[v];
+      const int vi = static_cast<int>(v);
+      this->Cut.SetVolumeMatrix(vi, volume.IndexToWorld);
+      this->Cut.SetVolumeOpacity(vi, volume.Opacity);
+      if (settings.Feedback)
+      {
+        const std::vector<double>* demand = &this->Demand[v];
+        this->Cut.SetVolumePriority(vi, [demand](int node, double) { return (*demand)[node]; });
+      }
+      else
+      {
+        this->Cut.SetVolumePriority(vi, nullptr);
+      }
+      const auto fixed = this->FixedCuts.find(volume.Port);
+      if (fixed != this->FixedCuts.end())
+      {
+        this->Cut.SetVolumePriority(vi, this->FixedPriority(volume.Tree, fixed->second));
+      }
+      Paged* paged = this->PagedPort(volume.Port);
+      this->Cut.SetVolumeAvailability(vi, paged ? this->Availability(volume.Port, paged) : nullptr);
+    }
+    this->Cut.SetMaxNewBricksPerUpdate(this->AnyPaged() ? settings.PagesPerFrame : 0);
+  }
+
+  bool AnyPaged() const
+  {
+    for (const auto& v : this->Volumes)
+      if (this->Ports.count(v.Port))
+        return true;
+    return false;
+  }
+
+  /// Roots first, so that a volume is never a hole: the reader's coarsest level when it
+  /// matches the root, else read here once.
+  bool HoldRoots(std::string& error)
+  {
+    for (const Volume& volume : this->Volumes)
+    {
+      Paged* paged = this->PagedPort(volume.Port);
+      const int root = paged ? paged->Tree->GetRootId() : -1;
+      if (root < 0 || paged->Held.count(root))
+        continue;
+      const int level = paged->Tree->GetNode(root).Level;
+      const int* dims = paged->Tree->GetLevelDimensions(level);
+      const int B = this->BrickSize;
+      int rootDims[3] = { 0, 0, 0 };
+      const std::vector<float> values =
+        volume.RootValues ? volume.RootValues(rootDims) : std::vector<float>();
+      bool fits = !values.empty();
+      for (int a = 0; a < 3; ++a)
+        fits = fits && rootDims[a] == dims[a] && dims[a] <= B;
+      if (fits)
+      {
+        const int page[3] = { B, B, B };
+        paged->Held[root] = vtkPagedPools::PadRoot(values.data(), dims, page);
+        ++this->Stats.RootPagesFromPipeline;
+        continue;
+      }
+      std::string why;
+      paged->Held[root] = this->Pools.ReadRoot(volume.Port, level, 0, why);
+      if (!paged->Held[root])
+      {
+        paged->Held.erase(root);
+        error =
+          "cannot read the root page of \"" + this->Pools.GetPoolName(volume.Port) + "\": " + why;
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+vtkVolumePager::vtkVolumePager()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkVolumePager::~vtkVolumePager() = default;
+
+const vtkPagePoolFile* vtkVolumePager::OpenPool(int port,
+  const std::string& fileName,
+  std::string& error)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInternals::Paged* paged = in.PagedPort(port);
+  const bool same = paged && in.Pools.GetPoolName(port) == fileName;
+  std::shared_ptr<vtkPagePoolFile> file = in.Pools.OpenPool(port, fileName, error);
+  if (!file)
+  {
+    return nullptr;
+  }
+  if (same)
+  {
+    return file.get();
+  }
+  if (file->GetKind() != vtkPagePoolFormat::Kind::BrickPool)
+  {
+    error = "not a brick pool";
+    return nullptr;
+  }
+  auto tree = std::make_unique<vtkVolumeBrickTree>();
+  if (!vtkPagedPools::BuildTree(*file, *tree))
+  {
+    error = "the pool \"" + fileName + "\" does not match its brick tree";
+    return nullptr;
+  }
+  in.Ports[port].Tree = std::move(tree);
+  in.Ports[port].Held.clear();
+  this->CutValid = false;
+  return file.get();
+}
+
+const vtkPagePoolFile* vtkVolumePager::GetPool(int port) const
+{
+  return this->Internals->Ports.count(port) ? this->Internals->Pools.GetPool(port) : nullptr;
+}
+
+const vtkVolumeBrickTree* vtkVolumePager::GetPoolTree(int port) const
+{
+  auto it = this->Internals->Ports.find(port);
+  return it == this->Internals->Ports.end() ? nullptr : it->second.Tree.get();
+}
+
+bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
+  int brickSize,
+  double budgetMiB,
+  int maxTextureSize,
+  bool& rebuilt,
+  std::string& error)
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<Volume> resolved = volumes;
+  for (Volume& v : resolved)
+  {
+    if (const vtkVolumeBrickTree* tree = this->GetPoolTree(v.Port))
+      v.Tree = tree;
+  }
+  bool same = this->CutValid && resolved.size() == in.Volumes.size() && brickSize == in.BrickSize &&
+              budgetMiB == in.Budget;
+  for (size_t v = 0; same && v < resolved.size(); ++v)
+    same = resolved[v].Port == in.Volumes[v].Port && resolved[v].Tree == in.Volumes[v].Tree;
+  in.Volumes = std::move(resolved);
+  rebuilt = !same;
+  if (same)
+  {
+    return true;
+  }
+  // No larger than every brick of every level: small scenes do not pay for the whole budget.
+  double allBricks = 0.0;
+  for (const Volume& v : in.Volumes)
+    allBricks += v.Tree->GetNumberOfNodes();
+  const double brickMiB = std::pow(double(brickSize), 3) * 4.0 / (1024.0 * 1024.0);
+  const double budget = std::min(budgetMiB, (allBricks + 0.5) * brickMiB);
+  if (!in.Atlas.InitializeFromBudget(budget, brickSize, 4, std::min(maxTextureSize, 2048)))
+  {
+    error = "an atlas budget of " + std::to_string(budgetMiB) + " MB holds no brick of " +
+            std::to_string(brickSize) + "^3 float voxels";
+    this->CutValid = false;
+    return false;
+  }
+  in.Cut.RemoveAllVolumes();
+  for (const Volume& v : in.Volumes)
+    in.Cut.AddVolume(v.Tree, v.IndexToWorld);
+  in.Cut.SetBudget(in.Atlas.GetNumberOfSlots());
+  in.BrickSize = brickSize;
+  in.Budget = budgetMiB;
+  for (auto& p : in.Ports)
+    p.second.Held.clear(); // a new cut starts from the roots
+  in.Demand.clear();
+  this->CutValid = true;
+  return true;
+}
+
+int vtkVolumePager::GetNumberOfVolumes() const
+{
+  return static_cast<int>(this->Internals->Volumes.size());
+}
+
+int vtkVolumePager::GetVolumeOf(int port) const
+{
+  const vtkInternals& in = *this->Internals;
+  for (size_t v = 0; v < in.Volumes.size(); ++v)
+    if (in.Volumes[v].Port == port && static_cast<int>(v) < in.Cut.GetNumberOfVolumes())
+      return static_cast<int>(v);
+  return -1;
+}
+
+bool vtkVolumePager::PrepareDemand(bool feedback, bool moved)
+{
+  vtkInternals& in = *this->Internals;
+  if (!feedback)
+  {
+    in.Demand.clear();
+    return true;
+  }
+  bool fresh = false;
+  if (in.Demand.size() != in.Volumes.size())
+  {
+    in.Demand.resize(in.Volumes.size());
+    for (size_t v = 0; v < in.Volumes.size(); ++v)
+      in.Demand[v].assign(in.Volumes[v].Tree->GetNumberOfNodes(), 0.0);
+    fresh = true; // feedback written for another cut
+  }
+  if (moved)
+  {
+    for (auto& d : in.Demand)
+      for (double& x : d)
+        x *= 0.5;
+  }
+  return fresh;
+}
+
+void vtkVolumePager::AddFeedback(const std::vector<vtkFeedbackReduction::Entry>& asked)
+{
+  vtkInternals& in = *this->Internals;
+  std::vector<vtkFeedbackReduction::Entry> below = asked;
+  vtkFeedbackReduction::PropagateToAncestors(below,
+    [&in](uint32_t page)
+    {
+      int v = -1;
+      const int node = in.NodeOf(page, v);
+      const vtkVolumeBrickTree* tree = node < 0 ? nullptr : in.Volumes[v].Tree;
+      const int parent = tree ? tree->GetParent(node) : -1;
+      if (parent < 0)
+        return vtkFeedbackReduction::NoPage;
+      const int level = tree->GetNode(parent).Level;
+      return vtkFeedbackReduction::PackPage(
+        v, level, static_cast<uint32_t>(parent - tree->GetLevelOffset(level)));
+    });
+  // A node's demand: the pixels that asked for a page strictly below it. Both lists are
+  // sorted by page id: one merge subtracts the node's own requests.
+  auto own = asked.begin();
+  for (const auto& e : below)
+  {
+    while (own != asked.end() && own->Page < e.Page)
+      ++own;
+    const uint32_t self = own != asked.end() && own->Page == e.Page ? own->Coverage : 0;
+    int v = -1;
+    const int node = in.NodeOf(e.Page, v);
+    if (node >= 0 && v < static_cast<int>(in.Demand.size()))
+    {
+      double& d = in.Demand[v][node];
+      d = std::max(d, static_cast<double>(e.Coverage - self));
+    }
+  }
+  long long pixels = 0;
+  for (const auto& e : asked)
+    pixels += e.Coverage;
+  in.Stats.FeedbackPages = static_cast<int>(asked.size());
+  in.Stats.FeedbackPixels = static_cast<int>(pixels);
+}
+
+int vtkVolumePager::Update(const vtkVolumeCut::Camera& camera,
+  const Settings& settings,
+  bool feedbackCurrent,
+  std::vector<vtkVolumeCut::Upload>& uploads,
+  std::string& error)
+{
+  vtkInternals& in = *this->Internals;
+  uploads.clear();
+  if (settings.Feedback && in.Demand.size() != in.Volumes.size())
+  {
+    this->PrepareDemand(true, false);
+  }
+  in.Configure(settings);
+  const bool paged = in.AnyPaged();
+  if (paged)
+  {
+    in.Pools.SetCacheBudgetMiB(settings.CacheBudgetMiB);
+    in.Pools.SetPagesPerFrame(settings.PagesPerFrame);
+    in.Pools.SetPrefetch(settings.Prefetch);
+    in.Pools.BeginFrame();
+    if (!in.HoldRoots(error))
+      return -1;
+  }
+  if (in.FixedCutsChanged)
+  {
+    in.Cut.Reset(); // a fixed cut may be coarser than the cut: start from the roots
+    in.FixedCutsChanged = false;
+  }
+  const int entered = in.Cut.Update(camera);
+  if (paged)
+  {
+    // Keep the pages of the cut and of its ancestors (for collapses), release the rest.
+    for (size_t v = 0; v < in.Volumes.size(); ++v)
+      if (vtkInternals::Paged* p = in.PagedPort(in.Volumes[v].Port))
+        vtkCutPages::Prune(p->Held, in.Cut, static_cast<int>(v), *p->Tree);
+    in.Pools.EndFrame();
+    static_cast<vtkPagedPools::Statistics&>(in.Stats) = in.Pools.GetStatistics();
+    // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
+    in.Stats.BytesRead += (in.Stats.RootPagesRead + in.Stats.RootPagesFromPipeline) *
+                          static_cast<long long>(std::pow(in.BrickSize, 3) * sizeof(float));
+    in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 &&
+                         in.Stats.PendingPages == 0 && (!settings.Feedback || feedbackCurrent);
+  }
+  in.Atlas.BeginFrame();
+  return in.Cut.AssignSlots(in.Atlas, uploads);
+}
+
+const float* vtkVolumePager::GetBrick(const vtkVolumeCut::Upload& upload,
+  std::vector<float>& scratch) const
+{
+  const vtkInternals& in = *this->Internals;
+  const Volume& volume = in.Volumes[upload.Volume];
+  if (volume.Tree->HasData())
+  {
+    scratch.resize(static_cast<size_t>(in.BrickSize) * in.BrickSize * in.BrickSize);
+    volume.Tree->ExtractBrick(upload.Node, scratch.data());
+    return scratch.data();
+  }
+  auto paged = in.Ports.find(volume.Port);
+  if (paged == in.Ports.end())
+    return nullptr;
+  auto it = paged->second.Held.find(upload.Node);
+  return it == paged->second.Held.end() ? nullptr
+                                        : reinterpret_cast<const float*>(it->second->data());
+}
+
+void vtkVolumePager::BuildIndexTable(int volume, std::vector<uint16_t>& table) const
+{
+  this->Internals->Cut.BuildIndexTable(volume, this->Internals->Atlas, table);
+}
+
+const vtkVolumeBrickTree* vtkVolumePager::GetTree(int volume) const
+{
+  return this->Internals->Volumes[volume].Tree;
+}
+
+const vtkBrickAtlasAllocator& vtkVolumePager::GetAtlas() const
+{
+  return this->Internals->Atlas;
+}
+
+const vtkVolumeCut& vtkVolumePager::GetCut() const
+{
+  return this->Internals->Cut;
+}
+
+void vtkVolumePager::SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks)
+{
+  this->Internals->FixedCuts[port] = bricks;
+  this->Internals->FixedCutsChanged = true;
+}
+
+void vtkVolumePager::RemoveAllFixedCuts()
+{
+  if (this->Internals->FixedCuts.empty())
+    return;
+  this->Internals->FixedCuts.clear();
+  this->Internals->FixedCutsChanged = true;
+}
+
+bool vtkVolumePager::HasFixedCuts() const
+{
+  return !this->Internals->FixedCuts.empty();
+}
+
+std::vector<std::array<int, 2>> vtkVolumePager::GetCutBricks(int port) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<std::array<int, 2>> bricks;
+  const int v = this->GetVolumeOf(port);
+  if (v < 0)
+    return bricks;
+  const vtkVolumeBrickTree* tree = in.Volumes[v].Tree;
+  for (int n : in.Cut.GetCutNodes(v))
+  {
+    const int level = tree->GetNode(n).Level;
+    bricks.push_back({ level, n - tree->GetLevelOffset(level) });
+  }
+  return bricks;
+}
+
+std::vector<int> vtkVolumePager::GetResidentBricksPerLevel(int port) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<int> counts;
+  const int v = this->GetVolumeOf(port);
+  if (v < 0)
+    return counts;
+  const vtkVolumeBrickTree* tree = in.Volumes[v].Tree;
+  counts.assign(tree->GetNumberOfLevels(), 0);
+  for (int n : in.Cut.GetCutNodes(v))
+    counts[tree->GetNode(n).Level] += in.Cut.IsEmpty(v, n) ? 0 : 1;
+  return counts;
+}
+
+std::vector<std::string> vtkVolumePager::TakeNewFailures()
+{
+  std::vector<std::string> messages;
+  for (const auto& f : this->Internals->Pools.TakeNewFailures())
+  {
+    messages.push_back("Page " + std::to_string(f.PageKey.Level) + "/" +
+                       std::to_string(f.PageKey.Page) + " of the volume on port " +
+                       std::to_string(f.PageKey.Dataset) + " failed to load (" + f.Error + ")");
+  }
+  this->Internals->Stats.Failures = this->Internals->Pools.GetStatistics().Failures;
+  return messages;
+}
+
+vtkVolumePager::Statistics vtkVolumePager::GetStatistics() const
+{
+  return this->Internals->Stats;
+}
+
+void vtkVolumePager::RetryFailedPages()
+{
+  this->Internals->Pools.RetryFailedPages();
+}
+
+bool vtkVolumePager::WaitForIdle(double seconds)
+{
+  return this->Internals->Pools.WaitForIdle(seconds);
+}

@@ -1,0 +1,179 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkVolumePager
+ * @brief   The cut, atlas slots and paging of every volume of a multi-volume scene, without
+ *          OpenGL: what vtkMultiVolumeRayCastMapper uploads each frame and why.
+ *
+ * The working set of Lux and Froehlich (multi-volume multi-resolution ray casting, 3.1-3.3)
+ * for in-core and paged volumes alike, beside vtkHeightFieldPager and on the same shared piece
+ * (vtkPagedPools: pools, RAM cache, requests, roots, failures):
+ * - One vtkVolumeCut through the brick trees of all volumes under one atlas budget
+ *   (vtkBrickAtlasAllocator slots of B^3 floats, never more than all bricks of all levels).
+ *   An in-core volume brings its own tree (with data); a paged one (OpenPool) is a brick pool
+ *   whose tree structure comes from the page table, nothing read.
+ * - A paged brick may enter the cut only with its page in RAM: found (and held, with its
+ *   ancestors, until the cut no longer needs it; vtkCutPages) or requested at its priority
+ *   for a later frame, at most PagesPerFrame new bricks a frame. Roots are always there: the
+ *   reader's coarsest level, or read here once.
+ * - Level-of-detail feedback: the pages the rays asked for (vtkFeedbackReduction entries,
+ *   volume = the volume's number in the frame) raise the split priority of every ancestor to
+ *   the pixels that asked below it; the priority is kept while the view is still and halves
+ *   for each frame it moves (PrepareDemand).
+ * - Fixed cuts (SetFixedCut) split exactly the ancestors of given bricks, so the in-core
+ *   rendering of any paged frame's cut can be drawn.
+ *
+ * The caller (the mapper) turns the uploads into atlas texture writes (GetBrick) and the index
+ * tables (BuildIndexTable) into index textures; the shader lookup is the atlas's.
+ *
+ * @sa vtkVolumeCut vtkPagedPools vtkHeightFieldPager vtkMultiVolumeRayCastMapper
+ */
+#ifndef vtkVolumePager_h
+#define vtkVolumePager_h
+
+#include "StrataCoreModule.h"     // For export macro
+#include "vtkFeedbackReduction.h" // For vtkFeedbackReduction::Entry
+#include "vtkPagedPools.h"        // For vtkPagedPools::Statistics
+#include "vtkVolumeCut.h"         // For vtkVolumeCut::Camera, Upload
+
+#include <array>      // For std::array
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
+#include <string>     // For std::string
+#include <vector>     // For std::vector
+
+class vtkBrickAtlasAllocator;
+class vtkPagePoolFile;
+class vtkVolumeBrickTree;
+
+class STRATACORE_EXPORT vtkVolumePager
+{
+public:
+  /// One volume of a frame; its place in the list is its number in the cut, atlas and ids.
+  struct Volume
+  {
+    int Port = 0; ///< the caller's id (its input port); a paged volume's pool is kept by it
+    /// In core: the caller's tree, with data. Paged (an open pool on Port): null.
+    const vtkVolumeBrickTree* Tree = nullptr;
+    double IndexToWorld[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    vtkVolumeCut::OpacityRangeFunction Opacity; ///< highest opacity over a value range
+    /**
+     * Paged: the reader's coarsest level as floats (x fastest) and its dimensions, asked for
+     * only while the root page is not held; empty (or no function): read the root here.
+     */
+    std::function<std::vector<float>(int dims[3])> RootValues;
+  };
+
+  struct Statistics : vtkPagedPools::Statistics
+  {
+    /// The last cut did not change, nothing is pending, and (with feedback) the feedback it
+    /// used was rendered from the same view and cut.
+    bool Converged = false;
+    int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest levels
+    int FeedbackPages = 0;         ///< distinct pages in the last feedback reduced
+    int FeedbackPixels = 0;        ///< its pixels that asked for a page
+  };
+
+  /// Per-frame settings of the cut and the paging.
+  struct Settings
+  {
+    double CacheBudgetMiB = 512.0;
+    int PagesPerFrame = 64;
+    bool Prefetch = false;
+    bool Feedback = false;       ///< demand from feedback ranks the nodes
+    double ErrorThreshold = 0.0; ///< pixels per voxel below which the cut does not split
+  };
+
+  vtkVolumePager();
+  ~vtkVolumePager();
+  vtkVolumePager(const vtkVolumePager&) = delete;
+  vtkVolumePager& operator=(const vtkVolumePager&) = delete;
+
+  /**
+   * Pages the volume of `port` from the brick pool `fileName` (kept while the name stays);
+   * null with `error` set when it cannot be opened, is not a brick pool, or its pages do not
+   * form its tree.
+   */
+  const vtkPagePoolFile* OpenPool(int port, const std::string& fileName, std::string& error);
+  /// The pool of a paged port and its tree (structure only); null when `port` is not paged.
+  const vtkPagePoolFile* GetPool(int port) const;
+  const vtkVolumeBrickTree* GetPoolTree(int port) const;
+
+  /**
+   * The frame's volumes and atlas. The cut starts again from the roots when the volumes or
+   * their trees, the brick size or the budget (MiB of float bricks) changed, or after
+   * InvalidateCut(); `rebuilt` then says that the atlas was re-laid (GetAtlas()). False, with
+   * `error` set, when the budget holds no brick.
+   */
+  bool SetVolumes(const std::vector<Volume>& volumes,
+    int brickSize,
+    double budgetMiB,
+    int maxTextureSize,
+    bool& rebuilt,
+    std::string& error);
+  /// Forces the next SetVolumes to rebuild (a caller's tree was rebuilt, or its atlas lost).
+  void InvalidateCut() { this->CutValid = false; }
+  int GetNumberOfVolumes() const;
+  /// The frame's number of the volume on `port`, -1 if none.
+  int GetVolumeOf(int port) const;
+
+  /**
+   * Feedback bookkeeping before a frame's cut: with `feedback` on, the demand of every node
+   * (allocated for the current trees if needed) halves when `moved`; off, it is dropped.
+   * Returns true when earlier feedback no longer applies (demand new or dropped): the caller
+   * discards a feedback buffer it has not read.
+   */
+  bool PrepareDemand(bool feedback, bool moved);
+  /// The pages a frame's rays asked for (sorted by id): raises the demand of their ancestors.
+  void AddFeedback(const std::vector<vtkFeedbackReduction::Entry>& asked);
+
+  /**
+   * One frame's cut for `camera`: priorities (feedback demand or screen-space error, fixed
+   * cuts first), availability of paged bricks, roots, the update, held pages, atlas slots.
+   * `feedbackCurrent`: the feedback used was rendered from this view and cut. Fills `uploads`
+   * (bricks that entered the atlas) and returns the bricks that found no slot; -1, with
+   * `error` set, when a root cannot be read.
+   */
+  int Update(const vtkVolumeCut::Camera& camera,
+    const Settings& settings,
+    bool feedbackCurrent,
+    std::vector<vtkVolumeCut::Upload>& uploads,
+    std::string& error);
+
+  /**
+   * The B^3 values of an upload: the in-core tree's brick (extracted into `scratch`) or the
+   * held page of a paged one; null if a paged brick has no page (cannot happen: the cut holds
+   * only bricks whose pages are held).
+   */
+  const float* GetBrick(const vtkVolumeCut::Upload& upload, std::vector<float>& scratch) const;
+  /// Volume `volume`'s index table (vtkVolumeCut::BuildIndexTable) after Update().
+  void BuildIndexTable(int volume, std::vector<uint16_t>& table) const;
+  /// The tree the cut uses for volume `volume`.
+  const vtkVolumeBrickTree* GetTree(int volume) const;
+
+  const vtkBrickAtlasAllocator& GetAtlas() const;
+  const vtkVolumeCut& GetCut() const;
+
+  ///@{
+  /// Fixed cuts by port: (level, brick index within the level) per brick (see the class doc).
+  void SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks);
+  void RemoveAllFixedCuts();
+  bool HasFixedCuts() const;
+  ///@}
+  /// The cut of the volume on `port` as the last Update left it (transparent bricks included).
+  std::vector<std::array<int, 2>> GetCutBricks(int port) const;
+  /// Resident (non-empty) cut bricks of the volume on `port`, counted by level.
+  std::vector<int> GetResidentBricksPerLevel(int port) const;
+
+  /// Load failures not reported before, as messages naming the page and port.
+  std::vector<std::string> TakeNewFailures();
+  Statistics GetStatistics() const;
+  void RetryFailedPages();
+  bool WaitForIdle(double seconds);
+
+private:
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+  bool CutValid = false;
+};
+
+#endif

@@ -1,0 +1,8 @@
+// Strata multi-volume ray caster, the lookup of volume @n@ without the atlas: one 3-D texture
+// of the whole volume, point (i, j, k) at index coordinates (i, j, k).
+uniform sampler3D uVolume@n@;
+uniform vec3 uDims@n@;
+float strataScalarAt@n@(vec3 idx)
+{
+  return texture(uVolume@n@, (idx + 0.5) / uDims@n@).r;
+}

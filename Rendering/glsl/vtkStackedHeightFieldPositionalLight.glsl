@@ -1,0 +1,11 @@
+// Lighting complexity 3: positional lights and spots.
+    if (lightPositional@l@ != 0)
+    {
+      vec3 toP = posVC - lightPositionVC@l@;
+      float dist = length(toP);
+      float coneDot = dot(normalize(toP), lightDirectionVC@l@);
+      L = normalize(toP);
+      att = 1.0 / (lightAttenuation@l@.x + lightAttenuation@l@.y * dist + lightAttenuation@l@.z * dist * dist);
+      if (lightConeAngle@l@ < 90.0)
+        att *= coneDot >= cos(radians(lightConeAngle@l@)) ? pow(coneDot, lightExponent@l@) : 0.0;
+    }

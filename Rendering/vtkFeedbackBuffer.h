@@ -1,0 +1,89 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkFeedbackBuffer
+ * @brief   The GPU half of level-of-detail feedback, shared by both paging mappers: the
+ *          feedback images the rays write, the pixel buffer they are read through, and the
+ *          reduction of what was read.
+ *
+ * One R32UI texel of packed page ids (vtkFeedbackReduction) per Scale x Scale pixels of the
+ * viewport, and with Scored an R32F texel beside it (the volume rays keep the costliest
+ * lacking brick per texel and compare costs through it). The rays write them by image
+ * load/store on image units 0 (ids) and 1 (scores) within one pass, so no frame needs an
+ * extra pass or a viewport-sized target. After the draw Queue() copies the ids into a
+ * pixel-pack buffer and returns at once; Read() maps it and reduces it to (page, coverage)
+ * with OpenCL or the CPU (both give the same list). A caller that reads at its next frame
+ * never waits for the GPU; one that reads at once waits only for its own draw.
+ *
+ * The owner calls ReleaseGraphicsResources() from its own, with the context current.
+ *
+ * @sa vtkFeedbackReduction vtkStackedHeightFieldMapper vtkMultiVolumeRayCastMapper
+ */
+#ifndef vtkFeedbackBuffer_h
+#define vtkFeedbackBuffer_h
+
+#include "StrataRenderingModule.h" // For export macro
+#include "vtkFeedbackReduction.h"  // For vtkFeedbackReduction::Entry
+#include "vtkStrataGLObject.h"     // For vtkStrataGLObject
+
+#include <vector> // For std::vector
+
+class vtkOpenGLRenderWindow;
+
+class STRATARENDERING_EXPORT vtkFeedbackBuffer
+{
+public:
+  /// `scored`: with the R32F cost image on unit 1.
+  explicit vtkFeedbackBuffer(bool scored);
+  vtkFeedbackBuffer(const vtkFeedbackBuffer&) = delete;
+  vtkFeedbackBuffer& operator=(const vtkFeedbackBuffer&) = delete;
+
+  /**
+   * Sizes the images for a viewport of width x height pixels at one texel per scale x scale
+   * pixels. Returns true when they were (re)allocated, which drops a queued copy (it was
+   * written at another size).
+   */
+  bool Allocate(vtkOpenGLRenderWindow* window, int width, int height, int scale);
+  int GetWidth() const { return this->Size[0]; }
+  int GetHeight() const { return this->Size[1]; }
+
+  /// Zeroes the ids (0: no page) and the scores.
+  void Clear(vtkOpenGLRenderWindow* window);
+  /// The images on units 0 and 1, for writing only or (the scored rays) reading too.
+  void BindImages(bool readWrite);
+  void UnbindImages();
+
+  /// Queues the copy of the ids into the pixel buffer (after a barrier for the rays' stores).
+  void Queue(vtkOpenGLRenderWindow* window);
+  /// A copy was queued and not read yet.
+  bool IsPending() const { return this->Pending; }
+  /// Forgets a queued copy (it was written for a cut or view that is gone).
+  void Drop() { this->Pending = false; }
+
+  /**
+   * Maps the queued copy and reduces it into `list` (sorted by page id, coverage > 0).
+   * Returns false, with `list` empty, when nothing was queued or the map failed.
+   */
+  bool Read(std::vector<vtkFeedbackReduction::Entry>& list);
+
+  ///@{
+  /// Reduce with OpenCL when a device is found (default on), else on the CPU.
+  void SetUseOpenCL(bool use) { this->UseOpenCL = use; }
+  /// Whether the last Read() reduced with OpenCL.
+  bool GetLastReadUsedOpenCL() const { return this->LastOpenCL; }
+  ///@}
+
+  void ReleaseGraphicsResources();
+
+private:
+  bool Scored;
+  bool UseOpenCL = true;
+  bool LastOpenCL = false;
+  bool Pending = false;
+  int Size[2] = { 0, 0 };
+  vtkStrataGLObject Ids{ vtkStrataGLObject::Kinds::Texture };
+  vtkStrataGLObject Scores{ vtkStrataGLObject::Kinds::Texture };
+  vtkStrataGLObject PixelBuffer{ vtkStrataGLObject::Kinds::Buffer };
+  vtkFeedbackReduction Reduction;
+};
+
+#endif

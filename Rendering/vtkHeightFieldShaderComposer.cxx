@@ -1,0 +1,236 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkHeightFieldShaderComposer.h"
+
+#include "vtkFeedbackReduction.h"
+#include "vtkHeightFieldTileAtlas.h"
+#include "vtkStrataShaderCache.h"
+
+#include "vtkStackedHeightFieldFS.h"
+#include "vtkStackedHeightFieldFeedback.h"
+#include "vtkStackedHeightFieldFeedbackWrite.h"
+#include "vtkStackedHeightFieldHeadlight.h"
+#include "vtkStackedHeightFieldLight.h"
+#include "vtkStackedHeightFieldPositionalLight.h"
+#include "vtkStackedHeightFieldShading.h"
+#include "vtkStackedHeightFieldShadingDec.h"
+#include "vtkStackedHeightFieldVS.h"
+
+#include <sstream>
+#include <tuple>
+
+namespace
+{
+using Key = vtkHeightFieldShaderComposer::Key;
+
+void Replace(std::string& source, const std::string& tag, const std::string& code)
+{
+  vtkStrataShaderCache<int>::Replace(source, tag, code);
+}
+
+// --- Where heights live: the tile atlas's page table (paged) or one array texture in core.
+void Heights(const Key& key, std::string& fs)
+{
+  if (key.Paged)
+  {
+    Replace(fs, "//STRATA::HeightLookup::Dec", vtkHeightFieldTileAtlas::GetLookupDeclarations());
+    Replace(fs, "//STRATA::CellCorners::Dec", vtkHeightFieldTileAtlas::GetCellCornersFunction());
+    Replace(fs, "//STRATA::SearchLevel::Impl", vtkHeightFieldTileAtlas::GetSearchLevelCode());
+  }
+  else
+  {
+    Replace(fs,
+      "//STRATA::HeightLookup::Dec",
+      "uniform sampler2DArray uHeights;\n"
+      "float strataHeight(int layer, ivec2 p) { return texelFetch(uHeights, ivec3(p, layer), 0).r; "
+      "}");
+    Replace(fs,
+      "//STRATA::CellCorners::Dec",
+      "vec4 strataCellCorners(int layer, ivec2 c) { return strataCorners(layer, c); }");
+    Replace(fs, "//STRATA::SearchLevel::Impl", "");
+  }
+  // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
+  Replace(fs,
+    "//STRATA::Hole::Impl",
+    !key.Holes  ? ""
+    : key.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));"
+                : "valid = !any(isnan(h));");
+}
+
+// --- Feedback (image load/store): the tile each sampled ray hit, at the level it wants.
+void Feedback(const Key& key, std::string& fs)
+{
+  Replace(fs,
+    "//STRATA::Extensions::Dec",
+    key.Feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  Replace(fs,
+    "//STRATA::Feedback::Dec",
+    key.Feedback
+      ? std::string(vtkStackedHeightFieldFeedback) + vtkFeedbackReduction::GetGLSLPackFunction()
+      : "");
+  Replace(fs, "//STRATA::Feedback::Impl", key.Feedback ? vtkStackedHeightFieldFeedbackWrite : "");
+}
+
+// --- Colour: horizon ids (tests, picking), one colour per horizon, or a table over depth.
+void Color(const Key& key, std::string& fs)
+{
+  if (!key.Shaded)
+  {
+    Replace(fs, "//STRATA::Color::Dec", "");
+    Replace(fs, "//STRATA::Color::Impl", "");
+    return;
+  }
+  if (key.LookupTable)
+  {
+    Replace(fs,
+      "//STRATA::Color::Dec",
+      "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
+    Replace(fs,
+      "//STRATA::Color::Impl",
+      "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
+      "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
+    return;
+  }
+  Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // one per horizon");
+  Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = texelFetch(uColors, hitLayer).rgb;");
+}
+
+/// The renderer's lights unrolled as VTK's mappers do: a headlight, or each light in turn,
+/// positional ones (complexity 3) with attenuation and cones.
+std::string Lights(const Key& key)
+{
+  if (key.LightingComplexity == 1)
+    return vtkStackedHeightFieldHeadlight;
+  std::string code;
+  for (int l = 0; l < key.LightCount; ++l)
+  {
+    std::string light = vtkStackedHeightFieldLight;
+    Replace(light,
+      "//STRATA::Positional::Impl",
+      key.LightingComplexity == 3 ? vtkStackedHeightFieldPositionalLight : "");
+    Replace(light, "@l@", std::to_string(l));
+    code += light;
+  }
+  return code;
+}
+
+// --- Shading and output: lit colour, flat colour, or the horizon id packed in 24-bit RGB.
+void Shading(const Key& key, const std::string& lightingUniforms, std::string& fs)
+{
+  if (!key.Shaded)
+  {
+    Replace(fs, "//STRATA::Shading::Dec", "");
+    Replace(fs, "//STRATA::Shading::Impl", "");
+    Replace(fs,
+      "//STRATA::Output::Impl",
+      "int id = hitLayer + 1;\n"
+      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), "
+      "255.0) / 255.0;");
+    return;
+  }
+  if (!key.Lit)
+  {
+    Replace(fs, "//STRATA::Shading::Dec", "");
+    Replace(fs, "//STRATA::Shading::Impl", "");
+    Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, 1.0);");
+    return;
+  }
+  std::string dec = vtkStackedHeightFieldShadingDec;
+  Replace(dec, "//STRATA::LightingUniforms::Dec", lightingUniforms);
+  std::string impl = vtkStackedHeightFieldShading;
+  Replace(impl, "//STRATA::Lights::Impl", Lights(key));
+  Replace(fs, "//STRATA::Shading::Dec", dec);
+  Replace(fs, "//STRATA::Shading::Impl", impl);
+  Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
+}
+}
+
+bool vtkHeightFieldShaderComposer::Key::operator<(const Key& o) const
+{
+  return std::tie(this->Paged,
+           this->Feedback,
+           this->Holes,
+           this->Shaded,
+           this->LookupTable,
+           this->Lit,
+           this->LightingComplexity,
+           this->LightCount) < std::tie(o.Paged,
+                                 o.Feedback,
+                                 o.Holes,
+                                 o.Shaded,
+                                 o.LookupTable,
+                                 o.Lit,
+                                 o.LightingComplexity,
+                                 o.LightCount);
+}
+
+std::string vtkHeightFieldShaderComposer::Key::ToString() const
+{
+  std::ostringstream s;
+  s << (this->Paged ? "paged" : "in core") << (this->Feedback ? ", feedback" : "")
+    << (this->Holes ? ", holes" : "")
+    << (!this->Shaded        ? ", horizon ids"
+         : this->LookupTable ? ", lookup table"
+                             : ", solid colours");
+  if (this->Lit)
+    s << ", lit (complexity " << this->LightingComplexity << ", " << this->LightCount
+      << (this->LightCount == 1 ? " light)" : " lights)");
+  return s.str();
+}
+
+std::string vtkHeightFieldShaderComposer::BuildFragmentShader(const Key& key,
+  const std::string& lightingUniforms)
+{
+  std::string fs = vtkStackedHeightFieldFS;
+  Heights(key, fs);
+  Feedback(key, fs);
+  Color(key, fs);
+  Shading(key, lightingUniforms, fs);
+  return fs;
+}
+
+class vtkHeightFieldShaderComposer::vtkInternals
+{
+public:
+  vtkStrataShaderCache<Key> Programs;
+};
+
+vtkHeightFieldShaderComposer::vtkHeightFieldShaderComposer()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkHeightFieldShaderComposer::~vtkHeightFieldShaderComposer() = default;
+
+vtkShaderProgram* vtkHeightFieldShaderComposer::ReadyProgram(vtkOpenGLRenderWindow* window,
+  const Key& key,
+  const std::string& lightingUniforms)
+{
+  return this->Internals->Programs.Ready(window,
+    key,
+    [&lightingUniforms](const Key& k, std::string& vs, std::string& fs)
+    {
+      vs = vtkStackedHeightFieldVS;
+      fs = BuildFragmentShader(k, lightingUniforms);
+    });
+}
+
+std::string vtkHeightFieldShaderComposer::GetFragmentSource(const Key& key) const
+{
+  const auto* entry = this->Internals->Programs.Find(key);
+  return entry ? entry->Fragment : std::string();
+}
+
+int vtkHeightFieldShaderComposer::GetNumberOfSourcesBuilt() const
+{
+  return this->Internals->Programs.GetSourcesBuilt();
+}
+
+int vtkHeightFieldShaderComposer::GetNumberOfCompilations() const
+{
+  return this->Internals->Programs.GetCompilations();
+}
+
+void vtkHeightFieldShaderComposer::ReleaseGraphicsResources()
+{
+  this->Internals->Programs.ReleaseGraphicsResources();
+}

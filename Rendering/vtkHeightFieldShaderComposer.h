@@ -1,0 +1,79 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkHeightFieldShaderComposer
+ * @brief   The stacked height-field ray caster's shaders: a source generated for exactly the
+ *          features the scene uses, programs cached by those features.
+ *
+ * The fragment template (vtkStackedHeightFieldFS.glsl) is a skeleton of tags; each feature of
+ * Key fills its own: where heights live (in core, or paged: the tile atlas's lookup,
+ * vtkHeightFieldTileAtlas), holes, level-of-detail feedback, colours (per horizon or a lookup
+ * table over depth, or horizon ids), lighting with the renderer's lights (its complexity and
+ * number of lights, as VTK's own mappers unroll them). A feature the scene does not use
+ * leaves no code behind. Programs are kept by key (vtkStrataShaderCache), so an unchanged frame
+ * builds no source and hashes nothing.
+ *
+ * @sa vtkStackedHeightFieldMapper vtkStrataShaderCache
+ */
+#ifndef vtkHeightFieldShaderComposer_h
+#define vtkHeightFieldShaderComposer_h
+
+#include "StrataRenderingModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+
+class STRATARENDERING_EXPORT vtkHeightFieldShaderComposer
+{
+public:
+  /// Everything the program depends on.
+  struct Key
+  {
+    bool Paged = false;         ///< heights through the tile atlas's page table
+    bool Feedback = false;      ///< paged, with level-of-detail feedback
+    bool Holes = false;         ///< some sample can be a hole
+    bool Shaded = true;         ///< colours (else horizon ids)
+    bool LookupTable = false;   ///< colour by depth through a table (else one per horizon)
+    bool Lit = false;           ///< lighting
+    int LightingComplexity = 0; ///< vtkOpenGLRenderer's, when lit
+    int LightCount = 0;         ///< vtkOpenGLRenderer's, when lit
+
+    bool operator<(const Key& other) const;
+    /// A printable form, e.g. "paged, feedback, holes, lookup table, lit (complexity 2, 1 light)".
+    std::string ToString() const;
+  };
+
+  vtkHeightFieldShaderComposer();
+  ~vtkHeightFieldShaderComposer();
+  vtkHeightFieldShaderComposer(const vtkHeightFieldShaderComposer&) = delete;
+  vtkHeightFieldShaderComposer& operator=(const vtkHeightFieldShaderComposer&) = delete;
+
+  /**
+   * Binds the program of `key` (built and compiled the first time); `lightingUniforms` is the
+   * renderer's declaration of its lights (vtkOpenGLRenderer::GetLightingUniforms), which the
+   * key's complexity and light count determine. Null if it does not compile.
+   */
+  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
+    const Key& key,
+    const std::string& lightingUniforms);
+  /// The fragment source of `key`, empty if it was never built.
+  std::string GetFragmentSource(const Key& key) const;
+
+  /// The fragment shader source for `key`.
+  static std::string BuildFragmentShader(const Key& key, const std::string& lightingUniforms);
+
+  /// Sources built and programs compiled since construction.
+  int GetNumberOfSourcesBuilt() const;
+  int GetNumberOfCompilations() const;
+
+  /// Forgets the programs (the window's shader cache owns them).
+  void ReleaseGraphicsResources();
+
+private:
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,317 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkMultiVolumeInput.h"
+
+#include "vtkVolumeBrickTree.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace
+{
+constexpr int TableSize = vtkTransferFunctionTable::TableSize;
+}
+
+vtkMultiVolumeInput::vtkMultiVolumeInput() = default;
+vtkMultiVolumeInput::~vtkMultiVolumeInput() = default;
+
+bool vtkMultiVolumeInput::HasScalarsOf(vtkImageData* image) const
+{
+  return !this->Scalars.empty() && this->DataInput == image && this->DataTime >= image->GetMTime();
+}
+
+bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
+  vtkDataArray* scalars,
+  vtkWindow* window)
+{
+  if (this->HasScalarsOf(image))
+    return false;
+  const vtkIdType n = image->GetNumberOfPoints();
+  this->Scalars.resize(n);
+  for (vtkIdType i = 0; i < n; ++i)
+    this->Scalars[i] = static_cast<float>(scalars->GetComponent(i, 0));
+  this->DataTime = image->GetMTime();
+  this->DataInput = image;
+  this->Tree.reset();
+  if (this->Data)
+  {
+    this->Data->ReleaseGraphicsResources(window);
+    this->Data = nullptr;
+  }
+  return true;
+}
+
+int vtkMultiVolumeInput::UpdateTree(const int dims[3], int brickSize, std::string& error)
+{
+  if (this->Tree && this->Tree->GetBrickSize() == brickSize)
+    return 0;
+  this->Tree.reset(new vtkVolumeBrickTree);
+  if (!this->Tree->Build(this->Scalars.data(), dims, brickSize))
+  {
+    error = this->Tree->GetErrorMessage();
+    this->Tree.reset();
+    return -1;
+  }
+  return 1;
+}
+
+void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3])
+{
+  if (this->Data)
+    return;
+  this->Data = vtkSmartPointer<vtkTextureObject>::New();
+  this->Data->SetContext(window);
+  this->Data->Create3DFromRaw(dims[0], dims[1], dims[2], 1, VTK_FLOAT, this->Scalars.data());
+  this->Data->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->Data->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->Data->SetWrapR(vtkTextureObject::ClampToEdge);
+  // Nearest volumes snap to voxel centres in the shader: linear filtering serves both.
+  this->Data->SetMinificationFilter(vtkTextureObject::Linear);
+  this->Data->SetMagnificationFilter(vtkTextureObject::Linear);
+}
+
+void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property)
+{
+  if (!this->Table.Update(window, property))
+    return;
+  const double* range = this->Table.GetScalarRange();
+  const std::vector<float>& table = this->Table.GetRGBTau();
+  const std::vector<float>& alpha = this->Table.GetOpacity();
+  std::vector<double> rgb(3 * TableSize), tau(TableSize);
+  for (int i = 0; i < TableSize; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+      rgb[3 * i + c] = table[4 * i + c];
+    tau[i] = table[4 * i + 3];
+  }
+  this->PreIntegration.SetTransferFunction(range[0], range[1], TableSize, rgb.data(), tau.data());
+  // What empty bricks read: the first scalar of zero opacity.
+  this->EmptyScalar = range[0];
+  for (int i = 0; i < TableSize; ++i)
+  {
+    if (alpha[i] <= 0.0f)
+    {
+      this->EmptyScalar = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
+      break;
+    }
+  }
+}
+
+double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
+{
+  // The entries whose interpolation intervals meet [lo, hi] (clamped at the ends, as the
+  // texture is).
+  const std::vector<float>& alpha = this->Table.GetOpacity();
+  const int n = static_cast<int>(alpha.size());
+  if (n == 0)
+    return 1.0;
+  const double* range = this->Table.GetScalarRange();
+  const double scale = (n - 1) / (range[1] - range[0]);
+  const double x0 = std::floor((lo - range[0]) * scale);
+  const double x1 = std::ceil((hi - range[0]) * scale);
+  const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
+  const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
+  return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
+}
+
+void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
+  const std::string& pool,
+  const int dims[3],
+  int cellSize)
+{
+  if (poolTree && this->SkipPool != pool)
+  {
+    this->SkipPool = pool;
+    this->SkipDataTime = 0;
+  }
+  const bool build = poolTree
+                       ? this->SkipDataTime == 0
+                       : this->SkipDataTime != this->DataTime ||
+                           this->Skip.GetCellSize() != cellSize || this->Skip.GetMinima().empty();
+  if (build && poolTree)
+  {
+    // Paged: the level-0 bricks' ranges are the cells (stride B - 1), nothing is read.
+    const int* nb = poolTree->GetLevelBricks(0);
+    std::vector<float> lo(poolTree->GetLevelOffset(0) + size_t(nb[0]) * nb[1] * nb[2]),
+      hi(lo.size());
+    for (size_t id = 0; id < lo.size(); ++id)
+    {
+      lo[id] = poolTree->GetNode(static_cast<int>(id)).Min;
+      hi[id] = poolTree->GetNode(static_cast<int>(id)).Max;
+    }
+    this->Skip.BuildFromRanges(nb, poolTree->GetBrickStride(), lo.data(), hi.data());
+    this->SkipDataTime = 1;
+  }
+  else if (build)
+  {
+    this->Skip.Build(this->Scalars.data(), dims, cellSize);
+    this->SkipDataTime = this->DataTime;
+  }
+  if (!build && this->SkipTime == this->Table.GetBuildCount() && this->SkipTexture)
+    return;
+  this->Skip.Classify([this](double lo, double hi) { return this->MaxOpacity(lo, hi); });
+  const int* cd = this->Skip.GetCellDimensions();
+  glBindTexture(GL_TEXTURE_3D, this->SkipTexture.Get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D,
+    0,
+    GL_R8UI,
+    cd[0],
+    cd[1],
+    cd[2],
+    0,
+    GL_RED_INTEGER,
+    GL_UNSIGNED_BYTE,
+    this->Skip.GetDistances().data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_3D, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  this->SkipTime = this->Table.GetBuildCount();
+}
+
+void vtkMultiVolumeInput::UpdatePreIntegration(vtkOpenGLRenderWindow* window,
+  Classifications classification,
+  int tableSize,
+  double sampleDistance)
+{
+  const bool full = classification == Classifications::PreIntegrated;
+  this->PreIntegration.SetTableSize(tableSize);
+  this->PreIntegration.SetStepLength(sampleDistance);
+  if (full)
+    this->PreIntegration.UpdateFullTable();
+  else
+    this->PreIntegration.UpdateIntegralTable();
+  const unsigned long count = full ? this->PreIntegration.GetFullTableBuildCount()
+                                   : this->PreIntegration.GetIntegralTableBuildCount();
+  const int kind = static_cast<int>(classification);
+  if (this->PreTable && this->PreTableCount == count && this->PreTableKind == kind)
+    return;
+  if (!this->PreTable)
+    this->PreTable = vtkSmartPointer<vtkTextureObject>::New();
+  const int m = this->PreIntegration.GetTableSize();
+  this->PreTable->SetContext(window);
+  this->PreTable->ReleaseGraphicsResources(window);
+  this->PreTable->SetContext(window);
+  const std::vector<float>& data =
+    full ? this->PreIntegration.GetFullTable() : this->PreIntegration.GetIntegralTable();
+  this->PreTable->Create2DFromRaw(m, full ? m : 1, 4, VTK_FLOAT, const_cast<float*>(data.data()));
+  this->PreTable->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->PreTable->SetWrapT(vtkTextureObject::ClampToEdge);
+  // The full table is read with bilinear filtering; the integral table with texelFetch and
+  // mix in float (filter weights would be amplified by its division).
+  const int filter = full ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  this->PreTable->SetMinificationFilter(filter);
+  this->PreTable->SetMagnificationFilter(filter);
+  this->PreTableCount = count;
+  this->PreTableKind = kind;
+}
+
+void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
+  vtkShaderProgram* program,
+  int n,
+  vtkVolumeProperty* property,
+  const Binding& b,
+  std::vector<int>& rawUnits)
+{
+  vtkTextureUnitManager* units = window->GetTextureUnitManager();
+  auto bindRaw = [&](unsigned int texture, const std::string& name)
+  {
+    const int unit = units->Allocate();
+    rawUnits.push_back(unit);
+    window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_3D, texture);
+    program->SetUniformi(name.c_str(), unit);
+  };
+  const std::string N = std::to_string(n);
+  program->SetUniformMatrix4x4(("uLocalToIndex" + N).c_str(), const_cast<float*>(b.LocalToIndex));
+  program->SetUniformf(("uNearest" + N).c_str(),
+    property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
+  if (b.Atlas)
+  {
+    bindRaw(b.IndexTexture, "uIndex" + N);
+    const float tableDims[3] = {
+      float(b.TableBricks[0]), float(b.TableBricks[1]), float(b.TableBricks[2])
+    };
+    program->SetUniform3f(("uTableDims" + N).c_str(), tableDims);
+    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->EmptyScalar));
+  }
+  else
+  {
+    this->Data->Activate();
+    program->SetUniformi(("uVolume" + N).c_str(), this->Data->GetTextureUnit());
+    const float dims[3] = { float(b.Dims[0]), float(b.Dims[1]), float(b.Dims[2]) };
+    program->SetUniform3f(("uDims" + N).c_str(), dims);
+  }
+  if (b.Skipping)
+  {
+    bindRaw(this->SkipTexture.GetName(), "uSkip" + N);
+    const int* cd = this->Skip.GetCellDimensions();
+    const float grid[4] = {
+      float(cd[0]), float(cd[1]), float(cd[2]), float(this->Skip.GetCellSize())
+    };
+    program->SetUniform4f(("uSkipGrid" + N).c_str(), grid);
+  }
+  if (b.Shaded)
+  {
+    const float material[4] = { float(property->GetAmbient(0)),
+      float(property->GetDiffuse(0)),
+      float(property->GetSpecular(0)),
+      float(property->GetSpecularPower(0)) };
+    program->SetUniform4f(("uMaterial" + N).c_str(), material);
+  }
+  if (b.Classification == Classifications::PostClassification)
+  {
+    vtkTextureObject* transfer = this->Table.GetTexture();
+    transfer->Activate();
+    program->SetUniformi(("uTransfer" + N).c_str(), transfer->GetTextureUnit());
+    const double* r = this->Table.GetTableRange();
+    const float range[3] = { float(r[0]), float(r[1]), float(r[2]) };
+    program->SetUniform3f(("uTableRange" + N).c_str(), range);
+    return;
+  }
+  this->PreTable->Activate();
+  program->SetUniformi(("uPreTable" + N).c_str(), this->PreTable->GetTextureUnit());
+  const double* sr = this->Table.GetScalarRange();
+  const float preRange[3] = {
+    float(sr[0]), float(1.0 / (sr[1] - sr[0])), float(this->PreIntegration.GetTableSize())
+  };
+  program->SetUniform3f(("uPreRange" + N).c_str(), preRange);
+  if (b.Classification == Classifications::PreIntegrated)
+    program->SetUniformf(("uPreStep" + N).c_str(), static_cast<float>(b.SampleDistance));
+  else
+    program->SetUniformf(
+      ("uPreMaxColor" + N).c_str(), static_cast<float>(this->PreIntegration.GetMaximumColor()));
+}
+
+void vtkMultiVolumeInput::Unbind(const Binding& b)
+{
+  if (this->Data && !b.Atlas)
+    this->Data->Deactivate();
+  if (b.Classification == Classifications::PostClassification)
+    this->Table.GetTexture()->Deactivate();
+  else
+    this->PreTable->Deactivate();
+}
+
+void vtkMultiVolumeInput::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Data)
+    this->Data->ReleaseGraphicsResources(window);
+  this->Data = nullptr;
+  this->Table.ReleaseGraphicsResources(window);
+  if (this->PreTable)
+    this->PreTable->ReleaseGraphicsResources(window);
+  this->PreTable = nullptr;
+  this->PreTableKind = -1;
+  this->SkipTexture.Release();
+}

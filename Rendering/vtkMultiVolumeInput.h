@@ -1,0 +1,143 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkMultiVolumeInput
+ * @brief   The GPU state of one input of vtkMultiVolumeRayCastMapper: its scalars (a brick
+ *          tree for the atlas, or one plain texture), its transfer and pre-integration tables
+ *          and its empty-space skip grid, each rebuilt only when what it depends on changed.
+ *
+ * Scalars are kept as float (exact for every input type) while the input image stays the
+ * same; an in-core volume's brick tree (vtkVolumeBrickTree) is built from them for the atlas,
+ * a paged one's comes from vtkVolumePager. The transfer table (vtkTransferFunctionTable) is
+ * rebuilt when the volume property changes; the pre-integration table (vtkPreIntegrationTable)
+ * follows it and the sample distance; the skip grid's cell ranges follow the data (or, paged,
+ * the level-0 bricks' ranges from the page table) and its distances the transfer table.
+ * Bind() sets the volume's uniforms for volume n of a fragment's program.
+ *
+ * The owner calls ReleaseGraphicsResources() from its own, with the context current.
+ */
+#ifndef vtkMultiVolumeInput_h
+#define vtkMultiVolumeInput_h
+
+#include "StrataRenderingModule.h"       // For export macro
+#include "vtkMultiVolumeRayCastMapper.h" // For Classifications
+#include "vtkPreIntegrationTable.h"      // For vtkPreIntegrationTable
+#include "vtkSmartPointer.h"             // For vtkSmartPointer
+#include "vtkStrataGLObject.h"           // For vtkStrataGLObject
+#include "vtkTransferFunctionTable.h"    // For vtkTransferFunctionTable
+#include "vtkVolumeSkipGrid.h"           // For vtkVolumeSkipGrid
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+#include <vector> // For std::vector
+
+class vtkDataArray;
+class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkVolumeBrickTree;
+class vtkVolumeProperty;
+class vtkWindow;
+
+class STRATARENDERING_EXPORT vtkMultiVolumeInput
+{
+public:
+  using Classifications = vtkMultiVolumeRayCastMapper::Classifications;
+
+  vtkMultiVolumeInput();
+  ~vtkMultiVolumeInput();
+  vtkMultiVolumeInput(const vtkMultiVolumeInput&) = delete;
+  vtkMultiVolumeInput& operator=(const vtkMultiVolumeInput&) = delete;
+
+  /**
+   * Copies `scalars` (component 0, one per point of `image`) as float when `image` is another
+   * one or changed since; the brick tree and plain texture then follow. Returns whether it
+   * copied.
+   */
+  bool UpdateScalars(vtkImageData* image, vtkDataArray* scalars, vtkWindow* window);
+  /// Whether the scalars are kept for `image` as it is now.
+  bool HasScalarsOf(vtkImageData* image) const;
+
+  /**
+   * The in-core brick tree for bricks of `brickSize`, built when missing or of another size.
+   * Returns -1 with `error` set when it cannot be built, 1 when it was (re)built, 0 otherwise.
+   */
+  int UpdateTree(const int dims[3], int brickSize, std::string& error);
+  /// The in-core tree, null if none (paged volumes use vtkVolumePager's).
+  const vtkVolumeBrickTree* GetTree() const { return this->Tree.get(); }
+
+  /// The whole volume as one R32F 3-D texture (no atlas), made once per scalars.
+  void UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3]);
+
+  /// The transfer table and what follows from it (pre-integration input, empty scalar).
+  void UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
+  /// The largest opacity the interpolated table reaches for scalars in [lo, hi].
+  double MaxOpacity(double lo, double hi) const;
+  /// A scalar the transfer function makes transparent (what empty bricks read).
+  double GetEmptyScalar() const { return this->EmptyScalar; }
+
+  /**
+   * The skip grid: cell ranges from the scalars (`cellSize` voxels) or, for a paged volume,
+   * from `poolTree`'s level-0 bricks (rebuilt when `pool` names another pool); distances
+   * classified again when the transfer table changed; uploaded as R8UI.
+   */
+  void UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
+    const std::string& pool,
+    const int dims[3],
+    int cellSize);
+
+  /// The pre-integration table of the classification at `sampleDistance`, uploaded on change.
+  void UpdatePreIntegration(vtkOpenGLRenderWindow* window,
+    Classifications classification,
+    int tableSize,
+    double sampleDistance);
+
+  /// How volume n of a fragment is drawn this frame.
+  struct Binding
+  {
+    Classifications Classification = Classifications::PostClassification;
+    bool Atlas = true;
+    unsigned int IndexTexture = 0;    ///< the atlas's index texture of this volume
+    const int* TableBricks = nullptr; ///< level-0 bricks per axis (the index's size)
+    bool Skipping = true;
+    bool Shaded = false;
+    double SampleDistance = 1.0;
+    const float* LocalToIndex = nullptr; ///< column-major
+    const int* Dims = nullptr;
+  };
+  /**
+   * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their
+   * own units, raw textures on units of `window`'s manager appended to `rawUnits` (the caller
+   * frees them after the draw, with Unbind()).
+   */
+  void Bind(vtkOpenGLRenderWindow* window,
+    vtkShaderProgram* program,
+    int n,
+    vtkVolumeProperty* property,
+    const Binding& binding,
+    std::vector<int>& rawUnits);
+  /// Deactivates the vtkTextureObjects Bind() activated.
+  void Unbind(const Binding& binding);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  std::vector<float> Scalars; ///< the input as float; the brick tree borrows it
+  vtkImageData* DataInput = nullptr;
+  vtkMTimeType DataTime = 0;
+  std::unique_ptr<vtkVolumeBrickTree> Tree;
+  vtkSmartPointer<vtkTextureObject> Data; ///< plain texture (no atlas)
+  vtkTransferFunctionTable Table;
+  double EmptyScalar = 0.0;
+  vtkPreIntegrationTable PreIntegration;
+  vtkSmartPointer<vtkTextureObject> PreTable;
+  unsigned long PreTableCount = 0; ///< build count of the uploaded table
+  int PreTableKind = -1;           ///< classification it was uploaded for
+  vtkVolumeSkipGrid Skip;
+  vtkStrataGLObject SkipTexture{ vtkStrataGLObject::Kinds::Texture }; ///< R8UI distances
+  unsigned long SkipTime = 0;    ///< distances classified for this table build
+  vtkMTimeType SkipDataTime = 0; ///< cell ranges built from this data (1: from a pool)
+  std::string SkipPool;          ///< the pool the paged ranges came from
+};
+
+#endif

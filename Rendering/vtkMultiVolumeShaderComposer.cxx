@@ -1,0 +1,529 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkMultiVolumeShaderComposer.h"
+
+#include "vtkBrickAtlasTexture.h"
+#include "vtkFeedbackReduction.h"
+#include "vtkStrataShaderCache.h"
+
+#include "vtkMultiVolumeBackToFront.h"
+#include "vtkMultiVolumeCompositeFS.h"
+#include "vtkMultiVolumeCompositeVS.h"
+#include "vtkMultiVolumeFeedback.h"
+#include "vtkMultiVolumeFeedbackCheck.h"
+#include "vtkMultiVolumeFragmentFS.h"
+#include "vtkMultiVolumeFragmentVS.h"
+#include "vtkMultiVolumeFrontToBack.h"
+#include "vtkMultiVolumePair.h"
+#include "vtkMultiVolumePlainLookup.h"
+#include "vtkMultiVolumePreIntegrated.h"
+#include "vtkMultiVolumePreIntegratedApproximate.h"
+#include "vtkMultiVolumeSample.h"
+#include "vtkMultiVolumeSegment.h"
+#include "vtkMultiVolumeSegmentVolume.h"
+#include "vtkMultiVolumeShade.h"
+#include "vtkMultiVolumeSkip.h"
+#include "vtkMultiVolumeSkipUniforms.h"
+#include "vtkMultiVolumeSkipVolume.h"
+
+#include <sstream>
+#include <tuple>
+
+namespace
+{
+using Key = vtkMultiVolumeShaderComposer::FragmentKey;
+using C = vtkMultiVolumeShaderComposer::Classifications;
+constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
+
+void Replace(std::string& source, const std::string& tag, const std::string& code)
+{
+  vtkStrataShaderCache<int>::Replace(source, tag, code);
+}
+
+/// A per-volume snippet for volume `n` of the fragment.
+std::string ForVolume(const char* snippet, int n)
+{
+  std::string code = snippet;
+  Replace(code, "@n@", std::to_string(n));
+  return code;
+}
+
+bool AnyShaded(const Key& key)
+{
+  for (bool s : key.Shaded)
+    if (s)
+      return true;
+  return false;
+}
+
+// --- Feedback (paged scenes). Every data fetch of a feedback ray checks the cut level of its
+// brick (the index entry it reads anyway) against the level the footprint asks for, and the
+// ray keeps the lacking brick that costs it most: the transmittance in front of the sample
+// times 2^(levels too coarse), a first-order bound of what the brick's coarseness can change in
+// the pixel. Only registers are written per fetch - llvmpipe executes both sides of every
+// branch, so the per-sample cost must stay a few selects - and the page id is packed once,
+// after the ray: volume i of the fragment is data set uFeedbackSet<i>, uLevelBricks<i> holds
+// the bricks per axis of each level, and the level-l brick over level-0 brick b is b >> l
+// (vtkVolumeCut::MapToAtlas), with index (z ny + y) nx + x, the tree's node order. Fragments
+// compare their best with the texel's through a second (score) image. With Footprint the
+// wanted level follows the pixel footprint (LevelOfDetailThreshold > 0); otherwise level 0 is
+// wanted and no footprint code exists.
+std::string FeedbackGlobals(const Key& key)
+{
+  std::string code = vtkMultiVolumeFeedback;
+  Replace(code,
+    "//STRATA::Footprint::Dec",
+    key.Footprint
+      ? "uniform vec3 uFeedbackEye; // local frame\n"
+        "uniform vec2 uFeedbackFootprint; // threshold x pixel size = x + y * distance\n"
+        "float gFootprint = 0.0; // at the current step\n"
+      : "");
+  return code;
+}
+
+std::string FeedbackVolumeUniforms(const Key& key, int n)
+{
+  const std::string N = std::to_string(n);
+  return "uniform int uFeedbackSet" + N + ";\nuniform int uLevelBricks" + N + "[" +
+         std::to_string(3 * FeedbackLevels) + "];\n" +
+         (key.Footprint
+             ? "uniform vec2 uFeedbackLod" + N + "; // 1 / level-0 voxel size, coarsest level\n"
+             : "");
+}
+
+// Inside the atlas lookup, after the index entry e of level-0 brick b was fetched. Among equal
+// costs the nearer brick wins: the first one front to back, the last one back to front.
+std::string FeedbackFetchCheck(const Key& key, int n)
+{
+  std::string code = ForVolume(vtkMultiVolumeFeedbackCheck, n);
+  Replace(code, "@better@", key.FrontToBack ? ">" : ">=");
+  Replace(code,
+    "//STRATA::Want::Impl",
+    key.Footprint
+      ? ForVolume("int want = int(clamp(floor(log2(max(gFootprint * uFeedbackLod@n@.x, 1.0e-30))), "
+                  "0.0, uFeedbackLod@n@.y));",
+          n)
+      : "int want = 0;");
+  return code;
+}
+
+std::string FeedbackPacking(const Key& key)
+{
+  std::ostringstream dec;
+  dec << vtkFeedbackReduction::GetGLSLPackFunction() << "uint strataLackingPage()\n{\n"
+      << "  ivec3 w = gLack.xyz >> gLack.w;\n"
+      << "  int g = 3 * gLack.w;\n";
+  for (int i = 0; i < key.Volumes; ++i)
+  {
+    dec << ForVolume(
+      "  if (gLackVolume == @n@)\n  {\n    return strataPackPage(uint(uFeedbackSet@n@), "
+      "uint(gLack.w), uint((w.z * uLevelBricks@n@[g + 1] + w.y) * "
+      "uLevelBricks@n@[g] + w.x));\n  }\n",
+      i);
+  }
+  dec << "  return 0u;\n}\n";
+  return dec.str();
+}
+
+// --- The data: the lookup (atlas or plain texture), the sample at a point, shading.
+std::string Lookup(const Key& key, int n)
+{
+  if (!key.Atlas)
+    return ForVolume(vtkMultiVolumePlainLookup, n);
+  std::string code;
+  if (n == 0)
+  {
+    code += vtkBrickAtlasTexture::GetShaderDeclarations();
+    if (key.Feedback)
+      code += FeedbackGlobals(key);
+  }
+  if (key.Feedback)
+    code += FeedbackVolumeUniforms(key, n);
+  return code +
+         vtkBrickAtlasTexture::GetLookupFunction(n, key.Feedback ? FeedbackFetchCheck(key, n) : "");
+}
+
+std::string Lights(const Key& key)
+{
+  return AnyShaded(key)
+           ? "uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, "
+             "unit\n"
+             "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n"
+           : "";
+}
+
+// --- Classification: the transfer table (post) or the pre-integration table of a volume.
+std::string Classification(const Key& key, int n)
+{
+  switch (key.Classification)
+  {
+    case C::PostClassification:
+      return ForVolume("uniform sampler2D uTransfer@n@;\nuniform vec3 uTableRange@n@;\n", n);
+    case C::PreIntegrated:
+      return ForVolume(vtkMultiVolumePreIntegrated, n);
+    case C::PreIntegratedApproximate:
+      return ForVolume(vtkMultiVolumePreIntegratedApproximate, n);
+  }
+  return std::string();
+}
+
+std::string SkipUniforms(const Key& key)
+{
+  std::string code;
+  for (int i = 0; key.Skipping && i < key.Volumes; ++i)
+    code += ForVolume(vtkMultiVolumeSkipUniforms, i);
+  return code;
+}
+
+/// Volumes::Dec: the scene's lights, then per volume its lookup, sample, shading and table.
+std::string Volumes(const Key& key)
+{
+  std::string code = Lights(key);
+  for (int i = 0; i < key.Volumes; ++i)
+  {
+    code += Lookup(key, i);
+    code += ForVolume(vtkMultiVolumeSample, i);
+    if (key.Shaded[i])
+      code += ForVolume(vtkMultiVolumeShade, i);
+    code += Classification(key, i);
+  }
+  code += SkipUniforms(key);
+  if (key.Feedback)
+    code += FeedbackPacking(key);
+  return code;
+}
+
+// --- The segment of one lattice step: the mixed media of all volumes at its midpoint (post)
+// or between the scalars at both ends (pre-integrated).
+std::string Segment(const Key& key)
+{
+  const int k = key.Volumes;
+  if (key.Classification == C::PostClassification)
+  {
+    std::string volumes;
+    for (int i = 0; i < k; ++i)
+    {
+      std::string v = ForVolume(vtkMultiVolumeSegmentVolume, i);
+      Replace(v,
+        "//STRATA::Shade::Impl",
+        key.Shaded[i]
+          ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
+          : "");
+      volumes += v;
+    }
+    std::string code = vtkMultiVolumeSegment;
+    Replace(code, "//STRATA::SegmentVolumes::Impl", volumes);
+    return code;
+  }
+  const std::string K = std::to_string(k);
+  std::string code = "void strataSampleAll(vec3 p, out float s[" + K + "])\n{\n";
+  for (int i = 0; i < k; ++i)
+    code += ForVolume("  s[@n@] = strataScalar@n@(p);\n", i);
+  code += "}\n";
+  if (k == 1)
+  {
+    code += "vec4 strataPair(float sf[1], float sb[1], float len, vec3 mid)\n{\n";
+    code +=
+      key.Shaded[0]
+        ? "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
+          "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n"
+        : "  return strataPre0(sf[0], sb[0], len);\n}\n";
+    return code;
+  }
+  std::string volumes;
+  for (int i = 0; i < k; ++i)
+  {
+    volumes += ForVolume("ca = strataPre@n@(sf[@n@], sb[@n@], len);\n"
+                         "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
+                         "  X += x;\n",
+      i);
+    volumes +=
+      key.Shaded[i]
+        ? ForVolume(
+            "  e += ca.a > 0.0 ? strataShade@n@(mid, ca.rgb / ca.a) * x : vec3(0.0);\n  ", i)
+        : "  e += ca.a > 0.0 ? ca.rgb / ca.a * x : vec3(0.0);\n  ";
+  }
+  std::string pair = vtkMultiVolumePair;
+  Replace(pair, "@K@", K);
+  Replace(pair, "//STRATA::PairVolumes::Impl", volumes);
+  return code + pair;
+}
+
+std::string Skipping(const Key& key)
+{
+  if (!key.Skipping)
+    return std::string();
+  std::string volumes;
+  for (int i = 0; i < key.Volumes; ++i)
+    volumes += ForVolume(vtkMultiVolumeSkipVolume, i);
+  std::string code = vtkMultiVolumeSkip;
+  Replace(code, "//STRATA::SkipVolumes::Impl", volumes);
+  return code;
+}
+
+// --- Termination (front to back): the fragment's share of the termination opacity.
+void Termination(const Key& key, std::string& fs)
+{
+  if (!key.FrontToBack)
+  {
+    Replace(fs, "//STRATA::Termination::Dec", "");
+    Replace(fs, "//STRATA::Termination::Impl", "");
+    return;
+  }
+  std::string dec = "uniform float uTerminationOpacity;\n";
+  for (int r = 0; key.Barrier && r < key.Rays; ++r)
+    dec += "uniform sampler2D uAccumulation" + std::to_string(r) + ";\n";
+  Replace(fs, "//STRATA::Termination::Dec", dec);
+  Replace(fs,
+    "//STRATA::Termination::Impl",
+    "if (prior >= uTerminationOpacity)\n  {\n    return vec4(0.0);\n  }\n"
+    "  // This fragment's own opacity at which the whole ray reaches uTerminationOpacity.\n"
+    "  float localStop = 1.0 - (1.0 - uTerminationOpacity) / (1.0 - prior);");
+}
+
+// --- Rays: the first (the coherence leader, the feedback ray), then the others at their
+// sub-pixel offsets and lattice phases; then the fragment's feedback report.
+std::string Rays(const Key& key)
+{
+  const int rays = key.Rays;
+  std::ostringstream code;
+  code << "float tFirst0;\n  bool inside0;\n";
+  for (int r = 0; r < rays; ++r)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(r, rays, offset);
+    const std::string R = std::to_string(r);
+    const std::string prior =
+      key.Barrier ? "texelFetch(uAccumulation" + R + ", ivec2(gl_FragCoord.xy), 0).a" : "0.0";
+    std::ostringstream pixel;
+    pixel.precision(9);
+    pixel << "gl_FragCoord.xy + vec2(" << offset[0] << ", " << offset[1] << ")";
+    if (r == 0)
+    {
+      if (key.Feedback)
+        code << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, "
+                "ivec2(uFeedbackScale / 2)));\n";
+      code << "  gl_FragData[0] = strataCastRay(" << (rays > 1 ? pixel.str() : "gl_FragCoord.xy")
+           << ", 0.0, " << prior << ", 0.0, tFirst0, inside0);\n";
+      if (key.Feedback)
+        code << "  gFeedbackRay = false;\n";
+      if (rays > 1)
+        code << "  float tFirst;\n  bool inside;\n";
+      if (rays > 1 && key.Coherent)
+        code << "  // Coherence: the others start where the centre ray left empty space.\n"
+             << "  float tStart = inside0 ? tFirst0 : 0.0;\n";
+      continue;
+    }
+    std::ostringstream phase;
+    phase.precision(9);
+    phase << double(r) / rays;
+    code << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", " << phase.str()
+         << ", " << prior << ", " << (key.Coherent ? "tStart" : "0.0") << ", tFirst, inside);\n";
+  }
+  if (key.Feedback)
+  {
+    // The fragment's costliest lacking brick replaces the texel's if it costs more (fragments
+    // are drawn one after another with a barrier between; on a tie the nearer one wins).
+    code << "  if (gLackFound)\n  {\n"
+         << "    ivec2 texel = ivec2(gl_FragCoord.xy) / uFeedbackScale;\n"
+         << "    if (gLackScore " << (key.FrontToBack ? ">" : ">=")
+         << " imageLoad(uFeedbackScore, texel).r)\n    {\n"
+         << "      imageStore(uFeedbackScore, texel, vec4(gLackScore));\n"
+         << "      imageStore(uFeedback, texel, uvec4(strataLackingPage(), 0u, 0u, 0u));\n    }\n  "
+            "}\n";
+  }
+  return code.str();
+}
+
+// --- Compositing: the loop over lattice steps in the key's order, with exactly the skipping,
+// feedback and classification code it uses.
+std::string Composite(const Key& key)
+{
+  const bool ftb = key.FrontToBack;
+  const bool pre = key.Classification != C::PostClassification;
+  const std::string K = std::to_string(key.Volumes);
+  const char* end = ftb ? "tEnter" : "tExit";
+  std::string start;
+  if (key.Feedback && ftb)
+    start += "gTransmittance = 1.0 - prior;\n  ";
+  if (key.Skipping)
+    start +=
+      ftb
+        ? "bool probe = true; // look for empty space: at the start and after transparent steps\n  "
+        : "bool probe = true;\n  ";
+  if (pre)
+    start += "float sA[" + K + "];\n  float sB[" + K + "];\n  strataSampleAll(o + " + end +
+             " * d, " + (ftb ? "sA" : "sB") + ");\n  ";
+  std::string skip;
+  if (key.Skipping)
+  {
+    skip =
+      ftb ? "float skip = probe ? strataEmptyUntil(o, d, a, 1.0) : a;\n    if (skip > b)\n    {\n"
+            "      kk = max(kk + 1.0, floor(skip / dt - phase));\n"
+          : "float skip = probe ? strataEmptyUntil(o, d, b, -1.0) : b;\n    if (skip < a)\n    {\n"
+            "      kb = min(kb - 1.0, ceil(skip / dt - phase));\n";
+    if (pre)
+      skip +=
+        ftb ? "      strataSampleAll(o + min(max((kk + phase) * dt, tEnter), tExit) * d, sA);\n"
+            : "      strataSampleAll(o + min(max((kb + phase) * dt, tEnter), tExit) * d, sB);\n";
+    skip += "      continue;\n    }";
+  }
+  std::string step;
+  if (key.Feedback && ftb)
+    step += "gTransmittance = (1.0 - prior) * (1.0 - acc.a);\n      ";
+  if (key.Footprint)
+    step +=
+      "gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * "
+      "d, uFeedbackEye);\n      ";
+  if (pre)
+    step += ftb ? "strataSampleAll(o + b * d, sB);\n"
+                  "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
+                  "      sA = sB;"
+                : "strataSampleAll(o + a * d, sA);\n"
+                  "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
+                  "      sB = sA;";
+  else
+    step += "vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);";
+  std::string loop = ftb ? vtkMultiVolumeFrontToBack : vtkMultiVolumeBackToFront;
+  Replace(loop, "//STRATA::Start::Impl", start);
+  Replace(loop, "//STRATA::Skip::Impl", skip);
+  Replace(loop, "//STRATA::Step::Impl", step);
+  Replace(loop, "//STRATA::Probe::Impl", key.Skipping ? "probe = c.a <= 0.0;" : "");
+  return (AnyShaded(key) ? "gViewDirection = -normalize(d);\n  " : "") + loop;
+}
+}
+
+bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) const
+{
+  return std::tie(this->Volumes,
+           this->Shaded,
+           this->Classification,
+           this->FrontToBack,
+           this->Barrier,
+           this->Rays,
+           this->Coherent,
+           this->Atlas,
+           this->Skipping,
+           this->Feedback,
+           this->Footprint) < std::tie(o.Volumes,
+                                o.Shaded,
+                                o.Classification,
+                                o.FrontToBack,
+                                o.Barrier,
+                                o.Rays,
+                                o.Coherent,
+                                o.Atlas,
+                                o.Skipping,
+                                o.Feedback,
+                                o.Footprint);
+}
+
+std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
+{
+  static const char* classifications[] = {
+    "post-classification", "pre-integrated", "pre-integrated approximate"
+  };
+  std::ostringstream s;
+  s << this->Volumes << (this->Volumes == 1 ? " volume" : " volumes") << " (";
+  for (size_t i = 0; i < this->Shaded.size(); ++i)
+    s << (i ? ", " : "") << (this->Shaded[i] ? "shaded" : "unshaded");
+  s << ") " << classifications[static_cast<int>(this->Classification)] << ", "
+    << (this->FrontToBack ? "front to back" : "back to front")
+    << (this->Barrier ? " across fragments" : "") << ", " << this->Rays
+    << (this->Rays == 1 ? " ray" : " rays") << (this->Coherent ? " coherent" : "")
+    << (this->Atlas ? ", atlas" : ", plain textures") << (this->Skipping ? ", skipping" : "")
+    << (this->Feedback ? (this->Footprint ? ", footprint feedback" : ", feedback") : "");
+  return s.str();
+}
+
+std::string vtkMultiVolumeShaderComposer::BuildFragmentShader(const FragmentKey& key)
+{
+  std::string fs = vtkMultiVolumeFragmentFS;
+  Replace(fs,
+    "//STRATA::Extensions::Dec",
+    key.Feedback ? "#extension GL_ARB_shader_image_load_store : require\n" : "");
+  Replace(fs, "//STRATA::Volumes::Dec", Volumes(key));
+  Replace(fs, "//STRATA::Segment::Dec", Segment(key) + Skipping(key));
+  Termination(key, fs);
+  Replace(fs, "//STRATA::Rays::Impl", Rays(key));
+  Replace(fs, "//STRATA::Composite::Impl", Composite(key));
+  return fs;
+}
+
+std::string vtkMultiVolumeShaderComposer::BuildCompositeShader(int rays)
+{
+  // The pixel is the mean of its rays' composites.
+  std::string fs = vtkMultiVolumeCompositeFS;
+  std::ostringstream dec, impl;
+  for (int r = 0; r < rays; ++r)
+  {
+    dec << "uniform sampler2D uAccumulation" << r << ";\n";
+    impl << (r ? " + " : "") << "texelFetch(uAccumulation" << r << ", pixel, 0)";
+  }
+  Replace(fs, "//STRATA::Accumulation::Dec", dec.str());
+  Replace(fs,
+    "//STRATA::Accumulation::Impl",
+    "fragOutput0 = (" + impl.str() + ") / " + std::to_string(rays) + ".0;");
+  return fs;
+}
+
+class vtkMultiVolumeShaderComposer::vtkInternals
+{
+public:
+  vtkStrataShaderCache<FragmentKey> Fragments;
+  vtkStrataShaderCache<int> Composites;
+};
+
+vtkMultiVolumeShaderComposer::vtkMultiVolumeShaderComposer()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkMultiVolumeShaderComposer::~vtkMultiVolumeShaderComposer() = default;
+
+vtkShaderProgram* vtkMultiVolumeShaderComposer::ReadyFragmentProgram(vtkOpenGLRenderWindow* window,
+  const FragmentKey& key)
+{
+  return this->Internals->Fragments.Ready(window,
+    key,
+    [](const FragmentKey& k, std::string& vs, std::string& fs)
+    {
+      vs = vtkMultiVolumeFragmentVS;
+      fs = BuildFragmentShader(k);
+    });
+}
+
+vtkShaderProgram* vtkMultiVolumeShaderComposer::ReadyCompositeProgram(vtkOpenGLRenderWindow* window,
+  int rays)
+{
+  return this->Internals->Composites.Ready(window,
+    rays,
+    [](int r, std::string& vs, std::string& fs)
+    {
+      vs = vtkMultiVolumeCompositeVS;
+      fs = BuildCompositeShader(r);
+    });
+}
+
+std::string vtkMultiVolumeShaderComposer::GetFragmentSource(const FragmentKey& key) const
+{
+  const auto* entry = this->Internals->Fragments.Find(key);
+  return entry ? entry->Fragment : std::string();
+}
+
+int vtkMultiVolumeShaderComposer::GetNumberOfSourcesBuilt() const
+{
+  return this->Internals->Fragments.GetSourcesBuilt() +
+         this->Internals->Composites.GetSourcesBuilt();
+}
+
+int vtkMultiVolumeShaderComposer::GetNumberOfCompilations() const
+{
+  return this->Internals->Fragments.GetCompilations() +
+         this->Internals->Composites.GetCompilations();
+}
+
+void vtkMultiVolumeShaderComposer::ReleaseGraphicsResources()
+{
+  this->Internals->Fragments.ReleaseGraphicsResources();
+  this->Internals->Composites.ReleaseGraphicsResources();
+}

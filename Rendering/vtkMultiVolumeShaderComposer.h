@@ -1,0 +1,89 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkMultiVolumeShaderComposer
+ * @brief   The multi-volume ray caster's shaders: sources generated for exactly the features a
+ *          BSP fragment uses, programs cached by those features.
+ *
+ * A fragment's program depends on FragmentKey alone: how many volumes cover it, which of them
+ * are shaded, the classification, the compositing order, rays per pixel and coherence, brick
+ * atlas, empty-space skipping and level-of-detail feedback. The fragment template
+ * (vtkMultiVolumeFragmentFS.glsl) is a skeleton of tags; each feature has one builder below
+ * that fills its tags from .glsl snippets (per volume, `@n@` standing for the volume's place in
+ * the fragment), so a feature the scene does not use leaves no code behind. The lookup that
+ * knows where voxels live is the brick atlas's (vtkBrickAtlasTexture) or a plain texture's.
+ *
+ * Programs are kept by key (vtkStrataShaderCache): a frame that draws the same fragments as
+ * the last builds no source and hashes nothing; GetNumberOfSourcesBuilt() and
+ * GetNumberOfCompilations() count what was built, for tests.
+ *
+ * @sa vtkMultiVolumeRayCastMapper vtkStrataShaderCache
+ */
+#ifndef vtkMultiVolumeShaderComposer_h
+#define vtkMultiVolumeShaderComposer_h
+
+#include "StrataRenderingModule.h"       // For export macro
+#include "vtkMultiVolumeRayCastMapper.h" // For Classifications
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+#include <vector> // For std::vector
+
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+
+class STRATARENDERING_EXPORT vtkMultiVolumeShaderComposer
+{
+public:
+  using Classifications = vtkMultiVolumeRayCastMapper::Classifications;
+
+  /// Everything a fragment's program depends on.
+  struct FragmentKey
+  {
+    int Volumes = 1;          ///< volumes covering the fragment
+    std::vector<bool> Shaded; ///< per volume: gradient shading
+    Classifications Classification = Classifications::PostClassification;
+    bool FrontToBack = true;
+    bool Barrier = false;   ///< early termination across fragments (texture barrier)
+    int Rays = 1;           ///< rays per pixel
+    bool Coherent = false;  ///< rays after the first start where it left empty space
+    bool Atlas = true;      ///< bricks in the shared atlas (else one texture per volume)
+    bool Skipping = true;   ///< empty-space skipping
+    bool Feedback = false;  ///< level-of-detail feedback (paged scenes, with the atlas)
+    bool Footprint = false; ///< feedback asks for the level of the pixel footprint
+
+    bool operator<(const FragmentKey& other) const;
+    /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".
+    std::string ToString() const;
+  };
+
+  vtkMultiVolumeShaderComposer();
+  ~vtkMultiVolumeShaderComposer();
+  vtkMultiVolumeShaderComposer(const vtkMultiVolumeShaderComposer&) = delete;
+  vtkMultiVolumeShaderComposer& operator=(const vtkMultiVolumeShaderComposer&) = delete;
+
+  /// Binds the program of `key` (built and compiled the first time); null if it fails.
+  vtkShaderProgram* ReadyFragmentProgram(vtkOpenGLRenderWindow* window, const FragmentKey& key);
+  /// Binds the program that blends the integration buffers of `rays` rays over the scene.
+  vtkShaderProgram* ReadyCompositeProgram(vtkOpenGLRenderWindow* window, int rays);
+
+  /// The fragment source of `key`, empty if it was never built.
+  std::string GetFragmentSource(const FragmentKey& key) const;
+
+  /// The fragment shader source for `key` (what ReadyFragmentProgram compiles).
+  static std::string BuildFragmentShader(const FragmentKey& key);
+  /// The composite shader source for `rays` rays.
+  static std::string BuildCompositeShader(int rays);
+
+  /// Sources built and programs compiled since construction (fragment and composite).
+  int GetNumberOfSourcesBuilt() const;
+  int GetNumberOfCompilations() const;
+
+  /// Forgets the programs (the window's shader cache owns them).
+  void ReleaseGraphicsResources();
+
+private:
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,113 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkVolumeIntegrationBuffers.h"
+
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <string>
+
+vtkVolumeIntegrationBuffers::vtkVolumeIntegrationBuffers() = default;
+vtkVolumeIntegrationBuffers::~vtkVolumeIntegrationBuffers() = default;
+
+void vtkVolumeIntegrationBuffers::Prepare(vtkOpenGLRenderWindow* window,
+  const int viewport[4],
+  int rays)
+{
+  const int width = viewport[2], height = viewport[3];
+  if (!this->Framebuffer)
+  {
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->SceneDepth = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  this->Framebuffer->SetContext(window);
+  this->SceneDepth->SetContext(window);
+  if (int(this->SceneDepth->GetWidth()) != width || int(this->SceneDepth->GetHeight()) != height)
+  {
+    this->SceneDepth->ReleaseGraphicsResources(window);
+    this->SceneDepth->SetContext(window);
+    this->SceneDepth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  while (static_cast<int>(this->Accumulation.size()) < rays)
+  {
+    this->Accumulation.push_back(vtkSmartPointer<vtkTextureObject>::New());
+  }
+  for (int r = 0; r < rays; ++r)
+  {
+    vtkTextureObject* acc = this->Accumulation[r];
+    acc->SetContext(window);
+    if (int(acc->GetWidth()) != width || int(acc->GetHeight()) != height || !acc->GetHandle())
+    {
+      acc->ReleaseGraphicsResources(window);
+      acc->SetContext(window);
+      acc->Allocate2D(width, height, 4, VTK_FLOAT);
+    }
+  }
+  this->SceneDepth->Activate();
+  this->SceneDepth->CopyFromFrameBuffer(viewport[0], viewport[1], 0, 0, width, height);
+  this->SceneDepth->Deactivate();
+}
+
+void vtkVolumeIntegrationBuffers::Bind(vtkOpenGLRenderWindow* window, int rays)
+{
+  window->GetState()->PushFramebufferBindings();
+  this->Framebuffer->Bind();
+  for (int r = 0; r < rays; ++r)
+  {
+    this->Framebuffer->AddColorAttachment(r, this->Accumulation[r]);
+  }
+  this->Framebuffer->ActivateDrawBuffers(rays);
+}
+
+void vtkVolumeIntegrationBuffers::Unbind(vtkOpenGLRenderWindow* window)
+{
+  window->GetState()->PopFramebufferBindings();
+}
+
+vtkTextureObject* vtkVolumeIntegrationBuffers::GetAccumulation(int ray) const
+{
+  return this->Accumulation[ray];
+}
+
+vtkTextureObject* vtkVolumeIntegrationBuffers::GetSceneDepth() const
+{
+  return this->SceneDepth;
+}
+
+void vtkVolumeIntegrationBuffers::Composite(vtkShaderProgram* program,
+  const int viewport[4],
+  int rays)
+{
+  for (int r = 0; r < rays; ++r)
+  {
+    this->Accumulation[r]->Activate();
+    program->SetUniformi(
+      ("uAccumulation" + std::to_string(r)).c_str(), this->Accumulation[r]->GetTextureUnit());
+  }
+  const float origin[2] = { float(viewport[0]), float(viewport[1]) };
+  program->SetUniform2f("uViewportOrigin", origin);
+  glBindVertexArray(this->EmptyArray.Get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  for (int r = 0; r < rays; ++r)
+  {
+    this->Accumulation[r]->Deactivate();
+  }
+}
+
+void vtkVolumeIntegrationBuffers::ReleaseGraphicsResources(vtkWindow* window)
+{
+  for (auto& a : this->Accumulation)
+    a->ReleaseGraphicsResources(window);
+  if (this->SceneDepth)
+    this->SceneDepth->ReleaseGraphicsResources(window);
+  if (this->Framebuffer)
+    this->Framebuffer->ReleaseGraphicsResources(window);
+  this->Accumulation.clear();
+  this->SceneDepth = nullptr;
+  this->Framebuffer = nullptr;
+  this->EmptyArray.Release();
+}
