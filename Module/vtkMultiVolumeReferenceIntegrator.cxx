@@ -196,6 +196,11 @@ void MulVec3(const double m[9], const double v[3], double out[3])
 class vtkMultiVolumeReferenceIntegrator::vtkInternals
 {
 public:
+  struct Table;
+  struct Vol;
+  bool SetGeometry(const Volume& in, Vol& v, const char*& error);
+  static void BuildTable(const TransferFunction& tf, Table& t);
+  void SetDerivativeBounds(Vol& v);
   // A tabulated transfer function and the bounds its pieces put on tau and emission.
   struct Table
   {
@@ -555,58 +560,66 @@ vtkMultiVolumeReferenceIntegrator::vtkMultiVolumeReferenceIntegrator()
 
 vtkMultiVolumeReferenceIntegrator::~vtkMultiVolumeReferenceIntegrator() = default;
 
-int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
+// What a volume must be for the integrator: dimensions, spacing, one scalar array of the
+// right size, an affine model matrix, a transfer function; null when it is, else why not.
+static const char* ValidateVolume(const vtkMultiVolumeReferenceIntegrator::Volume& in)
 {
-  vtkInternals& self = *this->Internals;
-  auto fail = [&](const char* why)
-  {
-    self.LastError = why;
-    return -1;
-  };
-  vtkInternals::Vol v;
   size_t count = 1;
   for (int k = 0; k < 3; ++k)
   {
     if (in.Dimensions[k] < 1)
     {
-      return fail("dimensions must be >= 1");
+      return "dimensions must be >= 1";
     }
     if (!(in.Spacing[k] > 0.0) || !std::isfinite(in.Spacing[k]))
     {
-      return fail("spacing must be positive");
+      return "spacing must be positive";
     }
-    v.Dims[k] = in.Dimensions[k];
     count *= static_cast<size_t>(in.Dimensions[k]);
   }
   if (in.Scalars.empty() == in.FloatScalars.empty())
   {
-    return fail("fill exactly one of Scalars and FloatScalars");
+    return "fill exactly one of Scalars and FloatScalars";
   }
   if ((in.Scalars.empty() ? in.FloatScalars.size() : in.Scalars.size()) != count)
   {
-    return fail("number of scalars does not match the dimensions");
+    return "number of scalars does not match the dimensions";
   }
   const double* m = in.ModelMatrix;
   if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0)
   {
-    return fail("model matrix must be affine (last row 0 0 0 1)");
+    return "model matrix must be affine (last row 0 0 0 1)";
   }
-  const TransferFunction& tf = in.Classification;
+  const auto& tf = in.Classification;
   const int n = static_cast<int>(tf.Opacity.size());
   if (n < 1 || (!tf.Color.empty() && tf.Color.size() != 3 * tf.Opacity.size()))
   {
-    return fail("transfer function needs N >= 1 opacities and 3 N colours (or none)");
+    return "transfer function needs N >= 1 opacities and 3 N colours (or none)";
   }
   if (n > 1 && !(tf.Range[1] > tf.Range[0]))
   {
-    return fail("transfer function range must be increasing");
+    return "transfer function range must be increasing";
   }
   if (!(tf.UnitDistance > 0.0) || !std::isfinite(tf.UnitDistance))
   {
-    return fail("unit distance must be positive");
+    return "unit distance must be positive";
   }
 
-  // Geometry: index -> world is M3 Direction diag(spacing) idx + M3 Origin + m_t.
+  return nullptr;
+}
+
+// Geometry: index -> world is M3 Direction diag(spacing) idx + M3 Origin + m_t, kept as
+// A idx + B relative to the scene's local origin (set by the first volume: an integer point
+// near its centre, so that UTM-scale coordinates lose nothing). False with `error` set when
+// the matrix is singular or not finite.
+bool vtkMultiVolumeReferenceIntegrator::vtkInternals::SetGeometry(const Volume& in,
+  Vol& v,
+  const char*& error)
+{
+  vtkInternals& self = *this;
+  const double* m = in.ModelMatrix;
+  for (int k = 0; k < 3; ++k)
+    v.Dims[k] = in.Dimensions[k];
   double ds[9];
   for (int r = 0; r < 3; ++r)
   {
@@ -624,7 +637,8 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   }
   if (!Invert3x3(v.A, v.Ainv))
   {
-    return fail("direction or model matrix is singular");
+    error = "direction or model matrix is singular";
+    return false;
   }
   for (int k = 0; k < 3; ++k)
   {
@@ -658,12 +672,21 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   {
     if (!std::isfinite(v.B[r]))
     {
-      return fail("origin or model matrix is not finite");
+      error = "origin or model matrix is not finite";
+      return false;
     }
   }
 
-  // Classification table.
-  vtkInternals::Table& t = v.Tf;
+  return true;
+}
+
+// The classification table as the integrator reads it: clamped opacities, colours, the
+// kinks of the piecewise-linear functions (integrated across exactly) and the bounds of
+// extinction and emission and their derivatives per scalar that the error control uses.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildTable(const TransferFunction& tf,
+  Table& t)
+{
+  const int n = static_cast<int>(tf.Opacity.size());
   t.N = n;
   t.SMin = tf.Range[0];
   t.Scale = n > 1 ? (n - 1) / (tf.Range[1] - tf.Range[0]) : 0.0;
@@ -737,19 +760,14 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
     t.Emission[1] = std::max(t.Emission[1], cs * tau + cmax * tau1);
     t.Emission[2] = std::max(t.Emission[2], 2.0 * cs * tau1 + cmax * tau2);
   }
+}
 
-  v.Linear = in.Sampling == Interpolation::Linear;
-  if (in.Scalars.empty())
-  {
-    v.F = std::move(in.FloatScalars);
-  }
-  else
-  {
-    v.D = std::move(in.Scalars);
-  }
-
-  // Bounds of s' and s'' along a world-unit ray: per-axis edge differences bound the index
-  // gradient, face twists bound the (zero-diagonal) index Hessian, |A^-1|_F converts.
+// Bounds of s' and s'' along a world-unit ray: per-axis edge differences bound the index
+// gradient, face twists bound the (zero-diagonal) index Hessian, |A^-1|_F converts; then the
+// bounds of extinction and emission and of their first two derivatives along a ray.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::SetDerivativeBounds(Vol& v)
+{
+  const Table& t = v.Tf;
   double s1 = 0.0, s2 = 0.0;
   if (v.Linear)
   {
@@ -798,7 +816,30 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   v.Bounds[3] = t.Emission[0];
   v.Bounds[4] = t.Emission[1] * s1;
   v.Bounds[5] = t.Emission[2] * s1 * s1 + t.Emission[1] * s2;
+}
 
+int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
+{
+  vtkInternals& self = *this->Internals;
+  const char* error = ValidateVolume(in);
+  vtkInternals::Vol v;
+  if (error || !self.SetGeometry(in, v, error))
+  {
+    self.LastError = error;
+    return -1;
+  }
+  vtkInternals::BuildTable(in.Classification, v.Tf);
+  v.Linear = in.Sampling == Interpolation::Linear;
+  if (in.Scalars.empty())
+  {
+    v.F = std::move(in.FloatScalars);
+  }
+  else
+  {
+    v.D = std::move(in.Scalars);
+  }
+
+  self.SetDerivativeBounds(v);
   for (int c = 0; c < 3; ++c)
   {
     const double edge =

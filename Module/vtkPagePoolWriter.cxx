@@ -447,8 +447,119 @@ bool vtkPagePoolWriter::Write()
   return ok;
 }
 
+namespace
+{
+// Streams the source's slabs through the converter, perCall at a time (tile pools: a block
+// is x, row, layer and a slice x, layer), reporting progress; false with `error` set.
 template<typename T>
-bool vtkPagePoolWriter::WriteTyped()
+bool PushSlabs(Converter<T>& conv,
+  int slabs,
+  int perCall,
+  uint64_t pages,
+  const vtkPagePoolWriter::SourceCallback& source,
+  const vtkPagePoolWriter::ProgressCallback& progress,
+  vtkPagePoolWriter::Statistics& stats,
+  std::string& error)
+{
+  const bool tiles = conv.Tiles;
+  const int g0 = conv.Levels[0].D[0];
+  const int g1 = conv.Levels[0].D[1];
+  std::vector<T> block(static_cast<size_t>(perCall) * g0 * g1);
+  for (int first = 0; first < slabs; first += perCall)
+  {
+    const int count = std::min(perCall, slabs - first);
+    if (!source(first, count, block.data()))
+    {
+      error = "the source failed to deliver slabs [" + std::to_string(first) + ", " +
+              std::to_string(first + count) + ")";
+      return false;
+    }
+    ++stats.SourceCalls;
+    for (int r = 0; r < count; ++r)
+    {
+      std::vector<T> slice(static_cast<size_t>(g0) * g1);
+      if (tiles)
+      {
+        // Block layout: x, row, layer; slice layout: x, layer.
+        for (int layer = 0; layer < g1; ++layer)
+        {
+          std::copy_n(block.data() + (static_cast<size_t>(layer) * count + r) * g0,
+            g0,
+            slice.data() + static_cast<size_t>(layer) * g0);
+        }
+      }
+      else
+      {
+        std::copy_n(block.data() + static_cast<size_t>(r) * g0 * g1, slice.size(), slice.data());
+      }
+      if (!conv.Push(0, std::move(slice)))
+      {
+        error = conv.Error;
+        return false;
+      }
+    }
+    if (progress)
+    {
+      progress(0.99 * static_cast<double>(conv.PagesWritten) / pages);
+    }
+  }
+  if (conv.PagesWritten != pages)
+  {
+    error = "internal error: " + std::to_string(conv.PagesWritten) + " of " +
+            std::to_string(pages) + " pages produced";
+    return false;
+  }
+
+  return true;
+}
+
+// Writes the page table and the header into the temporary file, flushes it and renames it
+// onto `fileName`; false with `error` set (the temporary file is then removed).
+bool Commit(TempFile& temp,
+  Format::Header& header,
+  const std::vector<Format::PageEntry>& entries,
+  uint64_t cursor,
+  const double range[2],
+  const std::string& fileName,
+  std::string& error)
+{
+  std::vector<unsigned char> table(header.NumberOfPages * Format::EntrySize);
+  for (size_t id = 0; id < entries.size(); ++id)
+  {
+    Format::EncodeEntry(entries[id], table.data() + id * Format::EntrySize);
+  }
+  header.TableChecksum = Format::Crc32(table.data(), table.size());
+  header.FileSize = cursor;
+  header.ValueRange[0] = range[0];
+  header.ValueRange[1] = range[1];
+  unsigned char head[Format::HeaderSize];
+  Format::EncodeHeader(header, head);
+  if (!WriteAll(temp.Fd, table.data(), table.size(), header.TableOffset, error) ||
+      !WriteAll(temp.Fd, head, sizeof(head), 0, error))
+  {
+    return false;
+  }
+  if (::fdatasync(temp.Fd) != 0 || ::close(temp.Fd) != 0)
+  {
+    temp.Fd = -1;
+    error = std::string("cannot flush the page pool: ") + std::strerror(errno);
+    return false;
+  }
+  temp.Fd = -1;
+  if (::rename(temp.Path.c_str(), fileName.c_str()) != 0)
+  {
+    error = "cannot rename '" + temp.Path + "': " + std::strerror(errno);
+    return false;
+  }
+  temp.Committed = true;
+  return true;
+}
+
+}
+
+// The pool's header and levels for the writer's settings; false with ErrorMessage set when a
+// setting is missing or absurd.
+bool vtkPagePoolWriter::MakeHeader(Format::Header& header, std::vector<Format::Level>& levels)
 {
   if (this->FileName.empty())
   {
@@ -465,13 +576,11 @@ bool vtkPagePoolWriter::WriteTyped()
     this->ErrorMessage = "big-endian hosts are not supported";
     return false;
   }
-  std::vector<Format::Level> levels;
   if (!Format::ComputeLevels(
         this->PoolKind, this->Dimensions, this->PageSize, levels, this->ErrorMessage))
   {
     return false;
   }
-  Format::Header header;
   header.PoolKind = this->PoolKind;
   header.Type = this->Type;
   std::copy(this->Dimensions, this->Dimensions + 3, header.Dimensions);
@@ -494,6 +603,18 @@ bool vtkPagePoolWriter::WriteTyped()
     return false;
   }
 
+  return true;
+}
+
+template<typename T>
+bool vtkPagePoolWriter::WriteTyped()
+{
+  std::vector<Format::Level> levels;
+  Format::Header header;
+  if (!this->MakeHeader(header, levels))
+  {
+    return false;
+  }
   Converter<T> conv;
   conv.Tiles = this->PoolKind == Kind::TilePool;
   conv.B = this->PageSize;
@@ -565,84 +686,22 @@ bool vtkPagePoolWriter::WriteTyped()
   conv.Fd = temp.Fd;
   conv.Cursor = header.DataOffset;
 
-  const bool tiles = conv.Tiles;
-  const int g0 = conv.Levels[0].D[0];
-  const int g1 = conv.Levels[0].D[1];
-  std::vector<T> block(static_cast<size_t>(perCall) * g0 * g1);
-  for (int first = 0; first < slabs; first += perCall)
-  {
-    const int count = std::min(perCall, slabs - first);
-    if (!this->Source(first, count, block.data()))
-    {
-      this->ErrorMessage = "the source failed to deliver slabs [" + std::to_string(first) + ", " +
-                           std::to_string(first + count) + ")";
-      return false;
-    }
-    ++this->Stats.SourceCalls;
-    for (int r = 0; r < count; ++r)
-    {
-      std::vector<T> slice(static_cast<size_t>(g0) * g1);
-      if (tiles)
-      {
-        // Block layout: x, row, layer; slice layout: x, layer.
-        for (int layer = 0; layer < g1; ++layer)
-        {
-          std::copy_n(block.data() + (static_cast<size_t>(layer) * count + r) * g0,
-            g0,
-            slice.data() + static_cast<size_t>(layer) * g0);
-        }
-      }
-      else
-      {
-        std::copy_n(block.data() + static_cast<size_t>(r) * g0 * g1, slice.size(), slice.data());
-      }
-      if (!conv.Push(0, std::move(slice)))
-      {
-        this->ErrorMessage = conv.Error;
-        return false;
-      }
-    }
-    if (this->Progress)
-    {
-      this->Progress(0.99 * static_cast<double>(conv.PagesWritten) / header.NumberOfPages);
-    }
-  }
-  if (conv.PagesWritten != header.NumberOfPages)
-  {
-    this->ErrorMessage = "internal error: " + std::to_string(conv.PagesWritten) + " of " +
-                         std::to_string(header.NumberOfPages) + " pages produced";
-    return false;
-  }
-
-  std::vector<unsigned char> table(header.NumberOfPages * Format::EntrySize);
-  for (size_t id = 0; id < conv.Table.size(); ++id)
-  {
-    Format::EncodeEntry(conv.Table[id], table.data() + id * Format::EntrySize);
-  }
-  header.TableChecksum = Format::Crc32(table.data(), table.size());
-  header.FileSize = conv.Cursor;
-  header.ValueRange[0] = conv.Range[0];
-  header.ValueRange[1] = conv.Range[1];
-  unsigned char head[Format::HeaderSize];
-  Format::EncodeHeader(header, head);
-  if (!WriteAll(temp.Fd, table.data(), table.size(), header.TableOffset, this->ErrorMessage) ||
-      !WriteAll(temp.Fd, head, sizeof(head), 0, this->ErrorMessage))
+  if (!PushSlabs(conv,
+        slabs,
+        perCall,
+        header.NumberOfPages,
+        this->Source,
+        this->Progress,
+        this->Stats,
+        this->ErrorMessage))
   {
     return false;
   }
-  if (::fdatasync(temp.Fd) != 0 || ::close(temp.Fd) != 0)
+  if (!Commit(
+        temp, header, conv.Table, conv.Cursor, conv.Range, this->FileName, this->ErrorMessage))
   {
-    temp.Fd = -1;
-    this->ErrorMessage = std::string("cannot flush the page pool: ") + std::strerror(errno);
     return false;
   }
-  temp.Fd = -1;
-  if (::rename(temp.Path.c_str(), this->FileName.c_str()) != 0)
-  {
-    this->ErrorMessage = "cannot rename '" + temp.Path + "': " + std::strerror(errno);
-    return false;
-  }
-  temp.Committed = true;
   this->Stats.FileSize = header.FileSize;
   if (this->Progress)
   {

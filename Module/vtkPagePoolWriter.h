@@ -39,6 +39,7 @@
 #include <cstdint>    // For fixed-width types
 #include <functional> // For std::function
 #include <string>     // For std::string
+#include <vector>     // For std::vector
 
 class STRATACORE_EXPORT vtkPagePoolWriter
 {
@@ -134,6 +135,7 @@ public:
 private:
   template<typename T>
   bool WriteTyped();
+  bool MakeHeader(vtkPagePoolFormat::Header& header, std::vector<vtkPagePoolFormat::Level>& levels);
 
   std::string FileName;
   Kind PoolKind = Kind::BrickPool;
