@@ -163,6 +163,14 @@ public:
   int SurfaceSize[2] = { 0, 0 };
   std::string Platform;
   bool Failed = false;
+  /// What was current at each PushContext: display, draw and read surfaces, context.
+  struct Current
+  {
+    EGLDisplay Display;
+    EGLSurface Draw, Read;
+    EGLContext Context;
+  };
+  std::vector<Current> Pushed;
 };
 
 vtkStrataEGLRenderWindow::vtkStrataEGLRenderWindow()
@@ -396,6 +404,38 @@ void vtkStrataEGLRenderWindow::MakeCurrent()
       vtkErrorMacro(
         "eglMakeCurrent failed (error 0x" << std::hex << eglGetError() << std::dec << ").");
     }
+  }
+}
+
+void vtkStrataEGLRenderWindow::PushContext()
+{
+  this->Internals->Pushed.push_back({ eglGetCurrentDisplay(),
+    eglGetCurrentSurface(EGL_DRAW),
+    eglGetCurrentSurface(EGL_READ),
+    eglGetCurrentContext() });
+  this->MakeCurrent();
+}
+
+void vtkStrataEGLRenderWindow::PopContext()
+{
+  vtkInternals& in = *this->Internals;
+  if (in.Pushed.empty())
+  {
+    return;
+  }
+  const vtkInternals::Current before = in.Pushed.back();
+  in.Pushed.pop_back();
+  if (before.Context == eglGetCurrentContext())
+  {
+    return;
+  }
+  if (before.Context == EGL_NO_CONTEXT)
+  {
+    eglMakeCurrent(in.Display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+  else
+  {
+    eglMakeCurrent(before.Display, before.Draw, before.Read, before.Context);
   }
 }
 

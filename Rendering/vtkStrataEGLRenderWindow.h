@@ -38,6 +38,16 @@ public:
   void Frame() override;
   void MakeCurrent() override;
   void ReleaseCurrent() override;
+  ///@{
+  /**
+   * Makes this window's context current and, on PopContext, gives back whatever was current
+   * before (as VTK's X window does): work done in this window's context in the middle of
+   * another window's frame (a resource-free callback releasing a mapper's names from here)
+   * must not leave the other window's frame drawing into this context.
+   */
+  void PushContext() override;
+  void PopContext() override;
+  ///@}
   bool IsCurrent() override;
   int SupportsOpenGL() override;
   vtkTypeBool IsDirect() override;

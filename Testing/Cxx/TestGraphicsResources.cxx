@@ -1,0 +1,437 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// GL lifetime of the mappers: every GL name a mapper creates (textures, buffers, vertex arrays,
+// framebuffers) is deleted, in the context that made it, whichever of mapper and window goes
+// first, and nothing grows over many lifetimes. Checked by counting the live names of each
+// kind in the window's context (glIsTexture, glIsBuffer, glIsVertexArray, glIsFramebuffer over
+// the name range) for every mapper and mode: horizons in core and paged (tile atlas, page
+// table, feedback), volumes with the atlas, without it, and paged (feedback), and the hybrid.
+// - Mapper first: after an empty frame (VTK's own names) the scene is drawn twice, then its
+//   mapper is taken off the prop and dropped while the prop stays in the renderer; the window
+//   must hold exactly its names of before. Nothing but the mapper's resource-free callback can
+//   release them then (VTK releases a prop's resources when it leaves a renderer, not when its
+//   mapper does), so the test fails when the callback is removed.
+// - Window change: drawn in one window, then the mapper is moved to a prop in a second one;
+//   the first must be back to its names of before (the callback releases the old window's
+//   names, in that window's context, when the mapper registers with another).
+// - Window first: the window is destroyed while the mapper lives, then the mapper: no GL
+//   error, no crash, nothing reported.
+// Memory: resident size after the sixth round within 24 MB of the one after the third (each
+// round creates and destroys 18 windows and scenes; a leak of one atlas a round would be 8 MB).
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkHybridVolumeMapper.h"
+#include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkLight.h"
+#include "vtkMapper.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkPagePoolReader.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkStackedHeightFieldMapper.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+
+void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "  ok   " : "  FAIL ") << what << "\n";
+  Failures += ok ? 0 : 1;
+}
+
+// Counts what VTK reports as errors and warnings (a GL error after a release would be one),
+// from every object.
+class Counter : public vtkOutputWindow
+{
+public:
+  static Counter* New() { return new Counter; }
+  vtkTypeMacro(Counter, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override
+  {
+    ++this->Count;
+    std::cout << "  (reported: " << text << ")\n";
+  }
+  void DisplayWarningText(const char* text) override { this->DisplayErrorText(text); }
+  int Count = 0;
+};
+
+// Live GL names of each kind in the current context. Names are small integers handed out from
+// 1 up; 16384 is far beyond what one window of these scenes makes.
+struct Names
+{
+  int Textures = 0, Buffers = 0, Arrays = 0, Framebuffers = 0;
+  bool operator==(const Names& o) const
+  {
+    return this->Textures == o.Textures && this->Buffers == o.Buffers && this->Arrays == o.Arrays &&
+           this->Framebuffers == o.Framebuffers;
+  }
+  int Total() const { return this->Textures + this->Buffers + this->Arrays + this->Framebuffers; }
+  std::string Text() const
+  {
+    return std::to_string(this->Textures) + " textures, " + std::to_string(this->Buffers) +
+           " buffers, " + std::to_string(this->Arrays) + " vertex arrays, " +
+           std::to_string(this->Framebuffers) + " framebuffers";
+  }
+};
+
+Names Count(vtkRenderWindow* win)
+{
+  win->MakeCurrent();
+  Names n;
+  for (GLuint name = 1; name < 16384; ++name)
+  {
+    n.Textures += glIsTexture(name) ? 1 : 0;
+    n.Buffers += glIsBuffer(name) ? 1 : 0;
+    n.Arrays += glIsVertexArray(name) ? 1 : 0;
+    n.Framebuffers += glIsFramebuffer(name) ? 1 : 0;
+  }
+  return n;
+}
+
+long ResidentKiB()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0)
+      return std::stol(line.substr(6));
+  return -1;
+}
+
+vtkSmartPointer<vtkImageData> Grid(int n, double height, double slope)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, 1);
+  vtkNew<vtkFloatArray> z;
+  z->SetNumberOfValues(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      z->SetValue(j * n + i, static_cast<float>(height + slope * std::sin(0.3 * i) * j));
+  image->GetPointData()->SetScalars(z);
+  return image;
+}
+
+vtkSmartPointer<vtkImageData> Blob(int n, double shift)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetOrigin(shift, 0.0, 0.0);
+  image->AllocateScalars(VTK_FLOAT, 1);
+  auto* v = static_cast<float*>(image->GetScalarPointer());
+  const double c = 0.5 * (n - 1);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double r2 = (i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c);
+        v[(size_t(k) * n + j) * n + i] = static_cast<float>(100.0 * std::exp(-r2 / (0.1 * n * n)));
+      }
+  return image;
+}
+
+vtkSmartPointer<vtkVolumeProperty> Property(bool shade)
+{
+  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
+  vtkNew<vtkPiecewiseFunction> a;
+  a->AddPoint(0.0, 0.0);
+  a->AddPoint(20.0, 0.0);
+  a->AddPoint(100.0, 0.3);
+  vtkNew<vtkColorTransferFunction> c;
+  c->AddRGBPoint(0.0, 0.2, 0.4, 0.9);
+  c->AddRGBPoint(100.0, 0.9, 0.6, 0.2);
+  p->SetScalarOpacity(a);
+  p->SetColor(c);
+  p->SetShade(shade);
+  return p;
+}
+
+std::string WritePool(vtkImageData* image, const std::string& name, int page)
+{
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(name.c_str());
+  writer->SetPageSize(page);
+  Check(writer->Write(), "pool " + name + " written");
+  return name;
+}
+
+/// A scene: its prop and mapper, how to put a mapper on a prop of its kind (a new prop when
+/// given none; null takes it off), and the readers it pages from.
+struct Scene
+{
+  vtkSmartPointer<vtkProp> Prop;
+  vtkSmartPointer<vtkAbstractMapper3D> Mapper;
+  std::function<vtkSmartPointer<vtkProp>(vtkAbstractMapper3D*, vtkProp*)> Attach;
+  std::vector<vtkSmartPointer<vtkObject>> Keep;
+};
+
+using Maker = std::function<Scene()>;
+
+Scene Horizons(const std::vector<std::string>& pools)
+{
+  Scene s;
+  vtkNew<vtkStackedHeightFieldMapper> mapper;
+  if (pools.empty())
+  {
+    mapper->AddInputDataObject(Grid(33, 0.0, 0.5));
+    mapper->AddInputDataObject(Grid(33, 4.0, -0.5));
+  }
+  for (const std::string& pool : pools)
+  {
+    auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+    reader->SetFileName(pool.c_str());
+    mapper->AddInputConnection(reader->GetOutputPort());
+    s.Keep.push_back(reader);
+  }
+  mapper->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+  s.Attach = [](vtkAbstractMapper3D* m, vtkProp* p)
+  {
+    vtkSmartPointer<vtkActor> actor = vtkActor::SafeDownCast(p);
+    if (!actor)
+      actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(vtkMapper::SafeDownCast(m));
+    return vtkSmartPointer<vtkProp>(actor);
+  };
+  s.Mapper = mapper;
+  s.Prop = s.Attach(mapper, nullptr);
+  return s;
+}
+
+Scene Volumes(bool atlas, const std::string& pool)
+{
+  Scene s;
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetUseBrickAtlas(atlas);
+  mapper->SetBrickSize(8);
+  mapper->SetSampleDistance(0.5);
+  auto multi = vtkSmartPointer<vtkMultiVolume>::New();
+  multi->SetMapper(mapper);
+  for (int port = 0; port < 2; ++port)
+  {
+    if (port == 0 && !pool.empty())
+    {
+      auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+      reader->SetFileName(pool.c_str());
+      mapper->SetInputConnection(port, reader->GetOutputPort());
+      s.Keep.push_back(reader);
+    }
+    else
+    {
+      mapper->SetInputDataObject(port, Blob(20, 8.0 * port));
+    }
+    vtkNew<vtkVolume> member;
+    member->SetProperty(Property(port == 1));
+    multi->SetVolume(member, port);
+  }
+  s.Attach = [](vtkAbstractMapper3D* m, vtkProp* p)
+  {
+    // Members of the same properties on a new vtkMultiVolume, or the given one's mapper set.
+    vtkSmartPointer<vtkMultiVolume> target = vtkMultiVolume::SafeDownCast(p);
+    if (!target)
+    {
+      target = vtkSmartPointer<vtkMultiVolume>::New();
+      for (int port = 0; port < 2; ++port)
+      {
+        vtkNew<vtkVolume> member;
+        member->SetProperty(Property(port == 1));
+        target->SetVolume(member, port);
+      }
+    }
+    target->SetMapper(vtkAbstractVolumeMapper::SafeDownCast(m));
+    return vtkSmartPointer<vtkProp>(target);
+  };
+  s.Mapper = mapper;
+  s.Prop = multi;
+  return s;
+}
+
+Scene Hybrid()
+{
+  Scene s;
+  vtkNew<vtkHybridVolumeMapper> mapper;
+  mapper->SetInputData(Blob(12, 0.0));
+  vtkNew<vtkPolyData> points;
+  vtkNew<vtkPoints> p;
+  vtkNew<vtkFloatArray> value, error, spacing;
+  value->SetName("Value");
+  error->SetName("Error");
+  spacing->SetName("PointSpacing");
+  for (int i = 0; i < 50; ++i)
+  {
+    p->InsertNextPoint(2.0 + 0.15 * i, 5.0, 5.0);
+    value->InsertNextValue(90.0f);
+    error->InsertNextValue(40.0f);
+  }
+  for (int c = 0; c < 3; ++c)
+    spacing->InsertNextValue(0.25f);
+  points->SetPoints(p);
+  points->GetPointData()->AddArray(value);
+  points->GetPointData()->AddArray(error);
+  points->GetFieldData()->AddArray(spacing);
+  mapper->SetPointsInputData(points);
+  mapper->SetNumberOfSlabs(3);
+  s.Attach = [](vtkAbstractMapper3D* m, vtkProp* p)
+  {
+    vtkSmartPointer<vtkVolume> volume = vtkVolume::SafeDownCast(p);
+    if (!volume)
+    {
+      volume = vtkSmartPointer<vtkVolume>::New();
+      volume->SetProperty(Property(true));
+    }
+    volume->SetMapper(vtkAbstractVolumeMapper::SafeDownCast(m));
+    return vtkSmartPointer<vtkProp>(volume);
+  };
+  s.Mapper = mapper;
+  s.Prop = s.Attach(mapper, nullptr);
+  return s;
+}
+
+vtkSmartPointer<vtkRenderWindow> MakeWindow(vtkRenderer* ren)
+{
+  auto win = vtkSmartPointer<vtkRenderWindow>::New();
+  win->SetSize(64, 64);
+  win->SetMultiSamples(0);
+  win->AddRenderer(ren);
+  ren->SetBackground(0.1, 0.1, 0.1);
+  vtkNew<vtkLight> light;
+  ren->AddLight(light);
+  return win;
+}
+
+void Frame(vtkRenderer* ren, vtkRenderWindow* win, vtkProp* prop)
+{
+  ren->AddViewProp(prop);
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Azimuth(20.0);
+  ren->GetActiveCamera()->Elevation(15.0);
+  win->Render();
+  ren->GetActiveCamera()->Azimuth(10.0);
+  win->Render();
+}
+
+// One round of the three orders for one scene; `report` prints the counts (first round).
+void Round(const std::string& name, const Maker& make, Counter* errors, bool report)
+{
+  // Mapper first.
+  {
+    vtkNew<vtkRenderer> ren;
+    auto win = MakeWindow(ren);
+    win->Render();
+    const Names before = Count(win);
+    Scene scene = make();
+    Frame(ren, win, scene.Prop);
+    const Names drawn = Count(win);
+    // The mapper goes, the prop stays in the renderer: only the callback reaches the mapper.
+    scene.Attach(nullptr, scene.Prop);
+    scene.Mapper = nullptr;
+    scene.Keep.clear();
+    const Names after = Count(win);
+    ren->RemoveViewProp(scene.Prop);
+    scene = Scene();
+    if (report)
+      std::cout << name << ": " << before.Text() << " before, " << drawn.Text() << " drawn, "
+                << after.Text() << " after the mapper\n";
+    if (report)
+      Check(drawn.Total() > before.Total(), name + ": the mapper made GL names");
+    Check(after == before, name + ", mapper first: every name it made is gone");
+  }
+  // Window change.
+  {
+    vtkNew<vtkRenderer> ren1, ren2;
+    auto win1 = MakeWindow(ren1);
+    auto win2 = MakeWindow(ren2);
+    win1->Render();
+    const Names before = Count(win1);
+    Scene scene = make();
+    Frame(ren1, win1, scene.Prop);
+    // The mapper moves to a prop of the second window; the first prop stays where it was.
+    scene.Attach(nullptr, scene.Prop);
+    vtkSmartPointer<vtkProp> moved = scene.Attach(scene.Mapper, nullptr);
+    Frame(ren2, win2, moved);
+    Check(
+      Count(win1) == before, name + ", moved to another window: the first holds none of its names");
+    ren2->RemoveViewProp(moved);
+    ren1->RemoveViewProp(scene.Prop);
+    moved = nullptr;
+    scene = Scene();
+  }
+  // Window first.
+  {
+    vtkNew<vtkRenderer> ren;
+    auto win = MakeWindow(ren);
+    Scene scene = make();
+    Frame(ren, win, scene.Prop);
+    const int reported = errors->Count;
+    win = nullptr;
+    ren->RemoveAllViewProps();
+    scene = Scene();
+    Check(errors->Count == reported, name + ", window first: the mapper went without a word");
+  }
+}
+}
+
+int TestGraphicsResources(int, char*[])
+{
+  vtkNew<Counter> errors;
+  vtkOutputWindow::SetInstance(errors);
+  auto dir = std::filesystem::temp_directory_path() /
+             ("strata-graphics-resources-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::vector<std::string> tiles = { WritePool(
+                                             Grid(33, 0.0, 0.5), (dir / "a.spp").string(), 9),
+    WritePool(Grid(33, 4.0, -0.5), (dir / "b.spp").string(), 9) };
+  const std::string bricks = WritePool(Blob(20, 0.0), (dir / "v.spp").string(), 8);
+
+  const std::vector<std::pair<std::string, Maker>> scenes = {
+    { "horizons in core", [] { return Horizons({}); } },
+    { "horizons paged", [&] { return Horizons(tiles); } },
+    { "volumes, atlas", [] { return Volumes(true, ""); } },
+    { "volumes, plain textures", [] { return Volumes(false, ""); } },
+    { "volumes, one paged", [&] { return Volumes(true, bricks); } },
+    { "hybrid", [] { return Hybrid(); } },
+  };
+  const int rounds = 6;
+  long rss3 = 0;
+  for (int round = 0; round < rounds; ++round)
+  {
+    for (const auto& s : scenes)
+      Round(s.first, s.second, errors, round == 0);
+    if (round == 2)
+      rss3 = ResidentKiB();
+  }
+  const long rss = ResidentKiB();
+  std::cout << "resident " << rss3 / 1024.0 << " MB after round 3, " << rss / 1024.0
+            << " MB after round " << rounds << "\n";
+  Check(rss - rss3 < 24 * 1024, "memory does not grow over the rounds (< 24 MB)");
+  Check(errors->Count == 0, "no VTK error or warning");
+  std::filesystem::remove_all(dir);
+  std::cout << "TestGraphicsResources: " << Failures << " failure(s)\n";
+  return Failures == 0 ? 0 : 1;
+}
