@@ -203,14 +203,14 @@ vtkHeightFieldShaderComposer::~vtkHeightFieldShaderComposer() = default;
 
 vtkShaderProgram* vtkHeightFieldShaderComposer::ReadyProgram(vtkOpenGLRenderWindow* window,
   const Key& key,
-  const std::string& lightingUniforms)
+  const std::function<std::string()>& lightingUniforms)
 {
   return this->Internals->Programs.Ready(window,
     key,
     [&lightingUniforms](const Key& k, std::string& vs, std::string& fs)
     {
       vs = vtkStackedHeightFieldVS;
-      fs = BuildFragmentShader(k, lightingUniforms);
+      fs = BuildFragmentShader(k, k.Lit ? lightingUniforms() : std::string());
     });
 }
 

@@ -19,8 +19,9 @@
 
 #include "StrataRenderingModule.h" // For export macro
 
-#include <memory> // For std::unique_ptr
-#include <string> // For std::string
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
+#include <string>     // For std::string
 
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
@@ -51,13 +52,14 @@ public:
   vtkHeightFieldShaderComposer& operator=(const vtkHeightFieldShaderComposer&) = delete;
 
   /**
-   * Binds the program of `key` (built and compiled the first time); `lightingUniforms` is the
-   * renderer's declaration of its lights (vtkOpenGLRenderer::GetLightingUniforms), which the
-   * key's complexity and light count determine. Null if it does not compile.
+   * Binds the program of `key` (built and compiled the first time); `lightingUniforms` gives
+   * the renderer's declaration of its lights (vtkOpenGLRenderer::GetLightingUniforms, which the
+   * key's complexity and light count determine), asked for only when a source is built. Null
+   * if it does not compile.
    */
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
     const Key& key,
-    const std::string& lightingUniforms);
+    const std::function<std::string()>& lightingUniforms);
   /// The fragment source of `key`, empty if it was never built.
   std::string GetFragmentSource(const Key& key) const;
 

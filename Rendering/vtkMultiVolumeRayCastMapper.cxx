@@ -147,6 +147,7 @@ public:
   std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
   int LastFragments = 0;
   int ResidentBricks = 0;
+  int Max3DTexture = 0;   ///< the GPU's, asked once
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
   ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
@@ -397,11 +398,16 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   }
   if (!this->Atlas.IsAllocated())
     this->Pager.InvalidateCut();
-  GLint max3D = 2048;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3D);
+  if (this->Max3DTexture == 0)
+  {
+    GLint max3D = 2048;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3D);
+    this->Max3DTexture = max3D;
+  }
   bool rebuilt = false;
   std::string error;
-  if (!this->Pager.SetVolumes(volumes, frame.BrickSize, self->AtlasBudget, max3D, rebuilt, error))
+  if (!this->Pager.SetVolumes(
+        volumes, frame.BrickSize, self->AtlasBudget, this->Max3DTexture, rebuilt, error))
   {
     vtkErrorWithObjectMacro(self, << error);
     return false;

@@ -735,8 +735,8 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   key.Lit = frame.Lit;
   key.LightingComplexity = frame.Lit ? oglRen->GetLightingComplexity() : 0;
   key.LightCount = frame.Lit ? oglRen->GetLightingCount() : 0;
-  vtkShaderProgram* program = this->Composer.ReadyProgram(
-    renWin, key, frame.Lit ? oglRen->GetLightingUniforms() : std::string());
+  vtkShaderProgram* program =
+    this->Composer.ReadyProgram(renWin, key, [oglRen] { return oglRen->GetLightingUniforms(); });
   if (!program)
   {
     vtkErrorWithObjectMacro(self, "The height-field ray casting shader did not compile or link.");
