@@ -142,7 +142,7 @@ public:
   };
 
   bool Upload(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
-  bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
+  bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor);
   void UpdateColors(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   bool UseFeedback(Self* self);
   vtkShaderProgram* ReadyProgram(Self* self,
@@ -162,7 +162,7 @@ public:
     vtkOpenGLRenderWindow* renWin,
     vtkShaderProgram* program,
     const Frame& frame);
-  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program, const Frame& frame);
+  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program);
   void ReadFeedback(Self* self);
 };
 
@@ -547,8 +547,7 @@ double* vtkStackedHeightFieldMapper::GetBounds()
 // deferred), the tiles and borders it uploads, the page table when the cut changed.
 bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
   vtkRenderer* ren,
-  vtkActor* actor,
-  vtkOpenGLRenderWindow* renWin)
+  vtkActor* actor)
 {
   std::string error;
   const int allocated = this->Atlas.Allocate(self->AtlasBudget, this->Pager.GetPageSize(), error);
@@ -591,7 +590,6 @@ bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
   this->Paging.Paged = true;
   this->Paging.AtlasSlots = this->Atlas.GetSlots();
   this->Paging.FeedbackUsed = this->FeedbackActive;
-  (void)renWin;
   return true;
 }
 
@@ -604,7 +602,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::Upload(Self* self,
 {
   if (this->Paged)
   {
-    if (!this->UpdatePages(self, ren, actor, renWin))
+    if (!this->UpdatePages(self, ren, actor))
       return false;
     if (this->UploadTime < this->BuildTime)
     {
@@ -865,8 +863,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::PrepareFeedback(Self* self,
 
 // --- The box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
 void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renWin,
-  vtkShaderProgram* program,
-  const Frame& frame)
+  vtkShaderProgram* program)
 {
   vtkOpenGLState* state = renWin->GetState();
   this->Buffers.BindBox(program);
@@ -879,7 +876,6 @@ void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renW
   this->Buffers.DrawBox();
   glDisable(GL_DEPTH_CLAMP);
   state->vtkglCullFace(GL_BACK);
-  (void)frame;
 }
 
 // The queued feedback, mapped and reduced, handed to the pager (a (tile, pixels) list).
@@ -974,7 +970,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
-  in.Draw(renWin, program, frame);
+  in.Draw(renWin, program);
   in.Buffers.Deactivate(frame.Shaded);
   if (in.Paged)
   {
