@@ -8,8 +8,8 @@
 // first data dir that holds a scene's files is used (the tooth through STRATA_TEST_DATA /
 // STRATA_SHARED_DATA). Prints each image's path, last.
 #include "StrataDemoScene.h"
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
-#include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"

@@ -16,8 +16,8 @@
 // Images 384 x 384, sample distance 0.5 voxel; ms per frame: median of 3 after one warm-up.
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
-#include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkChart.h"

@@ -30,6 +30,7 @@
 // with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"

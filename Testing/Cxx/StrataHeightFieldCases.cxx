@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldScenes). One TestHeightField<Case>.cxx per case
 // calls RunHeightFieldCase so that each is its own CTest test.
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkActor.h"

@@ -10,6 +10,8 @@
 // shift of the texture coordinates gives RMS 2.7-4.6, a colour 3 % off gives RMS 0.62-0.74:
 // both fail.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
+#include "StrataRegressionImage.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 

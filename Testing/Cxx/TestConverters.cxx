@@ -19,6 +19,7 @@
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
 //   the output name (its temporary <output>.tmp-<pid> is left), and the next conversion to that
 //   name removes the stale temporary and succeeds.
+#include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
 #include "StrataTestHelpers.h"
 

@@ -10,6 +10,8 @@
 //  3. the whole scene against a baseline image (vtkTesting, threshold stated below).
 #include "StrataDemoScene.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
+#include "StrataRegressionImage.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkActor.h"

@@ -16,7 +16,9 @@
 //  4. faults: a corrupt tile, a pool truncated while rendering, a truncated pool and a missing
 //     file give VTK errors and no crash; the horizons keep their coarser tiles.
 #include "StrataDemoScene.h"
+#include "StrataErrorCounter.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h" // For ImageError
 

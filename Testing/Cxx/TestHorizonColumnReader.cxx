@@ -12,6 +12,7 @@
 // - bad input: a missing file, a truncated copy, a garbage file, an empty file, points off any
 //   regular grid, non-integer indices in InlineCrossline mode. Each must raise an error (caught
 //   by an observer) and leave the output with no points.
+#include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCommand.h"

@@ -14,6 +14,7 @@
 //   (counted by an observer) and leave empty outputs;
 // - strata-hybrid on a raw file (streamed) and on a .vti file exits 0 and writes the same
 //   representation.
+#include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCallbackCommand.h"

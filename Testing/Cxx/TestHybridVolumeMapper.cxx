@@ -7,6 +7,7 @@
 // low-resolution rendering however many depth slabs, and that the generated point shaders
 // hold only what the settings use.
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 

@@ -9,6 +9,7 @@
 // - bad input: a missing file, a truncated copy, a garbage file, mismatched markers, absurd
 //   dimensions. Each must raise an error (caught by an observer, so nothing prints) and leave the
 //   output with no points.
+#include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCommand.h"

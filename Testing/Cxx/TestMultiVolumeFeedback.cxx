@@ -9,6 +9,7 @@
 // the same cut, every feedback scale hides the same volume, and LevelOfDetailThreshold makes the
 // rays ask for a coarser level.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 

@@ -10,7 +10,9 @@
 // reads no page. Then the faults: a corrupt page, a pool truncated while rendering, a truncated
 // pool and a missing file give VTK errors and no crash, and the paged volume keeps its coarser
 // bricks.
+#include "StrataErrorCounter.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 

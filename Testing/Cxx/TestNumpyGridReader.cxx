@@ -11,6 +11,7 @@
 // - bad input: missing, truncated, garbage, bad magic, unsupported version, dtype and shape,
 //   malformed header, absurd dimensions. Each must raise an error (caught by an observer) and
 //   leave the output with no points.
+#include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCommand.h"

@@ -12,6 +12,7 @@
 // - the writer's progress events are non-decreasing and end at 1;
 // - errors: a missing file, a corrupt page and an unwritable output are reported (counted by an
 //   observer) and leave an empty output / no file.
+#include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCallbackCommand.h"

@@ -7,6 +7,7 @@
 // drew (SetFixedCut on an in-core twin: no holes, no garbage bricks), the hybrid's slabs share
 // one cut per frame, and once settled each paged image equals the in-core one.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h" // For ImageError

@@ -13,6 +13,7 @@
 //   longer than the others, format codes 4 and 7 (and SampleFormat overriding a wrong code),
 //   byte positions out of range, wrong byte positions (duplicate positions), a missing file, a
 //   file changed between the information and the data pass.
+#include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
 #include "StrataTestHelpers.h"
 

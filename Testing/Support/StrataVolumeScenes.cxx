@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataVolumeScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCamera.h"

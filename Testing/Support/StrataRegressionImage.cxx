@@ -1,7 +1,9 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
-// CompareWithBaseline (StrataTestHelpers.h), apart from the other helpers because it needs
-// VTK::TestingRendering, which the demo and the benchmarks do not link.
+// CompareWithBaseline: VTK::TestingRendering's vtkTesting, then a pixel-by-pixel count.
+#include "StrataRegressionImage.h"
+
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkImageData.h"

@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataHeightFieldScenes.h"
 
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
