@@ -22,6 +22,7 @@
 #include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -295,7 +296,7 @@ vtkSmartPointer<vtkImageData> MakeImage(int nx, int ny, int nz, int type, F valu
   return image;
 }
 
-void KilledConversion(const std::string& tool, const std::string& dir)
+void KilledConversion(const std::string& tool, const std::string& dataDir, const std::string& dir)
 {
   // 256^3 float: about a second of work with zstd, plenty of time to be killed in.
   const int n = 256;
@@ -348,7 +349,7 @@ void KilledConversion(const std::string& tool, const std::string& dir)
   Check(!vtksys::SystemTools::FileExists(output), "a killed conversion leaves no output file");
 
   // The next conversion to the same name removes the dead process's temporary.
-  const std::string bucky = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
+  const std::string bucky = dataDir + "/volumes/bucky.raw";
   const int rc = Run({ tool, bucky, output, "--raw", "32", "32", "32", "uint8" });
   vtkPagePoolFile pool;
   Check(rc == 0 && pool.Open(output) && !vtksys::SystemTools::FileExists(temp),
@@ -359,11 +360,12 @@ void KilledConversion(const std::string& tool, const std::string& dir)
 }
 }
 
-int TestConverters(int, char*[])
+int TestConverters(int argc, char* argv[])
 {
-  const std::string dir = strata_test::OutputDirectory() + "/TestConverters";
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = paths.Output + "/TestConverters";
   vtksys::SystemTools::MakeDirectory(dir);
-  const std::string data = strata_test::TestDataDirectory();
+  const std::string data = paths.Data;
 
   std::cout << "raw float 128^3 (8 MB), memory limit 2 MB\n";
   {
@@ -526,8 +528,8 @@ int TestConverters(int, char*[])
     reader->SetFileName((data + "/horizons/penobscot_seabed_crop.npy").c_str());
     RoundTrip(reader, dir + "/penobscot.spp", "penobscot_seabed_crop.npy", 16);
   }
-  const std::string shared = strata_test::SharedDataDirectory() + "/horizons/penobscot_seabed.npy";
-  if (!strata_test::SharedDataDirectory().empty() && vtksys::SystemTools::FileExists(shared, true))
+  const std::string shared = paths.SharedData + "/horizons/penobscot_seabed.npy";
+  if (!paths.SharedData.empty() && vtksys::SystemTools::FileExists(shared, true))
   {
     // The whole Penobscot horizon (601 x 481, 2.3 MB) where ../shared/data is at hand.
     vtkNew<vtkNumpyGridReader> reader;
@@ -574,7 +576,7 @@ int TestConverters(int, char*[])
               SameAsSource(ReadPool(dir + "/volume.mhd.spp"), ReadPool(pool)),
         std::string("strata-convert ") + name + ": the same pool as the writer's");
     }
-    KilledConversion(tool, dir);
+    KilledConversion(tool, paths.Data, dir);
   }
 
   return strata_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

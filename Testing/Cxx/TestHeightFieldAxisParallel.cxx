@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -13,13 +14,14 @@
 #include <cstdlib>
 #include <string>
 
-int TestHeightFieldAxisParallel(int, char*[])
+int TestHeightFieldAxisParallel(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // Parallel projection along +x and then +y, tilted down 30 degrees: every ray has an exactly
   // zero lateral component across the other axis.
-  HeightFieldScene s(MakeDemoHorizons(81, 61));
+  HeightFieldScene s(paths.Output, MakeDemoHorizons(81, 61));
   s.Ren->GetActiveCamera()->ParallelProjectionOn();
   double c[3];
   Center(s.Images[0], c);

@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -14,14 +15,15 @@
 #include <string>
 #include <vector>
 
-int TestHeightFieldGrazing(int, char*[])
+int TestHeightFieldGrazing(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // Camera 1 degree above the mean plane of a gently rolling horizon, looking across it.
   const int n = 129;
   std::vector<float> h = Field(n, n, 5, 0.0, 6.0);
-  HeightFieldScene s({ MakeHorizon(n, n, 0, 0, 10, 10, 0, h) });
+  HeightFieldScene s(paths.Output, { MakeHorizon(n, n, 0, 0, 10, 10, 0, h) });
   const double pos[3] = { -200, 640, 20 + 1200 * std::tan(std::acos(-1.0) / 180.0) };
   const double foc[3] = { 1000, 640, 20 }, up[3] = { 0, 0, 1 };
   s.Camera(pos, foc, up);

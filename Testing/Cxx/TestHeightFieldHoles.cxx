@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -17,9 +18,10 @@
 #include <string>
 #include <vector>
 
-int TestHeightFieldHoles(int, char*[])
+int TestHeightFieldHoles(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   bool ok = true;
   // NaN holes and null-value (-999.25) holes in two horizons above a third.
@@ -34,14 +36,15 @@ int TestHeightFieldHoles(int, char*[])
       if (std::abs(i - j) < 6 || (i > 70 && j < 30))
         b[j * n + i] = -999.25f;
     }
-  HeightFieldScene s({ MakeHorizon(n, n, 0, 0, 10, 10, 0, a),
-    MakeHorizon(n, n, 0, 0, 10, 10, 0, b),
-    MakeHorizon(n, n, 0, 0, 10, 10, 0, c) });
+  HeightFieldScene s(paths.Output,
+    { MakeHorizon(n, n, 0, 0, 10, 10, 0, a),
+      MakeHorizon(n, n, 0, 0, 10, 10, 0, b),
+      MakeHorizon(n, n, 0, 0, 10, 10, 0, c) });
   s.Mapper->UseNullValueOn();
   s.Mapper->SetNullValue(-999.25);
   const double pos[3] = { 500, -300, 1400 }, foc[3] = { 500, 500, 0 }, up[3] = { 0, 0, 1 };
   s.Camera(pos, foc, up);
-  auto r = CompareWithReference(s.Win, s.Ren, s.Actor, s.Mapper, s.Images, "Holes");
+  auto r = CompareWithReference(s.Win, s.Ren, s.Actor, s.Mapper, s.Images, "Holes", paths.Output);
   ok = CheckReference(r, "Holes", 20000);
   // Rays through the holes must reach the lower horizons: ids 1 and 2 both visible.
   long seen[3] = { 0, 0, 0 };

@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -13,14 +14,15 @@
 #include <string>
 #include <vector>
 
-int TestHeightFieldInside(int, char*[])
+int TestHeightFieldInside(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // Camera inside the box, between two horizons, looking obliquely: both are visible.
   const int n = 101;
   std::vector<float> top = Field(n, n, 1, 100.0, 25.0), bottom = Field(n, n, 2, -100.0, 25.0);
-  HeightFieldScene s(
+  HeightFieldScene s(paths.Output,
     { MakeHorizon(n, n, 0, 0, 10, 10, 0, top), MakeHorizon(n, n, 0, 0, 10, 10, 0, bottom) });
   const double pos[3] = { 300, 500, 0 }, foc[3] = { 800, 500, 20 }, up[3] = { 0, 0, 1 };
   s.Camera(pos, foc, up);

@@ -20,6 +20,7 @@
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h" // For ImageError
 
 #include "vtkActor.h"
@@ -191,7 +192,7 @@ void SetCutInputs(vtkStackedHeightFieldMapper* twin,
 
 // The demo's Reek scene (StrataDemo, scene 2) paged from tile pools against the same scene in
 // core: a path of frames each against the rendering of its own cut, then converged.
-void ReekPaged(const std::string& dir)
+void ReekPaged(const std::string& dataDir, const std::string& dir)
 {
   const char* names[4] = { "reek_01_topreek_rota.gri",
     "reek_02_midreek_rota.gri",
@@ -204,7 +205,7 @@ void ReekPaged(const std::string& dir)
   for (int k = 0; k < 4; ++k)
   {
     vtkNew<vtkIrapBinaryGridReader> reader;
-    reader->SetFileName((TestDataDirectory() + "/horizons/" + names[k]).c_str());
+    reader->SetFileName((dataDir + "/horizons/" + names[k]).c_str());
     reader->Update();
     holes += reader->GetNumberOfNoDataValues();
     auto image = vtkSmartPointer<vtkImageData>::New();
@@ -331,9 +332,10 @@ void ReekPaged(const std::string& dir)
     std::remove(pool.c_str());
 }
 
-int TestHeightFieldPaging(int, char*[])
+int TestHeightFieldPaging(int argc, char* argv[])
 {
-  const std::string dir = OutputDirectory();
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = paths.Output;
   vtkSmartPointer<vtkRenderWindow> win;
   vtkSmartPointer<vtkRenderer> ren;
   const int w = 200, h = 150;
@@ -575,7 +577,7 @@ int TestHeightFieldPaging(int, char*[])
   }
 
   // 3. The Reek scene.
-  ReekPaged(dir);
+  ReekPaged(paths.Data, dir);
 
   // 4. Faults.
   cam->DeepCopy(home);

@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -12,12 +13,13 @@
 #include <cstdlib>
 #include <string>
 
-int TestHeightFieldRotated(int, char*[])
+int TestHeightFieldRotated(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // The demo stack on a grid rotated by 140 degrees, viewed obliquely.
-  HeightFieldScene s(MakeDemoHorizons(121, 91, 5000, 2000, 12.5, 140.0));
+  HeightFieldScene s(paths.Output, MakeDemoHorizons(121, 91, 5000, 2000, 12.5, 140.0));
   double b[6];
   s.Mapper->GetBounds(b);
   const double c[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), -420 };

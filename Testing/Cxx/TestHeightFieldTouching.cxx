@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -14,9 +15,10 @@
 #include <string>
 #include <vector>
 
-int TestHeightFieldTouching(int, char*[])
+int TestHeightFieldTouching(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // Two horizons equal over the left third, touching at one point on the right, apart elsewhere.
   const int n = 97;
@@ -31,7 +33,7 @@ int TestHeightFieldTouching(int, char*[])
       b[j * n + i] = static_cast<float>(base - gap);
     }
   HeightFieldScene s(
-    { MakeHorizon(n, n, 0, 0, 10, 10, 0, a), MakeHorizon(n, n, 0, 0, 10, 10, 0, b) });
+    paths.Output, { MakeHorizon(n, n, 0, 0, 10, 10, 0, a), MakeHorizon(n, n, 0, 0, 10, 10, 0, b) });
   const double pos[3] = { 480, -700, 900 }, foc[3] = { 480, 480, -10 }, up[3] = { 0, 0, 1 };
   s.Camera(pos, foc, up);
   ok = s.Check("Touching-above", 15000);

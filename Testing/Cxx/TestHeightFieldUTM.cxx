@@ -5,6 +5,7 @@
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -15,21 +16,24 @@
 #include <iostream>
 #include <string>
 
-int TestHeightFieldUTM(int, char*[])
+int TestHeightFieldUTM(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // The same stack at the origin and at UTM scale (x = 600000, y = 6700000, 12.5 m spacing),
   // camera moved with it: the two id images must agree as well as each match the reference.
-  HeightFieldScene a(MakeDemoHorizons(161, 121, 0, 0, 12.5, 0));
-  HeightFieldScene b(MakeDemoHorizons(161, 121, 600000, 6700000, 12.5, 0));
+  HeightFieldScene a(paths.Output, MakeDemoHorizons(161, 121, 0, 0, 12.5, 0));
+  HeightFieldScene b(paths.Output, MakeDemoHorizons(161, 121, 600000, 6700000, 12.5, 0));
   const double pos[3] = { -300, -900, 1200 }, foc[3] = { 1000, 750, -400 }, up[3] = { 0, 0, 1 };
   a.Camera(pos, foc, up);
   const double posU[3] = { 600000 - 300, 6700000 - 900, 1200 }, focU[3] = { 601000, 6700750, -400 };
   b.Camera(posU, focU, up);
   b.Ren->GetActiveCamera()->SetClippingRange(a.Ren->GetActiveCamera()->GetClippingRange());
-  auto ra = CompareWithReference(a.Win, a.Ren, a.Actor, a.Mapper, a.Images, "UTM-origin");
-  auto rb = CompareWithReference(b.Win, b.Ren, b.Actor, b.Mapper, b.Images, "UTM-utm");
+  auto ra =
+    CompareWithReference(a.Win, a.Ren, a.Actor, a.Mapper, a.Images, "UTM-origin", paths.Output);
+  auto rb =
+    CompareWithReference(b.Win, b.Ren, b.Actor, b.Mapper, b.Images, "UTM-utm", paths.Output);
   ok = CheckReference(ra, "UTM-origin", 20000);
   ok = CheckReference(rb, "UTM-utm", 20000) && ok;
   const auto same = CompareIds(ra.GpuIds, rb.GpuIds, 200, 160);

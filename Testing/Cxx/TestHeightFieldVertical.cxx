@@ -4,6 +4,7 @@
 // double-precision reference (StrataHeightFieldCase.h).
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -12,13 +13,14 @@
 #include <cstdlib>
 #include <string>
 
-int TestHeightFieldVertical(int, char*[])
+int TestHeightFieldVertical(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   bool ok = true;
   // Rays straight down: zero lateral direction for the centre ray, parallel projection makes
   // it zero for all of them.
-  HeightFieldScene s(MakeDemoHorizons(81, 61));
+  HeightFieldScene s(paths.Output, MakeDemoHorizons(81, 61));
   double c[3];
   Center(s.Images[0], c);
   const double pos[3] = { c[0], c[1], 3000 }, foc[3] = { c[0], c[1], 0 }, up[3] = { 0, 1, 0 };

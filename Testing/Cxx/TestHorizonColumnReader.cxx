@@ -14,6 +14,7 @@
 //   by an observer) and leave the output with no points.
 #include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -168,11 +169,12 @@ bool EveryPointOnItsNode(vtkImageData* image, const std::string& text, double to
 }
 }
 
-int TestHorizonColumnReader(int, char*[])
+int TestHorizonColumnReader(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   using Mode = vtkHorizonColumnReader::ColumnMode;
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
 
   // ---- Top Heimdal: inline crossline twt ----
   {

@@ -5,6 +5,8 @@
 // sets (threshold, budget, error-grid step, planted spike), the optimized filter's bound,
 // constant volumes, dimensions not divisible by the factor, bounded memory, and the file
 // format (bit-exact round trip, corrupt files rejected).
+#include "StrataTestPaths.h"
+
 #include "vtkHybridVolumeBuilder.h"
 #include "vtkHybridVolumeFile.h"
 
@@ -208,8 +210,9 @@ void Spit(const std::string& path, const std::string& bytes)
 }
 }
 
-int TestHybridVolumeBuilder(int, char*[])
+int TestHybridVolumeBuilder(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   // 13 x 11 x 9 with factors 2, 4, 2: 12 / 4 is even but 10 / 4 is not.
   const Volume v = Smooth(13, 11, 9, true);
   const int factors[3] = { 2, 4, 2 };
@@ -478,8 +481,7 @@ int TestHybridVolumeBuilder(int, char*[])
     b.SetThreshold(0.1);
     vtkHybridVolumeFile out, back;
     b.Build(out);
-    const char* dir = std::getenv("STRATA_TEST_OUTPUT");
-    const std::string path = std::string(dir ? dir : ".") + "/TestHybridVolumeBuilder.shv";
+    const std::string path = paths.Output + "/TestHybridVolumeBuilder.shv";
     const bool written = out.Write(path);
     const bool read = back.Read(path);
     bool same = read && SameOutput(out, back) && back.Filter == out.Filter &&

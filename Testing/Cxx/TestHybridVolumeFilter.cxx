@@ -16,6 +16,7 @@
 //   representation.
 #include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
@@ -226,9 +227,10 @@ bool SameFile(const vtkHybridVolumeFile& a, const vtkHybridVolumeFile& b)
 }
 }
 
-int TestHybridVolumeFilter(int, char*[])
+int TestHybridVolumeFilter(int argc, char* argv[])
 {
-  const std::string dir = strata_test::OutputDirectory();
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = paths.Output;
   const std::vector<uint16_t> values = MakeValues();
   vtkSmartPointer<vtkImageData> image = MakeImage(values);
 

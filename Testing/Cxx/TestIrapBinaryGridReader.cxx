@@ -11,6 +11,7 @@
 //   output with no points.
 #include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -240,10 +241,11 @@ const ReekExpectation Reek[4] = {
 };
 }
 
-int TestIrapBinaryGridReader(int, char*[])
+int TestIrapBinaryGridReader(int argc, char* argv[])
 {
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
 
   // ---- The four Reek horizons ----
   for (const ReekExpectation& e : Reek)

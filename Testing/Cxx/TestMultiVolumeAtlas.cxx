@@ -5,6 +5,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -18,9 +19,10 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeAtlas(int, char*[])
+int TestMultiVolumeAtlas(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // The brick atlas against plain 3-D textures, and its bookkeeping. 40 x 36 x 32 voxels in
@@ -28,7 +30,7 @@ int TestMultiVolumeAtlas(int, char*[])
   // the unbricked one (same voxels, same trilinear filtering: the shared voxel layer makes
   // brick borders invisible). A budget of 4 bricks forces coarser levels: still every brick
   // within the budget and an image close to the full-resolution one.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(40, 36, 32, 1.0, 1.1, 0.9, 0, 0, 0, 1), MakeVolumeProperty(0));
   s.UseMultiVolume();
   const double pos[3] = { -40, -60, 70 }, foc[3] = { 20, 20, 14 };

@@ -4,6 +4,7 @@
 // double-precision reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -20,9 +21,10 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeClassification(int, char*[])
+int TestMultiVolumeClassification(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Post-classification, pre-integration (full table and two-integral form) and both
@@ -31,7 +33,7 @@ int TestMultiVolumeClassification(int, char*[])
   // post-classification at d / 4 (the reference integrates the spike exactly).
   using Cl = vtkMultiVolumeRayCastMapper::Classifications;
   using Or = vtkMultiVolumeRayCastMapper::CompositeOrders;
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
   vtkNew<vtkTransform> t;
   t->Translate(30, 10, 4);
@@ -59,7 +61,7 @@ int TestMultiVolumeClassification(int, char*[])
   }
 
   // The spike: opacity 0 except a peak 1.5 wide at scalar 60.
-  VolumeScene spike;
+  VolumeScene spike(paths.Output);
   auto prop = MakeVolumeProperty(2);
   vtkPiecewiseFunction* pwf = prop->GetScalarOpacity(0);
   pwf->RemoveAllPoints();

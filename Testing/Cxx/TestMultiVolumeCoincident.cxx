@@ -4,6 +4,7 @@
 // double-precision reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -17,13 +18,14 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeCoincident(int, char*[])
+int TestMultiVolumeCoincident(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Two identical coincident volumes: one fragment covered by both; the media add up.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   auto image = Blob(36, 32, 28, 1.0, 1.0, 1.0, 0, 0, 0, 7);
   s.Add(image, MakeVolumeProperty(0));
   s.Add(image, MakeVolumeProperty(1));

@@ -6,6 +6,7 @@
 #include "StrataMultiVolumeCase.h"
 #include "StrataRegressionImage.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -23,8 +24,9 @@
 #include <utility>
 #include <vector>
 
-int TestMultiVolumeDemo(int, char*[])
+int TestMultiVolumeDemo(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   using namespace strata_test;
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
@@ -34,7 +36,7 @@ int TestMultiVolumeDemo(int, char*[])
   vtkSmartPointer<vtkRenderer> ren;
   MakeWindow(win, ren, 160, 120);
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>> inputs;
-  auto multi = AddVolumeDemoScene(ren, TestDataDirectory(), inputs);
+  auto multi = AddVolumeDemoScene(ren, paths.Data, inputs);
   if (!multi)
   {
     return EXIT_FAILURE;
@@ -42,12 +44,16 @@ int TestMultiVolumeDemo(int, char*[])
   std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
   for (auto& p : inputs)
     list.emplace_back(p.first, p.second);
-  ok = CheckVolumeComparison(
-    CompareVolumesWithReference(win, ren, list, "VolumeDemo"), "VolumeDemo", 0.4, 2, 4000);
+  ok =
+    CheckVolumeComparison(CompareVolumesWithReference(win, ren, list, "VolumeDemo", paths.Output),
+      "VolumeDemo",
+      0.4,
+      2,
+      4000);
   auto* mapper = vtkMultiVolumeRayCastMapper::SafeDownCast(multi->GetMapper());
   std::cout << "VolumeDemo: " << mapper->GetNumberOfFragments() << " fragments\n";
   // Baseline: same thresholds as TestHeightFieldDemo (vtkTesting 0.5, and at most 0.2 % of
   // pixels off by more than 24/255).
-  ok = CompareWithBaseline(win, "TestMultiVolumeDemo", 0.5) && ok;
+  ok = CompareWithBaseline(argc, argv, win, "TestMultiVolumeDemo", 0.5) && ok;
   return CaseResult(ok, output);
 }

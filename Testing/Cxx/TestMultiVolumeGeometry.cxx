@@ -5,6 +5,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"
@@ -25,15 +26,16 @@
 #include <string>
 #include <vector>
 
-int TestMultiVolumeGeometry(int, char*[])
+int TestMultiVolumeGeometry(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // An opaque sphere inside a volume: rays stop at the scene's depth. Expected pixel:
   // C + (1 - A) scene, with (C, A) the reference integrated up to the depth of the scene
   // rendered without the volume, and `scene` that render's colour.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   auto image = Blob(40, 36, 32, 1.0, 1.0, 1.0, 0, 0, 0, 1);
   s.Add(image, MakeVolumeProperty(0, 0.5));
   s.UseMultiVolume();

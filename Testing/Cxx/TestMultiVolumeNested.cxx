@@ -4,6 +4,7 @@
 // reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -17,13 +18,14 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeNested(int, char*[])
+int TestMultiVolumeNested(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // A fine volume inside a coarse one.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(24, 24, 20, 2.5, 2.5, 2.5, 0, 0, 0, 5), MakeVolumeProperty(0, 2.0));
   s.Add(Blob(30, 30, 24, 0.6, 0.6, 0.6, 20, 18, 14, 6), MakeVolumeProperty(1));
   s.UseMultiVolume();

@@ -14,6 +14,7 @@
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkCamera.h"
@@ -131,13 +132,14 @@ int RenderUntilConverged(Scene& s, vtkMultiVolumeRayCastMapper* paged, int frame
 }
 }
 
-int TestMultiVolumePaging(int, char*[])
+int TestMultiVolumePaging(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
   auto image = MakeBlobVolume(81, 71, 61, spacing, origin, 3);
   auto property = MakeVolumeProperty(0);
-  const std::string dir = OutputDirectory();
+  const std::string dir = paths.Output;
   const std::string pool = dir + "/paging.spp";
   {
     vtkNew<vtkImageToPagePoolWriter> writer;
@@ -298,7 +300,7 @@ int TestMultiVolumePaging(int, char*[])
     vtkSmartPointer<vtkRenderer> dren;
     MakeWindow(dwin, dren, Size, Size);
     std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>> inputs;
-    auto demo = AddVolumeDemoScene(dren, TestDataDirectory(), inputs);
+    auto demo = AddVolumeDemoScene(dren, paths.Data, inputs);
     auto* demoMapper =
       demo ? vtkMultiVolumeRayCastMapper::SafeDownCast(demo->GetMapper()) : nullptr;
     Check(demoMapper != nullptr, "the demo's volume scene loads");
@@ -327,7 +329,7 @@ int TestMultiVolumePaging(int, char*[])
       vtkSmartPointer<vtkRenderer> twinRen;
       MakeWindow(twin, twinRen, Size, Size);
       std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>> twinInputs;
-      auto twinVolume = AddVolumeDemoScene(twinRen, TestDataDirectory(), twinInputs);
+      auto twinVolume = AddVolumeDemoScene(twinRen, paths.Data, twinInputs);
       auto* twinMapper = vtkMultiVolumeRayCastMapper::SafeDownCast(twinVolume->GetMapper());
       twinMapper->SetBrickSize(Page);
       twinRen->GetActiveCamera()->DeepCopy(dren->GetActiveCamera());

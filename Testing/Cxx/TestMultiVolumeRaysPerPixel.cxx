@@ -4,6 +4,7 @@
 // double-precision reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -20,16 +21,17 @@
 #include <string>
 #include <utility>
 
-int TestMultiVolumeRaysPerPixel(int, char*[])
+int TestMultiVolumeRaysPerPixel(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Several rays per pixel, each composited through all fragments on its own: against the
   // reference integrating the same sub-pixel rays. Coherence lets rays after the centre one
   // skip the empty space it crossed, exact wherever that space ends at the same depth across
   // the pixel, approximate at silhouettes.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
   vtkNew<vtkTransform> t;
   t->Translate(30, 10, 4);

@@ -4,6 +4,7 @@
 // reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -18,13 +19,14 @@
 #include <cstdlib>
 #include <string>
 
-int TestMultiVolumeRotated(int, char*[])
+int TestMultiVolumeRotated(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Rotation through the image's direction matrix and the prop's transform together.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   auto image = Blob(40, 30, 26, 1.0, 1.2, 0.8, 5, -3, 2, 1);
   const double c = std::cos(0.6), sn = std::sin(0.6);
   const double dir[9] = { c, 0, sn, 0, 1, 0, -sn, 0, c };

@@ -5,6 +5,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkCamera.h"
@@ -29,9 +30,10 @@
 #include <string>
 #include <vector>
 
-int TestMultiVolumeShaded(int, char*[])
+int TestMultiVolumeShaded(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Gradient shading against an analytic expectation. The field s = 2 i + j has one gradient
@@ -41,7 +43,7 @@ int TestMultiVolumeShaded(int, char*[])
   // where clamped lookups halve one component of the central difference and turn the normal
   // (measured: RMS 0.32, max 2.4 of 255). Bounds: RMS 0.6, max 4; a normal taken through the
   // Jacobian instead of its transpose gives RMS 25.6 here.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(32, 32, 32);
   vtkNew<vtkFloatArray> a;

@@ -4,6 +4,7 @@
 // double-precision reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -24,15 +25,16 @@
 #include <string>
 #include <vector>
 
-int TestMultiVolumeShaderSource(int, char*[])
+int TestMultiVolumeShaderSource(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   using namespace strata_test;
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Only what a fragment needs: a fragment of one post-classified volume samples one volume
   // and reads no pre-integration table; one covered by two samples both; pre-integration
   // replaces the per-sample lookups; back-to-front has no early termination.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(20, 20, 20, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
   s.Add(Blob(20, 20, 20, 1.0, 1.0, 1.0, 10, 0, 0, 2), MakeVolumeProperty(1));
   s.UseMultiVolume();
@@ -78,7 +80,7 @@ int TestMultiVolumeShaderSource(int, char*[])
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   for (int i = 0; i < 2; ++i)
   {
-    const std::string pool = OutputDirectory() + "/shader-source-" + std::to_string(i) + ".spp";
+    const std::string pool = paths.Output + "/shader-source-" + std::to_string(i) + ".spp";
     vtkNew<vtkImageToPagePoolWriter> writer;
     writer->SetInputData(s.Images[i]);
     writer->SetFileName(pool.c_str());
@@ -111,7 +113,7 @@ int TestMultiVolumeShaderSource(int, char*[])
   Check(!pagedOff.empty() && !has(pagedOff, "#extension") && !has(pagedOff, "uFeedback"),
     "paged with feedback off: no feedback code");
   for (int i = 0; i < 2; ++i)
-    std::remove((OutputDirectory() + "/shader-source-" + std::to_string(i) + ".spp").c_str());
+    std::remove((paths.Output + "/shader-source-" + std::to_string(i) + ".spp").c_str());
   ok = Failures() == 0;
   return CaseResult(ok, output);
 }

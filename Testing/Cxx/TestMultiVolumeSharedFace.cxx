@@ -4,6 +4,7 @@
 // double-precision reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -17,13 +18,14 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeSharedFace(int, char*[])
+int TestMultiVolumeSharedFace(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Two volumes sharing a face: no seam, no double counting on it.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(30, 30, 30, 1.0, 1.0, 1.0, 0, 0, 0, 8), MakeVolumeProperty(0));
   s.Add(Blob(20, 30, 30, 1.5, 1.0, 1.0, 29, 0, 0, 9), MakeVolumeProperty(1));
   s.UseMultiVolume();

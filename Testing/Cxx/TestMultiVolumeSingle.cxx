@@ -6,6 +6,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkGPUVolumeRayCastMapper.h"
@@ -24,14 +25,15 @@
 #include <string>
 #include <vector>
 
-int TestMultiVolumeSingle(int, char*[])
+int TestMultiVolumeSingle(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // One volume through an ordinary vtkVolume; also against VTK's own GPU ray caster at the
   // same sample distance.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   auto image = Blob(40, 36, 32, 1.0, 1.1, 0.9, 0, 0, 0, 1);
   auto prop = MakeVolumeProperty(0);
   s.Add(image, prop);

@@ -5,6 +5,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -23,15 +24,16 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeSkipping(int, char*[])
+int TestMultiVolumeSkipping(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Empty-space skipping must not change the image: a sparse volume (two small blobs in
   // 72^3 voxels of air, and a second, rotated volume overlapping it) rendered with skipping
   // on and off, in both orders, post-classified and pre-integrated, bricked and plain.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   const int n = 72;
   auto sparse = vtkSmartPointer<vtkImageData>::New();
   sparse->SetDimensions(n, n, n);

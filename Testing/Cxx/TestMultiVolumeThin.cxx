@@ -4,6 +4,7 @@
 // reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
@@ -16,13 +17,14 @@
 #include <cstdlib>
 #include <string>
 
-int TestMultiVolumeThin(int, char*[])
+int TestMultiVolumeThin(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // A one-voxel-thin volume (nz = 1): one spacing thick, seen obliquely.
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(48, 40, 1, 1.0, 1.0, 6.0, 0, 0, 0, 10), MakeVolumeProperty(0, 1.0));
   s.UseMultiVolume();
   const double pos[3] = { -20, -50, 60 }, foc[3] = { 24, 20, 0 };

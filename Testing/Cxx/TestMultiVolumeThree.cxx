@@ -4,6 +4,7 @@
 // reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageCast.h"
@@ -20,9 +21,10 @@
 #include <iostream>
 #include <string>
 
-int TestMultiVolumeThree(int, char*[])
+int TestMultiVolumeThree(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   bool ok = true;
   // Three volumes of different resolution, orientation and scalar type (float, unsigned
@@ -38,7 +40,7 @@ int TestMultiVolumeThree(int, char*[])
     out->ShallowCopy(c->GetOutput());
     return out;
   };
-  VolumeScene s;
+  VolumeScene s(paths.Output);
   s.Add(Blob(36, 36, 30, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
   vtkNew<vtkTransform> t1;
   t1->Translate(20, 14, 6);

@@ -4,21 +4,23 @@
 // reference integrator; StrataMultiVolumeCase.h says where the bounds come from.
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
 
-int TestMultiVolumeUTM(int, char*[])
+int TestMultiVolumeUTM(int argc, char* argv[])
 {
   using namespace strata_test;
+  const TestPaths paths = TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   // The scene of TestMultiVolumeTwo (RenderTwoVolumes) near the origin and at x = 6e5,
   // y = 6.7e6: both against the reference, and the two images against each other.
-  auto a = RenderTwoVolumes(0, 0, "UTM-origin");
+  auto a = RenderTwoVolumes(0, 0, "UTM-origin", paths.Output);
   bool ok = CheckVolumeComparison(a, "UTM-origin", 0.4, 2, 3000);
-  auto b = RenderTwoVolumes(600000, 6700000, "UTM-utm");
+  auto b = RenderTwoVolumes(600000, 6700000, "UTM-utm", paths.Output);
   ok = CheckVolumeComparison(b, "UTM-utm", 0.4, 2, 3000) && ok;
   long differ = 0;
   int mx = 0;

@@ -13,6 +13,7 @@
 //   leave the output with no points.
 #include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -198,10 +199,11 @@ void CheckBadInput(const std::string& path, const std::string& what)
 }
 }
 
-int TestNumpyGridReader(int, char*[])
+int TestNumpyGridReader(int argc, char* argv[])
 {
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
 
   // ---- The Penobscot crop ----
   {
@@ -282,7 +284,7 @@ int TestNumpyGridReader(int, char*[])
   }
 
   // ---- The full Penobscot horizon, when the shared data is there ----
-  const std::string shared = strata_test::SharedDataDirectory();
+  const std::string shared = paths.SharedData;
   const std::string full = shared + "/horizons/penobscot_seabed.npy";
   if (shared.empty() || !vtksys::SystemTools::FileExists(full, true))
   {

@@ -4,6 +4,8 @@
 // direct 2-D evaluation of the same filter (tile pools); per-page min/max and value ranges
 // must match; compression and the memory limit must not change what is read (the limit must
 // not even change the bytes of the file); and every fault must give a clear error.
+#include "StrataTestPaths.h"
+
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolFormat.h"
 #include "vtkPagePoolWriter.h"
@@ -46,11 +48,9 @@ bool Contains(const std::string& text, const std::string& part)
   return text.find(part) != std::string::npos;
 }
 
-std::string TestDirectory()
+std::string TestDirectory(const std::string& output)
 {
-  const char* env = std::getenv("STRATA_TEST_OUTPUT");
-  std::string dir = (env && *env) ? env : "/tmp";
-  dir += "/TestPagePool-" + std::to_string(static_cast<long>(::getpid()));
+  std::string dir = output + "/TestPagePool-" + std::to_string(static_cast<long>(::getpid()));
   ::mkdir(dir.c_str(), 0755);
   return dir;
 }
@@ -452,9 +452,10 @@ std::string OpenEdited(const std::string& good, const std::string& bad, F edit, 
 }
 }
 
-int TestPagePool(int, char*[])
+int TestPagePool(int argc, char* argv[])
 {
-  const std::string dir = TestDirectory();
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = TestDirectory(paths.Output);
   std::printf("output directory %s\n", dir.c_str());
 
   // Dimensions with a 1 in some axis and not multiples of the stride.

@@ -14,6 +14,7 @@
 //   observer) and leave an empty output / no file.
 #include "StrataErrorCounter.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -183,9 +184,10 @@ void RoundTrip(const std::string& what, vtkImageData* input, const std::string& 
 }
 }
 
-int TestPagePoolReader(int, char*[])
+int TestPagePoolReader(int argc, char* argv[])
 {
-  const std::string out = strata_test::OutputDirectory() + "/TestPagePoolReader";
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string out = paths.Output + "/TestPagePoolReader";
   vtksys::SystemTools::MakeDirectory(out);
 
   // ---- Generated uint16 volume. ----
@@ -288,7 +290,7 @@ int TestPagePoolReader(int, char*[])
 
   // ---- bucky.raw (32^3 uint8) through a streaming vtkImageReader2. ----
   {
-    const std::string raw = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
+    const std::string raw = paths.Data + "/volumes/bucky.raw";
     vtkNew<vtkImageReader2> rr;
     rr->SetFileName(raw.c_str());
     rr->SetFileDimensionality(3);
@@ -303,8 +305,7 @@ int TestPagePoolReader(int, char*[])
   // ---- Reek horizon (rotated Irap grid) -> tile pool. ----
   {
     vtkNew<vtkIrapBinaryGridReader> gr;
-    gr->SetFileName(
-      (strata_test::TestDataDirectory() + "/horizons/reek_01_topreek_rota.gri").c_str());
+    gr->SetFileName((paths.Data + "/horizons/reek_01_topreek_rota.gri").c_str());
     const std::string path = out + "/reek.spp";
     Convert(gr, nullptr, path, 32);
     gr->Update();

@@ -10,6 +10,7 @@
 #include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h" // For ImageError
 
 #include "vtkCamera.h"
@@ -61,11 +62,12 @@ void Configure(vtkMultiVolumeRayCastMapper* m, int brickSize)
 }
 }
 
-int TestPagingTooth(int, char*[])
+int TestPagingTooth(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   std::string why;
-  vtkSmartPointer<vtkImageData> tooth = LoadRealVolume("tooth", why);
+  vtkSmartPointer<vtkImageData> tooth = LoadRealVolume("tooth", paths, why);
   Check(tooth != nullptr, "the tooth loads (" + why + ")");
   if (!tooth)
     return EXIT_FAILURE;
@@ -79,7 +81,7 @@ int TestPagingTooth(int, char*[])
   vtkPolyData* points = hybridFilter->GetPointsOutput();
 
   // Brick pools: the tooth in 16^3 bricks, its 26 x 24 x 41 factor-4 volume in 8^3.
-  const std::string dir = OutputDirectory();
+  const std::string dir = paths.Output;
   const std::string toothPool = dir + "/paging-tooth.spp", lowPool = dir + "/paging-tooth-low.spp";
   const std::pair<vtkImageData*, std::pair<std::string, int>> pools[2] = {
     { tooth, { toothPool, 16 } }, { low, { lowPool, 8 } }

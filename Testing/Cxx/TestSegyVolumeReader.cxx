@@ -16,6 +16,7 @@
 #include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -126,14 +127,15 @@ bool SameAsGenerated(vtkImageData* image, const SegyTestFile& file)
 }
 }
 
-int TestSegyVolumeReader(int, char*[])
+int TestSegyVolumeReader(int argc, char* argv[])
 {
-  const std::string out = strata_test::OutputDirectory() + "/TestSegyVolumeReader";
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string out = paths.Output + "/TestSegyVolumeReader";
   vtksys::SystemTools::MakeDirectory(out);
 
   std::cout << "f3.sgy\n";
   {
-    const std::string path = strata_test::TestDataDirectory() + "/seismic/f3.sgy";
+    const std::string path = paths.Data + "/seismic/f3.sgy";
     const std::string bytes = Slurp(path);
     vtkNew<vtkSegyVolumeReader> reader;
     vtkNew<ErrorCounter> errors;

@@ -10,10 +10,12 @@
 
 namespace strata_test
 {
-HeightFieldScene::HeightFieldScene(const std::vector<vtkSmartPointer<vtkImageData>>& images,
+HeightFieldScene::HeightFieldScene(const std::string& imageDirectory,
+  const std::vector<vtkSmartPointer<vtkImageData>>& images,
   int w,
   int h)
   : Images(images)
+  , ImageDirectory(imageDirectory)
 {
   MakeWindow(this->Win, this->Ren, w, h);
   for (auto& image : images)
@@ -37,7 +39,8 @@ void HeightFieldScene::Camera(const double pos[3], const double focal[3], const 
 bool HeightFieldScene::Check(const std::string& name, long minCovered)
 {
   return CheckReference(
-    CompareWithReference(this->Win, this->Ren, this->Actor, this->Mapper, this->Images, name),
+    CompareWithReference(
+      this->Win, this->Ren, this->Actor, this->Mapper, this->Images, name, this->ImageDirectory),
     name,
     minCovered);
 }

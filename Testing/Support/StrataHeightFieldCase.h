@@ -22,7 +22,8 @@ class vtkRenderer;
 
 namespace strata_test
 {
-/// The horizons `images` on one vtkStackedHeightFieldMapper (tile size 16) in a w x h window.
+/// The horizons `images` on one vtkStackedHeightFieldMapper (tile size 16) in a w x h window;
+/// its comparisons write their images to `ImageDirectory`.
 struct HeightFieldScene
 {
   vtkSmartPointer<vtkRenderWindow> Win;
@@ -30,7 +31,9 @@ struct HeightFieldScene
   vtkNew<vtkStackedHeightFieldMapper> Mapper;
   vtkNew<vtkActor> Actor;
   std::vector<vtkSmartPointer<vtkImageData>> Images;
-  HeightFieldScene(const std::vector<vtkSmartPointer<vtkImageData>>& images,
+  std::string ImageDirectory;
+  HeightFieldScene(const std::string& imageDirectory,
+    const std::vector<vtkSmartPointer<vtkImageData>>& images,
     int w = 200,
     int h = 160);
   void Camera(const double pos[3], const double focal[3], const double up[3]);

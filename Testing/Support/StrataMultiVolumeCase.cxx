@@ -20,7 +20,8 @@
 
 namespace strata_test
 {
-VolumeScene::VolumeScene()
+VolumeScene::VolumeScene(const std::string& imageDirectory)
+  : ImageDirectory(imageDirectory)
 {
   MakeWindow(this->Win, this->Ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
   this->Mapper->SetSampleDistance(0.25);
@@ -106,7 +107,8 @@ VolumeComparison VolumeScene::Compare(const std::string& name, int raysPerPixel)
   std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
   for (size_t i = 0; i < this->Images.size(); ++i)
     list.emplace_back(this->Images[i], this->Volumes[i]);
-  return CompareVolumesWithReference(this->Win, this->Ren, list, name, 1.0 / 16.0, raysPerPixel);
+  return CompareVolumesWithReference(
+    this->Win, this->Ren, list, name, this->ImageDirectory, 1.0 / 16.0, raysPerPixel);
 }
 
 vtkSmartPointer<vtkImageData> Blob(int nx,
@@ -124,9 +126,12 @@ vtkSmartPointer<vtkImageData> Blob(int nx,
   return MakeBlobVolume(nx, ny, nz, s, o, seed);
 }
 
-VolumeComparison RenderTwoVolumes(double ox, double oy, const std::string& tag)
+VolumeComparison RenderTwoVolumes(double ox,
+  double oy,
+  const std::string& tag,
+  const std::string& imageDirectory)
 {
-  VolumeScene s;
+  VolumeScene s(imageDirectory);
   s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, ox, oy, 0, 1), MakeVolumeProperty(0));
   vtkNew<vtkTransform> t;
   t->Translate(ox + 30, oy + 10, 4);

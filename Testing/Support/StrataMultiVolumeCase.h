@@ -38,7 +38,7 @@ class CapturingOutputWindow;
 constexpr int MultiVolumeCaseSize = 128;
 
 /// Volumes on the ports of one vtkMultiVolumeRayCastMapper (sample distance 1/4 voxel) in a
-/// MultiVolumeCaseSize^2 window.
+/// MultiVolumeCaseSize^2 window; its comparisons write their images to `ImageDirectory`.
 struct VolumeScene
 {
   vtkSmartPointer<vtkRenderWindow> Win;
@@ -47,7 +47,8 @@ struct VolumeScene
   vtkNew<vtkMultiVolume> Multi;
   std::vector<vtkSmartPointer<vtkImageData>> Images;
   std::vector<vtkSmartPointer<vtkVolume>> Volumes;
-  VolumeScene();
+  std::string ImageDirectory;
+  explicit VolumeScene(const std::string& imageDirectory);
   /// Adds an input on the next port, with a member volume carrying `property` and `transform`.
   vtkVolume* Add(vtkImageData* image,
     vtkVolumeProperty* property,
@@ -77,8 +78,11 @@ vtkSmartPointer<vtkImageData> Blob(int nx,
 
 /// The scene of TestMultiVolumeTwo and TestMultiVolumeUTM: two overlapping volumes of different
 /// resolution and spacing, the second turned 30 degrees about z, shifted by (ox, oy); prints
-/// its fragment count under `tag`.
-VolumeComparison RenderTwoVolumes(double ox, double oy, const std::string& tag);
+/// its fragment count under `tag`; images go to `imageDirectory`.
+VolumeComparison RenderTwoVolumes(double ox,
+  double oy,
+  const std::string& tag,
+  const std::string& imageDirectory);
 
 /// A case's exit code: failure when `ok` is false or VTK printed errors or warnings (said so).
 int CaseResult(bool ok, const CapturingOutputWindow* output);

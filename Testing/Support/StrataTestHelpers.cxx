@@ -1,14 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataTestHelpers.h"
 
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPagePoolFile.h"
 
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -68,25 +66,6 @@ int Failures()
   return FailureCount;
 }
 
-std::string OutputDirectory()
-{
-  const char* d = std::getenv("STRATA_TEST_OUTPUT");
-  return d && *d ? d : ".";
-}
-std::string TestDataDirectory()
-{
-  const char* d = std::getenv("STRATA_TEST_DATA");
-  return d && *d ? d : "Testing/Data";
-}
-std::string SharedDataDirectory()
-{
-  const char* d = std::getenv("STRATA_SHARED_DATA");
-  return d && *d ? d : "";
-}
-}
-
-namespace strata_test
-{
 bool CopyFile(const std::string& from, const std::string& to, double fraction)
 {
   std::ifstream in(from, std::ios::binary);

@@ -36,13 +36,6 @@ public:
 void Check(bool ok, const std::string& what);
 int Failures();
 
-/// Where tests may write files: $STRATA_TEST_OUTPUT or the current directory.
-std::string OutputDirectory();
-/// Testing/Data in the source tree ($STRATA_TEST_DATA).
-std::string TestDataDirectory();
-/// ../shared/data ($STRATA_SHARED_DATA); empty when not set.
-std::string SharedDataDirectory();
-
 /// Copies a file; with `fraction` < 1 only its first fraction of bytes (a truncated file).
 bool CopyFile(const std::string& from, const std::string& to, double fraction = 1.0);
 /// Flips the bits of the stored byte `offset` bytes into page `page` of a page pool (a

@@ -130,6 +130,7 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
   const std::string& name,
+  const std::string& imageDirectory,
   double stepFraction,
   int raysPerPixel)
 {
@@ -177,8 +178,8 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   r.Rms = e.Rms;
   r.Max = e.Max;
   ren->SetBackground(oldBackground);
-  WritePNG(OutputDirectory() + "/" + name + "-gpu.png", r.Gpu, w, h);
-  WritePNG(OutputDirectory() + "/" + name + "-ref.png", refImage, w, h);
+  WritePNG(imageDirectory + "/" + name + "-gpu.png", r.Gpu, w, h);
+  WritePNG(imageDirectory + "/" + name + "-ref.png", refImage, w, h);
   return r;
 }
 
