@@ -5,7 +5,7 @@
 //   seabed horizon, SEG tutorials 2016, Apache-2.0 / CC BY-SA): literal header fields and values
 //   determined once with python3's struct module and checked with `od -A d -t f8 -j OFFSET -N 8`
 //   (OFFSET = 128 + 8 * (row * 48 + col), the header being 128 bytes);
-// - the full 601 x 481 file from $STRATA_SHARED_DATA/horizons when present (skipped otherwise);
+// - the full 601 x 481 file from the shared data (--shared-data) when present (skipped otherwise);
 // - synthetic files written here: every supported dtype in both byte orders, C and Fortran order,
 //   format versions 1.0, 2.0 and 3.0, 1-D and (rows, cols, 1) shapes, the axis-swap flag;
 // - bad input: missing, truncated, garbage, bad magic, unsupported version, dtype and shape,
@@ -288,7 +288,8 @@ int TestNumpyGridReader(int argc, char* argv[])
   const std::string full = shared + "/horizons/penobscot_seabed.npy";
   if (shared.empty() || !vtksys::SystemTools::FileExists(full, true))
   {
-    std::cout << "Skipping the full penobscot_seabed.npy: $STRATA_SHARED_DATA/horizons has none\n";
+    std::cout << "Skipping the full penobscot_seabed.npy: the shared data (--shared-data) has no "
+                 "horizons/penobscot_seabed.npy\n";
   }
   else
   {
