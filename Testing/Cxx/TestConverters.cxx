@@ -21,6 +21,7 @@
 //   name removes the stale temporary and succeeds.
 #include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
@@ -360,38 +361,36 @@ void KilledConversion(const std::string& tool, const std::string& dataDir, const
 }
 }
 
-int TestConverters(int argc, char* argv[])
+namespace
 {
-  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
-  const std::string dir = paths.Output + "/TestConverters";
-  vtksys::SystemTools::MakeDirectory(dir);
-  const std::string data = paths.Data;
-
+void RawFloat(const std::string& dir)
+{
   std::cout << "raw float 128^3 (8 MB), memory limit 2 MB\n";
-  {
-    const int n = 128;
-    vtkSmartPointer<vtkImageData> image =
-      MakeImage(n, n, n, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 2 - 1; });
-    const std::string raw = dir + "/volume.raw";
-    Spit(raw, image->GetScalarPointer(), sizeof(float) * n * n * n);
-    vtkNew<vtkImageReader2> reader;
-    reader->SetFileName(raw.c_str());
-    reader->SetFileDimensionality(3);
-    reader->SetDataExtent(0, n - 1, 0, n - 1, 0, n - 1);
-    reader->SetDataScalarTypeToFloat();
-    reader->SetDataByteOrderToLittleEndian();
-    reader->SetDataSpacing(image->GetSpacing());
-    reader->SetDataOrigin(image->GetOrigin());
-    SlabLog log;
-    const double limitMB = 2.0;
-    RoundTrip(reader, dir + "/raw.spp", "raw", 16, limitMB, &log);
-    std::cout << "  " << log.Requests << " upstream requests, largest " << log.LargestKiB
-              << " KiB; volume " << n * n * n * 4 / 1024 << " KiB\n";
-    Check(log.Requests > 4 && log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 4,
-      "raw: a volume 4 times the memory limit converts in slabs well within it");
-    std::remove(raw.c_str());
-  }
+  const int n = 128;
+  vtkSmartPointer<vtkImageData> image =
+    MakeImage(n, n, n, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 2 - 1; });
+  const std::string raw = dir + "/volume.raw";
+  Spit(raw, image->GetScalarPointer(), sizeof(float) * n * n * n);
+  vtkNew<vtkImageReader2> reader;
+  reader->SetFileName(raw.c_str());
+  reader->SetFileDimensionality(3);
+  reader->SetDataExtent(0, n - 1, 0, n - 1, 0, n - 1);
+  reader->SetDataScalarTypeToFloat();
+  reader->SetDataByteOrderToLittleEndian();
+  reader->SetDataSpacing(image->GetSpacing());
+  reader->SetDataOrigin(image->GetOrigin());
+  SlabLog log;
+  const double limitMB = 2.0;
+  RoundTrip(reader, dir + "/raw.spp", "raw", 16, limitMB, &log);
+  std::cout << "  " << log.Requests << " upstream requests, largest " << log.LargestKiB
+            << " KiB; volume " << n * n * n * 4 / 1024 << " KiB\n";
+  Check(log.Requests > 4 && log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 4,
+    "raw: a volume 4 times the memory limit converts in slabs well within it");
+  std::remove(raw.c_str());
+}
 
+void VolumeFormats(const std::string& dir, const std::string& data)
+{
   std::cout << ".vti float with NaN, .mhd int16, tooth.nrrd uint8\n";
   {
     vtkSmartPointer<vtkImageData> image = MakeImage(40,
@@ -450,7 +449,10 @@ int TestConverters(int argc, char* argv[])
     reader->SetFileName((data + "/volumes/tooth.nrrd").c_str());
     RoundTrip(reader, dir + "/tooth.spp", "tooth.nrrd");
   }
+}
 
+void Segy(const std::string& dir, const std::string& data)
+{
   std::cout << "SEG-Y\n";
   const std::string f3 = data + "/seismic/f3.sgy";
   {
@@ -516,7 +518,10 @@ int TestConverters(int argc, char* argv[])
         }
     Check(placed, "shuffled IBM SEG-Y: every trace in its place in the pool, NaN where missing");
   }
+}
 
+void Horizons(const strata_test::TestPaths& paths, const std::string& dir, const std::string& data)
+{
   std::cout << "horizons\n";
   {
     vtkNew<vtkIrapBinaryGridReader> reader;
@@ -541,7 +546,12 @@ int TestConverters(int argc, char* argv[])
     reader->SetFileName((data + "/horizons/top_heimdal_subset.txt").c_str());
     RoundTrip(reader, dir + "/heimdal.spp", "top_heimdal_subset.txt", 16);
   }
+}
 
+void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
+{
+  const std::string f3 = paths.Data + "/seismic/f3.sgy";
+  const std::string shuffledPath = dir + "/shuffled.sgy"; // Segy's
   std::cout << "strata-convert\n";
   const std::string tool = FindConverter();
   if (tool.empty())
@@ -578,6 +588,23 @@ int TestConverters(int argc, char* argv[])
     }
     KilledConversion(tool, paths.Data, dir);
   }
+}
 
-  return strata_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+int TestConverters(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = paths.Output + "/TestConverters";
+  vtksys::SystemTools::MakeDirectory(dir);
+  const std::string data = paths.Data;
+  return strata_test::RunSubTests(
+    {
+      { "RawFloat", [&] { RawFloat(dir); } },
+      { "VolumeFormats", [&] { VolumeFormats(dir, data); } },
+      { "Segy", [&] { Segy(dir, data); } },
+      { "Horizons", [&] { Horizons(paths, dir, data); } },
+      { "StrataConvert", [&] { StrataConvert(paths, dir); } },
+    },
+    strata_test::Failures);
 }
