@@ -476,7 +476,6 @@ void StrataHybridTool(FilterFixture& fx)
   const std::vector<uint16_t>& values = fx.Values;
   vtkImageData* image = fx.Image;
   vtkHybridVolumeFile& ref = fx.Ref;
-  const std::string& shv = fx.Shv;
   vtkHybridVolumeFilter* filter = fx.Filter;
   vtkHybridVolumeReader* reader = fx.Reader;
   std::cout << "strata-hybrid\n";

@@ -443,7 +443,6 @@ void FaultViews(PagingFixture& fx)
 void CorruptPageWhileRendering(PagingFixture& fx)
 {
   Scene& s = fx.S;
-  vtkMultiVolumeRayCastMapper* coarse = fx.Coarse;
   vtkMultiVolumeRayCastMapper* ofCut = fx.OfCut;
   const std::string& pool = fx.Pool;
   const std::string& dir = fx.Dir;
@@ -493,7 +492,6 @@ void CorruptPageWhileRendering(PagingFixture& fx)
 void TruncatedWhileRendering(PagingFixture& fx)
 {
   Scene& s = fx.S;
-  vtkMultiVolumeRayCastMapper* coarse = fx.Coarse;
   vtkMultiVolumeRayCastMapper* ofCut = fx.OfCut;
   const std::string& pool = fx.Pool;
   const std::string& dir = fx.Dir;
