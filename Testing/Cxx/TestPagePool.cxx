@@ -455,8 +455,7 @@ std::string OpenEdited(const std::string& good, const std::string& bad, F edit, 
 
 namespace
 {
-/// Every scalar type through the writer and back: dimensions with a 1 in some axis and not
-/// multiples of the stride, then tiles.
+/// Every scalar type through the writer and back, then a tile pool.
 void VolumesAndTiles(const std::string& dir)
 {
   // Dimensions with a 1 in some axis and not multiples of the stride.
