@@ -364,8 +364,9 @@ struct HFPagingFixture
   DemoScene Scene;
   vtkNew<vtkCamera> Home;
   std::vector<std::string> Pools;
-  vtkNew<vtkStackedHeightFieldMapper> Coarse;
-  vtkNew<vtkStackedHeightFieldMapper> Paged;
+  /// Made after the pools are written, as the test always did.
+  vtkSmartPointer<vtkStackedHeightFieldMapper> Coarse;
+  vtkSmartPointer<vtkStackedHeightFieldMapper> Paged;
   std::vector<vtkSmartPointer<vtkPagePoolReader>> Readers;
   std::vector<unsigned char> Background;
   vtkStackedHeightFieldMapper::PagingStatistics ConvergedStats; ///< the path's, converged
@@ -380,8 +381,6 @@ void PoolsAndReferences(HFPagingFixture& fx)
   DemoScene& scene = fx.Scene;
   std::vector<std::string>& pools = fx.Pools;
   vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
-  vtkStackedHeightFieldMapper* coarse = fx.Coarse;
-  vtkStackedHeightFieldMapper* paged = fx.Paged;
   std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers = fx.Readers;
   auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   const std::string& dir = fx.Dir;
@@ -403,6 +402,10 @@ void PoolsAndReferences(HFPagingFixture& fx)
   probe.Close();
 
   // In-core references: the demo mapper as is, and a twin that draws whatever heights it gets.
+  fx.Coarse = vtkSmartPointer<vtkStackedHeightFieldMapper>::New();
+  fx.Paged = vtkSmartPointer<vtkStackedHeightFieldMapper>::New();
+  vtkStackedHeightFieldMapper* coarse = fx.Coarse;
+  vtkStackedHeightFieldMapper* paged = fx.Paged;
   incore->SetTileSize(32);
   coarse->SetTileSize(32);
   paged->SetTileSize(32);
