@@ -4,12 +4,14 @@
 // tube and a target sphere, in core and paged out of core from tile pools, (2) the four Reek
 // horizons (Irap binary grids on a rotated UTM-scale grid), (3) three overlapping volumes and (4)
 // the tooth CT at full resolution, at 1/4 resolution and as the hybrid of the two (points where the
-// coarse volume errs); writes one PNG per image. Usage: StrataDemo <output-dir> <data-dir>...; the
-// first data dir that holds a scene's files is used (the tooth through STRATA_TEST_DATA /
-// STRATA_SHARED_DATA). Prints each image's path, last.
+// coarse volume errs); writes one PNG per image. Usage:
+//   StrataDemo <output-dir> [-D <data-dir>] [--shared-data <shared-data-dir>]
+// (StrataTestPaths.h; scripts/demo passes Testing/Data and ../shared/data): each scene's files are
+// read from the data folder, else from the shared one. Prints each image's path, last.
 #include "StrataDemoScene.h"
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
-#include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"
@@ -61,7 +63,14 @@ std::string Save(vtkRenderWindow* win, const std::string& path)
 
 int main(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
   const std::string out = argc > 1 ? argv[1] : ".";
+  // Where the scenes' files are looked for, in order.
+  std::vector<std::string> dataDirs = { paths.Data };
+  if (!paths.SharedData.empty())
+  {
+    dataDirs.push_back(paths.SharedData);
+  }
   std::vector<std::string> written;
 
   // --- Scene 1: synthetic stack, well and target (shared with TestHeightFieldDemo).
@@ -127,12 +136,12 @@ int main(int argc, char* argv[])
 
   // --- Scene 2: the four Reek horizons.
   std::string reekDir;
-  for (int a = 2; a < argc && reekDir.empty(); ++a)
+  for (size_t a = 0; a < dataDirs.size() && reekDir.empty(); ++a)
   {
-    std::ifstream probe(std::string(argv[a]) + "/horizons/reek_01_topreek_rota.gri");
+    std::ifstream probe(dataDirs[a] + "/horizons/reek_01_topreek_rota.gri");
     if (probe)
     {
-      reekDir = std::string(argv[a]) + "/horizons/";
+      reekDir = dataDirs[a] + "/horizons/";
     }
   }
   if (reekDir.empty())
@@ -174,11 +183,11 @@ int main(int argc, char* argv[])
   // --- Scene 3: three overlapping volumes (the Bucky ball and two analytic volumes).
   {
     std::string dataDir;
-    for (int a = 2; a < argc && dataDir.empty(); ++a)
+    for (size_t a = 0; a < dataDirs.size() && dataDir.empty(); ++a)
     {
-      if (std::ifstream(std::string(argv[a]) + "/volumes/bucky.raw"))
+      if (std::ifstream(dataDirs[a] + "/volumes/bucky.raw"))
       {
-        dataDir = argv[a];
+        dataDir = dataDirs[a];
       }
     }
     vtkNew<vtkRenderWindow> win;
@@ -204,7 +213,7 @@ int main(int argc, char* argv[])
   // and as that volume plus points where it is wrong (hybrid point + volume rendering).
   {
     std::string why;
-    vtkSmartPointer<vtkImageData> tooth = strata_test::LoadRealVolume("tooth", why);
+    vtkSmartPointer<vtkImageData> tooth = strata_test::LoadRealVolume("tooth", paths, why);
     if (!tooth)
     {
       std::cerr << "tooth volume: " << why << "; skipping the hybrid images.\n";

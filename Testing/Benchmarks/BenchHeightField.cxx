@@ -7,9 +7,11 @@
 //   BenchHeightField frame <points-per-horizon> <raycast|mesh>  -> one CSV line
 //   BenchHeightField accuracy <points-per-horizon>             -> step vs error vs ms lines
 // STRATA_BENCH_TILE and STRATA_BENCH_STEP override the mapper's tile size and linear-search step
-// in `frame` runs with the ray caster.
+// in `frame` runs with the ray caster; `accuracy` writes its id images to `-T <dir>` (default the
+// current directory, StrataTestPaths.h).
 #include "StrataHeightFieldScenes.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -108,6 +110,7 @@ double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views
 
 int main(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
   if (argc < 3)
   {
     std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> | accuracy <points>\n";
@@ -215,7 +218,8 @@ int main(int argc, char* argv[])
         std::sort(t.begin(), t.end());
         ms = t[t.size() / 2];
       }
-      auto r = strata_test::CompareWithReference(win, ren, a, m, horizons, "bench-" + scene);
+      auto r =
+        strata_test::CompareWithReference(win, ren, a, m, horizons, "bench-" + scene, paths.Output);
       std::printf("%s,%s,%g,%.1f,%.5f,%ld,%.0f\n",
         label.c_str(),
         scene.c_str(),

@@ -14,10 +14,12 @@
 //   BenchHybrid run <data>        -> the rows of one data set (tooth, engine, bonsai, bucky)
 //   BenchHybrid report <csv> <png> -> the equal-bytes table and the error-vs-bytes plot
 // Images 384 x 384, sample distance 0.5 voxel; ms per frame: median of 3 after one warm-up.
+// The volumes are read as BenchVolume reads them (-D <data>, --shared-data <shared>).
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
-#include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkChart.h"
@@ -105,10 +107,10 @@ double Bytes(vtkImageData* low, vtkIdType points)
          double(vtkHybridVolumeFile::PointSize) * points;
 }
 
-int Run(const std::string& name)
+int Run(const std::string& name, const strata_test::TestPaths& paths)
 {
   std::string why;
-  vtkSmartPointer<vtkImageData> image = strata_test::LoadRealVolume(name, why);
+  vtkSmartPointer<vtkImageData> image = strata_test::LoadRealVolume(name, paths, why);
   if (!image)
   {
     std::printf("%s,,,,,,,,,,,,skipped: %s\n", name.c_str(), why.c_str());
@@ -444,6 +446,7 @@ int Report(const std::string& csv, const std::string& png)
 
 int main(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "header")
   {
@@ -451,7 +454,7 @@ int main(int argc, char* argv[])
     return 0;
   }
   if (mode == "run" && argc > 2)
-    return Run(argv[2]);
+    return Run(argv[2], paths);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
   std::cerr << "usage: BenchHybrid header | run <data> | report <csv> <png>\n";

@@ -30,6 +30,7 @@
 // Rendering at 256 x 256 on whatever OpenGL the EGL window finds (llvmpipe here).
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 

@@ -10,7 +10,8 @@
 //   BenchPagingHorizons flythrough <dir> <cache MB> <atlas MB> [prefetch] [no-morph]
 //   BenchPagingHorizons accuracy <dir>      (rows of bench-results/paging-accuracy.csv)
 #include "StrataHeightFieldScenes.h" // For MakeWindow, FractalNoise
-#include "StrataTestHelpers.h"       // For ReadRGB
+#include "StrataImageHelpers.h"      // For ReadRGB
+#include "StrataTestHelpers.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"

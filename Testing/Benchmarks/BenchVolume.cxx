@@ -19,8 +19,9 @@
 //   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
 //   BenchVolume report <csv> <png>          -> summary tables and the RMS-vs-time plot
 // Each prints CSV rows on stdout and progress on stderr. Data: bucky, tooth, engine, bonsai,
-// read from $STRATA_SHARED_DATA/volumes (default ../shared/data; bucky first from
-// $STRATA_TEST_DATA/volumes); a missing file gives a row with a note, never a failure.
+// read from <shared>/volumes with `--shared-data <shared>` (default ../shared/data; bucky and
+// tooth first from <data>/volumes with `-D <data>`, StrataTestPaths.h); a missing file gives a row
+// with a note, never a failure.
 // sample_distance is in world units; every volume here has unit spacing, so it is in voxels.
 // Frame times are the median of several renders after warm-up, each ended by
 // WaitForCompletion. STRATA_BENCH_FRAMES overrides the number of timed frames;
@@ -30,8 +31,10 @@
 // with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkAxis.h"
@@ -454,12 +457,12 @@ const char* ClassificationName(Classifications c)
 /// 0.0004 / 0.0003 / 0.0004 and largest difference 0.004 / 0.008 / 0.010 of an 8-bit step for
 /// bucky / tooth / engine, below the 0.05 of a step asked for and far below the 0.29 that 8-bit
 /// rounding of the GPU image alone contributes.
-int Accuracy(const std::string& data)
+int Accuracy(const std::string& data, const strata_test::TestPaths& paths)
 {
   const int size = 256;
   const std::string name = "accuracy-" + data;
   std::string why;
-  auto image = strata_test::LoadRealVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
   {
     std::cerr << name << ": skipped: " << why << "\n";
@@ -631,10 +634,13 @@ const char* const SingleMethods[] = { "strata", "strata-no-atlas", "vtk" };
 
 /// Peak RSS of one mapper alone on the single-volume scene, one process per mapper: prints
 /// "<method>=<MB>" for `frame` to put in its rows.
-int Memory(const std::string& kind, const std::string& data, const std::string& method)
+int Memory(const std::string& kind,
+  const std::string& data,
+  const std::string& method,
+  const strata_test::TestPaths& paths)
 {
   std::string why;
-  auto image = strata_test::LoadRealVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
   {
     std::cerr << kind << "-" << data << ": skipped: " << why << "\n";
@@ -652,7 +658,10 @@ int Memory(const std::string& kind, const std::string& data, const std::string& 
  * timed interleaved (TimeInterleaved). `memory` lists "<method>=<MB>" from `memory` runs, for
  * the peak_rss_mb column.
  */
-int FrameCase(const std::string& kind, const std::string& data, const std::string& memory)
+int FrameCase(const std::string& kind,
+  const std::string& data,
+  const std::string& memory,
+  const strata_test::TestPaths& paths)
 {
   const std::string name = kind + "-" + data;
   std::map<std::string, std::string> rss;
@@ -662,7 +671,7 @@ int FrameCase(const std::string& kind, const std::string& data, const std::strin
     if (item.find('=') != std::string::npos)
       rss[item.substr(0, item.find('='))] = item.substr(item.find('=') + 1);
   std::string why;
-  auto image = strata_test::LoadRealVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, paths, why);
   std::vector<Contender> contenders;
   auto property = strata_test::MakeRealVolumeProperty(data);
   if (image)
@@ -911,11 +920,14 @@ int Bsp(int n, const std::string& layout)
 
 /// Reference convergence: step 1/`coarse` against 1/`fine` of a voxel at the accuracy
 /// benchmark's camera.
-int Converge(const std::string& data, double coarse, double fine)
+int Converge(const std::string& data,
+  double coarse,
+  double fine,
+  const strata_test::TestPaths& paths)
 {
   const int size = 256;
   std::string why;
-  auto image = strata_test::LoadRealVolume(data, why);
+  auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
   {
     std::cerr << data << ": " << why << "\n";
@@ -1245,6 +1257,7 @@ int Report(const std::string& csv, const std::string& png)
 
 int main(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "header")
   {
@@ -1252,18 +1265,18 @@ int main(int argc, char* argv[])
     return 0;
   }
   if (mode == "accuracy" && argc > 2)
-    return Accuracy(argv[2]);
+    return Accuracy(argv[2], paths);
   if (mode == "frame" && argc > 3)
-    return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "");
+    return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "", paths);
   if (mode == "memory" && argc > 4)
-    return Memory(argv[2], argv[3], argv[4]);
+    return Memory(argv[2], argv[3], argv[4], paths);
   if (mode == "multi" && argc > 2)
     return Multi(std::max(2, std::min(4, std::atoi(argv[2]))));
   if (mode == "bsp" && argc > 2)
     return Bsp(std::max(1, std::atoi(argv[2])), argc > 3 ? argv[3] : "ring");
   if (mode == "converge" && argc > 2)
     return Converge(
-      argv[2], argc > 3 ? std::atof(argv[3]) : 16.0, argc > 4 ? std::atof(argv[4]) : 32.0);
+      argv[2], argc > 3 ? std::atof(argv[3]) : 16.0, argc > 4 ? std::atof(argv[4]) : 32.0, paths);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
   std::cerr << "usage: BenchVolume header | accuracy <data> | frame <single|sparse> <data> "

@@ -19,8 +19,11 @@
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
 //   the output name (its temporary <output>.tmp-<pid> is left), and the next conversion to that
 //   name removes the stale temporary and succeeds.
+#include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -294,7 +297,7 @@ vtkSmartPointer<vtkImageData> MakeImage(int nx, int ny, int nz, int type, F valu
   return image;
 }
 
-void KilledConversion(const std::string& tool, const std::string& dir)
+void KilledConversion(const std::string& tool, const std::string& dataDir, const std::string& dir)
 {
   // 256^3 float: about a second of work with zstd, plenty of time to be killed in.
   const int n = 256;
@@ -347,7 +350,7 @@ void KilledConversion(const std::string& tool, const std::string& dir)
   Check(!vtksys::SystemTools::FileExists(output), "a killed conversion leaves no output file");
 
   // The next conversion to the same name removes the dead process's temporary.
-  const std::string bucky = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
+  const std::string bucky = dataDir + "/volumes/bucky.raw";
   const int rc = Run({ tool, bucky, output, "--raw", "32", "32", "32", "uint8" });
   vtkPagePoolFile pool;
   Check(rc == 0 && pool.Open(output) && !vtksys::SystemTools::FileExists(temp),
@@ -358,37 +361,36 @@ void KilledConversion(const std::string& tool, const std::string& dir)
 }
 }
 
-int TestConverters(int, char*[])
+namespace
 {
-  const std::string dir = strata_test::OutputDirectory() + "/TestConverters";
-  vtksys::SystemTools::MakeDirectory(dir);
-  const std::string data = strata_test::TestDataDirectory();
-
+void RawFloat(const std::string& dir)
+{
   std::cout << "raw float 128^3 (8 MB), memory limit 2 MB\n";
-  {
-    const int n = 128;
-    vtkSmartPointer<vtkImageData> image =
-      MakeImage(n, n, n, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 2 - 1; });
-    const std::string raw = dir + "/volume.raw";
-    Spit(raw, image->GetScalarPointer(), sizeof(float) * n * n * n);
-    vtkNew<vtkImageReader2> reader;
-    reader->SetFileName(raw.c_str());
-    reader->SetFileDimensionality(3);
-    reader->SetDataExtent(0, n - 1, 0, n - 1, 0, n - 1);
-    reader->SetDataScalarTypeToFloat();
-    reader->SetDataByteOrderToLittleEndian();
-    reader->SetDataSpacing(image->GetSpacing());
-    reader->SetDataOrigin(image->GetOrigin());
-    SlabLog log;
-    const double limitMB = 2.0;
-    RoundTrip(reader, dir + "/raw.spp", "raw", 16, limitMB, &log);
-    std::cout << "  " << log.Requests << " upstream requests, largest " << log.LargestKiB
-              << " KiB; volume " << n * n * n * 4 / 1024 << " KiB\n";
-    Check(log.Requests > 4 && log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 4,
-      "raw: a volume 4 times the memory limit converts in slabs well within it");
-    std::remove(raw.c_str());
-  }
+  const int n = 128;
+  vtkSmartPointer<vtkImageData> image =
+    MakeImage(n, n, n, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 2 - 1; });
+  const std::string raw = dir + "/volume.raw";
+  Spit(raw, image->GetScalarPointer(), sizeof(float) * n * n * n);
+  vtkNew<vtkImageReader2> reader;
+  reader->SetFileName(raw.c_str());
+  reader->SetFileDimensionality(3);
+  reader->SetDataExtent(0, n - 1, 0, n - 1, 0, n - 1);
+  reader->SetDataScalarTypeToFloat();
+  reader->SetDataByteOrderToLittleEndian();
+  reader->SetDataSpacing(image->GetSpacing());
+  reader->SetDataOrigin(image->GetOrigin());
+  SlabLog log;
+  const double limitMB = 2.0;
+  RoundTrip(reader, dir + "/raw.spp", "raw", 16, limitMB, &log);
+  std::cout << "  " << log.Requests << " upstream requests, largest " << log.LargestKiB
+            << " KiB; volume " << n * n * n * 4 / 1024 << " KiB\n";
+  Check(log.Requests > 4 && log.LargestKiB * 1024.0 < limitMB * 1048576.0 / 4,
+    "raw: a volume 4 times the memory limit converts in slabs well within it");
+  std::remove(raw.c_str());
+}
 
+void VolumeFormats(const std::string& dir, const std::string& data)
+{
   std::cout << ".vti float with NaN, .mhd int16, tooth.nrrd uint8\n";
   {
     vtkSmartPointer<vtkImageData> image = MakeImage(40,
@@ -447,7 +449,10 @@ int TestConverters(int, char*[])
     reader->SetFileName((data + "/volumes/tooth.nrrd").c_str());
     RoundTrip(reader, dir + "/tooth.spp", "tooth.nrrd");
   }
+}
 
+void Segy(const std::string& dir, const std::string& data)
+{
   std::cout << "SEG-Y\n";
   const std::string f3 = data + "/seismic/f3.sgy";
   {
@@ -513,7 +518,10 @@ int TestConverters(int, char*[])
         }
     Check(placed, "shuffled IBM SEG-Y: every trace in its place in the pool, NaN where missing");
   }
+}
 
+void Horizons(const strata_test::TestPaths& paths, const std::string& dir, const std::string& data)
+{
   std::cout << "horizons\n";
   {
     vtkNew<vtkIrapBinaryGridReader> reader;
@@ -525,8 +533,8 @@ int TestConverters(int, char*[])
     reader->SetFileName((data + "/horizons/penobscot_seabed_crop.npy").c_str());
     RoundTrip(reader, dir + "/penobscot.spp", "penobscot_seabed_crop.npy", 16);
   }
-  const std::string shared = strata_test::SharedDataDirectory() + "/horizons/penobscot_seabed.npy";
-  if (!strata_test::SharedDataDirectory().empty() && vtksys::SystemTools::FileExists(shared, true))
+  const std::string shared = paths.SharedData + "/horizons/penobscot_seabed.npy";
+  if (!paths.SharedData.empty() && vtksys::SystemTools::FileExists(shared, true))
   {
     // The whole Penobscot horizon (601 x 481, 2.3 MB) where ../shared/data is at hand.
     vtkNew<vtkNumpyGridReader> reader;
@@ -538,7 +546,12 @@ int TestConverters(int, char*[])
     reader->SetFileName((data + "/horizons/top_heimdal_subset.txt").c_str());
     RoundTrip(reader, dir + "/heimdal.spp", "top_heimdal_subset.txt", 16);
   }
+}
 
+void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
+{
+  const std::string f3 = paths.Data + "/seismic/f3.sgy";
+  const std::string shuffledPath = dir + "/shuffled.sgy"; // Segy's
   std::cout << "strata-convert\n";
   const std::string tool = FindConverter();
   if (tool.empty())
@@ -573,8 +586,25 @@ int TestConverters(int, char*[])
               SameAsSource(ReadPool(dir + "/volume.mhd.spp"), ReadPool(pool)),
         std::string("strata-convert ") + name + ": the same pool as the writer's");
     }
-    KilledConversion(tool, dir);
+    KilledConversion(tool, paths.Data, dir);
   }
+}
 
-  return strata_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+int TestConverters(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = paths.Output + "/TestConverters";
+  vtksys::SystemTools::MakeDirectory(dir);
+  const std::string data = paths.Data;
+  return strata_test::RunSubTests(
+    {
+      { "RawFloat", [&] { RawFloat(dir); } },
+      { "VolumeFormats", [&] { VolumeFormats(dir, data); } },
+      { "Segy", [&] { Segy(dir, data); } },
+      { "Horizons", [&] { Horizons(paths, dir, data); } },
+      { "StrataConvert", [&] { StrataConvert(paths, dir); } },
+    },
+    strata_test::Failures);
 }

@@ -3,6 +3,7 @@
 // Plain vtkRenderWindow::New() must give Strata's EGL window (no X server here), render a lit
 // sphere correctly, survive a resize, read back depth, and print nothing at all on the way:
 // in particular not VTK's "GLEW could not be initialized".
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkActor.h"

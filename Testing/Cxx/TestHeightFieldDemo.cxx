@@ -10,7 +10,10 @@
 //  3. the whole scene against a baseline image (vtkTesting, threshold stated below).
 #include "StrataDemoScene.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
+#include "StrataRegressionImage.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkActor.h"
 #include "vtkRenderWindow.h"
@@ -21,8 +24,9 @@
 #include <cstdlib>
 #include <iostream>
 
-int TestHeightFieldDemo(int, char*[])
+int TestHeightFieldDemo(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   using namespace strata_test;
   auto* output = CapturingOutputWindow::Install();
   vtkSmartPointer<vtkRenderWindow> win;
@@ -38,7 +42,8 @@ int TestHeightFieldDemo(int, char*[])
   double background[3];
   ren->GetBackground(background);
   ren->SetBackground(0, 0, 0);
-  auto r = CompareWithReference(win, ren, scene.Stack, scene.Mapper, scene.Horizons, "Demo");
+  auto r =
+    CompareWithReference(win, ren, scene.Stack, scene.Mapper, scene.Horizons, "Demo", paths.Output);
   Check(CheckReference(r, "Demo", 15000), "demo horizons against the reference");
   ren->SetBackground(background);
   ren->GradientBackgroundOn();
@@ -107,7 +112,7 @@ int TestHeightFieldDemo(int, char*[])
   // llvmpipe renders this scene bit for bit the same run to run; the slack covers other Mesa
   // builds' rounding of the shading, while a horizon, the tube or the sphere moved by a pixel
   // along its silhouette, or a change of colour map or lighting, exceeds it.
-  Check(CompareWithBaseline(win, "TestHeightFieldDemo", 0.5), "regression image");
+  Check(CompareWithBaseline(argc, argv, win, "TestHeightFieldDemo", 0.5), "regression image");
 
   Check(output->Errors == 0 && output->Warnings == 0, "no VTK errors or warnings");
   return Failures() ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -16,8 +16,12 @@
 //  4. faults: a corrupt tile, a pool truncated while rendering, a truncated pool and a missing
 //     file give VTK errors and no crash; the horizons keep their coarser tiles.
 #include "StrataDemoScene.h"
+#include "StrataErrorCounter.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h" // For ImageError
 
 #include "vtkActor.h"
@@ -189,7 +193,7 @@ void SetCutInputs(vtkStackedHeightFieldMapper* twin,
 
 // The demo's Reek scene (StrataDemo, scene 2) paged from tile pools against the same scene in
 // core: a path of frames each against the rendering of its own cut, then converged.
-void ReekPaged(const std::string& dir)
+void ReekPaged(const std::string& dataDir, const std::string& dir)
 {
   const char* names[4] = { "reek_01_topreek_rota.gri",
     "reek_02_midreek_rota.gri",
@@ -202,7 +206,7 @@ void ReekPaged(const std::string& dir)
   for (int k = 0; k < 4; ++k)
   {
     vtkNew<vtkIrapBinaryGridReader> reader;
-    reader->SetFileName((TestDataDirectory() + "/horizons/" + names[k]).c_str());
+    reader->SetFileName((dataDir + "/horizons/" + names[k]).c_str());
     reader->Update();
     holes += reader->GetNumberOfNoDataValues();
     auto image = vtkSmartPointer<vtkImageData>::New();
@@ -329,23 +333,58 @@ void ReekPaged(const std::string& dir)
     std::remove(pool.c_str());
 }
 
-int TestHeightFieldPaging(int, char*[])
+namespace
 {
-  const std::string dir = OutputDirectory();
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  const int w = 200, h = 150;
-  MakeWindow(win, ren, w, h);
-  DemoScene scene = AddDemoScene(ren);
-  scene.Well->VisibilityOff();
-  scene.Target->VisibilityOff();
-  ren->GradientBackgroundOff();
-  vtkCamera* cam = ren->GetActiveCamera();
-  vtkNew<vtkCamera> home;
-  home->DeepCopy(cam);
+/// What the parts share: the demo stack in a 200 x 150 window (no well, no target, no gradient),
+/// its camera's home, the tile pools, the in-core mapper, the twin that draws a frame's cut
+/// (Coarse), the paged mapper of the camera path and its readers; then the converged state and
+/// the faults' views.
+struct HFPagingFixture
+{
+  explicit HFPagingFixture(const std::string& dir)
+    : Dir(dir)
+  {
+    MakeWindow(this->Win, this->Ren, W, H);
+    this->Scene = AddDemoScene(this->Ren);
+    this->Scene.Well->VisibilityOff();
+    this->Scene.Target->VisibilityOff();
+    this->Ren->GradientBackgroundOff();
+    this->Home->DeepCopy(this->Ren->GetActiveCamera());
+  }
+  std::vector<unsigned char> Render(vtkStackedHeightFieldMapper* m)
+  {
+    this->Scene.Stack->SetMapper(m);
+    this->Win->Render();
+    return ReadRGB(this->Win);
+  }
+  static constexpr int W = 200, H = 150;
+  std::string Dir;
+  vtkSmartPointer<vtkRenderWindow> Win;
+  vtkSmartPointer<vtkRenderer> Ren;
+  DemoScene Scene;
+  vtkNew<vtkCamera> Home;
+  std::vector<std::string> Pools;
+  /// Made after the pools are written, as the test always did.
+  vtkSmartPointer<vtkStackedHeightFieldMapper> Coarse;
+  vtkSmartPointer<vtkStackedHeightFieldMapper> Paged;
+  std::vector<vtkSmartPointer<vtkPagePoolReader>> Readers;
+  std::vector<unsigned char> Background;
+  vtkStackedHeightFieldMapper::PagingStatistics ConvergedStats; ///< the path's, converged
+  std::vector<unsigned char> ConvergedFull;                     ///< the in-core image then
+  int BlindFinestTiles = 0;        ///< level-0 tiles without feedback, converged
+  std::vector<unsigned char> Full; ///< the faults' in-core view (from home)
+  double RootError = 0.0;          ///< the root-only rendering's RMS error there
+};
 
+void PoolsAndReferences(HFPagingFixture& fx)
+{
+  DemoScene& scene = fx.Scene;
+  std::vector<std::string>& pools = fx.Pools;
+  vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
+  std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers = fx.Readers;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const std::string& dir = fx.Dir;
   // One tile pool per horizon.
-  std::vector<std::string> pools;
   for (size_t k = 0; k < scene.Horizons.size(); ++k)
   {
     const std::string pool = dir + "/hf-paging-" + std::to_string(k) + ".spp";
@@ -363,29 +402,31 @@ int TestHeightFieldPaging(int, char*[])
   probe.Close();
 
   // In-core references: the demo mapper as is, and a twin that draws whatever heights it gets.
-  vtkStackedHeightFieldMapper* incore = scene.Mapper;
+  fx.Coarse = vtkSmartPointer<vtkStackedHeightFieldMapper>::New();
+  fx.Paged = vtkSmartPointer<vtkStackedHeightFieldMapper>::New();
+  vtkStackedHeightFieldMapper* coarse = fx.Coarse;
+  vtkStackedHeightFieldMapper* paged = fx.Paged;
   incore->SetTileSize(32);
-  vtkNew<vtkStackedHeightFieldMapper> coarse;
   coarse->SetTileSize(32);
-  vtkNew<vtkStackedHeightFieldMapper> paged;
   paged->SetTileSize(32);
   paged->SetPagesPerFrame(3);
   paged->PrefetchOn(); // read-ahead on the path (the other mappers read on demand alone)
-  std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   PagedFrom(pools, paged, readers);
-  auto render = [&](vtkStackedHeightFieldMapper* m)
-  {
-    scene.Stack->SetMapper(m);
-    win->Render();
-    return ReadRGB(win);
-  };
-  std::vector<unsigned char> background(size_t(w) * h * 3);
-  {
-    scene.Stack->VisibilityOff();
-    background = render(incore);
-    scene.Stack->VisibilityOn();
-  }
+  scene.Stack->VisibilityOff();
+  fx.Background = render(incore);
+  scene.Stack->VisibilityOn();
+}
 
+void CameraPath(HFPagingFixture& fx)
+{
+  vtkRenderer* ren = fx.Ren;
+  DemoScene& scene = fx.Scene;
+  vtkCamera* cam = fx.Ren->GetActiveCamera();
+  vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
+  vtkStackedHeightFieldMapper* coarse = fx.Coarse;
+  vtkStackedHeightFieldMapper* paged = fx.Paged;
+  const std::vector<unsigned char>& background = fx.Background;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   // 1. A camera path: orbit and dolly while the cache fills; each frame against the in-core
   // rendering of its own cut.
   const auto fullFirst = render(incore);
@@ -443,72 +484,104 @@ int TestHeightFieldPaging(int, char*[])
     cut.WorstCoverage <= 10, "no holes: each frame covers what its cut's in-core rendering covers");
   Check(cut.Compared == frames && frames >= 20 && cut.SmallestCovered > 5000,
     "every frame of the path was compared and shows the horizons");
+}
 
+void Converged(HFPagingFixture& fx)
+{
+  vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
+  vtkStackedHeightFieldMapper* paged = fx.Paged;
+  const std::vector<unsigned char>& background = fx.Background;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   // 2. Converged: the in-core image, shaded and in ids.
+  fx.ConvergedStats = paged->GetPagingStatistics();
+  fx.ConvergedFull = render(incore);
+  const auto& st = fx.ConvergedStats;
+  const auto& full = fx.ConvergedFull;
+  const auto mine = render(paged);
+  const Difference d = Compare(mine, full, background);
+  std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered
+            << " covered pixels; " << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles
+            << "; " << st.BytesRead / 1024 << " KiB read\n";
+  Check(
+    d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
+  incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
+  paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
+  const Difference ids = Compare(render(paged), render(incore), background);
+  std::cout << "HFPaging: converged, horizon ids: max difference " << ids.Max << "\n";
+  Check(ids.Max == 0, "converged paged rendering equals the in-core one (ids)");
+  incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
+  paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
+}
+
+void WithoutFeedback(HFPagingFixture& fx)
+{
+  vtkStackedHeightFieldMapper* paged = fx.Paged;
+  std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers = fx.Readers;
+  const std::vector<unsigned char>& background = fx.Background;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const auto& st = fx.ConvergedStats;
+  const auto& full = fx.ConvergedFull;
+  // Without feedback every tile in view is refined by its screen-space error; with it only
+  // the tiles rays hit, so the parts of the lower horizons hidden under the upper ones stay
+  // coarse: fewer level-0 tiles, the same image.
+  vtkNew<vtkStackedHeightFieldMapper> blind;
+  blind->SetTileSize(32);
+  blind->LevelOfDetailFeedbackOff();
+  for (const auto& r : readers)
+    blind->AddInputConnection(r->GetOutputPort());
+  for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)
   {
-    const auto st = paged->GetPagingStatistics();
-    const auto full = render(incore);
-    const auto mine = render(paged);
-    const Difference d = Compare(mine, full, background);
-    std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered
-              << " covered pixels; " << st.FinestTiles << " level-0 tiles resident of "
-              << st.CutTiles << "; " << st.BytesRead / 1024 << " KiB read\n";
-    Check(
-      d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
-    incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
-    paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
-    const Difference ids = Compare(render(paged), render(incore), background);
-    std::cout << "HFPaging: converged, horizon ids: max difference " << ids.Max << "\n";
-    Check(ids.Max == 0, "converged paged rendering equals the in-core one (ids)");
-    incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
-    paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
-
-    // Without feedback every tile in view is refined by its screen-space error; with it only
-    // the tiles rays hit, so the parts of the lower horizons hidden under the upper ones stay
-    // coarse: fewer level-0 tiles, the same image.
-    vtkNew<vtkStackedHeightFieldMapper> blind;
-    blind->SetTileSize(32);
-    blind->LevelOfDetailFeedbackOff();
-    for (const auto& r : readers)
-      blind->AddInputConnection(r->GetOutputPort());
-    for (int f = 0; f < 300 && !blind->GetPagingStatistics().Converged; ++f)
-    {
-      render(blind);
-      blind->WaitForPages(1.0);
-    }
-    const auto sb = blind->GetPagingStatistics();
-    const Difference db = Compare(render(blind), full, background);
-    std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " ("
-              << st.FeedbackPages << " tiles asked for), without " << sb.FinestTiles
-              << "; without feedback max difference " << db.Max << "; feedback reduction "
-              << paged->GetPagingStatistics().FeedbackMilliseconds << " ms\n";
-    Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
-    Check(
-      sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
-    Check(st.FinestTiles < sb.FinestTiles,
-      "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
-
-    // Read back at the next frame instead of after the draw: the cut sees the same feedback.
-    vtkNew<vtkStackedHeightFieldMapper> deferred;
-    deferred->SetTileSize(32);
-    deferred->SetPagesPerFrame(3);
-    deferred->DeferFeedbackReadBackOn();
-    for (const auto& r : readers)
-      deferred->AddInputConnection(r->GetOutputPort());
-    int df = 0;
-    for (; df < 300 && !deferred->GetPagingStatistics().Converged; ++df)
-    {
-      render(deferred);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    const auto sd = deferred->GetPagingStatistics();
-    const Difference dd = Compare(render(deferred), full, background);
-    std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, "
-              << sd.FinestTiles << " level-0 tiles, max difference " << dd.Max << "\n";
-    Check(sd.Converged && sd.FeedbackUsed && dd.Max == 0 && sd.FinestTiles < sb.FinestTiles,
-      "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles "
-      "coarse");
+    render(blind);
+    blind->WaitForPages(1.0);
   }
+  const auto sb = blind->GetPagingStatistics();
+  fx.BlindFinestTiles = sb.FinestTiles;
+  const Difference db = Compare(render(blind), full, background);
+  std::cout << "HFPaging: level-0 tiles resident with feedback " << st.FinestTiles << " ("
+            << st.FeedbackPages << " tiles asked for), without " << sb.FinestTiles
+            << "; without feedback max difference " << db.Max << "; feedback reduction "
+            << paged->GetPagingStatistics().FeedbackMilliseconds << " ms\n";
+  Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
+  Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
+  Check(st.FinestTiles < sb.FinestTiles,
+    "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
+}
+
+void DeferredReadBack(HFPagingFixture& fx)
+{
+  std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers = fx.Readers;
+  const std::vector<unsigned char>& background = fx.Background;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const auto& full = fx.ConvergedFull;
+  // Read back at the next frame instead of after the draw: the cut sees the same feedback.
+  vtkNew<vtkStackedHeightFieldMapper> deferred;
+  deferred->SetTileSize(32);
+  deferred->SetPagesPerFrame(3);
+  deferred->DeferFeedbackReadBackOn();
+  for (const auto& r : readers)
+    deferred->AddInputConnection(r->GetOutputPort());
+  int df = 0;
+  for (; df < 300 && !deferred->GetPagingStatistics().Converged; ++df)
+  {
+    render(deferred);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const auto sd = deferred->GetPagingStatistics();
+  const Difference dd = Compare(render(deferred), full, background);
+  std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, "
+            << sd.FinestTiles << " level-0 tiles, max difference " << dd.Max << "\n";
+  Check(sd.Converged && sd.FeedbackUsed && dd.Max == 0 && sd.FinestTiles < fx.BlindFinestTiles,
+    "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles "
+    "coarse");
+}
+
+void BlendedRefinement(HFPagingFixture& fx)
+{
+  vtkRenderer* ren = fx.Ren;
+  vtkCamera* cam = fx.Ren->GetActiveCamera();
+  vtkCamera* home = fx.Home;
+  std::vector<std::string>& pools = fx.Pools;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   {
     // Refinement without pops: at a still camera, the largest change of any grid height from
     // one frame to the next, tiles blending in over MorphFrames frames and at once.
@@ -548,6 +621,18 @@ int TestHeightFieldPaging(int, char*[])
     Check(jump[1] > 0.0 && jump[1] <= 0.6 * jump[0],
       "blended refinement: no frame jumps by more than 0.6 of the largest unblended pop");
   }
+}
+
+void ZoomedIn(HFPagingFixture& fx)
+{
+  vtkRenderer* ren = fx.Ren;
+  vtkCamera* cam = fx.Ren->GetActiveCamera();
+  vtkCamera* home = fx.Home;
+  std::vector<std::string>& pools = fx.Pools;
+  vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
+  std::vector<vtkSmartPointer<vtkPagePoolReader>>& readers = fx.Readers;
+  const std::vector<unsigned char>& background = fx.Background;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   {
     // Zoomed into a corner: tiles out of view are never refined.
     cam->DeepCopy(home);
@@ -571,16 +656,23 @@ int TestHeightFieldPaging(int, char*[])
     Check(st.Converged && st.FinestTiles < all / 2, "tiles out of view stay coarse");
     Check(d.Max == 0, "zoomed in, converged paged rendering equals the in-core one");
   }
+}
 
-  // 3. The Reek scene.
-  ReekPaged(dir);
-
+void FaultViews(HFPagingFixture& fx)
+{
+  vtkRenderer* ren = fx.Ren;
+  vtkCamera* cam = fx.Ren->GetActiveCamera();
+  vtkCamera* home = fx.Home;
+  std::vector<std::string>& pools = fx.Pools;
+  vtkStackedHeightFieldMapper* incore = fx.Scene.Mapper;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
   // 4. Faults.
   cam->DeepCopy(home);
   ren->ResetCameraClippingRange();
-  const auto full = render(incore);
+  fx.Full = render(incore);
+  const auto& full = fx.Full;
   // The error of the root-only rendering: what "coarser" may cost at most.
-  double rootError = 0.0;
+  double& rootError = fx.RootError;
   {
     vtkNew<vtkStackedHeightFieldMapper> m;
     std::vector<vtkSmartPointer<vtkPagePoolReader>> rs;
@@ -589,6 +681,15 @@ int TestHeightFieldPaging(int, char*[])
     m->SetPagesPerFrame(1);
     rootError = ImageError(render(m), full).Rms;
   }
+}
+
+void CorruptTile(HFPagingFixture& fx)
+{
+  std::vector<std::string>& pools = fx.Pools;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const std::string& dir = fx.Dir;
+  const std::vector<unsigned char>& full = fx.Full;
+  const double rootError = fx.RootError;
   const std::string corrupt = dir + "/hf-paging-corrupt.spp";
   Check(CopyFile(pools[1], corrupt) && CorruptPage(corrupt, 40, 9),
     "page 40 corrupted"); // a level-0 tile in view
@@ -619,6 +720,15 @@ int TestHeightFieldPaging(int, char*[])
     Check(worstRms <= rootError + 0.5,
       "with a corrupt tile the horizons stay a valid coarser rendering");
   }
+}
+
+void TruncatedWhileRendering(HFPagingFixture& fx)
+{
+  std::vector<std::string>& pools = fx.Pools;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const std::string& dir = fx.Dir;
+  const std::vector<unsigned char>& full = fx.Full;
+  const double rootError = fx.RootError;
   const std::string shrinking = dir + "/hf-paging-shrinking.spp";
   Check(CopyFile(pools[0], shrinking), "pool copied");
   {
@@ -652,6 +762,13 @@ int TestHeightFieldPaging(int, char*[])
       "read errors while rendering: one VTK error per failed tile");
     Check(worstRms <= rootError + 0.5, "after read errors the horizons keep their coarser tiles");
   }
+}
+
+void BrokenPools(HFPagingFixture& fx)
+{
+  std::vector<std::string>& pools = fx.Pools;
+  auto render = [&fx](vtkStackedHeightFieldMapper* m) { return fx.Render(m); };
+  const std::string& dir = fx.Dir;
   for (const std::string& bad : { dir + "/hf-paging-truncated.spp", dir + "/hf-no-such-pool.spp" })
   {
     if (bad.find("truncated") != std::string::npos)
@@ -669,9 +786,34 @@ int TestHeightFieldPaging(int, char*[])
     Check(
       errors->Errors >= 1, "a broken pool (" + bad.substr(dir.size() + 1) + ") gives a VTK error");
   }
-  for (const auto& pool : pools)
+}
+
+}
+
+int TestHeightFieldPaging(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  HFPagingFixture fx(paths.Output);
+  RunSubTests(
+    {
+      { "PoolsAndReferences", [&] { PoolsAndReferences(fx); } },
+      { "CameraPath", [&] { CameraPath(fx); } },
+      { "Converged", [&] { Converged(fx); } },
+      { "WithoutFeedback", [&] { WithoutFeedback(fx); } },
+      { "DeferredReadBack", [&] { DeferredReadBack(fx); } },
+      { "BlendedRefinement", [&] { BlendedRefinement(fx); } },
+      { "ZoomedIn", [&] { ZoomedIn(fx); } },
+      // 3. The Reek scene.
+      { "ReekPaged", [&] { ReekPaged(paths.Data, fx.Dir); } },
+      { "FaultViews", [&] { FaultViews(fx); } },
+      { "CorruptTile", [&] { CorruptTile(fx); } },
+      { "TruncatedWhileRendering", [&] { TruncatedWhileRendering(fx); } },
+      { "BrokenPools", [&] { BrokenPools(fx); } },
+    },
+    Failures);
+  for (const auto& pool : fx.Pools)
     std::remove(pool.c_str());
-  std::remove(corrupt.c_str());
-  std::remove(shrinking.c_str());
+  std::remove((fx.Dir + "/hf-paging-corrupt.spp").c_str());
+  std::remove((fx.Dir + "/hf-paging-shrinking.spp").c_str());
   return Failures() == 0 ? 0 : 1;
 }

@@ -12,7 +12,10 @@
 // - bad input: a missing file, a truncated copy, a garbage file, an empty file, points off any
 //   regular grid, non-integer indices in InlineCrossline mode. Each must raise an error (caught
 //   by an observer) and leave the output with no points.
+#include "StrataErrorCounter.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -167,205 +170,208 @@ bool EveryPointOnItsNode(vtkImageData* image, const std::string& text, double to
 }
 }
 
-int TestHorizonColumnReader(int, char*[])
+namespace
 {
-  using Mode = vtkHorizonColumnReader::ColumnMode;
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
+using Mode = vtkHorizonColumnReader::ColumnMode;
 
+void TopHeimdal(const std::string& dataDir)
+{
   // ---- Top Heimdal: inline crossline twt ----
+  const std::string path = dataDir + "top_heimdal_subset.txt";
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Check(errors->Errors == 0 && errors->Warnings == 0, "heimdal: no errors or warnings");
+  Check(reader->GetDetectedMode() == Mode::InlineCrossline, "heimdal: detected inline/crossline");
+  Check(!reader->GetHasHeaderLine(), "heimdal: no header line");
+  Check(reader->GetNumberOfRecords() == 12801, "heimdal: 12801 lines (wc -l)");
+  Check(reader->GetFirstInline() == 1300 && reader->GetInlineStep() == 4,
+    "heimdal: inlines from 1300 step 4");
+  Check(reader->GetFirstCrossline() == 1500 && reader->GetCrosslineStep() == 2,
+    "heimdal: crosslines from 1500 step 2");
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(dims[0] == 51 && dims[1] == 251 && dims[2] == 1, "heimdal: 51 x 251 x 1");
+  Check(reader->GetNumberOfNoDataValues() == 0, "heimdal: no holes (51 * 251 = 12801 lines)");
+  double* o = image->GetOrigin();
+  double* s = image->GetSpacing();
+  Check(o[0] == 1300 && o[1] == 1500 && s[0] == 4 && s[1] == 2 && s[2] == 1,
+    "heimdal: index coordinates (origin 1300, 1500; spacing 4, 2)");
+  Check(image->GetDirectionMatrix()->IsIdentity(), "heimdal: no rotation");
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  Check(
+    scalars && vtkFloatArray::SafeDownCast(scalars) && std::string(scalars->GetName()) == "depth",
+    "heimdal: float array named depth");
+  if (scalars && dims[0] == 51 && dims[1] == 251)
   {
-    const std::string path = dataDir + "top_heimdal_subset.txt";
-    vtkNew<vtkHorizonColumnReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    Check(errors->Errors == 0 && errors->Warnings == 0, "heimdal: no errors or warnings");
-    Check(reader->GetDetectedMode() == Mode::InlineCrossline, "heimdal: detected inline/crossline");
-    Check(!reader->GetHasHeaderLine(), "heimdal: no header line");
-    Check(reader->GetNumberOfRecords() == 12801, "heimdal: 12801 lines (wc -l)");
-    Check(reader->GetFirstInline() == 1300 && reader->GetInlineStep() == 4,
-      "heimdal: inlines from 1300 step 4");
-    Check(reader->GetFirstCrossline() == 1500 && reader->GetCrosslineStep() == 2,
-      "heimdal: crosslines from 1500 step 2");
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(dims[0] == 51 && dims[1] == 251 && dims[2] == 1, "heimdal: 51 x 251 x 1");
-    Check(reader->GetNumberOfNoDataValues() == 0, "heimdal: no holes (51 * 251 = 12801 lines)");
-    double* o = image->GetOrigin();
-    double* s = image->GetSpacing();
-    Check(o[0] == 1300 && o[1] == 1500 && s[0] == 4 && s[1] == 2 && s[2] == 1,
-      "heimdal: index coordinates (origin 1300, 1500; spacing 4, 2)");
-    Check(image->GetDirectionMatrix()->IsIdentity(), "heimdal: no rotation");
-    vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    Check(
-      scalars && vtkFloatArray::SafeDownCast(scalars) && std::string(scalars->GetName()) == "depth",
-      "heimdal: float array named depth");
-    if (scalars && dims[0] == 51 && dims[1] == 251)
+    // Literals from the text (grep): first line, last line, and three in between.
+    Check(ValueAt(image, 0, 0) == 2084.9f, "heimdal: 1300 1500 2084.9");
+    Check(ValueAt(image, 50, 250) == 2127.1f, "heimdal: 1500 2000 2127.1");
+    Check(ValueAt(image, 25, 125) == 2058.7f, "heimdal: 1400 1750 2058.7");
+    Check(ValueAt(image, 10, 50) == 2101.7f, "heimdal: 1340 1600 2101.7");
+    Check(ValueAt(image, 40, 201) == 2094.7f, "heimdal: 1460 1902 2094.7");
+
+    // Every line against the test's own parse.
+    std::ifstream in(path);
+    double il = 0, xl = 0, z = 0;
+    int lines = 0;
+    int wrong = 0;
+    while (in >> il >> xl >> z)
     {
-      // Literals from the text (grep): first line, last line, and three in between.
-      Check(ValueAt(image, 0, 0) == 2084.9f, "heimdal: 1300 1500 2084.9");
-      Check(ValueAt(image, 50, 250) == 2127.1f, "heimdal: 1500 2000 2127.1");
-      Check(ValueAt(image, 25, 125) == 2058.7f, "heimdal: 1400 1750 2058.7");
-      Check(ValueAt(image, 10, 50) == 2101.7f, "heimdal: 1340 1600 2101.7");
-      Check(ValueAt(image, 40, 201) == 2094.7f, "heimdal: 1460 1902 2094.7");
-
-      // Every line against the test's own parse.
-      std::ifstream in(path);
-      double il = 0, xl = 0, z = 0;
-      int lines = 0;
-      int wrong = 0;
-      while (in >> il >> xl >> z)
-      {
-        const int i = static_cast<int>((il - 1300) / 4);
-        const int j = static_cast<int>((xl - 1500) / 2);
-        wrong += ValueAt(image, i, j) == static_cast<float>(z) ? 0 : 1;
-        ++lines;
-      }
-      Check(lines == 12801 && wrong == 0, "heimdal: every line at its node");
+      const int i = static_cast<int>((il - 1300) / 4);
+      const int j = static_cast<int>((xl - 1500) / 2);
+      wrong += ValueAt(image, i, j) == static_cast<float>(z) ? 0 : 1;
+      ++lines;
     }
-
-    // World placement instead of index numbers.
-    reader->IndexCoordinatesOff();
-    reader->SetOrigin(5000.0, 6000.0);
-    reader->SetInlineSpacing(12.5);
-    reader->SetCrosslineSpacing(25.0);
-    reader->SetRotation(30.0);
-    reader->Update();
-    image = reader->GetOutput();
-    o = image->GetOrigin();
-    s = image->GetSpacing();
-    Check(o[0] == 5000 && o[1] == 6000 && s[0] == 4 * 12.5 && s[1] == 2 * 25.0,
-      "heimdal: world origin, spacing = step x bin size");
-    Check(DirectionIs(image, 30.0, 1e-15), "heimdal: rotation 30 degrees");
-    Check(ValueAt(image, 25, 125) == 2058.7f, "heimdal: values unchanged by the geometry");
+    Check(lines == 12801 && wrong == 0, "heimdal: every line at its node");
   }
 
+  // World placement instead of index numbers.
+  reader->IndexCoordinatesOff();
+  reader->SetOrigin(5000.0, 6000.0);
+  reader->SetInlineSpacing(12.5);
+  reader->SetCrosslineSpacing(25.0);
+  reader->SetRotation(30.0);
+  reader->Update();
+  image = reader->GetOutput();
+  o = image->GetOrigin();
+  s = image->GetSpacing();
+  Check(o[0] == 5000 && o[1] == 6000 && s[0] == 4 * 12.5 && s[1] == 2 * 25.0,
+    "heimdal: world origin, spacing = step x bin size");
+  Check(DirectionIs(image, 30.0, 1e-15), "heimdal: rotation 30 degrees");
+  Check(ValueAt(image, 25, 125) == 2058.7f, "heimdal: values unchanged by the geometry");
+}
+
+void InlineCrossline(const std::string& outDir)
+{
   // ---- Inline/crossline with header, comments, blank lines, CRLF, a hole, a null value ----
+  const std::string text = "# Horizon export for the test\r\n"
+                           "\r\n"
+                           "inline xline twt\r\n"
+                           "100 7 1000.5\r\n"
+                           "100 10 1001.5\r\n"
+                           "  # a comment in between\r\n"
+                           "100 13 1002.5\r\n"
+                           "102 7 1010.5\r\n"
+                           "102 13 -999.25\r\n"
+                           "104\t7\t1020.5\r\n"
+                           "104,10,1021.5\r\n"
+                           "104 13 1022.5 extra columns ignored\r\n";
+  const std::string path = outDir + "TestHorizonColumnReader_indices.txt";
+  Spit(path, text);
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->SetNullValue(-999.25);
+  reader->SetArrayName("twt");
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(errors->Errors == 0 && errors->Warnings == 0, "indices: no errors");
+  Check(reader->GetHasHeaderLine() && reader->GetDetectedMode() == Mode::InlineCrossline,
+    "indices: header line, inline/crossline");
+  Check(reader->GetNumberOfRecords() == 8, "indices: 8 data lines");
+  Check(dims[0] == 3 && dims[1] == 3, "indices: 3 x 3 (inlines 100..104 step 2, xl 7..13 step 3)");
+  Check(reader->GetInlineStep() == 2 && reader->GetCrosslineStep() == 3, "indices: steps 2, 3");
+  Check(reader->GetNumberOfNoDataValues() == 2, "indices: missing 102/10 and null 102/13");
+  if (image->GetNumberOfPoints() == 9)
   {
-    const std::string text = "# Horizon export for the test\r\n"
-                             "\r\n"
-                             "inline xline twt\r\n"
-                             "100 7 1000.5\r\n"
-                             "100 10 1001.5\r\n"
-                             "  # a comment in between\r\n"
-                             "100 13 1002.5\r\n"
-                             "102 7 1010.5\r\n"
-                             "102 13 -999.25\r\n"
-                             "104\t7\t1020.5\r\n"
-                             "104,10,1021.5\r\n"
-                             "104 13 1022.5 extra columns ignored\r\n";
-    const std::string path = outDir + "TestHorizonColumnReader_indices.txt";
-    Spit(path, text);
-    vtkNew<vtkHorizonColumnReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->SetNullValue(-999.25);
-    reader->SetArrayName("twt");
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(errors->Errors == 0 && errors->Warnings == 0, "indices: no errors");
-    Check(reader->GetHasHeaderLine() && reader->GetDetectedMode() == Mode::InlineCrossline,
-      "indices: header line, inline/crossline");
-    Check(reader->GetNumberOfRecords() == 8, "indices: 8 data lines");
+    Check(std::isnan(ValueAt(image, 1, 1)) && std::isnan(ValueAt(image, 1, 2)),
+      "indices: holes are NaN");
+    Check(ValueAt(image, 0, 0) == 1000.5 && ValueAt(image, 0, 2) == 1002.5 &&
+            ValueAt(image, 1, 0) == 1010.5 && ValueAt(image, 2, 1) == 1021.5 &&
+            ValueAt(image, 2, 2) == 1022.5,
+      "indices: values");
     Check(
-      dims[0] == 3 && dims[1] == 3, "indices: 3 x 3 (inlines 100..104 step 2, xl 7..13 step 3)");
-    Check(reader->GetInlineStep() == 2 && reader->GetCrosslineStep() == 3, "indices: steps 2, 3");
-    Check(reader->GetNumberOfNoDataValues() == 2, "indices: missing 102/10 and null 102/13");
-    if (image->GetNumberOfPoints() == 9)
-    {
-      Check(std::isnan(ValueAt(image, 1, 1)) && std::isnan(ValueAt(image, 1, 2)),
-        "indices: holes are NaN");
-      Check(ValueAt(image, 0, 0) == 1000.5 && ValueAt(image, 0, 2) == 1002.5 &&
-              ValueAt(image, 1, 0) == 1010.5 && ValueAt(image, 2, 1) == 1021.5 &&
-              ValueAt(image, 2, 2) == 1022.5,
-        "indices: values");
-      Check(std::string(image->GetPointData()->GetScalars()->GetName()) == "twt",
-        "indices: array name");
-    }
-    reader->IndexCoordinatesOff();
-    reader->SetRotation(90.0);
-    reader->Update();
-    Check(reader->GetOutput()->GetDirectionMatrix()->GetElement(0, 1) == -1.0 &&
-            reader->GetOutput()->GetDirectionMatrix()->GetElement(1, 0) == 1.0,
-      "indices: a 90 degree rotation is exact");
-
-    // A duplicate node: warned about, the last line wins.
-    Spit(path, text + "104 13 2000.0\n");
-    reader->Modified();
-    reader->Update();
-    Check(errors->Warnings == 1 && reader->GetNumberOfDuplicates() == 1,
-      "duplicate: one warning, counted");
-    Check(ValueAt(reader->GetOutput(), 2, 2) == 2000.0, "duplicate: the last line wins");
+      std::string(image->GetPointData()->GetScalars()->GetName()) == "twt", "indices: array name");
   }
+  reader->IndexCoordinatesOff();
+  reader->SetRotation(90.0);
+  reader->Update();
+  Check(reader->GetOutput()->GetDirectionMatrix()->GetElement(0, 1) == -1.0 &&
+          reader->GetOutput()->GetDirectionMatrix()->GetElement(1, 0) == 1.0,
+    "indices: a 90 degree rotation is exact");
 
+  // A duplicate node: warned about, the last line wins.
+  Spit(path, text + "104 13 2000.0\n");
+  reader->Modified();
+  reader->Update();
+  Check(errors->Warnings == 1 && reader->GetNumberOfDuplicates() == 1,
+    "duplicate: one warning, counted");
+  Check(ValueAt(reader->GetOutput(), 2, 2) == 2000.0, "duplicate: the last line wins");
+}
+
+void RotatedXYZ(const std::string& outDir)
+{
   // ---- x y z on a grid rotated by 30 degrees, anisotropic spacing, one node missing ----
+  const int nx = 7, ny = 5;
+  const double ox = 456789.0, oy = 6543210.0, du = 25.0, dv = 12.5;
+  const std::string text =
+    RotatedGridText(nx, ny, ox, oy, du, dv, 30.0, 3 + 2 * nx, "%.3f,%.3f,%.2f\n", "x,y,z\n");
+  const std::string path = outDir + "TestHorizonColumnReader_xyz30.txt";
+  Spit(path, text);
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(errors->Errors == 0, "xyz 30: no errors");
+  Check(reader->GetDetectedMode() == Mode::XYZ && reader->GetHasHeaderLine(), "xyz 30: XYZ");
+  Check(dims[0] == nx && dims[1] == ny && dims[2] == 1, "xyz 30: 7 x 5 x 1");
+  // Coordinates are printed with 3 decimals (error <= 0.0005 each), so the fit recovers the
+  // generating grid to a few 1e-4.
+  double* o = image->GetOrigin();
+  double* s = image->GetSpacing();
+  Check(Near(o[0], ox, 2e-3) && Near(o[1], oy, 2e-3), "xyz 30: origin");
+  Check(Near(s[0], du, 1e-3) && Near(s[1], dv, 1e-3) && s[2] == 1.0, "xyz 30: spacing 25, 12.5");
+  Check(Near(reader->GetGridRotation(), 30.0, 1e-3), "xyz 30: rotation 30 degrees");
+  Check(DirectionIs(image, 30.0, 1e-5), "xyz 30: direction matrix");
+  Check(reader->GetMaxDeviation() < 1e-3, "xyz 30: points within 1e-3 of their nodes");
+  Check(reader->GetNumberOfNoDataValues() == 1, "xyz 30: one missing node");
+  if (image->GetNumberOfPoints() == nx * ny)
   {
-    const int nx = 7, ny = 5;
-    const double ox = 456789.0, oy = 6543210.0, du = 25.0, dv = 12.5;
-    const std::string text =
-      RotatedGridText(nx, ny, ox, oy, du, dv, 30.0, 3 + 2 * nx, "%.3f,%.3f,%.2f\n", "x,y,z\n");
-    const std::string path = outDir + "TestHorizonColumnReader_xyz30.txt";
-    Spit(path, text);
-    vtkNew<vtkHorizonColumnReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(errors->Errors == 0, "xyz 30: no errors");
-    Check(reader->GetDetectedMode() == Mode::XYZ && reader->GetHasHeaderLine(), "xyz 30: XYZ");
-    Check(dims[0] == nx && dims[1] == ny && dims[2] == 1, "xyz 30: 7 x 5 x 1");
-    // Coordinates are printed with 3 decimals (error <= 0.0005 each), so the fit recovers the
-    // generating grid to a few 1e-4.
-    double* o = image->GetOrigin();
-    double* s = image->GetSpacing();
-    Check(Near(o[0], ox, 2e-3) && Near(o[1], oy, 2e-3), "xyz 30: origin");
-    Check(Near(s[0], du, 1e-3) && Near(s[1], dv, 1e-3) && s[2] == 1.0, "xyz 30: spacing 25, 12.5");
-    Check(Near(reader->GetGridRotation(), 30.0, 1e-3), "xyz 30: rotation 30 degrees");
-    Check(DirectionIs(image, 30.0, 1e-5), "xyz 30: direction matrix");
-    Check(reader->GetMaxDeviation() < 1e-3, "xyz 30: points within 1e-3 of their nodes");
-    Check(reader->GetNumberOfNoDataValues() == 1, "xyz 30: one missing node");
-    if (image->GetNumberOfPoints() == nx * ny)
-    {
-      Check(std::isnan(ValueAt(image, 3, 2)), "xyz 30: the missing node (3, 2) is NaN");
-      Check(ValueAt(image, 6, 4) == static_cast<float>(1500.0 + 18 + 2), "xyz 30: node (6, 4)");
-      Check(EveryPointOnItsNode(image, text, 1e-4), "xyz 30: every line at its node");
-    }
+    Check(std::isnan(ValueAt(image, 3, 2)), "xyz 30: the missing node (3, 2) is NaN");
+    Check(ValueAt(image, 6, 4) == static_cast<float>(1500.0 + 18 + 2), "xyz 30: node (6, 4)");
+    Check(EveryPointOnItsNode(image, text, 1e-4), "xyz 30: every line at its node");
   }
+}
 
+void ReekRotationXYZ(const std::string& outDir)
+{
   // ---- x y z on the Reek rotation (140 degrees), whitespace, no header ----
-  {
-    const std::string text =
-      RotatedGridText(6, 4, 468895.125, 5932889.5, 20.0, 20.0, 140.0, -1, "%.2f %.2f %.2f\n", "");
-    const std::string path = outDir + "TestHorizonColumnReader_xyz140.txt";
-    Spit(path, text);
-    vtkNew<vtkHorizonColumnReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(errors->Errors == 0, "xyz 140: no errors");
-    // The same lattice, labelled with the axis nearest world x: 140 - 180 = -40 degrees, which
-    // turns the grid half around and keeps it 6 x 4.
-    Check(dims[0] == 6 && dims[1] == 4, "xyz 140: 6 x 4");
-    Check(Near(reader->GetGridRotation(), -40.0, 1e-3), "xyz 140: rotation -40 degrees");
-    double* s = image->GetSpacing();
-    Check(Near(s[0], 20.0, 1e-3) && Near(s[1], 20.0, 1e-3), "xyz 140: spacing 20");
-    Check(reader->GetNumberOfNoDataValues() == 0, "xyz 140: no holes");
-    Check(EveryPointOnItsNode(image, text, 1e-3), "xyz 140: every line at its node");
-  }
+  const std::string text =
+    RotatedGridText(6, 4, 468895.125, 5932889.5, 20.0, 20.0, 140.0, -1, "%.2f %.2f %.2f\n", "");
+  const std::string path = outDir + "TestHorizonColumnReader_xyz140.txt";
+  Spit(path, text);
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(errors->Errors == 0, "xyz 140: no errors");
+  // The same lattice, labelled with the axis nearest world x: 140 - 180 = -40 degrees, which
+  // turns the grid half around and keeps it 6 x 4.
+  Check(dims[0] == 6 && dims[1] == 4, "xyz 140: 6 x 4");
+  Check(Near(reader->GetGridRotation(), -40.0, 1e-3), "xyz 140: rotation -40 degrees");
+  double* s = image->GetSpacing();
+  Check(Near(s[0], 20.0, 1e-3) && Near(s[1], 20.0, 1e-3), "xyz 140: spacing 20");
+  Check(reader->GetNumberOfNoDataValues() == 0, "xyz 140: no holes");
+  Check(EveryPointOnItsNode(image, text, 1e-3), "xyz 140: every line at its node");
+}
 
+void BadInput(const std::string& dataDir, const std::string& outDir)
+{
   // ---- Bad input ----
   CheckBadInput(outDir + "TestHorizonColumnReader_does_not_exist.txt", "missing file");
   {
@@ -417,9 +423,31 @@ int TestHorizonColumnReader(int, char*[])
   CheckBadInput(outDir + "TestHorizonColumnReader_sparse.txt", "absurd index range");
   Spit(outDir + "TestHorizonColumnReader_same.txt", "5.5 6.5 1\n5.5 6.5 2\n");
   CheckBadInput(outDir + "TestHorizonColumnReader_same.txt", "all points at one position");
+}
 
+void PrintSelf()
+{
   vtkNew<vtkHorizonColumnReader> printed;
   printed->Print(std::cout);
+}
+
+}
+
+int TestHorizonColumnReader(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
+  strata_test::RunSubTests(
+    {
+      { "TopHeimdal", [&] { TopHeimdal(dataDir); } },
+      { "InlineCrossline", [&] { InlineCrossline(outDir); } },
+      { "RotatedXYZ", [&] { RotatedXYZ(outDir); } },
+      { "ReekRotationXYZ", [&] { ReekRotationXYZ(outDir); } },
+      { "BadInput", [&] { BadInput(dataDir, outDir); } },
+      { "PrintSelf", PrintSelf },
+    },
+    strata_test::Failures);
 
   if (strata_test::Failures())
   {

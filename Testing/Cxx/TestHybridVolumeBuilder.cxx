@@ -5,6 +5,9 @@
 // sets (threshold, budget, error-grid step, planted spike), the optimized filter's bound,
 // constant volumes, dimensions not divisible by the factor, bounded memory, and the file
 // format (bit-exact round trip, corrupt files rejected).
+#include "StrataSubTests.h"
+#include "StrataTestPaths.h"
+
 #include "vtkHybridVolumeBuilder.h"
 #include "vtkHybridVolumeFile.h"
 
@@ -208,12 +211,10 @@ void Spit(const std::string& path, const std::string& bytes)
 }
 }
 
-int TestHybridVolumeBuilder(int, char*[])
+namespace
 {
-  // 13 x 11 x 9 with factors 2, 4, 2: 12 / 4 is even but 10 / 4 is not.
-  const Volume v = Smooth(13, 11, 9, true);
-  const int factors[3] = { 2, 4, 2 };
-
+void LowResolutionVolume(const Volume& v, const int factors[3])
+{
   std::cout << "Low-resolution volume against a brute-force 3-D filter (tolerance 1e-5: float\n"
                "storage of values of magnitude ~1.5, and a different summation order)\n";
   for (Filter filter : { Filter::Box, Filter::Linear, Filter::Cubic, Filter::Optimized })
@@ -236,7 +237,10 @@ int TestHybridVolumeBuilder(int, char*[])
       "filter " + std::to_string(static_cast<int>(filter)) + ": low dims 7x4x5 (13x11x9, factors " +
         "2,4,2), max difference " + std::to_string(worst));
   }
+}
 
+void ErrorFieldAndPointCounts(const Volume& v, const int factors[3])
+{
   std::cout << "Error field and exact point counts (threshold kept 1e-4 away from every error)\n";
   for (const int step : { 1, 2 })
   {
@@ -325,54 +329,58 @@ int TestHybridVolumeBuilder(int, char*[])
       "point budget " + std::to_string(budget) + ": the largest errors (gap at the cut " +
         std::to_string(cut) + ")");
   }
+}
 
+void PlantedSpike()
+{
   std::cout << "Planted spike in a constant volume (box filter, factor 4)\n";
+  Volume s{ { 17, 16, 15 }, std::vector<float>(17 * 16 * 15, 2.0f) };
+  s.V[(static_cast<size_t>(7) * 16 + 6) * 17 + 5] = 10.0f;
+  vtkHybridVolumeBuilder b;
+  Configure(b, s);
+  b.SetFactor(4);
+  b.SetFilter(Filter::Box);
+  b.SetPointBudget(1);
+  vtkHybridVolumeFile out;
+  b.Build(out);
+  Check(out.Points.size() == 1 && out.Points[0].Position[0] == 5 &&
+          out.Points[0].Position[1] == 6 && out.Points[0].Position[2] == 7 &&
+          out.Points[0].Value == 10.0f && out.Points[0].Error > 7.0f,
+    "budget 1 gives the spike at (5, 6, 7)");
+  b.SetPointBudget(0);
+  b.SetThreshold(0.05); // the spike adds 8 / 64 = 0.125 to its box-filtered neighbours
+  b.Build(out);
+  const int one[3] = { 1, 1, 1 };
+  Errors e = BruteErrors(s, out, one);
+  std::vector<std::tuple<int, int, int>> expected;
+  for (size_t i = 0; i < e.E.size(); ++i)
   {
-    Volume s{ { 17, 16, 15 }, std::vector<float>(17 * 16 * 15, 2.0f) };
-    s.V[(static_cast<size_t>(7) * 16 + 6) * 17 + 5] = 10.0f;
-    vtkHybridVolumeBuilder b;
-    Configure(b, s);
-    b.SetFactor(4);
-    b.SetFilter(Filter::Box);
-    b.SetPointBudget(1);
-    vtkHybridVolumeFile out;
-    b.Build(out);
-    Check(out.Points.size() == 1 && out.Points[0].Position[0] == 5 &&
-            out.Points[0].Position[1] == 6 && out.Points[0].Position[2] == 7 &&
-            out.Points[0].Value == 10.0f && out.Points[0].Error > 7.0f,
-      "budget 1 gives the spike at (5, 6, 7)");
-    b.SetPointBudget(0);
-    b.SetThreshold(0.05); // the spike adds 8 / 64 = 0.125 to its box-filtered neighbours
-    b.Build(out);
-    const int one[3] = { 1, 1, 1 };
-    Errors e = BruteErrors(s, out, one);
-    std::vector<std::tuple<int, int, int>> expected;
-    for (size_t i = 0; i < e.E.size(); ++i)
+    if (std::fabs(e.E[i]) > 0.05)
     {
-      if (std::fabs(e.E[i]) > 0.05)
-      {
-        expected.push_back(e.Pos[i]);
-      }
+      expected.push_back(e.Pos[i]);
     }
-    Check(Positions(out) == expected && !expected.empty(),
-      "threshold 0.05: " + std::to_string(out.Points.size()) +
-        " points, positions equal brute force");
-    // The spike's +x neighbour has a gradient towards -x (the spike is at lower x).
-    bool normal = false;
-    b.SetThreshold(0); // every non-zero error, so the neighbour is a point
-    b.Build(out);
-    for (const auto& p : out.Points)
-    {
-      if (p.Position[0] == 6 && p.Position[1] == 6 && p.Position[2] == 7)
-      {
-        double n[3];
-        vtkHybridVolumeFile::DecodeNormal(p.Normal, n);
-        normal = n[0] < -0.999;
-      }
-    }
-    Check(normal, "normal at (6, 6, 7) points to -x, towards the spike");
   }
+  Check(Positions(out) == expected && !expected.empty(),
+    "threshold 0.05: " + std::to_string(out.Points.size()) +
+      " points, positions equal brute force");
+  // The spike's +x neighbour has a gradient towards -x (the spike is at lower x).
+  bool normal = false;
+  b.SetThreshold(0); // every non-zero error, so the neighbour is a point
+  b.Build(out);
+  for (const auto& p : out.Points)
+  {
+    if (p.Position[0] == 6 && p.Position[1] == 6 && p.Position[2] == 7)
+    {
+      double n[3];
+      vtkHybridVolumeFile::DecodeNormal(p.Normal, n);
+      normal = n[0] < -0.999;
+    }
+  }
+  Check(normal, "normal at (6, 6, 7) points to -x, towards the spike");
+}
 
+void OptimizedFilterBound(const Volume& v)
+{
   std::cout << "Optimized filter: reconstruction - original <= bound at every original point\n";
   for (const double bound : { 0.0, 0.05, 0.3 })
   {
@@ -398,7 +406,10 @@ int TestHybridVolumeBuilder(int, char*[])
           ": largest over-estimation " + std::to_string(over));
     }
   }
+}
 
+void ConstantVolume(const int factors[3])
+{
   std::cout << "Constant volume: no error, no points\n";
   for (Filter filter : { Filter::Box, Filter::Linear, Filter::Cubic, Filter::Optimized })
   {
@@ -413,142 +424,168 @@ int TestHybridVolumeBuilder(int, char*[])
       "filter " + std::to_string(static_cast<int>(filter)) +
         ", factors 8,4,2: " + std::to_string(out.Points.size()) + " points");
   }
+}
 
+void BoundedMemory()
+{
   std::cout << "Bounded memory: a limit of a few slices gives the same output\n";
+  const Volume big = Smooth(48, 40, 30, true); // 7680 bytes a slice, 230400 in all
+  vtkHybridVolumeBuilder b;
+  int reads = 0;
+  Configure(b, big, &reads);
+  b.SetFactor(4);
+  b.SetThreshold(0.3);
+  std::vector<double> progress;
+  b.SetProgressCallback([&](double p) { progress.push_back(p); });
+  vtkHybridVolumeFile whole, bounded;
+  b.Build(whole);
+  const size_t wholePeak = b.GetPeakSlicesHeld();
+  bool monotone = !progress.empty() && progress.back() == 1.0;
+  for (size_t i = 1; i < progress.size(); ++i)
   {
-    const Volume big = Smooth(48, 40, 30, true); // 7680 bytes a slice, 230400 in all
-    vtkHybridVolumeBuilder b;
-    int reads = 0;
-    Configure(b, big, &reads);
-    b.SetFactor(4);
-    b.SetThreshold(0.3);
-    std::vector<double> progress;
-    b.SetProgressCallback([&](double p) { progress.push_back(p); });
-    vtkHybridVolumeFile whole, bounded;
-    b.Build(whole);
-    const size_t wholePeak = b.GetPeakSlicesHeld();
-    bool monotone = !progress.empty() && progress.back() == 1.0;
-    for (size_t i = 1; i < progress.size(); ++i)
-    {
-      monotone = monotone && progress[i] >= progress[i - 1];
-    }
-    b.SetMemoryLimit(0.045); // 47185 bytes: 6 slices, 3 for the differences, chunks of 3
-    reads = 0;
-    b.Build(bounded);
-    Check(SameOutput(whole, bounded) && !whole.Points.empty(),
-      "identical output (" + std::to_string(whole.Points.size()) + " points) at 0.045 MB");
-    Check(b.GetPeakSlicesHeld() <= 6 && wholePeak >= 30,
-      "peak slices held " + std::to_string(b.GetPeakSlicesHeld()) + " (unbounded: " +
-        std::to_string(wholePeak) + "), slices read " + std::to_string(reads) + " (two passes)");
-    Check(reads == 60, "each slice read exactly once per pass");
-    Check(monotone, "progress non-decreasing, ends at 1");
-    b.SetMemoryLimit(0.02);
-    const bool refused = !b.Build(bounded);
-    Check(refused, "too small a limit is refused: " + b.GetErrorMessage());
+    monotone = monotone && progress[i] >= progress[i - 1];
   }
+  b.SetMemoryLimit(0.045); // 47185 bytes: 6 slices, 3 for the differences, chunks of 3
+  reads = 0;
+  b.Build(bounded);
+  Check(SameOutput(whole, bounded) && !whole.Points.empty(),
+    "identical output (" + std::to_string(whole.Points.size()) + " points) at 0.045 MB");
+  Check(b.GetPeakSlicesHeld() <= 6 && wholePeak >= 30,
+    "peak slices held " + std::to_string(b.GetPeakSlicesHeld()) + " (unbounded: " +
+      std::to_string(wholePeak) + "), slices read " + std::to_string(reads) + " (two passes)");
+  Check(reads == 60, "each slice read exactly once per pass");
+  Check(monotone, "progress non-decreasing, ends at 1");
+  b.SetMemoryLimit(0.02);
+  const bool refused = !b.Build(bounded);
+  Check(refused, "too small a limit is refused: " + b.GetErrorMessage());
+}
 
+void NormalEncoding()
+{
   std::cout << "Normal encoding (octahedral, 8+8 bits)\n";
+  double worst = 0;
+  uint32_t h = 99;
+  for (int i = 0; i < 20000; ++i)
   {
-    double worst = 0;
-    uint32_t h = 99;
-    for (int i = 0; i < 20000; ++i)
+    double d[3];
+    for (double& c : d)
     {
-      double d[3];
-      for (double& c : d)
-      {
-        h = h * 1664525u + 1013904223u;
-        c = (h >> 8) / 8388608.0 - 1.0;
-      }
-      const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      double n[3];
-      vtkHybridVolumeFile::DecodeNormal(vtkHybridVolumeFile::EncodeNormal(d[0], d[1], d[2]), n);
-      const double dot = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / l;
-      worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / 3.14159265358979);
+      h = h * 1664525u + 1013904223u;
+      c = (h >> 8) / 8388608.0 - 1.0;
     }
-    Check(worst < 1.2, "largest angular error " + std::to_string(worst) + " degrees");
+    const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double n[3];
+    vtkHybridVolumeFile::DecodeNormal(vtkHybridVolumeFile::EncodeNormal(d[0], d[1], d[2]), n);
+    const double dot = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / l;
+    worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / 3.14159265358979);
   }
+  Check(worst < 1.2, "largest angular error " + std::to_string(worst) + " degrees");
+}
 
+void FileRoundTrip(const Volume& v, const strata_test::TestPaths& paths)
+{
   std::cout << "File round trip and validation\n";
+  vtkHybridVolumeBuilder b;
+  Configure(b, v);
+  b.SetFactor(2, 4, 2);
+  b.SetFilter(Filter::Optimized);
+  b.SetOverestimationBound(0.05);
+  b.SetThreshold(0.1);
+  vtkHybridVolumeFile out, back;
+  b.Build(out);
+  const std::string path = paths.Output + "/TestHybridVolumeBuilder.shv";
+  const bool written = out.Write(path);
+  const bool read = back.Read(path);
+  bool same = read && SameOutput(out, back) && back.Filter == out.Filter &&
+              back.OverestimationBound == out.OverestimationBound &&
+              back.Threshold == out.Threshold;
+  for (int a = 0; a < 3; ++a)
   {
-    vtkHybridVolumeBuilder b;
-    Configure(b, v);
-    b.SetFactor(2, 4, 2);
-    b.SetFilter(Filter::Optimized);
-    b.SetOverestimationBound(0.05);
-    b.SetThreshold(0.1);
-    vtkHybridVolumeFile out, back;
-    b.Build(out);
-    const char* dir = std::getenv("STRATA_TEST_OUTPUT");
-    const std::string path = std::string(dir ? dir : ".") + "/TestHybridVolumeBuilder.shv";
-    const bool written = out.Write(path);
-    const bool read = back.Read(path);
-    bool same = read && SameOutput(out, back) && back.Filter == out.Filter &&
-                back.OverestimationBound == out.OverestimationBound &&
-                back.Threshold == out.Threshold;
-    for (int a = 0; a < 3; ++a)
-    {
-      same = same && back.Dimensions[a] == out.Dimensions[a] && back.Factor[a] == out.Factor[a] &&
-             back.Spacing[a] == out.Spacing[a] && back.Origin[a] == out.Origin[a] &&
-             back.LowDimensions[a] == out.LowDimensions[a] &&
-             back.ErrorGridStep[a] == out.ErrorGridStep[a];
-    }
-    Check(written && same,
-      "read back bit-exact: " + std::to_string(back.Points.size()) + " points, " +
-        std::to_string(back.LowResolution.size()) + " low-resolution values");
-    Check(!std::ifstream(path + ".partial").good(), "no temporary file left behind");
-    const std::string bytes = Slurp(path);
-    Check(bytes.size() == 160 + 4 * out.LowResolution.size() + 16 * out.Points.size(),
-      "file size = 160 + 4 * low values + 16 * points = " + std::to_string(bytes.size()));
-
-    const std::string bad = path + ".bad";
-    auto rejects = [&](const std::string& content, const std::string& what)
-    {
-      Spit(bad, content);
-      vtkHybridVolumeFile f;
-      const bool ok = f.Read(bad);
-      Check(!ok && !f.GetErrorMessage().empty() && f.Points.empty(),
-        what + ": " + f.GetErrorMessage().substr(f.GetErrorMessage().find(": ") + 2));
-    };
-    rejects(bytes.substr(0, 100), "truncated header");
-    rejects(bytes.substr(0, bytes.size() - 5), "truncated points");
-    std::string flipped = bytes;
-    flipped[bytes.size() - 3] ^= 0x10;
-    rejects(flipped, "flipped payload bit");
-    std::string absurd = bytes;
-    const int32_t huge = 2000000000;
-    std::memcpy(&absurd[16], &huge, 4);
-    rejects(absurd, "absurd dimension");
-    std::string count = bytes;
-    const uint64_t many = 1ull << 60;
-    std::memcpy(&count[144], &many, 8);
-    rejects(count, "absurd point count");
-    std::string magic = bytes;
-    magic[0] = 'X';
-    rejects(magic, "bad magic");
-    std::string version = bytes;
-    version[8] = 7;
-    rejects(version, "unknown version");
-    rejects(std::string(), "empty file");
-    vtkHybridVolumeFile missing;
-    const bool missingRefused = !missing.Read(path + ".missing");
-    Check(missingRefused, "missing file: " + missing.GetErrorMessage());
-    std::remove(bad.c_str());
-    std::remove(path.c_str());
+    same = same && back.Dimensions[a] == out.Dimensions[a] && back.Factor[a] == out.Factor[a] &&
+           back.Spacing[a] == out.Spacing[a] && back.Origin[a] == out.Origin[a] &&
+           back.LowDimensions[a] == out.LowDimensions[a] &&
+           back.ErrorGridStep[a] == out.ErrorGridStep[a];
   }
+  Check(written && same,
+    "read back bit-exact: " + std::to_string(back.Points.size()) + " points, " +
+      std::to_string(back.LowResolution.size()) + " low-resolution values");
+  Check(!std::ifstream(path + ".partial").good(), "no temporary file left behind");
+  const std::string bytes = Slurp(path);
+  Check(bytes.size() == 160 + 4 * out.LowResolution.size() + 16 * out.Points.size(),
+    "file size = 160 + 4 * low values + 16 * points = " + std::to_string(bytes.size()));
 
+  const std::string bad = path + ".bad";
+  auto rejects = [&](const std::string& content, const std::string& what)
+  {
+    Spit(bad, content);
+    vtkHybridVolumeFile f;
+    const bool ok = f.Read(bad);
+    Check(!ok && !f.GetErrorMessage().empty() && f.Points.empty(),
+      what + ": " + f.GetErrorMessage().substr(f.GetErrorMessage().find(": ") + 2));
+  };
+  rejects(bytes.substr(0, 100), "truncated header");
+  rejects(bytes.substr(0, bytes.size() - 5), "truncated points");
+  std::string flipped = bytes;
+  flipped[bytes.size() - 3] ^= 0x10;
+  rejects(flipped, "flipped payload bit");
+  std::string absurd = bytes;
+  const int32_t huge = 2000000000;
+  std::memcpy(&absurd[16], &huge, 4);
+  rejects(absurd, "absurd dimension");
+  std::string count = bytes;
+  const uint64_t many = 1ull << 60;
+  std::memcpy(&count[144], &many, 8);
+  rejects(count, "absurd point count");
+  std::string magic = bytes;
+  magic[0] = 'X';
+  rejects(magic, "bad magic");
+  std::string version = bytes;
+  version[8] = 7;
+  rejects(version, "unknown version");
+  rejects(std::string(), "empty file");
+  vtkHybridVolumeFile missing;
+  const bool missingRefused = !missing.Read(path + ".missing");
+  Check(missingRefused, "missing file: " + missing.GetErrorMessage());
+  std::remove(bad.c_str());
+  std::remove(path.c_str());
+}
+
+void BadSettings(const Volume& v)
+{
   std::cout << "Bad settings are refused\n";
-  {
-    vtkHybridVolumeBuilder b;
-    Configure(b, v);
-    vtkHybridVolumeFile out;
-    b.SetFactor(3);
-    bool refused = !b.Build(out);
-    Check(refused, b.GetErrorMessage());
-    b.SetFactor(2);
-    b.SetErrorGridStep(0);
-    refused = !b.Build(out);
-    Check(refused, b.GetErrorMessage());
-  }
+  vtkHybridVolumeBuilder b;
+  Configure(b, v);
+  vtkHybridVolumeFile out;
+  b.SetFactor(3);
+  bool refused = !b.Build(out);
+  Check(refused, b.GetErrorMessage());
+  b.SetFactor(2);
+  b.SetErrorGridStep(0);
+  refused = !b.Build(out);
+  Check(refused, b.GetErrorMessage());
+}
+
+}
+
+int TestHybridVolumeBuilder(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  // 13 x 11 x 9 with factors 2, 4, 2: 12 / 4 is even but 10 / 4 is not.
+  const Volume v = Smooth(13, 11, 9, true);
+  const int factors[3] = { 2, 4, 2 };
+  strata_test::RunSubTests(
+    {
+      { "LowResolutionVolume", [&] { LowResolutionVolume(v, factors); } },
+      { "ErrorFieldAndPointCounts", [&] { ErrorFieldAndPointCounts(v, factors); } },
+      { "PlantedSpike", PlantedSpike },
+      { "OptimizedFilterBound", [&] { OptimizedFilterBound(v); } },
+      { "ConstantVolume", [&] { ConstantVolume(factors); } },
+      { "BoundedMemory", BoundedMemory },
+      { "NormalEncoding", NormalEncoding },
+      { "FileRoundTrip", [&] { FileRoundTrip(v, paths); } },
+      { "BadSettings", [&] { BadSettings(v); } },
+    },
+    [] { return failures; });
 
   std::cout << (failures ? "FAILED: " + std::to_string(failures) + " checks\n" : "all passed\n");
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

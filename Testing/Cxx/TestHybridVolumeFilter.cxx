@@ -14,7 +14,10 @@
 //   (counted by an observer) and leave empty outputs;
 // - strata-hybrid on a raw file (streamed) and on a .vti file exits 0 and writes the same
 //   representation.
+#include "StrataErrorCounter.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
@@ -225,14 +228,31 @@ bool SameFile(const vtkHybridVolumeFile& a, const vtkHybridVolumeFile& b)
 }
 }
 
-int TestHybridVolumeFilter(int, char*[])
+namespace
 {
-  const std::string dir = strata_test::OutputDirectory();
-  const std::vector<uint16_t> values = MakeValues();
-  vtkSmartPointer<vtkImageData> image = MakeImage(values);
+/// What the parts share: the input, the builder's reference, the filter (which writes Shv) with
+/// its error counter and progress, and a reader with its error counter.
+struct FilterFixture
+{
+  std::string Dir;
+  std::vector<uint16_t> Values;
+  vtkSmartPointer<vtkImageData> Image;
+  vtkHybridVolumeFile Ref;
+  std::string Shv;
+  vtkNew<vtkHybridVolumeFilter> Filter;
+  vtkNew<ErrorCounter> FilterErrors;
+  std::vector<double> Progress;
+  vtkNew<vtkCallbackCommand> OnProgress;
+  vtkNew<vtkHybridVolumeReader> Reader;
+  vtkNew<ErrorCounter> ReaderErrors;
+};
 
+/// The reference: the builder fed from the same values.
+void BuilderReference(FilterFixture& fx)
+{
+  const std::vector<uint16_t>& values = fx.Values;
+  vtkHybridVolumeFile& ref = fx.Ref;
   // The reference: the builder fed from the same values.
-  vtkHybridVolumeFile ref;
   {
     vtkNew<vtkHybridVolumeFilter> settings;
     Configure(settings);
@@ -250,16 +270,23 @@ int TestHybridVolumeFilter(int, char*[])
       });
     Check(builder.Build(ref) && !ref.Points.empty(), "the builder's reference has points");
   }
+}
 
+void FilterAgainstBuilder(FilterFixture& fx)
+{
+  const std::string& dir = fx.Dir;
+  vtkImageData* image = fx.Image;
+  vtkHybridVolumeFile& ref = fx.Ref;
+  vtkHybridVolumeFilter* filter = fx.Filter;
+  ErrorCounter* filterErrors = fx.FilterErrors;
+  std::vector<double>& progress = fx.Progress;
+  vtkCallbackCommand* onProgress = fx.OnProgress;
   std::cout << "Filter against the builder (" << ref.Points.size() << " points, low resolution "
             << ref.LowDimensions[0] << "x" << ref.LowDimensions[1] << "x" << ref.LowDimensions[2]
             << ")\n";
-  const std::string shv = dir + "/TestHybridVolumeFilter.shv";
-  vtkNew<vtkHybridVolumeFilter> filter;
-  vtkNew<ErrorCounter> filterErrors;
+  fx.Shv = dir + "/TestHybridVolumeFilter.shv";
+  const std::string& shv = fx.Shv;
   filterErrors->Watch(filter);
-  std::vector<double> progress;
-  vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetCallback(RecordProgress);
   onProgress->SetClientData(&progress);
   filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
@@ -285,7 +312,13 @@ int TestHybridVolumeFilter(int, char*[])
   }
   Check(monotonic && !progress.empty() && progress.back() == 1.0,
     "progress: " + std::to_string(progress.size()) + " events, non-decreasing, ending at 1");
+}
 
+void ExtentAndComponents(FilterFixture& fx)
+{
+  const std::vector<uint16_t>& values = fx.Values;
+  vtkImageData* image = fx.Image;
+  vtkHybridVolumeFilter* filter = fx.Filter;
   std::cout << "Extent not starting at 0, and a two-component float input\n";
   {
     // Same world positions: origin - start * spacing.
@@ -321,10 +354,15 @@ int TestHybridVolumeFilter(int, char*[])
     Check(SameOutputs(filter, first) && warnings->Warnings == 1 && warnings->Errors == 0,
       "two components: the first one's outputs, one warning: " + warnings->First);
   }
+}
 
+void Reader(FilterFixture& fx)
+{
+  const std::string& shv = fx.Shv;
+  vtkHybridVolumeFilter* filter = fx.Filter;
+  vtkHybridVolumeReader* reader = fx.Reader;
+  ErrorCounter* readerErrors = fx.ReaderErrors;
   std::cout << "Reader: information, then a bit-exact round trip\n";
-  vtkNew<vtkHybridVolumeReader> reader;
-  vtkNew<ErrorCounter> readerErrors;
   readerErrors->Watch(reader);
   reader->SetFileName(shv.c_str());
   reader->UpdateInformation();
@@ -349,7 +387,11 @@ int TestHybridVolumeFilter(int, char*[])
   reader->GetPointsOutput()->ReleaseData();
   reader->Update();
   Check(readerErrors->Errors == 0 && SameOutputs(filter, reader), "re-execution reads again");
+}
 
+void ConstantVolume(FilterFixture& fx)
+{
+  const std::vector<uint16_t>& values = fx.Values;
   std::cout << "Constant volume: no points\n";
   {
     vtkNew<vtkImageData> constant;
@@ -369,7 +411,17 @@ int TestHybridVolumeFilter(int, char*[])
             low->GetRange()[1] == 42.0,
       "10x9x7 constant 42: 0 points, 6x5x4 low-resolution values of 42");
   }
+}
 
+void Errors(FilterFixture& fx)
+{
+  const std::string& dir = fx.Dir;
+  vtkHybridVolumeFile& ref = fx.Ref;
+  const std::string& shv = fx.Shv;
+  vtkHybridVolumeFilter* filter = fx.Filter;
+  ErrorCounter* filterErrors = fx.FilterErrors;
+  vtkHybridVolumeReader* reader = fx.Reader;
+  ErrorCounter* readerErrors = fx.ReaderErrors;
   std::cout << "Errors leave empty outputs\n";
   {
     filterErrors->Reset();
@@ -416,7 +468,16 @@ int TestHybridVolumeFilter(int, char*[])
     Check(failed && SameOutputs(filter, reader), "a reader recovers after a bad file");
     std::remove(bad.c_str());
   }
+}
 
+void StrataHybridTool(FilterFixture& fx)
+{
+  const std::string& dir = fx.Dir;
+  const std::vector<uint16_t>& values = fx.Values;
+  vtkImageData* image = fx.Image;
+  vtkHybridVolumeFile& ref = fx.Ref;
+  vtkHybridVolumeFilter* filter = fx.Filter;
+  vtkHybridVolumeReader* reader = fx.Reader;
   std::cout << "strata-hybrid\n";
   const std::string tool = FindTool();
   if (tool.empty())
@@ -463,7 +524,29 @@ int TestHybridVolumeFilter(int, char*[])
       std::remove(path.c_str());
     }
   }
-  std::remove(shv.c_str());
+}
+
+}
+
+int TestHybridVolumeFilter(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  FilterFixture fx;
+  fx.Dir = paths.Output;
+  fx.Values = MakeValues();
+  fx.Image = MakeImage(fx.Values);
+  strata_test::RunSubTests(
+    {
+      { "BuilderReference", [&] { BuilderReference(fx); } },
+      { "FilterAgainstBuilder", [&] { FilterAgainstBuilder(fx); } },
+      { "ExtentAndComponents", [&] { ExtentAndComponents(fx); } },
+      { "Reader", [&] { Reader(fx); } },
+      { "ConstantVolume", [&] { ConstantVolume(fx); } },
+      { "Errors", [&] { Errors(fx); } },
+      { "StrataHybridTool", [&] { StrataHybridTool(fx); } },
+    },
+    strata_test::Failures);
+  std::remove(fx.Shv.c_str());
 
   const int failures = strata_test::Failures();
   std::cout << (failures ? "FAILED: " + std::to_string(failures) + " checks\n" : "all passed\n");

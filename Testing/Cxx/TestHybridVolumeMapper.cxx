@@ -7,6 +7,8 @@
 // low-resolution rendering however many depth slabs, and that the generated point shaders
 // hold only what the settings use.
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
@@ -106,49 +108,69 @@ struct Scene
   }
 };
 
-}
-
-int TestHybridVolumeMapper(int, char*[])
+/// What the parts share: the thin-feature volume, its property and scene, the full-resolution
+/// and low-resolution mappers, the hybrid filter (factor 4, cubic, threshold 25) and mapper, and
+/// the images and shader sources the last part checks.
+struct HybridFixture
 {
-  CapturingOutputWindow* output = CapturingOutputWindow::Install();
-  auto original = ThinFeatures();
-  auto property = Property();
-  Scene scene(property);
+  HybridFixture()
+    : Original(ThinFeatures())
+    , VolumeProperty(Property())
+    , S(this->VolumeProperty)
+  {
+  }
+  vtkSmartPointer<vtkImageData> Original;
+  vtkSmartPointer<vtkVolumeProperty> VolumeProperty;
+  Scene S;
+  vtkNew<vtkMultiVolumeRayCastMapper> FullMapper, LowMapper;
+  vtkNew<vtkHybridVolumeFilter> Filter;
+  vtkNew<vtkImageData> Low;
+  vtkNew<vtkHybridVolumeMapper> Hybrid;
+  std::vector<unsigned char> Full, LowImage, Splats;
+  std::string SquareVS, SquareFS, SplatFS;
+};
 
-  vtkNew<vtkMultiVolumeRayCastMapper> fullMapper;
+void SquaresAndSplats(HybridFixture& fx)
+{
+  vtkImageData* original = fx.Original;
+  Scene& scene = fx.S;
+  vtkMultiVolumeRayCastMapper* fullMapper = fx.FullMapper;
   fullMapper->SetInputData(original);
   fullMapper->SetSampleDistance(0.5);
-  const auto full = scene.Render(fullMapper);
+  fx.Full = scene.Render(fullMapper);
+  const auto& full = fx.Full;
 
-  vtkNew<vtkHybridVolumeFilter> filter;
+  vtkHybridVolumeFilter* filter = fx.Filter;
   filter->SetInputData(original);
   filter->SetFactor(4, 4, 4);
   filter->SetFilterToCubic();
   filter->SetThreshold(25.0);
   filter->Update();
   vtkPolyData* points = filter->GetPointsOutput();
-  vtkNew<vtkImageData> low;
+  vtkImageData* low = fx.Low;
   low->DeepCopy(filter->GetLowResolutionOutput());
   std::cout << "Hybrid: low-resolution " << low->GetDimensions()[0] << "x"
             << low->GetDimensions()[1] << "x" << low->GetDimensions()[2] << ", "
             << points->GetNumberOfPoints() << " points\n";
 
-  vtkNew<vtkMultiVolumeRayCastMapper> lowMapper;
+  vtkMultiVolumeRayCastMapper* lowMapper = fx.LowMapper;
   lowMapper->SetInputData(low);
   lowMapper->SetSampleDistance(0.5);
-  const auto lowImage = scene.Render(lowMapper);
+  fx.LowImage = scene.Render(lowMapper);
+  const auto& lowImage = fx.LowImage;
 
-  vtkNew<vtkHybridVolumeMapper> hybrid;
+  vtkHybridVolumeMapper* hybrid = fx.Hybrid;
   hybrid->SetInputData(low);
   hybrid->SetPointsInputData(points);
   hybrid->GetVolumeMapper()->SetSampleDistance(0.5);
   const auto squares = scene.Render(hybrid);
   const vtkIdType drawn = hybrid->GetNumberOfPointsDrawn();
-  const std::string squareVS = hybrid->GetPointVertexShaderSource();
-  const std::string squareFS = hybrid->GetPointFragmentShaderSource();
+  fx.SquareVS = hybrid->GetPointVertexShaderSource();
+  fx.SquareFS = hybrid->GetPointFragmentShaderSource();
   hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
-  const auto splats = scene.Render(hybrid);
-  const std::string splatFS = hybrid->GetPointFragmentShaderSource();
+  fx.Splats = scene.Render(hybrid);
+  const auto& splats = fx.Splats;
+  fx.SplatFS = hybrid->GetPointFragmentShaderSource();
 
   const double lowRms = ImageError(lowImage, full).Rms, squareRms = ImageError(squares, full).Rms,
                splatRms = ImageError(splats, full).Rms;
@@ -162,7 +184,16 @@ int TestHybridVolumeMapper(int, char*[])
     "squares bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
   Check(splatRms < 0.6 * lowRms,
     "splats bring the image closer to full resolution (RMS < 0.6 x low-resolution's)");
+}
 
+void OpacityRanking(HybridFixture& fx)
+{
+  vtkImageData* original = fx.Original;
+  vtkVolumeProperty* property = fx.VolumeProperty;
+  Scene& scene = fx.S;
+  vtkMultiVolumeRayCastMapper* fullMapper = fx.FullMapper;
+  vtkHybridVolumeMapper* hybrid = fx.Hybrid;
+  vtkImageData* low = fx.Low;
   // Ranked by the opacity the low-resolution volume misses (the transfer function known at
   // preprocessing), on the volume plus a plate of -300 the transfer function hides: every point
   // misses more opacity than the threshold, exactly the points that do are kept, and with as
@@ -224,7 +255,14 @@ int TestHybridVolumeMapper(int, char*[])
     hybrid->SetInputData(low);
     hybrid->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
   }
+}
 
+void SilentPoints(HybridFixture& fx)
+{
+  Scene& scene = fx.S;
+  vtkHybridVolumeMapper* hybrid = fx.Hybrid;
+  vtkPolyData* points = fx.Filter->GetPointsOutput();
+  const std::vector<unsigned char>& lowImage = fx.LowImage;
   // Points that add no opacity (error 0): every slab is drawn, nothing added.
   vtkNew<vtkPolyData> silent;
   silent->DeepCopy(points);
@@ -245,7 +283,14 @@ int TestHybridVolumeMapper(int, char*[])
       "depth slabs recompose the low-resolution image (" + std::to_string(slabs) +
         " slabs: max difference <= " + std::to_string(std::max(1, slabs / 4)) + " of 255)");
   }
+}
 
+void ConstantVolume(HybridFixture& fx)
+{
+  vtkImageData* original = fx.Original;
+  Scene& scene = fx.S;
+  vtkMultiVolumeRayCastMapper* lowMapper = fx.LowMapper;
+  vtkHybridVolumeMapper* hybrid = fx.Hybrid;
   // A constant volume: no error, no points, the low-resolution rendering exactly.
   vtkNew<vtkImageData> constant;
   constant->DeepCopy(original);
@@ -266,22 +311,48 @@ int TestHybridVolumeMapper(int, char*[])
             << " points; max difference to the low-resolution rendering " << flatDiff << "\n";
   Check(flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff == 0,
     "a constant volume gives no points and renders as the low-resolution volume alone");
+}
 
+void ShaderSources(HybridFixture& fx)
+{
+  vtkVolumeProperty* property = fx.VolumeProperty;
+  Scene& scene = fx.S;
+  vtkHybridVolumeMapper* hybrid = fx.Hybrid;
+  vtkImageData* low = fx.Low;
+  vtkPolyData* points = fx.Filter->GetPointsOutput();
   auto has = [](const std::string& s, const char* what)
   { return s.find(what) != std::string::npos; };
-  Check(!has(squareFS, "gl_PointCoord") && !has(squareFS, "exp("), "squares: no splat kernel code");
-  Check(has(splatFS, "gl_PointCoord") && has(splatFS, "exp("), "splats: the Gaussian kernel");
-  Check(!has(squareVS, "ormal"), "shading off: no normals");
+  Check(!has(fx.SquareFS, "gl_PointCoord") && !has(fx.SquareFS, "exp("),
+    "squares: no splat kernel code");
+  Check(has(fx.SplatFS, "gl_PointCoord") && has(fx.SplatFS, "exp("), "splats: the Gaussian kernel");
+  Check(!has(fx.SquareVS, "ormal"), "shading off: no normals");
   // Shading on: the points are lit with their normals (and only then is normal code compiled).
   property->ShadeOn();
   hybrid->SetInputData(low);
   hybrid->SetPointsInputData(points);
   const auto shadedImage = scene.Render(hybrid);
-  const double shadedRms = ImageError(shadedImage, splats).Rms;
+  const double shadedRms = ImageError(shadedImage, fx.Splats).Rms;
   std::cout << "Hybrid: shaded, RMS to the unshaded image " << shadedRms << "\n";
   Check(has(hybrid->GetPointVertexShaderSource(), "pointNormal") && shadedRms > 0.5,
     "shading on: the points are lit with their normals");
   property->ShadeOff();
+}
+
+}
+
+int TestHybridVolumeMapper(int, char*[])
+{
+  CapturingOutputWindow* output = CapturingOutputWindow::Install();
+  HybridFixture fx;
+  RunSubTests(
+    {
+      { "SquaresAndSplats", [&] { SquaresAndSplats(fx); } },
+      { "OpacityRanking", [&] { OpacityRanking(fx); } },
+      { "SilentPoints", [&] { SilentPoints(fx); } },
+      { "ConstantVolume", [&] { ConstantVolume(fx); } },
+      { "ShaderSources", [&] { ShaderSources(fx); } },
+    },
+    Failures);
   Check(output->Errors == 0 && output->Warnings == 0, "no VTK errors or warnings");
   std::cout << (Failures() ? "FAILED" : "passed") << "\n";
   return Failures() ? EXIT_FAILURE : EXIT_SUCCESS;

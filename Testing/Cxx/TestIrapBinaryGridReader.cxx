@@ -9,7 +9,10 @@
 // - bad input: a missing file, a truncated copy, a garbage file, mismatched markers, absurd
 //   dimensions. Each must raise an error (caught by an observer, so nothing prints) and leave the
 //   output with no points.
+#include "StrataErrorCounter.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -239,234 +242,241 @@ const ReekExpectation Reek[4] = {
 };
 }
 
-int TestIrapBinaryGridReader(int, char*[])
+namespace
 {
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
+/// One Reek horizon against its expectation: geometry, values, holes, and every value against
+/// the test's own decoding of the file.
+void CheckReekHorizon(const ReekExpectation& e, const std::string& dataDir)
+{
+  const std::string path = dataDir + e.File;
+  const std::string tag = std::string(e.File) + ": ";
+  Check(vtkIrapBinaryGridReader::CanReadFile(path.c_str()), tag + "CanReadFile");
+  vtkNew<vtkIrapBinaryGridReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  // Header literals: od -A d -t x1 -N 100 shows 00 00 00 20 | ff ff fc 1c (-996) 00 00 01 c3
+  // (ny 451) 48 e4 f3 e4 ... and record 2 = 00 00 02 2a (nx 554) 43 0c 00 01 (140.0000153)
+  // 48 e4 f3 e4 (468895.125) 4a b5 0e b3 (5932889.5); python3 struct.unpack('>f', ...) gives
+  // the decimal values below. All four files share the grid.
+  Check(reader->GetNX() == 554 && reader->GetNY() == 451, tag + "nx, ny = 554, 451");
+  Check(
+    reader->GetXOrigin() == 468895.125 && reader->GetYOrigin() == 5932889.5, tag + "xori, yori");
+  Check(reader->GetXMin() == 468895.125 && reader->GetXMax() == 479955.125, tag + "xmin, xmax");
+  Check(reader->GetYMin() == 5932889.5 && reader->GetYMax() == 5941889.5, tag + "ymin, ymax");
+  Check(reader->GetXInc() == 20.0 && reader->GetYInc() == 20.0, tag + "xinc, yinc");
+  Check(reader->GetRotation() == 140.00001525878906, tag + "rotation");
+  reader->Update();
+  Check(errors->Errors == 0 && errors->Warnings == 0, tag + "no errors or warnings");
 
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(dims[0] == 554 && dims[1] == 451 && dims[2] == 1, tag + "dimensions 554 x 451 x 1");
+  double* origin = image->GetOrigin();
+  double* spacing = image->GetSpacing();
+  Check(origin[0] == 468895.125 && origin[1] == 5932889.5 && origin[2] == 0.0, tag + "origin");
+  Check(spacing[0] == 20.0 && spacing[1] == 20.0 && spacing[2] == 1.0, tag + "spacing");
+  // Direction matrix: a rotation by 140.00001525878906 degrees counterclockwise about z.
+  const double a = vtkMath::RadiansFromDegrees(140.00001525878906);
+  const double expected[9] = { std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1 };
+  vtkMatrix3x3* d = image->GetDirectionMatrix();
+  bool directionOk = true;
+  for (int k = 0; k < 9; ++k)
+  {
+    directionOk = directionOk && Near(d->GetData()[k], expected[k], 1e-12);
+  }
+  Check(directionOk, tag + "direction matrix = rotation by 140 degrees");
+  // Node (1, 0) is one xinc from the origin along the rotated x axis; (0, 1) one yinc along y.
+  double p[3];
+  image->TransformIndexToPhysicalPoint(1, 0, 0, p);
+  Check(Near(p[0], 468895.125 + 20 * std::cos(a), 1e-6) &&
+          Near(p[1], 5932889.5 + 20 * std::sin(a), 1e-6),
+    tag + "node (1, 0) in world coordinates");
+  image->TransformIndexToPhysicalPoint(0, 1, 0, p);
+  Check(Near(p[0], 468895.125 - 20 * std::sin(a), 1e-6) &&
+          Near(p[1], 5932889.5 + 20 * std::cos(a), 1e-6),
+    tag + "node (0, 1) in world coordinates");
+
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  Check(scalars && vtkFloatArray::SafeDownCast(scalars) &&
+          std::string(scalars->GetName() ? scalars->GetName() : "") == "depth",
+    tag + "a float array named depth");
+  if (!scalars || scalars->GetNumberOfTuples() != 554 * 451)
+  {
+    Check(false, tag + "554 * 451 values");
+    return;
+  }
+  Check(std::isnan(ValueAt(image, 0, 0)), tag + "(0, 0) is a hole (1e30 in the file)");
+  Check(std::isnan(ValueAt(image, 553, 450)), tag + "(553, 450) is a hole");
+  Check(ValueAt(image, 277, 225) == static_cast<float>(e.At277_225), tag + "value at (277, 225)");
+  Check(ValueAt(image, 402, 2) == static_cast<float>(e.At402_2), tag + "value at (402, 2)");
+  Check(ValueAt(image, 100, 300) == static_cast<float>(e.At100_300), tag + "value at (100, 300)");
+  // 71003 nodes >= 1e30 in every file (python3: sum(abs(v) >= 1e30 for v in values)).
+  Check(reader->GetNumberOfNoDataValues() == 71003, tag + "71003 no-data nodes");
+  double lo = std::numeric_limits<double>::max();
+  double hi = -lo;
+  vtkIdType nans = 0;
+  for (vtkIdType k = 0; k < scalars->GetNumberOfTuples(); ++k)
+  {
+    const double v = scalars->GetComponent(k, 0);
+    if (std::isnan(v))
+    {
+      ++nans;
+      continue;
+    }
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  Check(nans == 71003, tag + "71003 NaNs in the array");
+  Check(lo == e.Min && hi == e.Max, tag + "value range");
+
+  // Every value against the test's own decoding.
+  Grid g;
+  if (!DecodeIrap(Slurp(path), g))
+  {
+    Check(false, tag + "the test's own decoder reads the file");
+    return;
+  }
+  Check(g.NX == reader->GetNX() && g.NY == reader->GetNY() && g.Rot == reader->GetRotation() &&
+          g.XOri == reader->GetXOrigin() && g.YOri == reader->GetYOrigin() &&
+          g.XInc == reader->GetXInc() && g.YInc == reader->GetYInc() &&
+          g.XMin == reader->GetXMin() && g.XMax == reader->GetXMax() &&
+          g.YMin == reader->GetYMin() && g.YMax == reader->GetYMax(),
+    tag + "header equals the test's own decoding");
+  vtkIdType mismatches = 0;
+  for (size_t k = 0; k < g.Values.size(); ++k)
+  {
+    const float raw = g.Values[k];
+    const double want = std::fabs(raw) >= 1e30f ? std::nan("") : raw;
+    mismatches += Same(scalars->GetComponent(static_cast<vtkIdType>(k), 0), want) ? 0 : 1;
+  }
+  Check(mismatches == 0, tag + "all values equal the test's own decoding");
+}
+
+void ReekHorizons(const std::string& dataDir)
+{
   // ---- The four Reek horizons ----
   for (const ReekExpectation& e : Reek)
   {
-    const std::string path = dataDir + e.File;
-    const std::string tag = std::string(e.File) + ": ";
-    Check(vtkIrapBinaryGridReader::CanReadFile(path.c_str()), tag + "CanReadFile");
-    vtkNew<vtkIrapBinaryGridReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->UpdateInformation();
-    // Header literals: od -A d -t x1 -N 100 shows 00 00 00 20 | ff ff fc 1c (-996) 00 00 01 c3
-    // (ny 451) 48 e4 f3 e4 ... and record 2 = 00 00 02 2a (nx 554) 43 0c 00 01 (140.0000153)
-    // 48 e4 f3 e4 (468895.125) 4a b5 0e b3 (5932889.5); python3 struct.unpack('>f', ...) gives
-    // the decimal values below. All four files share the grid.
-    Check(reader->GetNX() == 554 && reader->GetNY() == 451, tag + "nx, ny = 554, 451");
-    Check(
-      reader->GetXOrigin() == 468895.125 && reader->GetYOrigin() == 5932889.5, tag + "xori, yori");
-    Check(reader->GetXMin() == 468895.125 && reader->GetXMax() == 479955.125, tag + "xmin, xmax");
-    Check(reader->GetYMin() == 5932889.5 && reader->GetYMax() == 5941889.5, tag + "ymin, ymax");
-    Check(reader->GetXInc() == 20.0 && reader->GetYInc() == 20.0, tag + "xinc, yinc");
-    Check(reader->GetRotation() == 140.00001525878906, tag + "rotation");
-    reader->Update();
-    Check(errors->Errors == 0 && errors->Warnings == 0, tag + "no errors or warnings");
-
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(dims[0] == 554 && dims[1] == 451 && dims[2] == 1, tag + "dimensions 554 x 451 x 1");
-    double* origin = image->GetOrigin();
-    double* spacing = image->GetSpacing();
-    Check(origin[0] == 468895.125 && origin[1] == 5932889.5 && origin[2] == 0.0, tag + "origin");
-    Check(spacing[0] == 20.0 && spacing[1] == 20.0 && spacing[2] == 1.0, tag + "spacing");
-    // Direction matrix: a rotation by 140.00001525878906 degrees counterclockwise about z.
-    const double a = vtkMath::RadiansFromDegrees(140.00001525878906);
-    const double expected[9] = {
-      std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1
-    };
-    vtkMatrix3x3* d = image->GetDirectionMatrix();
-    bool directionOk = true;
-    for (int k = 0; k < 9; ++k)
-    {
-      directionOk = directionOk && Near(d->GetData()[k], expected[k], 1e-12);
-    }
-    Check(directionOk, tag + "direction matrix = rotation by 140 degrees");
-    // Node (1, 0) is one xinc from the origin along the rotated x axis; (0, 1) one yinc along y.
-    double p[3];
-    image->TransformIndexToPhysicalPoint(1, 0, 0, p);
-    Check(Near(p[0], 468895.125 + 20 * std::cos(a), 1e-6) &&
-            Near(p[1], 5932889.5 + 20 * std::sin(a), 1e-6),
-      tag + "node (1, 0) in world coordinates");
-    image->TransformIndexToPhysicalPoint(0, 1, 0, p);
-    Check(Near(p[0], 468895.125 - 20 * std::sin(a), 1e-6) &&
-            Near(p[1], 5932889.5 + 20 * std::cos(a), 1e-6),
-      tag + "node (0, 1) in world coordinates");
-
-    vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    Check(scalars && vtkFloatArray::SafeDownCast(scalars) &&
-            std::string(scalars->GetName() ? scalars->GetName() : "") == "depth",
-      tag + "a float array named depth");
-    if (!scalars || scalars->GetNumberOfTuples() != 554 * 451)
-    {
-      Check(false, tag + "554 * 451 values");
-      continue;
-    }
-    Check(std::isnan(ValueAt(image, 0, 0)), tag + "(0, 0) is a hole (1e30 in the file)");
-    Check(std::isnan(ValueAt(image, 553, 450)), tag + "(553, 450) is a hole");
-    Check(ValueAt(image, 277, 225) == static_cast<float>(e.At277_225), tag + "value at (277, 225)");
-    Check(ValueAt(image, 402, 2) == static_cast<float>(e.At402_2), tag + "value at (402, 2)");
-    Check(ValueAt(image, 100, 300) == static_cast<float>(e.At100_300), tag + "value at (100, 300)");
-    // 71003 nodes >= 1e30 in every file (python3: sum(abs(v) >= 1e30 for v in values)).
-    Check(reader->GetNumberOfNoDataValues() == 71003, tag + "71003 no-data nodes");
-    double lo = std::numeric_limits<double>::max();
-    double hi = -lo;
-    vtkIdType nans = 0;
-    for (vtkIdType k = 0; k < scalars->GetNumberOfTuples(); ++k)
-    {
-      const double v = scalars->GetComponent(k, 0);
-      if (std::isnan(v))
-      {
-        ++nans;
-        continue;
-      }
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-    Check(nans == 71003, tag + "71003 NaNs in the array");
-    Check(lo == e.Min && hi == e.Max, tag + "value range");
-
-    // Every value against the test's own decoding.
-    Grid g;
-    if (!DecodeIrap(Slurp(path), g))
-    {
-      Check(false, tag + "the test's own decoder reads the file");
-      continue;
-    }
-    Check(g.NX == reader->GetNX() && g.NY == reader->GetNY() && g.Rot == reader->GetRotation() &&
-            g.XOri == reader->GetXOrigin() && g.YOri == reader->GetYOrigin() &&
-            g.XInc == reader->GetXInc() && g.YInc == reader->GetYInc() &&
-            g.XMin == reader->GetXMin() && g.XMax == reader->GetXMax() &&
-            g.YMin == reader->GetYMin() && g.YMax == reader->GetYMax(),
-      tag + "header equals the test's own decoding");
-    vtkIdType mismatches = 0;
-    for (size_t k = 0; k < g.Values.size(); ++k)
-    {
-      const float raw = g.Values[k];
-      const double want = std::fabs(raw) >= 1e30f ? std::nan("") : raw;
-      mismatches += Same(scalars->GetComponent(static_cast<vtkIdType>(k), 0), want) ? 0 : 1;
-    }
-    Check(mismatches == 0, tag + "all values equal the test's own decoding");
+    CheckReekHorizon(e, dataDir);
   }
+}
 
+void SyntheticGrid(const std::string& outDir)
+{
   // ---- A synthetic grid: odd record lengths, every kind of hole, 30 degrees rotation ----
+  const int nx = 5;
+  const int ny = 3;
+  std::vector<float> values(nx * ny);
+  for (int j = 0; j < ny; ++j)
   {
-    const int nx = 5;
-    const int ny = 3;
-    std::vector<float> values(nx * ny);
-    for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
     {
-      for (int i = 0; i < nx; ++i)
-      {
-        values[i + j * nx] = 1000.0f + 10.0f * j + i;
-      }
+      values[i + j * nx] = 1000.0f + 10.0f * j + i;
     }
-    values[1] = 1e30f;      // RMS/xtgeo hole
-    values[7] = -3e31f;     // any magnitude >= 1e30
-    values[8] = 9999900.0f; // Irap's nominal hole
-    values[12] = -999.25f;  // a NullValue set on the reader
-    std::vector<unsigned char> b = IrapHeaderBytes(nx, ny, 100.0f, 200.0f, 12.5f, 25.0f, 30.0f);
-    // Records of 4, 0, 7 and 4 values: nothing aligns with rows.
-    size_t at = 0;
-    for (size_t count : { 4, 0, 7, 4 })
-    {
-      std::vector<unsigned char> payload;
-      for (size_t k = 0; k < count; ++k)
-      {
-        PutFloat(payload, values[at + k]);
-      }
-      PutRecord(b, payload);
-      at += count;
-    }
-    const std::string path = outDir + "TestIrapBinaryGridReader_synthetic.gri";
-    Spit(path, b);
-
-    vtkNew<vtkIrapBinaryGridReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->SetNullValue(-999.25);
-    reader->SetArrayName("twt");
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(errors->Errors == 0, "synthetic: no errors");
-    Check(dims[0] == nx && dims[1] == ny && dims[2] == 1, "synthetic: dimensions 5 x 3 x 1");
-    Check(reader->GetRotation() == 30.0 && reader->GetXInc() == 12.5 && reader->GetYInc() == 25.0,
-      "synthetic: header");
-    Check(reader->GetNumberOfNoDataValues() == 4, "synthetic: 4 holes");
-    vtkDataArray* s = image->GetPointData()->GetScalars();
-    Check(s && std::string(s->GetName()) == "twt", "synthetic: array name twt");
-    bool ok = s != nullptr;
-    for (int k = 0; ok && k < nx * ny; ++k)
-    {
-      const bool hole = k == 1 || k == 7 || k == 8 || k == 12;
-      ok = hole ? std::isnan(s->GetComponent(k, 0)) : s->GetComponent(k, 0) == values[k];
-    }
-    Check(ok, "synthetic: every value in place, x fastest");
-    double p[3];
-    image->TransformIndexToPhysicalPoint(4, 2, 0, p);
-    const double a = vtkMath::RadiansFromDegrees(30.0);
-    Check(Near(p[0], 100 + 4 * 12.5 * std::cos(a) - 2 * 25 * std::sin(a), 1e-9) &&
-            Near(p[1], 200 + 4 * 12.5 * std::sin(a) + 2 * 25 * std::cos(a), 1e-9),
-      "synthetic: node (4, 2) in world coordinates");
-
-    // Without NullValue, -999.25 is a value.
-    reader->SetNullValue(std::nan(""));
-    reader->Update();
-    Check(reader->GetNumberOfNoDataValues() == 3 &&
-            reader->GetOutput()->GetPointData()->GetScalars()->GetComponent(12, 0) == -999.25,
-      "synthetic: NullValue NaN means none");
-
-    // The same reader, now on a broken file, must end up empty.
-    std::vector<unsigned char> broken = b;
-    broken[broken.size() - 1] ^= 0x04; // last trailing marker 16 -> 20
-    const std::string brokenPath = outDir + "TestIrapBinaryGridReader_badmarker.gri";
-    Spit(brokenPath, broken);
-    reader->SetFileName(brokenPath.c_str());
-    errors->Reset();
-    reader->Update();
-    Check(errors->Errors > 0, "mismatched trailing marker: error reported");
-    Check(reader->GetOutput()->GetNumberOfPoints() == 0,
-      "mismatched trailing marker: previous output cleared");
-    std::cout << "mismatched marker: " << errors->First << "\n";
-
-    // A failure in the information pass (truncated header), then a good file again: the reader
-    // recovers.
-    std::vector<unsigned char> stub(b.begin(), b.begin() + 60);
-    Spit(outDir + "TestIrapBinaryGridReader_stub.gri", stub);
-    reader->SetFileName((outDir + "TestIrapBinaryGridReader_stub.gri").c_str());
-    errors->Reset();
-    reader->Update();
-    Check(
-      errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0 && reader->GetNX() == 0,
-      "truncated header after a good read: error, empty output, header reset");
-    reader->SetFileName(path.c_str());
-    errors->Reset();
-    reader->Update();
-    Check(errors->Errors == 0 && reader->GetOutput()->GetNumberOfPoints() == nx * ny,
-      "a good file after a bad one reads again");
-
-    // A record that claims more values than the grid has left.
-    std::vector<unsigned char> tooLong = IrapHeaderBytes(2, 2, 0, 0, 1, 1, 0);
-    std::vector<unsigned char> five;
-    for (int k = 0; k < 5; ++k)
-    {
-      PutFloat(five, 1.0f);
-    }
-    PutRecord(tooLong, five);
-    Spit(outDir + "TestIrapBinaryGridReader_toolong.gri", tooLong);
-    CheckBadInput(outDir + "TestIrapBinaryGridReader_toolong.gri", "record longer than the grid");
   }
+  values[1] = 1e30f;      // RMS/xtgeo hole
+  values[7] = -3e31f;     // any magnitude >= 1e30
+  values[8] = 9999900.0f; // Irap's nominal hole
+  values[12] = -999.25f;  // a NullValue set on the reader
+  std::vector<unsigned char> b = IrapHeaderBytes(nx, ny, 100.0f, 200.0f, 12.5f, 25.0f, 30.0f);
+  // Records of 4, 0, 7 and 4 values: nothing aligns with rows.
+  size_t at = 0;
+  for (size_t count : { 4, 0, 7, 4 })
+  {
+    std::vector<unsigned char> payload;
+    for (size_t k = 0; k < count; ++k)
+    {
+      PutFloat(payload, values[at + k]);
+    }
+    PutRecord(b, payload);
+    at += count;
+  }
+  const std::string path = outDir + "TestIrapBinaryGridReader_synthetic.gri";
+  Spit(path, b);
 
+  vtkNew<vtkIrapBinaryGridReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->SetNullValue(-999.25);
+  reader->SetArrayName("twt");
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(errors->Errors == 0, "synthetic: no errors");
+  Check(dims[0] == nx && dims[1] == ny && dims[2] == 1, "synthetic: dimensions 5 x 3 x 1");
+  Check(reader->GetRotation() == 30.0 && reader->GetXInc() == 12.5 && reader->GetYInc() == 25.0,
+    "synthetic: header");
+  Check(reader->GetNumberOfNoDataValues() == 4, "synthetic: 4 holes");
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  Check(s && std::string(s->GetName()) == "twt", "synthetic: array name twt");
+  bool ok = s != nullptr;
+  for (int k = 0; ok && k < nx * ny; ++k)
+  {
+    const bool hole = k == 1 || k == 7 || k == 8 || k == 12;
+    ok = hole ? std::isnan(s->GetComponent(k, 0)) : s->GetComponent(k, 0) == values[k];
+  }
+  Check(ok, "synthetic: every value in place, x fastest");
+  double p[3];
+  image->TransformIndexToPhysicalPoint(4, 2, 0, p);
+  const double a = vtkMath::RadiansFromDegrees(30.0);
+  Check(Near(p[0], 100 + 4 * 12.5 * std::cos(a) - 2 * 25 * std::sin(a), 1e-9) &&
+          Near(p[1], 200 + 4 * 12.5 * std::sin(a) + 2 * 25 * std::cos(a), 1e-9),
+    "synthetic: node (4, 2) in world coordinates");
+
+  // Without NullValue, -999.25 is a value.
+  reader->SetNullValue(std::nan(""));
+  reader->Update();
+  Check(reader->GetNumberOfNoDataValues() == 3 &&
+          reader->GetOutput()->GetPointData()->GetScalars()->GetComponent(12, 0) == -999.25,
+    "synthetic: NullValue NaN means none");
+
+  // The same reader, now on a broken file, must end up empty.
+  std::vector<unsigned char> broken = b;
+  broken[broken.size() - 1] ^= 0x04; // last trailing marker 16 -> 20
+  const std::string brokenPath = outDir + "TestIrapBinaryGridReader_badmarker.gri";
+  Spit(brokenPath, broken);
+  reader->SetFileName(brokenPath.c_str());
+  errors->Reset();
+  reader->Update();
+  Check(errors->Errors > 0, "mismatched trailing marker: error reported");
+  Check(reader->GetOutput()->GetNumberOfPoints() == 0,
+    "mismatched trailing marker: previous output cleared");
+  std::cout << "mismatched marker: " << errors->First << "\n";
+
+  // A failure in the information pass (truncated header), then a good file again: the reader
+  // recovers.
+  std::vector<unsigned char> stub(b.begin(), b.begin() + 60);
+  Spit(outDir + "TestIrapBinaryGridReader_stub.gri", stub);
+  reader->SetFileName((outDir + "TestIrapBinaryGridReader_stub.gri").c_str());
+  errors->Reset();
+  reader->Update();
+  Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0 && reader->GetNX() == 0,
+    "truncated header after a good read: error, empty output, header reset");
+  reader->SetFileName(path.c_str());
+  errors->Reset();
+  reader->Update();
+  Check(errors->Errors == 0 && reader->GetOutput()->GetNumberOfPoints() == nx * ny,
+    "a good file after a bad one reads again");
+
+  // A record that claims more values than the grid has left.
+  std::vector<unsigned char> tooLong = IrapHeaderBytes(2, 2, 0, 0, 1, 1, 0);
+  std::vector<unsigned char> five;
+  for (int k = 0; k < 5; ++k)
+  {
+    PutFloat(five, 1.0f);
+  }
+  PutRecord(tooLong, five);
+  Spit(outDir + "TestIrapBinaryGridReader_toolong.gri", tooLong);
+  CheckBadInput(outDir + "TestIrapBinaryGridReader_toolong.gri", "record longer than the grid");
+}
+
+void BadInput(const std::string& dataDir, const std::string& outDir)
+{
   // ---- Bad input ----
   CheckBadInput(outDir + "TestIrapBinaryGridReader_does_not_exist.gri", "missing file");
   {
@@ -505,9 +515,29 @@ int TestIrapBinaryGridReader(int, char*[])
     Spit(outDir + "TestIrapBinaryGridReader_magic.gri", b);
     CheckBadInput(outDir + "TestIrapBinaryGridReader_magic.gri", "wrong -996 id");
   }
+}
 
+void PrintSelf()
+{
   vtkNew<vtkIrapBinaryGridReader> printed;
   printed->Print(std::cout);
+}
+
+}
+
+int TestIrapBinaryGridReader(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
+  strata_test::RunSubTests(
+    {
+      { "ReekHorizons", [&] { ReekHorizons(dataDir); } },
+      { "SyntheticGrid", [&] { SyntheticGrid(outDir); } },
+      { "BadInput", [&] { BadInput(dataDir, outDir); } },
+      { "PrintSelf", PrintSelf },
+    },
+    strata_test::Failures);
 
   if (strata_test::Failures())
   {

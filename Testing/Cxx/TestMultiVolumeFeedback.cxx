@@ -9,7 +9,9 @@
 // the same cut, every feedback scale hides the same volume, and LevelOfDetailThreshold makes the
 // rays ask for a coarser level.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkCamera.h"
@@ -125,8 +127,9 @@ void Configure(vtkMultiVolumeRayCastMapper* m)
 }
 }
 
-int TestMultiVolumeFeedback(int, char*[])
+int TestMultiVolumeFeedback(int argc, char* argv[])
 {
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
   vtkSmartPointer<vtkImageData> images[2] = { MakeBlobVolume(Edge, Edge, Edge, spacing, origin, 5),
@@ -134,7 +137,7 @@ int TestMultiVolumeFeedback(int, char*[])
   std::string pools[2];
   for (int i = 0; i < 2; ++i)
   {
-    pools[i] = OutputDirectory() + "/feedback-" + std::to_string(i) + ".spp";
+    pools[i] = paths.Output + "/feedback-" + std::to_string(i) + ".spp";
     vtkNew<vtkImageToPagePoolWriter> writer;
     writer->SetInputData(images[i]);
     writer->SetFileName(pools[i].c_str());

@@ -7,6 +7,8 @@
 // (d) a 90-degree direction matrix equals the permuted data; (e) translation to UTM
 // coordinates; (f) a one-voxel-thin volume; (g) convergence when halving the step;
 // (h) per-pixel start and stop depths. Every checked number is printed with its bound.
+#include "StrataSubTests.h"
+
 #include "vtkMultiVolumeReferenceIntegrator.h"
 
 #include <algorithm>
@@ -516,69 +518,67 @@ void AddOverlapScene(Integrator& integ, double tx, double ty, double tz)
 }
 }
 
-int TestMultiVolumeReferenceIntegrator(int, char*[])
+namespace
 {
-  const auto startTime = std::chrono::steady_clock::now();
-  const double exactTol = 1e-9; // closed forms of piecewise-constant media: rounding only
-
+void ConstantBoxes(double exactTol)
+{
   // (a) Constant boxes. Constant classification is integrated exactly (exact exponentials of a
   // homogeneous medium), so only rounding separates it from alpha = 1 - exp(-tau L), C = c alpha.
   std::printf("(a) constant boxes\n");
+  Volume v = MakeVolume(11, 9, 7, 0.5, 1.0, 1.5, 1.0, 2.0, 3.0, [](int, int, int) { return 0.3; });
+  v.Classification.Range[0] = 0.0;
+  v.Classification.Range[1] = 1.0;
+  v.Classification.Opacity = { 0.1, 0.5 };
+  v.Classification.Color = { 1.0, 0.2, 0.1, 0.2, 0.6, 1.0 };
+  v.Classification.UnitDistance = 2.0;
+  // At s = 0.3: alpha = 0.22 per 2 units, c = (0.76, 0.32, 0.37).
+  const double tau = Tau(0.22, 2.0);
+  const double c[3] = { 0.76, 0.32, 0.37 };
+  auto expected = [&](double len)
   {
-    Volume v =
-      MakeVolume(11, 9, 7, 0.5, 1.0, 1.5, 1.0, 2.0, 3.0, [](int, int, int) { return 0.3; });
-    v.Classification.Range[0] = 0.0;
-    v.Classification.Range[1] = 1.0;
-    v.Classification.Opacity = { 0.1, 0.5 };
-    v.Classification.Color = { 1.0, 0.2, 0.1, 0.2, 0.6, 1.0 };
-    v.Classification.UnitDistance = 2.0;
-    // At s = 0.3: alpha = 0.22 per 2 units, c = (0.76, 0.32, 0.37).
-    const double tau = Tau(0.22, 2.0);
-    const double c[3] = { 0.76, 0.32, 0.37 };
-    auto expected = [&](double len)
-    {
-      const double a = 1.0 - std::exp(-tau * len);
-      return RGBA{ c[0] * a, c[1] * a, c[2] * a, a };
-    };
-    {
-      Integrator integ;
-      Add(integ, v);
-      // Box x in [1, 6]: a ray along x from x = -2 (non-unit direction) has chord 5.
-      const double o[3] = { -2.0, 5.3, 7.1 }, d[3] = { 2.0, 0.0, 0.0 };
-      const RGBA got = integ.IntegrateRay(o, d, 0.0, 10.0);
-      std::printf("    axis-aligned: alpha %.15f expected %.15f\n", got[3], expected(5.0)[3]);
-      Check("(a) axis-aligned ray, |RGBA - closed form|", MaxDiff(got, expected(5.0)), exactTol);
-    }
-    // Rotated: a ray from index point pa (face i = 0) to pb (face i = 10); the chord is the world
-    // distance between them (rigid transforms).
-    const double pa[3] = { 0.0, 3.2, 2.5 }, pb[3] = { 10.0, 5.1, 4.4 };
-    auto rotatedCase = [&](const Volume& rv, const char* what)
-    {
-      Integrator integ;
-      Add(integ, rv);
-      double wa[3], wb[3], d[3], o[3];
-      IndexToWorld(rv, pa, wa);
-      IndexToWorld(rv, pb, wb);
-      for (int k = 0; k < 3; ++k)
-      {
-        d[k] = wb[k] - wa[k];
-        o[k] = wa[k] - 0.3 * d[k];
-      }
-      const double chord = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      const RGBA got = integ.IntegrateRay(o, d, 0.0, 2.0); // inside for t in [0.3, 1.3]
-      std::printf(
-        "    chord %.12f: alpha %.15f expected %.15f\n", chord, got[3], expected(chord)[3]);
-      Check(what, MaxDiff(got, expected(chord)), exactTol);
-    };
-    Volume rd = v;
-    const std::array<double, 9> r = Rotation(1.0, 2.0, 3.0, 0.7);
-    std::copy(r.begin(), r.end(), rd.Direction);
-    rotatedCase(rd, "(a) rotated by direction matrix, |RGBA - closed form|");
-    Volume rm = v;
-    SetModel(rm, Rotation(-1.0, 0.5, 2.0, 1.1), 10.0, -4.0, 7.0);
-    rotatedCase(rm, "(a) rotated by model matrix, |RGBA - closed form|");
+    const double a = 1.0 - std::exp(-tau * len);
+    return RGBA{ c[0] * a, c[1] * a, c[2] * a, a };
+  };
+  {
+    Integrator integ;
+    Add(integ, v);
+    // Box x in [1, 6]: a ray along x from x = -2 (non-unit direction) has chord 5.
+    const double o[3] = { -2.0, 5.3, 7.1 }, d[3] = { 2.0, 0.0, 0.0 };
+    const RGBA got = integ.IntegrateRay(o, d, 0.0, 10.0);
+    std::printf("    axis-aligned: alpha %.15f expected %.15f\n", got[3], expected(5.0)[3]);
+    Check("(a) axis-aligned ray, |RGBA - closed form|", MaxDiff(got, expected(5.0)), exactTol);
   }
+  // Rotated: a ray from index point pa (face i = 0) to pb (face i = 10); the chord is the world
+  // distance between them (rigid transforms).
+  const double pa[3] = { 0.0, 3.2, 2.5 }, pb[3] = { 10.0, 5.1, 4.4 };
+  auto rotatedCase = [&](const Volume& rv, const char* what)
+  {
+    Integrator integ;
+    Add(integ, rv);
+    double wa[3], wb[3], d[3], o[3];
+    IndexToWorld(rv, pa, wa);
+    IndexToWorld(rv, pb, wb);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = wb[k] - wa[k];
+      o[k] = wa[k] - 0.3 * d[k];
+    }
+    const double chord = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const RGBA got = integ.IntegrateRay(o, d, 0.0, 2.0); // inside for t in [0.3, 1.3]
+    std::printf("    chord %.12f: alpha %.15f expected %.15f\n", chord, got[3], expected(chord)[3]);
+    Check(what, MaxDiff(got, expected(chord)), exactTol);
+  };
+  Volume rd = v;
+  const std::array<double, 9> r = Rotation(1.0, 2.0, 3.0, 0.7);
+  std::copy(r.begin(), r.end(), rd.Direction);
+  rotatedCase(rd, "(a) rotated by direction matrix, |RGBA - closed form|");
+  Volume rm = v;
+  SetModel(rm, Rotation(-1.0, 0.5, 2.0, 1.1), 10.0, -4.0, 7.0);
+  rotatedCase(rm, "(a) rotated by model matrix, |RGBA - closed form|");
+}
 
+void LinearRamp()
+{
   // (b) Linear ramp s = x / 8 on x in [0, 8] (33 points, spacing 1/4: trilinear is exact for
   // linear data), ray along x, unit distance 1, alpha(s) = a + b s, c(s) = c0 + (c1 - c0) s.
   // With w(x) = 1 - a - b x / 8 and beta = b / 8, tau = -ln w and the optical depth is
@@ -592,186 +592,182 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
   // The integrator's error must stay below its stated leading-order bound GetErrorBound(8)
   // (where that is 0, the quantity is integrated exactly: 1e-13 is left for rounding).
   std::printf("(b) linear ramp, linear transfer functions\n");
+  const double X = 8.0;
+  Volume v =
+    MakeVolume(33, 5, 5, 0.25, 0.25, 0.25, 0.0, 0.0, 0.0, [](int i, int, int) { return i / 32.0; });
+  const double o[3] = { -1.0, 0.55, 0.6 }, d[3] = { 1.0, 0.0, 0.0 };
+  struct Case
   {
-    const double X = 8.0;
-    Volume v = MakeVolume(
-      33, 5, 5, 0.25, 0.25, 0.25, 0.0, 0.0, 0.0, [](int i, int, int) { return i / 32.0; });
-    const double o[3] = { -1.0, 0.55, 0.6 }, d[3] = { 1.0, 0.0, 0.0 };
-    struct Case
+    const char* Name;
+    double A0, A1;
+    double C0[3], C1[3];
+  };
+  const Case cases[3] = {
+    { "(b1) linear alpha, constant colour", 0.05, 0.6, { 0.9, 0.5, 0.2 }, { 0.9, 0.5, 0.2 } },
+    { "(b2) constant alpha, linear colour", 0.3, 0.3, { 0.0, 0.2, 1.0 }, { 1.0, 0.8, 0.0 } },
+    { "(b3) linear alpha, linear colour", 0.05, 0.6, { 0.0, 0.2, 1.0 }, { 1.0, 0.8, 0.0 } },
+  };
+  for (const Case& cs : cases)
+  {
+    Volume cv = v;
+    cv.Classification.Opacity = { cs.A0, cs.A1 };
+    cv.Classification.Color = { cs.C0[0], cs.C0[1], cs.C0[2], cs.C1[0], cs.C1[1], cs.C1[2] };
+    const double a = cs.A0, b = cs.A1 - cs.A0, beta = b / 8.0;
+    auto lambda = [&](double x)
     {
-      const char* Name;
-      double A0, A1;
-      double C0[3], C1[3];
+      if (b == 0.0)
+      {
+        return -std::log(1.0 - a) * x;
+      }
+      auto F = [](double w) { return w * std::log(w) - w; };
+      return (F(1.0 - a - beta * x) - F(1.0 - a)) / beta;
     };
-    const Case cases[3] = {
-      { "(b1) linear alpha, constant colour", 0.05, 0.6, { 0.9, 0.5, 0.2 }, { 0.9, 0.5, 0.2 } },
-      { "(b2) constant alpha, linear colour", 0.3, 0.3, { 0.0, 0.2, 1.0 }, { 1.0, 0.8, 0.0 } },
-      { "(b3) linear alpha, linear colour", 0.05, 0.6, { 0.0, 0.2, 1.0 }, { 1.0, 0.8, 0.0 } },
+    // int_0^X exp(-Lambda): composite 8-point Gauss-Legendre.
+    static const double gx[4] = {
+      0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363
     };
-    for (const Case& cs : cases)
+    static const double gw[4] = {
+      0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763
+    };
+    double integralT = 0.0;
+    const int panels = 64;
+    for (int p = 0; p < panels; ++p)
     {
-      Volume cv = v;
-      cv.Classification.Opacity = { cs.A0, cs.A1 };
-      cv.Classification.Color = { cs.C0[0], cs.C0[1], cs.C0[2], cs.C1[0], cs.C1[1], cs.C1[2] };
-      const double a = cs.A0, b = cs.A1 - cs.A0, beta = b / 8.0;
-      auto lambda = [&](double x)
+      const double lo = X * p / panels, half = 0.5 * X / panels, mid = lo + half;
+      for (int q = 0; q < 4; ++q)
       {
-        if (b == 0.0)
-        {
-          return -std::log(1.0 - a) * x;
-        }
-        auto F = [](double w) { return w * std::log(w) - w; };
-        return (F(1.0 - a - beta * x) - F(1.0 - a)) / beta;
-      };
-      // int_0^X exp(-Lambda): composite 8-point Gauss-Legendre.
-      static const double gx[4] = {
-        0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363
-      };
-      static const double gw[4] = {
-        0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763
-      };
-      double integralT = 0.0;
-      const int panels = 64;
-      for (int p = 0; p < panels; ++p)
-      {
-        const double lo = X * p / panels, half = 0.5 * X / panels, mid = lo + half;
-        for (int q = 0; q < 4; ++q)
-        {
-          integralT +=
-            half * gw[q] *
-            (std::exp(-lambda(mid - half * gx[q])) + std::exp(-lambda(mid + half * gx[q])));
-        }
+        integralT +=
+          half * gw[q] *
+          (std::exp(-lambda(mid - half * gx[q])) + std::exp(-lambda(mid + half * gx[q])));
       }
-      const double TX = std::exp(-lambda(X));
-      RGBA exact;
-      exact[3] = 1.0 - TX;
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        const double cp = (cs.C1[ch] - cs.C0[ch]) / X;
-        exact[ch] = cs.C0[ch] - cs.C1[ch] * TX + cp * integralT;
-        if (b == 0.0) // (b2): the fully closed form, as a cross-check of the quadrature
-        {
-          const double tau = -std::log(1.0 - a);
-          const double closed = cs.C0[ch] * (1.0 - TX) + cp * ((1.0 - TX) / tau - X * TX);
-          if (std::abs(closed - exact[ch]) > 1e-14)
-          {
-            std::printf("    closed form and quadrature disagree: %g\n", closed - exact[ch]);
-            ++Failures;
-          }
-          exact[ch] = closed;
-        }
-      }
-      Integrator integ;
-      integ.SetStepFraction(1.0 / 16.0);
-      Add(integ, cv);
-      const RGBA got = integ.IntegrateRay(o, d, 0.0, 10.0);
-      const Integrator::ErrorBound bound = integ.GetErrorBound(X);
-      integ.SetStepFraction(1.0 / 32.0);
-      const RGBA fine = integ.IntegrateRay(o, d, 0.0, 10.0);
-      const double errA = std::abs(got[3] - exact[3]);
-      double errC = 0.0, errFine = MaxDiff(fine, exact);
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        errC = std::max(errC, std::abs(got[ch] - exact[ch]));
-      }
-      std::printf("    %s: A %.12f (exact %.12f), h = 1/64: err A %.3e C %.3e, "
-                  "h = 1/128: err %.3e (ratio %.2f)\n",
-        cs.Name,
-        got[3],
-        exact[3],
-        errA,
-        errC,
-        errFine,
-        MaxDiff(got, exact) / errFine);
-      char label[128];
-      std::snprintf(label, sizeof(label), "%s, alpha error", cs.Name);
-      Check(label, errA, std::max(bound.Alpha, 1e-13));
-      std::snprintf(label, sizeof(label), "%s, colour error", cs.Name);
-      Check(label, errC, std::max(bound.Color, 1e-13));
     }
+    const double TX = std::exp(-lambda(X));
+    RGBA exact;
+    exact[3] = 1.0 - TX;
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const double cp = (cs.C1[ch] - cs.C0[ch]) / X;
+      exact[ch] = cs.C0[ch] - cs.C1[ch] * TX + cp * integralT;
+      if (b == 0.0) // (b2): the fully closed form, as a cross-check of the quadrature
+      {
+        const double tau = -std::log(1.0 - a);
+        const double closed = cs.C0[ch] * (1.0 - TX) + cp * ((1.0 - TX) / tau - X * TX);
+        if (std::abs(closed - exact[ch]) > 1e-14)
+        {
+          std::printf("    closed form and quadrature disagree: %g\n", closed - exact[ch]);
+          ++Failures;
+        }
+        exact[ch] = closed;
+      }
+    }
+    Integrator integ;
+    integ.SetStepFraction(1.0 / 16.0);
+    Add(integ, cv);
+    const RGBA got = integ.IntegrateRay(o, d, 0.0, 10.0);
+    const Integrator::ErrorBound bound = integ.GetErrorBound(X);
+    integ.SetStepFraction(1.0 / 32.0);
+    const RGBA fine = integ.IntegrateRay(o, d, 0.0, 10.0);
+    const double errA = std::abs(got[3] - exact[3]);
+    double errC = 0.0, errFine = MaxDiff(fine, exact);
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      errC = std::max(errC, std::abs(got[ch] - exact[ch]));
+    }
+    std::printf("    %s: A %.12f (exact %.12f), h = 1/64: err A %.3e C %.3e, "
+                "h = 1/128: err %.3e (ratio %.2f)\n",
+      cs.Name,
+      got[3],
+      exact[3],
+      errA,
+      errC,
+      errFine,
+      MaxDiff(got, exact) / errFine);
+    char label[128];
+    std::snprintf(label, sizeof(label), "%s, alpha error", cs.Name);
+    Check(label, errA, std::max(bound.Alpha, 1e-13));
+    std::snprintf(label, sizeof(label), "%s, colour error", cs.Name);
+    Check(label, errC, std::max(bound.Color, 1e-13));
   }
+}
 
-  // Camera for the images: perspective, oblique, 48 x 48.
-  const int W = 48, H = 48;
-  const double eye[3] = { 17.0, -21.0, 13.0 }, centre[3] = { 0.5, 0.25, 0.0 };
-  const Mat4 cam = Camera(eye, centre);
-
+void Mixing(int W, int H, const Mat4& cam, double exactTol)
+{
   // (c) Mixing.
   std::printf("(c) coincident, nested and face-sharing volumes\n");
-  {
-    // Two identical coincident volumes are one medium with twice the extinction: the same
-    // transfer function at half the unit distance (tau = -ln(1 - alpha) / u exactly doubles).
-    Volume v = MakeVolume(12, 10, 8, 1.0, 1.25, 0.75, -6.0, -5.0, -3.0, Smooth);
-    SetModel(v, Rotation(0.2, 0.4, 1.0, 0.35), 0.25, 0.5, -0.5);
-    v.Classification = RichTF(2.0);
-    Integrator two, one;
-    Add(two, v);
-    Add(two, v);
-    Volume dbl = v;
-    dbl.Classification.UnitDistance = 1.0;
-    Add(one, dbl);
-    std::vector<double> imgTwo, imgOne;
-    two.IntegrateImage(cam.data(), W, H, imgTwo);
-    one.IntegrateImage(cam.data(), W, H, imgOne);
-    const Integrator::ErrorBound eb = one.GetErrorBound(40.0);
-    std::printf(
-      "    max alpha %.4f, step error bound (40 units) %.3e\n", MaxAlpha(imgOne), eb.Color);
-    Check(
-      "(c) two coincident = one with doubled tau, max |dRGBA|", MaxDiff(imgTwo, imgOne), exactTol);
+  // Two identical coincident volumes are one medium with twice the extinction: the same
+  // transfer function at half the unit distance (tau = -ln(1 - alpha) / u exactly doubles).
+  Volume v = MakeVolume(12, 10, 8, 1.0, 1.25, 0.75, -6.0, -5.0, -3.0, Smooth);
+  SetModel(v, Rotation(0.2, 0.4, 1.0, 0.35), 0.25, 0.5, -0.5);
+  v.Classification = RichTF(2.0);
+  Integrator two, one;
+  Add(two, v);
+  Add(two, v);
+  Volume dbl = v;
+  dbl.Classification.UnitDistance = 1.0;
+  Add(one, dbl);
+  std::vector<double> imgTwo, imgOne;
+  two.IntegrateImage(cam.data(), W, H, imgTwo);
+  one.IntegrateImage(cam.data(), W, H, imgOne);
+  const Integrator::ErrorBound eb = one.GetErrorBound(40.0);
+  std::printf("    max alpha %.4f, step error bound (40 units) %.3e\n", MaxAlpha(imgOne), eb.Color);
+  Check(
+    "(c) two coincident = one with doubled tau, max |dRGBA|", MaxDiff(imgTwo, imgOne), exactTol);
 
-    // Nested: a rotated, finer, nearest-sampled constant volume inside a constant box.
-    Volume outer =
-      MakeVolume(9, 9, 9, 1.0, 1.0, 1.0, -4.0, -4.0, -4.0, [](int, int, int) { return 0.0; });
-    outer.Classification = ConstantTF(0.12, 0.9, 0.3, 0.1, 1.0);
-    Volume inner =
-      MakeVolume(5, 7, 4, 0.5, 0.5, 0.5, -0.5, -1.0, -0.75, [](int, int, int) { return 0.0; });
-    const std::array<double, 9> r = Rotation(1.0, -1.0, 0.5, 0.8);
-    std::copy(r.begin(), r.end(), inner.Direction);
-    inner.Sampling = Integrator::Interpolation::Nearest;
-    inner.Classification = ConstantTF(0.5, 0.1, 0.4, 1.0, 0.5);
-    Integrator nested;
-    Add(nested, outer);
-    Add(nested, inner);
-    const double cOuter[3] = { 0.9, 0.3, 0.1 }, cInner[3] = { 0.1, 0.4, 1.0 };
-    const std::vector<Box> boxes = { BoxOf(outer, Tau(0.12, 1.0), cOuter),
-      BoxOf(inner, Tau(0.5, 0.5), cInner) };
-    std::vector<double> img;
-    nested.IntegrateImage(cam.data(), W, H, img);
-    const std::vector<double> ref = ExactImage(boxes, cam, W, H);
-    std::printf("    nested: max alpha %.4f\n", MaxAlpha(img));
-    Check("(c) nested volumes vs closed form, max |dRGBA|", MaxDiff(img, ref), exactTol);
+  // Nested: a rotated, finer, nearest-sampled constant volume inside a constant box.
+  Volume outer =
+    MakeVolume(9, 9, 9, 1.0, 1.0, 1.0, -4.0, -4.0, -4.0, [](int, int, int) { return 0.0; });
+  outer.Classification = ConstantTF(0.12, 0.9, 0.3, 0.1, 1.0);
+  Volume inner =
+    MakeVolume(5, 7, 4, 0.5, 0.5, 0.5, -0.5, -1.0, -0.75, [](int, int, int) { return 0.0; });
+  const std::array<double, 9> r = Rotation(1.0, -1.0, 0.5, 0.8);
+  std::copy(r.begin(), r.end(), inner.Direction);
+  inner.Sampling = Integrator::Interpolation::Nearest;
+  inner.Classification = ConstantTF(0.5, 0.1, 0.4, 1.0, 0.5);
+  Integrator nested;
+  Add(nested, outer);
+  Add(nested, inner);
+  const double cOuter[3] = { 0.9, 0.3, 0.1 }, cInner[3] = { 0.1, 0.4, 1.0 };
+  const std::vector<Box> boxes = { BoxOf(outer, Tau(0.12, 1.0), cOuter),
+    BoxOf(inner, Tau(0.5, 0.5), cInner) };
+  std::vector<double> img;
+  nested.IntegrateImage(cam.data(), W, H, img);
+  const std::vector<double> ref = ExactImage(boxes, cam, W, H);
+  std::printf("    nested: max alpha %.4f\n", MaxAlpha(img));
+  Check("(c) nested volumes vs closed form, max |dRGBA|", MaxDiff(img, ref), exactTol);
 
-    // Shared face z = 4: A (trilinear) below, B (nearest, other x-y resolution) above.
-    Volume lower =
-      MakeVolume(5, 5, 5, 1.0, 1.0, 1.0, -2.0, -2.0, 0.0, [](int, int, int) { return 0.0; });
-    lower.Classification = ConstantTF(0.2, 1.0, 0.5, 0.0, 1.0);
-    Volume upper =
-      MakeVolume(9, 9, 5, 0.5, 0.5, 1.0, -2.0, -2.0, 4.0, [](int, int, int) { return 0.0; });
-    upper.Sampling = Integrator::Interpolation::Nearest;
-    upper.Classification = ConstantTF(0.35, 0.0, 0.5, 1.0, 1.0);
-    Integrator shared;
-    Add(shared, lower);
-    Add(shared, upper);
-    const double tA = Tau(0.2, 1.0), tB = Tau(0.35, 1.0);
-    const double o[3] = { 0.3, -0.7, -1.0 }, dz[3] = { 0.0, 0.0, 1.0 };
-    const RGBA got = shared.IntegrateRay(o, dz, 0.0, 10.0);
-    const double TA = std::exp(-4.0 * tA), TB = std::exp(-4.0 * tB);
-    const RGBA expect = { 1.0 * (1.0 - TA) + TA * 0.0 * (1.0 - TB),
-      0.5 * (1.0 - TA) + TA * 0.5 * (1.0 - TB),
-      0.0 * (1.0 - TA) + TA * 1.0 * (1.0 - TB),
-      1.0 - TA * TB };
-    std::printf("    shared face: alpha %.15f, 1 - T_A T_B = %.15f\n", got[3], expect[3]);
-    Check("(c) shared face, ray along the normal vs T_A T_B, max |dRGBA|",
-      MaxDiff(got, expect),
-      exactTol);
-    const double cl[3] = { 1.0, 0.5, 0.0 }, cu[3] = { 0.0, 0.5, 1.0 };
-    const std::vector<Box> faceBoxes = { BoxOf(lower, tA, cl), BoxOf(upper, tB, cu) };
-    shared.IntegrateImage(cam.data(), W, H, img);
-    Check("(c) shared face, image vs closed form, max |dRGBA|",
-      MaxDiff(img, ExactImage(faceBoxes, cam, W, H)),
-      exactTol);
-  }
+  // Shared face z = 4: A (trilinear) below, B (nearest, other x-y resolution) above.
+  Volume lower =
+    MakeVolume(5, 5, 5, 1.0, 1.0, 1.0, -2.0, -2.0, 0.0, [](int, int, int) { return 0.0; });
+  lower.Classification = ConstantTF(0.2, 1.0, 0.5, 0.0, 1.0);
+  Volume upper =
+    MakeVolume(9, 9, 5, 0.5, 0.5, 1.0, -2.0, -2.0, 4.0, [](int, int, int) { return 0.0; });
+  upper.Sampling = Integrator::Interpolation::Nearest;
+  upper.Classification = ConstantTF(0.35, 0.0, 0.5, 1.0, 1.0);
+  Integrator shared;
+  Add(shared, lower);
+  Add(shared, upper);
+  const double tA = Tau(0.2, 1.0), tB = Tau(0.35, 1.0);
+  const double o[3] = { 0.3, -0.7, -1.0 }, dz[3] = { 0.0, 0.0, 1.0 };
+  const RGBA got = shared.IntegrateRay(o, dz, 0.0, 10.0);
+  const double TA = std::exp(-4.0 * tA), TB = std::exp(-4.0 * tB);
+  const RGBA expect = { 1.0 * (1.0 - TA) + TA * 0.0 * (1.0 - TB),
+    0.5 * (1.0 - TA) + TA * 0.5 * (1.0 - TB),
+    0.0 * (1.0 - TA) + TA * 1.0 * (1.0 - TB),
+    1.0 - TA * TB };
+  std::printf("    shared face: alpha %.15f, 1 - T_A T_B = %.15f\n", got[3], expect[3]);
+  Check("(c) shared face, ray along the normal vs T_A T_B, max |dRGBA|",
+    MaxDiff(got, expect),
+    exactTol);
+  const double cl[3] = { 1.0, 0.5, 0.0 }, cu[3] = { 0.0, 0.5, 1.0 };
+  const std::vector<Box> faceBoxes = { BoxOf(lower, tA, cl), BoxOf(upper, tB, cu) };
+  shared.IntegrateImage(cam.data(), W, H, img);
+  Check("(c) shared face, image vs closed form, max |dRGBA|",
+    MaxDiff(img, ExactImage(faceBoxes, cam, W, H)),
+    exactTol);
+}
 
+void RotationByDirectionMatrix(int W, int H, double exactTol)
+{
   // (d) A 90-degree rotation about z in the direction matrix equals the permuted data:
   // V1 point (i, j, k) lies at O1 + (-j sy, i sx, k sz), which is V2's point (ny-1-j, i, k)
   // with V2 spacing (sy, sx, sz) and origin O1 - ((ny - 1) sy, 0, 0).
@@ -813,7 +809,16 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       MaxDiff(img1, img2),
       exactTol);
   }
+}
 
+void TranslationToUTM(int W,
+  int H,
+  const double eye[3],
+  const double centre[3],
+  const Mat4& cam,
+  double exactTol,
+  std::vector<double>& base)
+{
   // (e) Translation to UTM coordinates: the scene (model-matrix translation for one volume,
   // origin for the other) and the camera moved by (600000, 6700000, 0). The translated
   // clip->world matrix is itself rounded at UTM scale (ulp(6.7e6)/2 = 4.7e-10 in its translation
@@ -822,57 +827,56 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
   // the local scene through the local equivalent of the UTM matrix (T^-1 times it, one rounding
   // at local scale, via fma); the raw comparison is printed against the bound its rounding allows.
   std::printf("(e) translation invariance at UTM coordinates\n");
-  std::vector<double> base;
+  const double tr[3] = { 600000.0, 6700000.0, 0.0 };
+  Integrator local, utm;
+  AddOverlapScene(local, 0.0, 0.0, 0.0);
+  AddOverlapScene(utm, tr[0], tr[1], tr[2]);
+  double lo[3];
+  utm.GetLocalOrigin(lo);
+  std::printf("    UTM local origin (%.1f, %.1f, %.1f)\n", lo[0], lo[1], lo[2]);
+  const Mat4 shift = { 1, 0, 0, tr[0], 0, 1, 0, tr[1], 0, 0, 1, tr[2], 0, 0, 0, 1 };
+  auto untranslate = [&](const Mat4& m)
   {
-    const double tr[3] = { 600000.0, 6700000.0, 0.0 };
-    Integrator local, utm;
-    AddOverlapScene(local, 0.0, 0.0, 0.0);
-    AddOverlapScene(utm, tr[0], tr[1], tr[2]);
-    double lo[3];
-    utm.GetLocalOrigin(lo);
-    std::printf("    UTM local origin (%.1f, %.1f, %.1f)\n", lo[0], lo[1], lo[2]);
-    const Mat4 shift = { 1, 0, 0, tr[0], 0, 1, 0, tr[1], 0, 0, 1, tr[2], 0, 0, 0, 1 };
-    auto untranslate = [&](const Mat4& m)
+    Mat4 back = m;
+    for (int r = 0; r < 3; ++r)
     {
-      Mat4 back = m;
-      for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c)
       {
-        for (int c = 0; c < 4; ++c)
-        {
-          const double p = tr[r] * m[12 + c];
-          const double e = std::fma(tr[r], m[12 + c], -p); // tr * m = p + e exactly
-          back[4 * r + c] = (m[4 * r + c] - p) - e;
-        }
+        const double p = tr[r] * m[12 + c];
+        const double e = std::fma(tr[r], m[12 + c], -p); // tr * m = p + e exactly
+        back[4 * r + c] = (m[4 * r + c] - p) - e;
       }
-      return back;
-    };
-    const double up[3] = { 0.0, 0.0, 1.0 };
-    const Mat4 ortho = Inverse(WorldToClipOrtho(eye, centre, up, 12.0, 2.0, 80.0));
-    for (int o = 0; o < 2; ++o)
-    {
-      const Mat4& camLocal = o ? ortho : cam;
-      const Mat4 camUTM = Mul(shift, camLocal);
-      std::vector<double> imgLocal, imgUTM, imgSame;
-      local.IntegrateImage(camLocal.data(), W, H, imgLocal);
-      utm.IntegrateImage(camUTM.data(), W, H, imgUTM);
-      local.IntegrateImage(untranslate(camUTM).data(), W, H, imgSame);
-      if (!o)
-      {
-        base = imgLocal;
-      }
-      std::printf(
-        "    %s: max alpha %.4f\n", o ? "orthographic" : "perspective", MaxAlpha(imgLocal));
-      Check(o ? "(e) orthographic, same camera translated, max |dRGBA|"
-              : "(e) perspective, same camera translated, max |dRGBA|",
-        MaxDiff(imgUTM, imgSame),
-        exactTol);
-      Check(o ? "(e) orthographic, T * camera rounded at UTM, max |dRGBA|"
-              : "(e) perspective, T * camera rounded at UTM, max |dRGBA|",
-        MaxDiff(imgUTM, imgLocal),
-        1e-8);
     }
+    return back;
+  };
+  const double up[3] = { 0.0, 0.0, 1.0 };
+  const Mat4 ortho = Inverse(WorldToClipOrtho(eye, centre, up, 12.0, 2.0, 80.0));
+  for (int o = 0; o < 2; ++o)
+  {
+    const Mat4& camLocal = o ? ortho : cam;
+    const Mat4 camUTM = Mul(shift, camLocal);
+    std::vector<double> imgLocal, imgUTM, imgSame;
+    local.IntegrateImage(camLocal.data(), W, H, imgLocal);
+    utm.IntegrateImage(camUTM.data(), W, H, imgUTM);
+    local.IntegrateImage(untranslate(camUTM).data(), W, H, imgSame);
+    if (!o)
+    {
+      base = imgLocal;
+    }
+    std::printf("    %s: max alpha %.4f\n", o ? "orthographic" : "perspective", MaxAlpha(imgLocal));
+    Check(o ? "(e) orthographic, same camera translated, max |dRGBA|"
+            : "(e) perspective, same camera translated, max |dRGBA|",
+      MaxDiff(imgUTM, imgSame),
+      exactTol);
+    Check(o ? "(e) orthographic, T * camera rounded at UTM, max |dRGBA|"
+            : "(e) perspective, T * camera rounded at UTM, max |dRGBA|",
+      MaxDiff(imgUTM, imgLocal),
+      1e-8);
   }
+}
 
+void ThinVolume(double exactTol)
+{
   // (f) One-voxel-thin volume (nz = 1, sz = 1/4): one spacing thick, values constant across.
   std::printf("(f) one-voxel-thin volume\n");
   for (int nearest = 0; nearest < 2; ++nearest)
@@ -900,111 +904,136 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       MaxDiff(got, expect),
       exactTol);
   }
+}
 
+void Convergence(int W, int H, const Mat4& cam, const std::vector<double>& base)
+{
   // (g) Convergence on the overlap scene: halving h changes the image by at most
   // B(h) + B(h/2) = 1.25 B(h) (B: the stated leading-order bound, for the longest possible
   // covered length, the sum of the box diagonals); second order shows as a ratio near 4.
   std::printf("(g) convergence when halving the step\n");
-  {
-    Integrator integ;
-    AddOverlapScene(integ, 0.0, 0.0, 0.0);
-    const double diagonals = std::sqrt(13.0 * 13.0 + 13.75 * 13.75 + 6.0 * 6.0) +
-                             std::sqrt(6.4 * 6.4 + 7.0 * 7.0 + 5.4 * 5.4);
-    std::vector<double> coarse, mid, fine;
-    integ.SetStepFraction(1.0 / 8.0);
-    integ.IntegrateImage(cam.data(), W, H, coarse);
-    const Integrator::ErrorBound b8 = integ.GetErrorBound(diagonals);
-    integ.SetStepFraction(1.0 / 16.0);
-    integ.IntegrateImage(cam.data(), W, H, mid);
-    const Integrator::ErrorBound b16 = integ.GetErrorBound(diagonals);
-    integ.SetStepFraction(1.0 / 32.0);
-    integ.IntegrateImage(cam.data(), W, H, fine);
-    const double d1 = MaxDiff(coarse, mid), d2 = MaxDiff(mid, fine);
-    std::printf("    max |I(1/8) - I(1/16)| = %.3e, max |I(1/16) - I(1/32)| = %.3e, ratio %.2f\n",
-      d1,
-      d2,
-      d1 / d2);
-    std::printf(
-      "    stated bounds B(1/8): alpha %.3e colour %.3e; B(1/16): alpha %.3e colour %.3e\n",
-      b8.Alpha,
-      b8.Color,
-      b16.Alpha,
-      b16.Color);
-    Check("(g) |I(1/8) - I(1/16)| vs 1.25 B(1/8)", d1, 1.25 * std::max(b8.Alpha, b8.Color));
-    Check("(g) |I(1/16) - I(1/32)| vs 1.25 B(1/16)", d2, 1.25 * std::max(b16.Alpha, b16.Color));
-    Check("(g) second order: |ratio - 4|", d1 / d2 - 4.0, 1.0);
-    Check("(g) explicit 1/16 equals the default step ((e)), max |dRGBA|", MaxDiff(mid, base), 0.0);
-  }
+  Integrator integ;
+  AddOverlapScene(integ, 0.0, 0.0, 0.0);
+  const double diagonals = std::sqrt(13.0 * 13.0 + 13.75 * 13.75 + 6.0 * 6.0) +
+                           std::sqrt(6.4 * 6.4 + 7.0 * 7.0 + 5.4 * 5.4);
+  std::vector<double> coarse, mid, fine;
+  integ.SetStepFraction(1.0 / 8.0);
+  integ.IntegrateImage(cam.data(), W, H, coarse);
+  const Integrator::ErrorBound b8 = integ.GetErrorBound(diagonals);
+  integ.SetStepFraction(1.0 / 16.0);
+  integ.IntegrateImage(cam.data(), W, H, mid);
+  const Integrator::ErrorBound b16 = integ.GetErrorBound(diagonals);
+  integ.SetStepFraction(1.0 / 32.0);
+  integ.IntegrateImage(cam.data(), W, H, fine);
+  const double d1 = MaxDiff(coarse, mid), d2 = MaxDiff(mid, fine);
+  std::printf("    max |I(1/8) - I(1/16)| = %.3e, max |I(1/16) - I(1/32)| = %.3e, ratio %.2f\n",
+    d1,
+    d2,
+    d1 / d2);
+  std::printf("    stated bounds B(1/8): alpha %.3e colour %.3e; B(1/16): alpha %.3e colour %.3e\n",
+    b8.Alpha,
+    b8.Color,
+    b16.Alpha,
+    b16.Color);
+  Check("(g) |I(1/8) - I(1/16)| vs 1.25 B(1/8)", d1, 1.25 * std::max(b8.Alpha, b8.Color));
+  Check("(g) |I(1/16) - I(1/32)| vs 1.25 B(1/16)", d2, 1.25 * std::max(b16.Alpha, b16.Color));
+  Check("(g) second order: |ratio - 4|", d1 / d2 - 4.0, 1.0);
+  Check("(g) explicit 1/16 equals the default step ((e)), max |dRGBA|", MaxDiff(mid, base), 0.0);
+}
 
+void StartAndStop(const Mat4& cam)
+{
   // (h) Per-pixel start and stop, as window depths (projected by the test's own world->clip)
   // and as world distances, against single rays over the same t range. Depth -> t through the
   // projection costs ~1e-16 / (1 - depth) relative in t, far below the bound.
   std::printf("(h) per-pixel start and stop\n");
+  Integrator integ;
+  AddOverlapScene(integ, 0.0, 0.0, 0.0);
+  const int w = 12, h = 12;
+  const Mat4 worldToClip = Inverse(cam);
+  std::vector<double> startDepth(w * h), stopDepth(w * h), startDist(w * h), stopDist(w * h);
+  std::vector<RGBA> both(w * h), startOnly(w * h), stopOnly(w * h);
+  for (int py = 0; py < h; ++py)
   {
-    Integrator integ;
-    AddOverlapScene(integ, 0.0, 0.0, 0.0);
-    const int w = 12, h = 12;
-    const Mat4 worldToClip = Inverse(cam);
-    std::vector<double> startDepth(w * h), stopDepth(w * h), startDist(w * h), stopDist(w * h);
-    std::vector<RGBA> both(w * h), startOnly(w * h), stopOnly(w * h);
-    for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px)
     {
-      for (int px = 0; px < w; ++px)
+      const int idx = py * w + px;
+      const double nx = (px + 0.5) / w * 2.0 - 1.0, ny = (py + 0.5) / h * 2.0 - 1.0;
+      double a[3], b[3], d[3];
+      Transform(cam, nx, ny, -1.0, a);
+      Transform(cam, nx, ny, 1.0, b);
+      for (int k = 0; k < 3; ++k)
       {
-        const int idx = py * w + px;
-        const double nx = (px + 0.5) / w * 2.0 - 1.0, ny = (py + 0.5) / h * 2.0 - 1.0;
-        double a[3], b[3], d[3];
-        Transform(cam, nx, ny, -1.0, a);
-        Transform(cam, nx, ny, 1.0, b);
-        for (int k = 0; k < 3; ++k)
-        {
-          d[k] = b[k] - a[k];
-        }
-        const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const double t0 = 0.25 + 0.002 * px, t1 = 0.4 + 0.003 * py;
-        auto depthAt = [&](double t)
-        {
-          double q[3];
-          Transform(worldToClip, a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2], q);
-          return 0.5 * (q[2] + 1.0);
-        };
-        startDepth[idx] = depthAt(t0);
-        stopDepth[idx] = depthAt(t1);
-        startDist[idx] = t0 * len;
-        stopDist[idx] = t1 * len;
-        both[idx] = integ.IntegrateRay(a, d, t0, t1);
-        startOnly[idx] = integ.IntegrateRay(a, d, t0, 1.0);
-        stopOnly[idx] = integ.IntegrateRay(a, d, 0.0, t1);
+        d[k] = b[k] - a[k];
+      }
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      const double t0 = 0.25 + 0.002 * px, t1 = 0.4 + 0.003 * py;
+      auto depthAt = [&](double t)
+      {
+        double q[3];
+        Transform(worldToClip, a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2], q);
+        return 0.5 * (q[2] + 1.0);
+      };
+      startDepth[idx] = depthAt(t0);
+      stopDepth[idx] = depthAt(t1);
+      startDist[idx] = t0 * len;
+      stopDist[idx] = t1 * len;
+      both[idx] = integ.IntegrateRay(a, d, t0, t1);
+      startOnly[idx] = integ.IntegrateRay(a, d, t0, 1.0);
+      stopOnly[idx] = integ.IntegrateRay(a, d, 0.0, t1);
+    }
+  }
+  auto compare = [&](const std::vector<double>& img, const std::vector<RGBA>& ref)
+  {
+    double m = 0.0;
+    for (int idx = 0; idx < w * h; ++idx)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        m = std::max(m, std::abs(img[4 * idx + k] - ref[idx][k]));
       }
     }
-    auto compare = [&](const std::vector<double>& img, const std::vector<RGBA>& ref)
+    return m;
+  };
+  using DK = Integrator::DepthKind;
+  std::vector<double> img;
+  integ.IntegrateImage(cam.data(), w, h, img, nullptr, stopDepth.data(), DK::WindowDepth);
+  Check("(h) stop as window depth vs IntegrateRay, max |dRGBA|", compare(img, stopOnly), 1e-9);
+  double maxA = MaxAlpha(img);
+  integ.IntegrateImage(cam.data(), w, h, img, startDepth.data(), stopDepth.data());
+  Check("(h) start and stop as window depths, max |dRGBA|", compare(img, both), 1e-9);
+  integ.IntegrateImage(cam.data(), w, h, img, startDist.data(), nullptr, DK::WorldDistance);
+  Check("(h) start as world distance vs IntegrateRay, max |dRGBA|", compare(img, startOnly), 1e-9);
+  maxA = std::max(maxA, MaxAlpha(img));
+  integ.IntegrateImage(cam.data(), w, h, img, startDist.data(), stopDist.data(), DK::WorldDistance);
+  Check("(h) start and stop as world distances, max |dRGBA|", compare(img, both), 1e-9);
+  std::printf("    max alpha of the clipped rays %.4f\n", maxA);
+}
+
+}
+
+int TestMultiVolumeReferenceIntegrator(int, char*[])
+{
+  const auto startTime = std::chrono::steady_clock::now();
+  const double exactTol = 1e-9; // closed forms of piecewise-constant media: rounding only
+
+  // Camera for the images: perspective, oblique, 48 x 48.
+  const int W = 48, H = 48;
+  const double eye[3] = { 17.0, -21.0, 13.0 }, centre[3] = { 0.5, 0.25, 0.0 };
+  const Mat4 cam = Camera(eye, centre);
+  std::vector<double> base; // (e)'s image, the default step's, which (g) compares with
+  strata_test::RunSubTests(
     {
-      double m = 0.0;
-      for (int idx = 0; idx < w * h; ++idx)
-      {
-        for (int k = 0; k < 4; ++k)
-        {
-          m = std::max(m, std::abs(img[4 * idx + k] - ref[idx][k]));
-        }
-      }
-      return m;
-    };
-    using DK = Integrator::DepthKind;
-    std::vector<double> img;
-    integ.IntegrateImage(cam.data(), w, h, img, nullptr, stopDepth.data(), DK::WindowDepth);
-    Check("(h) stop as window depth vs IntegrateRay, max |dRGBA|", compare(img, stopOnly), 1e-9);
-    double maxA = MaxAlpha(img);
-    integ.IntegrateImage(cam.data(), w, h, img, startDepth.data(), stopDepth.data());
-    Check("(h) start and stop as window depths, max |dRGBA|", compare(img, both), 1e-9);
-    integ.IntegrateImage(cam.data(), w, h, img, startDist.data(), nullptr, DK::WorldDistance);
-    Check(
-      "(h) start as world distance vs IntegrateRay, max |dRGBA|", compare(img, startOnly), 1e-9);
-    maxA = std::max(maxA, MaxAlpha(img));
-    integ.IntegrateImage(
-      cam.data(), w, h, img, startDist.data(), stopDist.data(), DK::WorldDistance);
-    Check("(h) start and stop as world distances, max |dRGBA|", compare(img, both), 1e-9);
-    std::printf("    max alpha of the clipped rays %.4f\n", maxA);
-  }
+      { "ConstantBoxes", [&] { ConstantBoxes(exactTol); } },
+      { "LinearRamp", [&] { LinearRamp(); } },
+      { "Mixing", [&] { Mixing(W, H, cam, exactTol); } },
+      { "RotationByDirectionMatrix", [&] { RotationByDirectionMatrix(W, H, exactTol); } },
+      { "TranslationToUTM", [&] { TranslationToUTM(W, H, eye, centre, cam, exactTol, base); } },
+      { "ThinVolume", [&] { ThinVolume(exactTol); } },
+      { "Convergence", [&] { Convergence(W, H, cam, base); } },
+      { "StartAndStop", [&] { StartAndStop(cam); } },
+    },
+    [] { return Failures; });
 
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();

@@ -5,13 +5,16 @@
 //   seabed horizon, SEG tutorials 2016, Apache-2.0 / CC BY-SA): literal header fields and values
 //   determined once with python3's struct module and checked with `od -A d -t f8 -j OFFSET -N 8`
 //   (OFFSET = 128 + 8 * (row * 48 + col), the header being 128 bytes);
-// - the full 601 x 481 file from $STRATA_SHARED_DATA/horizons when present (skipped otherwise);
+// - the full 601 x 481 file from the shared data (--shared-data) when present (skipped otherwise);
 // - synthetic files written here: every supported dtype in both byte orders, C and Fortran order,
 //   format versions 1.0, 2.0 and 3.0, 1-D and (rows, cols, 1) shapes, the axis-swap flag;
 // - bad input: missing, truncated, garbage, bad magic, unsupported version, dtype and shape,
 //   malformed header, absurd dimensions. Each must raise an error (caught by an observer) and
 //   leave the output with no points.
+#include "StrataErrorCounter.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -197,95 +200,96 @@ void CheckBadInput(const std::string& path, const std::string& what)
 }
 }
 
-int TestNumpyGridReader(int, char*[])
+namespace
 {
-  const std::string dataDir = strata_test::TestDataDirectory() + "/horizons/";
-  const std::string outDir = strata_test::OutputDirectory() + "/";
-
+void PenobscotCrop(const std::string& dataDir)
+{
   // ---- The Penobscot crop ----
+  const std::string path = dataDir + "penobscot_seabed_crop.npy";
+  Check(vtkNumpyGridReader::CanReadFile(path.c_str()), "crop: CanReadFile");
+  vtkNew<vtkNumpyGridReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  // Header (od -c): \x93 N U M P Y 001 \0, length 'v' \0 = 118, then
+  // {'descr': '<f8', 'fortran_order': False, 'shape': (64, 48), }
+  Check(reader->GetMajorVersion() == 1 && reader->GetMinorVersion() == 0, "crop: version 1.0");
+  Check(std::string(reader->GetDescr()) == "<f8", "crop: descr <f8");
+  Check(!reader->GetFortranOrder(), "crop: C order");
+  Check(reader->GetNumberOfAxes() == 2 && reader->GetShape(0) == 64 && reader->GetShape(1) == 48,
+    "crop: shape (64, 48)");
+  Check(reader->GetNX() == 64 && reader->GetNY() == 48, "crop: rows along x");
+  Check(reader->GetOutputDataType() == VTK_DOUBLE, "crop: float64 stays double");
+  reader->Update();
+  Check(errors->Errors == 0 && errors->Warnings == 0, "crop: no errors");
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Check(dims[0] == 64 && dims[1] == 48 && dims[2] == 1, "crop: dimensions 64 x 48 x 1");
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  Check(s && vtkDoubleArray::SafeDownCast(s) && std::string(s->GetName()) == "depth",
+    "crop: vtkDoubleArray named depth");
+  if (s)
   {
-    const std::string path = dataDir + "penobscot_seabed_crop.npy";
-    Check(vtkNumpyGridReader::CanReadFile(path.c_str()), "crop: CanReadFile");
-    vtkNew<vtkNumpyGridReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->UpdateInformation();
-    // Header (od -c): \x93 N U M P Y 001 \0, length 'v' \0 = 118, then
-    // {'descr': '<f8', 'fortran_order': False, 'shape': (64, 48), }
-    Check(reader->GetMajorVersion() == 1 && reader->GetMinorVersion() == 0, "crop: version 1.0");
-    Check(std::string(reader->GetDescr()) == "<f8", "crop: descr <f8");
-    Check(!reader->GetFortranOrder(), "crop: C order");
-    Check(reader->GetNumberOfAxes() == 2 && reader->GetShape(0) == 64 && reader->GetShape(1) == 48,
-      "crop: shape (64, 48)");
-    Check(reader->GetNX() == 64 && reader->GetNY() == 48, "crop: rows along x");
-    Check(reader->GetOutputDataType() == VTK_DOUBLE, "crop: float64 stays double");
-    reader->Update();
-    Check(errors->Errors == 0 && errors->Warnings == 0, "crop: no errors");
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    Check(dims[0] == 64 && dims[1] == 48 && dims[2] == 1, "crop: dimensions 64 x 48 x 1");
-    vtkDataArray* s = image->GetPointData()->GetScalars();
-    Check(s && vtkDoubleArray::SafeDownCast(s) && std::string(s->GetName()) == "depth",
-      "crop: vtkDoubleArray named depth");
-    if (s)
-    {
-      // arr[r][c] at image index (r, c); literals from python3 struct.unpack('<d'), od -t f8.
-      Check(std::isnan(ValueAt(image, 0, 0)), "crop: [0][0] is NaN");
-      Check(std::isnan(ValueAt(image, 0, 47)), "crop: [0][47] is NaN");
-      Check(std::isnan(ValueAt(image, 10, 40)), "crop: [10][40] is NaN");
-      Check(ValueAt(image, 3, 3) == 38.9822497975, "crop: [3][3] = 38.9822497975 (byte 1304)");
-      Check(ValueAt(image, 32, 24) == 42.278662325, "crop: [32][24] = 42.278662325 (byte 12608)");
-      Check(ValueAt(image, 63, 47) == 42.4587428575, "crop: [63][47] = 42.4587428575 (byte 24696)");
-      Check(ValueAt(image, 63, 0) == 43.400004505, "crop: [63][0] = 43.400004505");
-      Check(ValueAt(image, 20, 5) == 41.2899516525, "crop: [20][5] = 41.2899516525");
-    }
-    // python3: sum(math.isnan(v) for v in values) over the crop = 973.
-    Check(reader->GetNumberOfNoDataValues() == 973, "crop: 973 NaNs");
-    double* o = image->GetOrigin();
-    double* sp = image->GetSpacing();
-    Check(o[0] == 0 && o[1] == 0 && sp[0] == 1 && sp[1] == 1 && sp[2] == 1,
-      "crop: default origin 0, spacing 1");
-    vtkMatrix3x3* d = image->GetDirectionMatrix();
-    Check(d->IsIdentity(), "crop: default direction is the identity");
-
-    // Geometry on the reader.
-    reader->SetOrigin(1000.0, 1064.0);
-    reader->SetSpacing(12.5, 25.0);
-    reader->SetRotation(30.0);
-    reader->Update();
-    image = reader->GetOutput();
-    o = image->GetOrigin();
-    sp = image->GetSpacing();
-    Check(o[0] == 1000.0 && o[1] == 1064.0 && sp[0] == 12.5 && sp[1] == 25.0,
-      "crop: origin and spacing set on the reader");
-    d = image->GetDirectionMatrix();
-    const double a = vtkMath::RadiansFromDegrees(30.0);
-    Check(std::fabs(d->GetElement(0, 0) - std::cos(a)) < 1e-15 &&
-            std::fabs(d->GetElement(0, 1) + std::sin(a)) < 1e-15 &&
-            std::fabs(d->GetElement(1, 0) - std::sin(a)) < 1e-15 &&
-            std::fabs(d->GetElement(1, 1) - std::cos(a)) < 1e-15 && d->GetElement(2, 2) == 1.0,
-      "crop: direction = rotation by 30 degrees");
-
-    // Swapped axes: arr[j][i] at (i, j), 48 x 64.
-    reader->SwapAxesOn();
-    reader->Update();
-    image = reader->GetOutput();
-    image->GetDimensions(dims);
-    Check(dims[0] == 48 && dims[1] == 64, "crop swapped: dimensions 48 x 64");
-    Check(ValueAt(image, 47, 63) == 42.4587428575 && ValueAt(image, 24, 32) == 42.278662325 &&
-            ValueAt(image, 0, 63) == 43.400004505,
-      "crop swapped: arr[j][i] at (i, j)");
-    Check(reader->GetNumberOfNoDataValues() == 973, "crop swapped: 973 NaNs");
+    // arr[r][c] at image index (r, c); literals from python3 struct.unpack('<d'), od -t f8.
+    Check(std::isnan(ValueAt(image, 0, 0)), "crop: [0][0] is NaN");
+    Check(std::isnan(ValueAt(image, 0, 47)), "crop: [0][47] is NaN");
+    Check(std::isnan(ValueAt(image, 10, 40)), "crop: [10][40] is NaN");
+    Check(ValueAt(image, 3, 3) == 38.9822497975, "crop: [3][3] = 38.9822497975 (byte 1304)");
+    Check(ValueAt(image, 32, 24) == 42.278662325, "crop: [32][24] = 42.278662325 (byte 12608)");
+    Check(ValueAt(image, 63, 47) == 42.4587428575, "crop: [63][47] = 42.4587428575 (byte 24696)");
+    Check(ValueAt(image, 63, 0) == 43.400004505, "crop: [63][0] = 43.400004505");
+    Check(ValueAt(image, 20, 5) == 41.2899516525, "crop: [20][5] = 41.2899516525");
   }
+  // python3: sum(math.isnan(v) for v in values) over the crop = 973.
+  Check(reader->GetNumberOfNoDataValues() == 973, "crop: 973 NaNs");
+  double* o = image->GetOrigin();
+  double* sp = image->GetSpacing();
+  Check(o[0] == 0 && o[1] == 0 && sp[0] == 1 && sp[1] == 1 && sp[2] == 1,
+    "crop: default origin 0, spacing 1");
+  vtkMatrix3x3* d = image->GetDirectionMatrix();
+  Check(d->IsIdentity(), "crop: default direction is the identity");
 
+  // Geometry on the reader.
+  reader->SetOrigin(1000.0, 1064.0);
+  reader->SetSpacing(12.5, 25.0);
+  reader->SetRotation(30.0);
+  reader->Update();
+  image = reader->GetOutput();
+  o = image->GetOrigin();
+  sp = image->GetSpacing();
+  Check(o[0] == 1000.0 && o[1] == 1064.0 && sp[0] == 12.5 && sp[1] == 25.0,
+    "crop: origin and spacing set on the reader");
+  d = image->GetDirectionMatrix();
+  const double a = vtkMath::RadiansFromDegrees(30.0);
+  Check(std::fabs(d->GetElement(0, 0) - std::cos(a)) < 1e-15 &&
+          std::fabs(d->GetElement(0, 1) + std::sin(a)) < 1e-15 &&
+          std::fabs(d->GetElement(1, 0) - std::sin(a)) < 1e-15 &&
+          std::fabs(d->GetElement(1, 1) - std::cos(a)) < 1e-15 && d->GetElement(2, 2) == 1.0,
+    "crop: direction = rotation by 30 degrees");
+
+  // Swapped axes: arr[j][i] at (i, j), 48 x 64.
+  reader->SwapAxesOn();
+  reader->Update();
+  image = reader->GetOutput();
+  image->GetDimensions(dims);
+  Check(dims[0] == 48 && dims[1] == 64, "crop swapped: dimensions 48 x 64");
+  Check(ValueAt(image, 47, 63) == 42.4587428575 && ValueAt(image, 24, 32) == 42.278662325 &&
+          ValueAt(image, 0, 63) == 43.400004505,
+    "crop swapped: arr[j][i] at (i, j)");
+  Check(reader->GetNumberOfNoDataValues() == 973, "crop swapped: 973 NaNs");
+}
+
+void PenobscotFull(const strata_test::TestPaths& paths)
+{
   // ---- The full Penobscot horizon, when the shared data is there ----
-  const std::string shared = strata_test::SharedDataDirectory();
+  const std::string shared = paths.SharedData;
   const std::string full = shared + "/horizons/penobscot_seabed.npy";
   if (shared.empty() || !vtksys::SystemTools::FileExists(full, true))
   {
-    std::cout << "Skipping the full penobscot_seabed.npy: $STRATA_SHARED_DATA/horizons has none\n";
+    std::cout << "Skipping the full penobscot_seabed.npy: the shared data (--shared-data) has no "
+                 "horizons/penobscot_seabed.npy\n";
   }
   else
   {
@@ -311,7 +315,10 @@ int TestNumpyGridReader(int, char*[])
       Check(std::isnan(ValueAt(image, 600, 480)), "penobscot: [600][480] is NaN");
     }
   }
+}
 
+void SyntheticFiles(const std::string& outDir)
+{
   // ---- Synthetic files: dtypes, byte orders, memory orders, versions ----
   struct Case
   {
@@ -380,40 +387,44 @@ int TestNumpyGridReader(int, char*[])
       Check(ok, t + "every value at arr[i][j] -> (i, j) (arr[j][i] when swapped)");
     }
   }
+}
 
+void OneDimensional(const std::string& outDir)
+{
   // 1-D and (rows, cols, 1).
+  std::string data;
+  for (int k = 0; k < 5; ++k)
   {
-    std::string data;
-    for (int k = 0; k < 5; ++k)
-    {
-      data += Encode(k * 1.5, "<f4");
-    }
-    const std::string path = outDir + "TestNumpyGridReader_1d.npy";
-    Spit(path, Npy(1, Dict("<f4", false, "(5,)"), data));
-    vtkNew<vtkNumpyGridReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    int dims[3];
-    reader->GetOutput()->GetDimensions(dims);
-    Check(
-      dims[0] == 5 && dims[1] == 1 && ValueAt(reader->GetOutput(), 4, 0) == 6.0, "1-D (5,): 5 x 1");
-    reader->SwapAxesOn();
-    reader->Update();
-    reader->GetOutput()->GetDimensions(dims);
-    Check(dims[0] == 1 && dims[1] == 5 && ValueAt(reader->GetOutput(), 0, 3) == 4.5,
-      "1-D swapped: 1 x 5");
-
-    const std::string path3 = outDir + "TestNumpyGridReader_3d.npy";
-    Spit(path3, Npy(1, Dict("<f8", false, "(3, 4, 1)"), Data("<f8", false)));
-    vtkNew<vtkNumpyGridReader> reader3;
-    reader3->SetFileName(path3.c_str());
-    reader3->Update();
-    reader3->GetOutput()->GetDimensions(dims);
-    Check(dims[0] == 3 && dims[1] == 4 && ValueAt(reader3->GetOutput(), 2, 1) == 22.0 &&
-            ValueAt(reader3->GetOutput(), 0, 3) == 4.0,
-      "(3, 4, 1): 3 x 4");
+    data += Encode(k * 1.5, "<f4");
   }
+  const std::string path = outDir + "TestNumpyGridReader_1d.npy";
+  Spit(path, Npy(1, Dict("<f4", false, "(5,)"), data));
+  vtkNew<vtkNumpyGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  int dims[3];
+  reader->GetOutput()->GetDimensions(dims);
+  Check(
+    dims[0] == 5 && dims[1] == 1 && ValueAt(reader->GetOutput(), 4, 0) == 6.0, "1-D (5,): 5 x 1");
+  reader->SwapAxesOn();
+  reader->Update();
+  reader->GetOutput()->GetDimensions(dims);
+  Check(dims[0] == 1 && dims[1] == 5 && ValueAt(reader->GetOutput(), 0, 3) == 4.5,
+    "1-D swapped: 1 x 5");
 
+  const std::string path3 = outDir + "TestNumpyGridReader_3d.npy";
+  Spit(path3, Npy(1, Dict("<f8", false, "(3, 4, 1)"), Data("<f8", false)));
+  vtkNew<vtkNumpyGridReader> reader3;
+  reader3->SetFileName(path3.c_str());
+  reader3->Update();
+  reader3->GetOutput()->GetDimensions(dims);
+  Check(dims[0] == 3 && dims[1] == 4 && ValueAt(reader3->GetOutput(), 2, 1) == 22.0 &&
+          ValueAt(reader3->GetOutput(), 0, 3) == 4.0,
+    "(3, 4, 1): 3 x 4");
+}
+
+void BadInput(const std::string& dataDir, const std::string& outDir)
+{
   // ---- Bad input ----
   CheckBadInput(outDir + "TestNumpyGridReader_does_not_exist.npy", "missing file");
   {
@@ -475,9 +486,31 @@ int TestNumpyGridReader(int, char*[])
     Spit(path, b.Bytes);
     CheckBadInput(path, b.Name);
   }
+}
 
+void PrintSelf()
+{
   vtkNew<vtkNumpyGridReader> printed;
   printed->Print(std::cout);
+}
+
+}
+
+int TestNumpyGridReader(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dataDir = paths.Data + "/horizons/";
+  const std::string outDir = paths.Output + "/";
+  strata_test::RunSubTests(
+    {
+      { "PenobscotCrop", [&] { PenobscotCrop(dataDir); } },
+      { "PenobscotFull", [&] { PenobscotFull(paths); } },
+      { "SyntheticFiles", [&] { SyntheticFiles(outDir); } },
+      { "OneDimensional", [&] { OneDimensional(outDir); } },
+      { "BadInput", [&] { BadInput(dataDir, outDir); } },
+      { "PrintSelf", PrintSelf },
+    },
+    strata_test::Failures);
 
   if (strata_test::Failures())
   {

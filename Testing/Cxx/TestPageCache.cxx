@@ -5,6 +5,8 @@
 // failed loads reported once and not retried; a multi-threaded stress run checking every
 // page's contents and the budget; the render-thread calls never wait for a load; shutdown
 // with work queued and loads in flight. Loads are synthetic: page contents derive from the key.
+#include "StrataSubTests.h"
+
 #include "vtkPageCache.h"
 
 #include <algorithm>
@@ -699,15 +701,19 @@ void TestShutdownInFlight()
 int TestPageCache(int, char*[])
 {
   const auto t0 = Clock::now();
-  TestKeys();
-  TestGridNeighbours();
-  TestAgainstReference();
-  TestReferencedAndPinned();
-  TestPriorityOrder();
-  TestCancelStale();
-  TestFailures();
-  TestStress();
-  TestShutdownInFlight();
+  strata_test::RunSubTests(
+    {
+      { "Keys", TestKeys },
+      { "GridNeighbours", TestGridNeighbours },
+      { "AgainstReference", TestAgainstReference },
+      { "ReferencedAndPinned", TestReferencedAndPinned },
+      { "PriorityOrder", TestPriorityOrder },
+      { "CancelStale", TestCancelStale },
+      { "Failures", TestFailures },
+      { "Stress", TestStress },
+      { "ShutdownInFlight", TestShutdownInFlight },
+    },
+    [] { return failures; });
   std::cout << "TestPageCache: " << failures << " failure(s), "
             << std::chrono::duration<double>(Clock::now() - t0).count() << " s\n";
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

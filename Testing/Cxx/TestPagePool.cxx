@@ -4,6 +4,9 @@
 // direct 2-D evaluation of the same filter (tile pools); per-page min/max and value ranges
 // must match; compression and the memory limit must not change what is read (the limit must
 // not even change the bytes of the file); and every fault must give a clear error.
+#include "StrataSubTests.h"
+#include "StrataTestPaths.h"
+
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolFormat.h"
 #include "vtkPagePoolWriter.h"
@@ -46,11 +49,9 @@ bool Contains(const std::string& text, const std::string& part)
   return text.find(part) != std::string::npos;
 }
 
-std::string TestDirectory()
+std::string TestDirectory(const std::string& output)
 {
-  const char* env = std::getenv("STRATA_TEST_OUTPUT");
-  std::string dir = (env && *env) ? env : "/tmp";
-  dir += "/TestPagePool-" + std::to_string(static_cast<long>(::getpid()));
+  std::string dir = output + "/TestPagePool-" + std::to_string(static_cast<long>(::getpid()));
   ::mkdir(dir.c_str(), 0755);
   return dir;
 }
@@ -452,227 +453,241 @@ std::string OpenEdited(const std::string& good, const std::string& bad, F edit, 
 }
 }
 
-int TestPagePool(int, char*[])
+namespace
 {
-  const std::string dir = TestDirectory();
-  std::printf("output directory %s\n", dir.c_str());
-
+/// Every scalar type through the writer and back, then a tile pool.
+void VolumesAndTiles(const std::string& dir)
+{
   // Dimensions with a 1 in some axis and not multiples of the stride.
-  {
-    const int d1[3] = { 37, 1, 29 };
-    CheckVolume<uint8_t>(dir, "u8", d1, 8, false);
-    const int d2[3] = { 45, 33, 20 };
-    CheckVolume<uint16_t>(dir, "u16", d2, 16, false);
-    CheckVolume<uint16_t>(dir, "u16", d2, 16, true);
-    const int d3[3] = { 1, 23, 17 };
-    CheckVolume<int16_t>(dir, "i16", d3, 8, false);
-    const int d4[3] = { 50, 41, 36 };
-    CheckVolume<float>(dir, "f32", d4, 8, false);
-    CheckVolume<float>(dir, "f32", d4, 8, true);
-    const int d5[3] = { 1, 1, 1 };
-    CheckVolume<uint8_t>(dir, "single", d5, 8, false);
-  }
+  const int d1[3] = { 37, 1, 29 };
+  CheckVolume<uint8_t>(dir, "u8", d1, 8, false);
+  const int d2[3] = { 45, 33, 20 };
+  CheckVolume<uint16_t>(dir, "u16", d2, 16, false);
+  CheckVolume<uint16_t>(dir, "u16", d2, 16, true);
+  const int d3[3] = { 1, 23, 17 };
+  CheckVolume<int16_t>(dir, "i16", d3, 8, false);
+  const int d4[3] = { 50, 41, 36 };
+  CheckVolume<float>(dir, "f32", d4, 8, false);
+  CheckVolume<float>(dir, "f32", d4, 8, true);
+  const int d5[3] = { 1, 1, 1 };
+  CheckVolume<uint8_t>(dir, "single", d5, 8, false);
   CheckTiles<float>(dir, 70, 45, 3, 16);
+}
 
+void MemoryLimit(const std::string& dir)
+{
   std::printf("memory limit:\n");
-  {
-    const int dims[3] = { 160, 128, 256 };
-    const std::vector<uint16_t> data = MakeData<uint16_t>(dims, 99u);
-    WriteOptions opt;
-    opt.PageSize = 16;
-    vtkPagePoolWriter free, bounded, tooSmall;
-    const bool a = WritePool(data, dims, dir + "/free.spp", opt, free);
-    opt.LimitMB = 1.5;
-    const bool b = WritePool(data, dims, dir + "/bounded.spp", opt, bounded);
-    const double volumeMB = data.size() * 2.0 / 1048576.0;
-    std::printf("        volume %.2f MB; unlimited: %d slabs/call, %llu calls, ~%.2f MB; "
-                "limit 1.5 MB: %d slabs/call, %llu calls, ~%.2f MB\n",
-      volumeMB,
-      free.GetStatistics().SlabsPerCall,
-      static_cast<unsigned long long>(free.GetStatistics().SourceCalls),
-      free.GetStatistics().EstimatedPeakBytes / 1048576.0,
-      bounded.GetStatistics().SlabsPerCall,
-      static_cast<unsigned long long>(bounded.GetStatistics().SourceCalls),
-      bounded.GetStatistics().EstimatedPeakBytes / 1048576.0);
-    Check(a && b, "both written " + free.GetErrorMessage() + bounded.GetErrorMessage());
-    const auto& bs = bounded.GetStatistics();
-    const uint64_t slab = static_cast<uint64_t>(dims[0]) * dims[1] * 2;
-    std::printf("        limited run: measured peak of slice windows %.2f MB + block %.2f MB\n",
-      bs.MeasuredPeakSlabBytes / 1048576.0,
-      bs.SlabsPerCall * slab / 1048576.0);
-    Check(bs.SourceCalls > 1 && bs.EstimatedPeakBytes <= 1.5 * 1048576.0 &&
-            bs.MeasuredPeakSlabBytes + bs.SlabsPerCall * slab <= bs.EstimatedPeakBytes,
-      "the limited run read in several blocks; measured buffers within the 1.5 MB budget");
-    const auto fa = ReadBytes(dir + "/free.spp");
-    Check(!fa.empty() && fa == ReadBytes(dir + "/bounded.spp"),
-      "files are identical byte for byte (" + std::to_string(fa.size()) + " bytes)");
-    opt.LimitMB = 0.1;
-    const bool c = WritePool(data, dims, dir + "/small.spp", opt, tooSmall);
-    Check(!c && Contains(tooSmall.GetErrorMessage(), "memory limit") && !Exists(dir + "/small.spp"),
-      "a limit below the minimum is refused: " + tooSmall.GetErrorMessage());
+  const int dims[3] = { 160, 128, 256 };
+  const std::vector<uint16_t> data = MakeData<uint16_t>(dims, 99u);
+  WriteOptions opt;
+  opt.PageSize = 16;
+  vtkPagePoolWriter free, bounded, tooSmall;
+  const bool a = WritePool(data, dims, dir + "/free.spp", opt, free);
+  opt.LimitMB = 1.5;
+  const bool b = WritePool(data, dims, dir + "/bounded.spp", opt, bounded);
+  const double volumeMB = data.size() * 2.0 / 1048576.0;
+  std::printf("        volume %.2f MB; unlimited: %d slabs/call, %llu calls, ~%.2f MB; "
+              "limit 1.5 MB: %d slabs/call, %llu calls, ~%.2f MB\n",
+    volumeMB,
+    free.GetStatistics().SlabsPerCall,
+    static_cast<unsigned long long>(free.GetStatistics().SourceCalls),
+    free.GetStatistics().EstimatedPeakBytes / 1048576.0,
+    bounded.GetStatistics().SlabsPerCall,
+    static_cast<unsigned long long>(bounded.GetStatistics().SourceCalls),
+    bounded.GetStatistics().EstimatedPeakBytes / 1048576.0);
+  Check(a && b, "both written " + free.GetErrorMessage() + bounded.GetErrorMessage());
+  const auto& bs = bounded.GetStatistics();
+  const uint64_t slab = static_cast<uint64_t>(dims[0]) * dims[1] * 2;
+  std::printf("        limited run: measured peak of slice windows %.2f MB + block %.2f MB\n",
+    bs.MeasuredPeakSlabBytes / 1048576.0,
+    bs.SlabsPerCall * slab / 1048576.0);
+  Check(bs.SourceCalls > 1 && bs.EstimatedPeakBytes <= 1.5 * 1048576.0 &&
+          bs.MeasuredPeakSlabBytes + bs.SlabsPerCall * slab <= bs.EstimatedPeakBytes,
+    "the limited run read in several blocks; measured buffers within the 1.5 MB budget");
+  const auto fa = ReadBytes(dir + "/free.spp");
+  Check(!fa.empty() && fa == ReadBytes(dir + "/bounded.spp"),
+    "files are identical byte for byte (" + std::to_string(fa.size()) + " bytes)");
+  opt.LimitMB = 0.1;
+  const bool c = WritePool(data, dims, dir + "/small.spp", opt, tooSmall);
+  Check(!c && Contains(tooSmall.GetErrorMessage(), "memory limit") && !Exists(dir + "/small.spp"),
+    "a limit below the minimum is refused: " + tooSmall.GetErrorMessage());
+}
 
-    // Several threads reading all pages at once get the same bytes as one thread.
-    vtkPagePoolFile file;
-    const bool opened = file.Open(dir + "/free.spp");
-    std::vector<std::vector<uint16_t>> serial(file.GetNumberOfPages());
-    for (int l = 0; opened && l < file.GetNumberOfLevels(); ++l)
+/// Reads free.spp (MemoryLimit's) from several threads at once.
+void ConcurrentReads(const std::string& dir)
+{
+  // Several threads reading all pages at once get the same bytes as one thread.
+  vtkPagePoolFile file;
+  const bool opened = file.Open(dir + "/free.spp");
+  std::vector<std::vector<uint16_t>> serial(file.GetNumberOfPages());
+  for (int l = 0; opened && l < file.GetNumberOfLevels(); ++l)
+  {
+    const auto& L = file.GetLevel(l);
+    for (uint64_t i = 0; i < static_cast<uint64_t>(L.Pages[0]) * L.Pages[1] * L.Pages[2]; ++i)
     {
-      const auto& L = file.GetLevel(l);
-      for (uint64_t i = 0; i < static_cast<uint64_t>(L.Pages[0]) * L.Pages[1] * L.Pages[2]; ++i)
-      {
-        serial[L.FirstPage + i].resize(file.GetPageValues());
-        file.ReadPageNative(l, i, serial[L.FirstPage + i].data());
-      }
+      serial[L.FirstPage + i].resize(file.GetPageValues());
+      file.ReadPageNative(l, i, serial[L.FirstPage + i].data());
     }
-    std::atomic<int> mismatches{ 0 };
-    std::vector<std::thread> threads;
-    for (int t = 0; t < 4; ++t)
-    {
-      threads.emplace_back(
-        [&, t]()
+  }
+  std::atomic<int> mismatches{ 0 };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+  {
+    threads.emplace_back(
+      [&, t]()
+      {
+        std::vector<uint16_t> page(file.GetPageValues());
+        for (int pass = 0; pass < 2; ++pass)
         {
-          std::vector<uint16_t> page(file.GetPageValues());
-          for (int pass = 0; pass < 2; ++pass)
+          for (int l = file.GetNumberOfLevels() - 1; l >= 0; --l)
           {
-            for (int l = file.GetNumberOfLevels() - 1; l >= 0; --l)
+            const auto& L = file.GetLevel(l);
+            const uint64_t count = static_cast<uint64_t>(L.Pages[0]) * L.Pages[1] * L.Pages[2];
+            for (uint64_t k = 0; k < count; ++k)
             {
-              const auto& L = file.GetLevel(l);
-              const uint64_t count = static_cast<uint64_t>(L.Pages[0]) * L.Pages[1] * L.Pages[2];
-              for (uint64_t k = 0; k < count; ++k)
+              const uint64_t i = (k * 7 + t) % count;
+              if (!file.ReadPageNative(l, i, page.data()) || page != serial[L.FirstPage + i])
               {
-                const uint64_t i = (k * 7 + t) % count;
-                if (!file.ReadPageNative(l, i, page.data()) || page != serial[L.FirstPage + i])
-                {
-                  ++mismatches;
-                }
+                ++mismatches;
               }
             }
           }
-        });
-    }
-    for (auto& th : threads)
-    {
-      th.join();
-    }
-    Check(opened && mismatches == 0, "4 threads reading concurrently agree with a serial read");
-  }
-
-  std::printf("faults:\n");
-  {
-    const std::string good = dir + "/u16.spp";
-    const std::string goodZ = dir + "/u16-z.spp";
-    const std::string bad = dir + "/bad.spp";
-    vtkPagePoolFile file;
-    const bool missing = !file.Open(dir + "/does-not-exist.spp");
-    Check(missing && Contains(file.GetErrorMessage(), "cannot open") &&
-            Contains(file.GetErrorMessage(), "No such file"),
-      "missing file: " + file.GetErrorMessage());
-
-    std::vector<unsigned char> bytes = ReadBytes(good);
-    for (size_t cut : { bytes.size() - 1000, size_t(100) })
-    {
-      WriteBytes(bad, std::vector<unsigned char>(bytes.begin(), bytes.begin() + cut));
-      const bool refused = !file.Open(bad);
-      Check(refused && Contains(file.GetErrorMessage(), "truncated"),
-        "truncated to " + std::to_string(cut) + " bytes: " + file.GetErrorMessage());
-    }
-
-    for (const std::string& src : { good, goodZ })
-    {
-      vtkPagePoolFile ok;
-      ok.Open(src);
-      const Format::PageEntry e = ok.GetPageEntry(3);
-      std::vector<unsigned char> flipped = ReadBytes(src);
-      flipped[e.Offset + e.StoredSize / 2] ^= 0x10;
-      WriteBytes(bad, flipped);
-      std::vector<float> page(ok.GetPageValues());
-      std::string error;
-      const bool opened = file.Open(bad);
-      const bool refused = opened && !file.ReadPage(e.Level, e.Index, page.data(), &error);
-      const bool othersFine = opened && file.ReadPage(0, 0, page.data()) &&
-                              file.ReadPage(file.GetNumberOfLevels() - 1, 0, page.data());
-      Check(
-        refused && Contains(error, "checksum") && othersFine && file.GetLastPageError() == error,
-        "flipped byte in a " + std::string(src == good ? "raw" : "zstd") +
-          " page refused, others read: " + error);
-    }
-
-    std::string msg = OpenEdited(
-      good, bad, [](Format::Header&, std::vector<unsigned char>& b) { b[0] = 'X'; }, false);
-    Check(Contains(msg, "magic"), "wrong magic: " + msg);
-    msg =
-      OpenEdited(good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Version = 7; });
-    Check(Contains(msg, "version 7"), "wrong version: " + msg);
-    msg = OpenEdited(
-      good, bad, [](Format::Header&, std::vector<unsigned char>& b) { b[30] ^= 1; }, false);
-    Check(Contains(msg, "header checksum"), "corrupt header bytes: " + msg);
-    msg = OpenEdited(
-      good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[0] = 0; });
-    Check(Contains(msg, "absurd") && Contains(msg, "dimension 0"), "zero dimension: " + msg);
-    msg = OpenEdited(
-      good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[2] = 1 << 21; });
-    Check(Contains(msg, "absurd") && Contains(msg, "dimension 2"), "huge dimension: " + msg);
-    msg =
-      OpenEdited(good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.PageSize = 4; });
-    Check(Contains(msg, "page size 4"), "page size 4: " + msg);
-    msg = OpenEdited(
-      good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[0] = 400; });
-    Check(Contains(msg, "imply"), "dimensions that do not match the counts: " + msg);
-    msg = OpenEdited(good,
-      bad,
-      [](Format::Header& h, std::vector<unsigned char>&) { h.NumberOfPages = 1ull << 40; });
-    Check(Contains(msg, "pages"), "absurd page count: " + msg);
-    msg = OpenEdited(
-      good,
-      bad,
-      [](Format::Header&, std::vector<unsigned char>& b) { b[Format::HeaderSize + 5] ^= 1; },
-      false);
-    Check(Contains(msg, "page table checksum"), "corrupt page table: " + msg);
-    msg = OpenEdited(good,
-      bad,
-      [](Format::Header& h, std::vector<unsigned char>& b)
-      {
-        // A consistent table (checksum recomputed) whose page 2 lies beyond the end.
-        unsigned char* entry = b.data() + Format::HeaderSize + 2 * Format::EntrySize;
-        Format::PageEntry e;
-        Format::DecodeEntry(entry, e);
-        e.Offset = h.FileSize + 64;
-        Format::EncodeEntry(e, entry);
-        h.TableChecksum = Format::Crc32(
-          b.data() + Format::HeaderSize, static_cast<size_t>(h.NumberOfPages) * Format::EntrySize);
+        }
       });
-    Check(Contains(msg, "outside"), "page offset beyond the file: " + msg);
   }
-
-  std::printf("failing writers:\n");
+  for (auto& th : threads)
   {
-    const int dims[3] = { 40, 30, 50 };
-    const std::vector<int16_t> data = MakeData<int16_t>(dims, 3u);
-    const std::string path = dir + "/failed.spp";
-    WriteOptions opt;
-    opt.FailAtSlab = 33;
-    opt.LimitMB = 0.1; // several source calls: pages are already in the temporary file
-    vtkPagePoolWriter writer;
-    const bool ok = WritePool(data, dims, path, opt, writer);
-    Check(!ok && Contains(writer.GetErrorMessage(), "source failed") && !Exists(path) &&
-            CountTempFiles(dir) == 0 && writer.GetStatistics().SourceCalls >= 1,
-      "source error mid-way: no output, no temporary file: " + writer.GetErrorMessage());
-    opt.FailAtSlab = -1;
-    opt.PageSize = 600;
-    const bool ok2 = WritePool(data, dims, path, opt, writer);
-    Check(!ok2 && Contains(writer.GetErrorMessage(), "page size") && !Exists(path),
-      "absurd settings refused: " + writer.GetErrorMessage());
-    opt.PageSize = 8;
-    const int huge[3] = { 1 << 20, 1 << 20, 1 << 20 };
-    const bool ok4 = WritePool(data, huge, path, opt, writer);
-    Check(!ok4 && Contains(writer.GetErrorMessage(), "2^31 pages") && !Exists(path),
-      "2^60 voxels in pages of 8^3 refused before any allocation: " + writer.GetErrorMessage());
-    const bool ok3 = WritePool(data, dims, dir + "/no-such-dir/x.spp", opt, writer);
-    Check(!ok3 && Contains(writer.GetErrorMessage(), "cannot create"),
-      "unwritable location: " + writer.GetErrorMessage());
+    th.join();
+  }
+  Check(opened && mismatches == 0, "4 threads reading concurrently agree with a serial read");
+}
+
+/// Missing, truncated and corrupt files (from VolumesAndTiles' u16.spp and u16-z.spp).
+void FileFaults(const std::string& dir)
+{
+  std::printf("faults:\n");
+  const std::string good = dir + "/u16.spp";
+  const std::string goodZ = dir + "/u16-z.spp";
+  const std::string bad = dir + "/bad.spp";
+  vtkPagePoolFile file;
+  const bool missing = !file.Open(dir + "/does-not-exist.spp");
+  Check(missing && Contains(file.GetErrorMessage(), "cannot open") &&
+          Contains(file.GetErrorMessage(), "No such file"),
+    "missing file: " + file.GetErrorMessage());
+
+  std::vector<unsigned char> bytes = ReadBytes(good);
+  for (size_t cut : { bytes.size() - 1000, size_t(100) })
+  {
+    WriteBytes(bad, std::vector<unsigned char>(bytes.begin(), bytes.begin() + cut));
+    const bool refused = !file.Open(bad);
+    Check(refused && Contains(file.GetErrorMessage(), "truncated"),
+      "truncated to " + std::to_string(cut) + " bytes: " + file.GetErrorMessage());
   }
 
-  // Leave nothing behind.
+  for (const std::string& src : { good, goodZ })
+  {
+    vtkPagePoolFile ok;
+    ok.Open(src);
+    const Format::PageEntry e = ok.GetPageEntry(3);
+    std::vector<unsigned char> flipped = ReadBytes(src);
+    flipped[e.Offset + e.StoredSize / 2] ^= 0x10;
+    WriteBytes(bad, flipped);
+    std::vector<float> page(ok.GetPageValues());
+    std::string error;
+    const bool opened = file.Open(bad);
+    const bool refused = opened && !file.ReadPage(e.Level, e.Index, page.data(), &error);
+    const bool othersFine = opened && file.ReadPage(0, 0, page.data()) &&
+                            file.ReadPage(file.GetNumberOfLevels() - 1, 0, page.data());
+    Check(refused && Contains(error, "checksum") && othersFine && file.GetLastPageError() == error,
+      "flipped byte in a " + std::string(src == good ? "raw" : "zstd") +
+        " page refused, others read: " + error);
+  }
+}
+
+/// Headers and page tables edited one field at a time.
+void HeaderFaults(const std::string& dir)
+{
+  const std::string good = dir + "/u16.spp";
+  const std::string bad = dir + "/bad.spp";
+  std::string msg = OpenEdited(
+    good, bad, [](Format::Header&, std::vector<unsigned char>& b) { b[0] = 'X'; }, false);
+  Check(Contains(msg, "magic"), "wrong magic: " + msg);
+  msg =
+    OpenEdited(good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Version = 7; });
+  Check(Contains(msg, "version 7"), "wrong version: " + msg);
+  msg = OpenEdited(
+    good, bad, [](Format::Header&, std::vector<unsigned char>& b) { b[30] ^= 1; }, false);
+  Check(Contains(msg, "header checksum"), "corrupt header bytes: " + msg);
+  msg = OpenEdited(
+    good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[0] = 0; });
+  Check(Contains(msg, "absurd") && Contains(msg, "dimension 0"), "zero dimension: " + msg);
+  msg = OpenEdited(
+    good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[2] = 1 << 21; });
+  Check(Contains(msg, "absurd") && Contains(msg, "dimension 2"), "huge dimension: " + msg);
+  msg =
+    OpenEdited(good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.PageSize = 4; });
+  Check(Contains(msg, "page size 4"), "page size 4: " + msg);
+  msg = OpenEdited(
+    good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Dimensions[0] = 400; });
+  Check(Contains(msg, "imply"), "dimensions that do not match the counts: " + msg);
+  msg = OpenEdited(good,
+    bad,
+    [](Format::Header& h, std::vector<unsigned char>&) { h.NumberOfPages = 1ull << 40; });
+  Check(Contains(msg, "pages"), "absurd page count: " + msg);
+  msg = OpenEdited(
+    good,
+    bad,
+    [](Format::Header&, std::vector<unsigned char>& b) { b[Format::HeaderSize + 5] ^= 1; },
+    false);
+  Check(Contains(msg, "page table checksum"), "corrupt page table: " + msg);
+  msg = OpenEdited(good,
+    bad,
+    [](Format::Header& h, std::vector<unsigned char>& b)
+    {
+      // A consistent table (checksum recomputed) whose page 2 lies beyond the end.
+      unsigned char* entry = b.data() + Format::HeaderSize + 2 * Format::EntrySize;
+      Format::PageEntry e;
+      Format::DecodeEntry(entry, e);
+      e.Offset = h.FileSize + 64;
+      Format::EncodeEntry(e, entry);
+      h.TableChecksum = Format::Crc32(
+        b.data() + Format::HeaderSize, static_cast<size_t>(h.NumberOfPages) * Format::EntrySize);
+    });
+  Check(Contains(msg, "outside"), "page offset beyond the file: " + msg);
+}
+
+void FailingWriters(const std::string& dir)
+{
+  std::printf("failing writers:\n");
+  const int dims[3] = { 40, 30, 50 };
+  const std::vector<int16_t> data = MakeData<int16_t>(dims, 3u);
+  const std::string path = dir + "/failed.spp";
+  WriteOptions opt;
+  opt.FailAtSlab = 33;
+  opt.LimitMB = 0.1; // several source calls: pages are already in the temporary file
+  vtkPagePoolWriter writer;
+  const bool ok = WritePool(data, dims, path, opt, writer);
+  Check(!ok && Contains(writer.GetErrorMessage(), "source failed") && !Exists(path) &&
+          CountTempFiles(dir) == 0 && writer.GetStatistics().SourceCalls >= 1,
+    "source error mid-way: no output, no temporary file: " + writer.GetErrorMessage());
+  opt.FailAtSlab = -1;
+  opt.PageSize = 600;
+  const bool ok2 = WritePool(data, dims, path, opt, writer);
+  Check(!ok2 && Contains(writer.GetErrorMessage(), "page size") && !Exists(path),
+    "absurd settings refused: " + writer.GetErrorMessage());
+  opt.PageSize = 8;
+  const int huge[3] = { 1 << 20, 1 << 20, 1 << 20 };
+  const bool ok4 = WritePool(data, huge, path, opt, writer);
+  Check(!ok4 && Contains(writer.GetErrorMessage(), "2^31 pages") && !Exists(path),
+    "2^60 voxels in pages of 8^3 refused before any allocation: " + writer.GetErrorMessage());
+  const bool ok3 = WritePool(data, dims, dir + "/no-such-dir/x.spp", opt, writer);
+  Check(!ok3 && Contains(writer.GetErrorMessage(), "cannot create"),
+    "unwritable location: " + writer.GetErrorMessage());
+}
+
+/// Leaves nothing behind.
+void RemoveDirectory(const std::string& dir)
+{
   if (DIR* d = ::opendir(dir.c_str()))
   {
     while (dirent* e = ::readdir(d))
@@ -685,6 +700,25 @@ int TestPagePool(int, char*[])
     ::closedir(d);
   }
   ::rmdir(dir.c_str());
+}
+}
+
+int TestPagePool(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string dir = TestDirectory(paths.Output);
+  std::printf("output directory %s\n", dir.c_str());
+  strata_test::RunSubTests(
+    {
+      { "VolumesAndTiles", [&] { VolumesAndTiles(dir); } },
+      { "MemoryLimit", [&] { MemoryLimit(dir); } },
+      { "ConcurrentReads", [&] { ConcurrentReads(dir); } },
+      { "FileFaults", [&] { FileFaults(dir); } },
+      { "HeaderFaults", [&] { HeaderFaults(dir); } },
+      { "FailingWriters", [&] { FailingWriters(dir); } },
+    },
+    [] { return Failures; });
+  RemoveDirectory(dir);
 
   std::printf("%s: %d failure(s)\n", Failures ? "FAILED" : "PASSED", Failures);
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -12,7 +12,10 @@
 // - the writer's progress events are non-decreasing and end at 1;
 // - errors: a missing file, a corrupt page and an unwritable output are reported (counted by an
 //   observer) and leave an empty output / no file.
+#include "StrataErrorCounter.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -182,50 +185,39 @@ void RoundTrip(const std::string& what, vtkImageData* input, const std::string& 
 }
 }
 
-int TestPagePoolReader(int, char*[])
+namespace
 {
-  const std::string out = strata_test::OutputDirectory() + "/TestPagePoolReader";
-  vtksys::SystemTools::MakeDirectory(out);
-
-  // ---- Generated uint16 volume. ----
-  vtkNew<vtkImageData> vol;
-  vol->SetDimensions(70, 50, 41);
-  vol->SetSpacing(0.5, 0.75, 2.0);
-  vol->SetOrigin(10, -20, 300);
-  vol->AllocateScalars(VTK_UNSIGNED_SHORT, 1);
-  {
-    auto* p = static_cast<unsigned short*>(vol->GetScalarPointer());
-    for (vtkIdType n = 0; n < 70 * 50 * 41; ++n)
-    {
-      p[n] = static_cast<unsigned short>((n * 2654435761u) >> 16);
-    }
-  }
-  const std::string volPath = out + "/volume.spp";
+void VolumeRoundTrip(vtkImageData* vol, const std::string& volPath)
+{
   Convert(nullptr, vol, volPath, 16);
   RoundTrip("uint16 volume", vol, volPath);
+}
 
+void SubExtent(vtkImageData* vol, const std::string& volPath)
+{
   // Sub-extent: only the overlapping pages.
+  vtkNew<vtkPagePoolReader> reader;
+  const int sub[6] = { 10, 33, 5, 12, 30, 40 };
+  vtkSmartPointer<vtkImageData> part = Read(volPath, sub, 1.0, reader);
+  int e[6];
+  part->GetExtent(e);
+  Check(std::equal(sub, sub + 6, e), "sub-extent read has the requested extent");
+  Check(SameValues(vol, part, false), "sub-extent values are bit-exact");
+  // Level 0 of 70 x 50 x 41 with B = 16 (stride 15): 5 x 4 x 3 pages.
+  long expected = 1;
+  const int pages[3] = { 5, 4, 3 };
+  for (int a = 0; a < 3; ++a)
   {
-    vtkNew<vtkPagePoolReader> reader;
-    const int sub[6] = { 10, 33, 5, 12, 30, 40 };
-    vtkSmartPointer<vtkImageData> part = Read(volPath, sub, 1.0, reader);
-    int e[6];
-    part->GetExtent(e);
-    Check(std::equal(sub, sub + 6, e), "sub-extent read has the requested extent");
-    Check(SameValues(vol, part, false), "sub-extent values are bit-exact");
-    // Level 0 of 70 x 50 x 41 with B = 16 (stride 15): 5 x 4 x 3 pages.
-    long expected = 1;
-    const int pages[3] = { 5, 4, 3 };
-    for (int a = 0; a < 3; ++a)
-    {
-      expected *= PageOf(sub[2 * a + 1], 15, pages[a]) - PageOf(sub[2 * a], 15, pages[a]) + 1;
-    }
-    std::cout << "sub-extent read " << reader->GetNumberOfPagesRead() << " pages (expected "
-              << expected << " of 60 at level 0)\n";
-    Check(reader->GetNumberOfPagesRead() == expected && expected < 60,
-      "sub-extent reads only the overlapping pages");
+    expected *= PageOf(sub[2 * a + 1], 15, pages[a]) - PageOf(sub[2 * a], 15, pages[a]) + 1;
   }
+  std::cout << "sub-extent read " << reader->GetNumberOfPagesRead() << " pages (expected "
+            << expected << " of 60 at level 0)\n";
+  Check(reader->GetNumberOfPagesRead() == expected && expected < 60,
+    "sub-extent reads only the overlapping pages");
+}
 
+void CoarseReads(vtkImageData* vol, const std::string& volPath)
+{
   // Coarse reads: same physical region.
   for (double r : { 0.5, 0.0 })
   {
@@ -259,133 +251,168 @@ int TestPagePoolReader(int, char*[])
     }
     Check(sameBounds, "coarse read covers the same physical bounds");
   }
+}
 
+void FloatGrid(const std::string& out)
+{
   // ---- Generated 2-D float grid with NaN holes -> tile pool. ----
-  {
-    vtkNew<vtkImageData> grid;
-    grid->SetDimensions(61, 45, 1);
-    grid->SetSpacing(25, 12.5, 1);
-    grid->SetOrigin(456000, 6780000, 0);
-    grid->AllocateScalars(VTK_FLOAT, 1);
-    auto* p = static_cast<float*>(grid->GetScalarPointer());
-    for (int j = 0; j < 45; ++j)
-      for (int i = 0; i < 61; ++i)
-      {
-        const bool hole = (i - 30) * (i - 30) + (j - 20) * (j - 20) < 49 || (i + j) % 17 == 0;
-        p[j * 61 + i] =
-          hole ? std::numeric_limits<float>::quiet_NaN() : 1500.0f + 3.7f * std::sin(0.1f * i) * j;
-      }
-    const std::string path = out + "/grid.spp";
-    Convert(nullptr, grid, path, 8);
-    RoundTrip("float grid with holes", grid, path);
-    vtkNew<vtkPagePoolReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->UpdateInformation();
-    Check(
-      reader->GetIsTilePool() && reader->GetNumberOfLayers() == 1, "2-D input gives a tile pool");
-  }
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(61, 45, 1);
+  grid->SetSpacing(25, 12.5, 1);
+  grid->SetOrigin(456000, 6780000, 0);
+  grid->AllocateScalars(VTK_FLOAT, 1);
+  auto* p = static_cast<float*>(grid->GetScalarPointer());
+  for (int j = 0; j < 45; ++j)
+    for (int i = 0; i < 61; ++i)
+    {
+      const bool hole = (i - 30) * (i - 30) + (j - 20) * (j - 20) < 49 || (i + j) % 17 == 0;
+      p[j * 61 + i] =
+        hole ? std::numeric_limits<float>::quiet_NaN() : 1500.0f + 3.7f * std::sin(0.1f * i) * j;
+    }
+  const std::string path = out + "/grid.spp";
+  Convert(nullptr, grid, path, 8);
+  RoundTrip("float grid with holes", grid, path);
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  Check(reader->GetIsTilePool() && reader->GetNumberOfLayers() == 1, "2-D input gives a tile pool");
+}
 
+void Bucky(const std::string& out, const strata_test::TestPaths& paths)
+{
   // ---- bucky.raw (32^3 uint8) through a streaming vtkImageReader2. ----
-  {
-    const std::string raw = strata_test::TestDataDirectory() + "/volumes/bucky.raw";
-    vtkNew<vtkImageReader2> rr;
-    rr->SetFileName(raw.c_str());
-    rr->SetFileDimensionality(3);
-    rr->SetDataExtent(0, 31, 0, 31, 0, 31);
-    rr->SetDataScalarTypeToUnsignedChar();
-    const std::string path = out + "/bucky.spp";
-    Convert(rr, nullptr, path, 8);
-    rr->UpdateWholeExtent();
-    RoundTrip("bucky.raw", rr->GetOutput(), path);
-  }
+  const std::string raw = paths.Data + "/volumes/bucky.raw";
+  vtkNew<vtkImageReader2> rr;
+  rr->SetFileName(raw.c_str());
+  rr->SetFileDimensionality(3);
+  rr->SetDataExtent(0, 31, 0, 31, 0, 31);
+  rr->SetDataScalarTypeToUnsignedChar();
+  const std::string path = out + "/bucky.spp";
+  Convert(rr, nullptr, path, 8);
+  rr->UpdateWholeExtent();
+  RoundTrip("bucky.raw", rr->GetOutput(), path);
+}
 
+void Reek(const std::string& out, const strata_test::TestPaths& paths)
+{
   // ---- Reek horizon (rotated Irap grid) -> tile pool. ----
-  {
-    vtkNew<vtkIrapBinaryGridReader> gr;
-    gr->SetFileName(
-      (strata_test::TestDataDirectory() + "/horizons/reek_01_topreek_rota.gri").c_str());
-    const std::string path = out + "/reek.spp";
-    Convert(gr, nullptr, path, 32);
-    gr->Update();
-    RoundTrip("reek_01_topreek_rota.gri", gr->GetOutput(), path);
-  }
+  vtkNew<vtkIrapBinaryGridReader> gr;
+  gr->SetFileName((paths.Data + "/horizons/reek_01_topreek_rota.gri").c_str());
+  const std::string path = out + "/reek.spp";
+  Convert(gr, nullptr, path, 32);
+  gr->Update();
+  RoundTrip("reek_01_topreek_rota.gri", gr->GetOutput(), path);
+}
 
+void Errors(const std::string& out, vtkImageData* vol, const std::string& volPath)
+{
   // ---- Errors. ----
+  vtkNew<vtkPagePoolReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName((out + "/does-not-exist.spp").c_str());
+  reader->Update();
+  Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
+    "missing file: error and empty output");
+  Check(!vtkPagePoolReader::CanReadFile((out + "/does-not-exist.spp").c_str()) &&
+          vtkPagePoolReader::CanReadFile(volPath.c_str()),
+    "CanReadFile");
+
+  // Corrupt the first page of a copy: full reads fail, reads not touching it succeed.
+  const std::string bad = out + "/corrupt.spp";
+  vtksys::SystemTools::CopyAFile(volPath, bad);
+  uint64_t offset = 0;
   {
-    vtkNew<vtkPagePoolReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName((out + "/does-not-exist.spp").c_str());
-    reader->Update();
-    Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
-      "missing file: error and empty output");
-    Check(!vtkPagePoolReader::CanReadFile((out + "/does-not-exist.spp").c_str()) &&
-            vtkPagePoolReader::CanReadFile(volPath.c_str()),
-      "CanReadFile");
-
-    // Corrupt the first page of a copy: full reads fail, reads not touching it succeed.
-    const std::string bad = out + "/corrupt.spp";
-    vtksys::SystemTools::CopyAFile(volPath, bad);
-    uint64_t offset = 0;
-    {
-      vtkPagePoolFile f;
-      Check(f.Open(bad), "copy opens");
-      offset = f.GetPageEntry(0).Offset;
-    }
-    {
-      std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
-      f.seekp(static_cast<std::streamoff>(offset + 5));
-      char c = 0x5a;
-      f.write(&c, 1);
-    }
-    errors->Reset();
-    reader->SetFileName(bad.c_str());
-    reader->GetOutputInformation(0)->Remove(vtkPagePoolReader::UPDATE_RESOLUTION());
-    reader->UpdateInformation();
-    reader->UpdateWholeExtent();
-    std::cout << "corrupt page: \"" << errors->First << "\"\n";
-    Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
-      "corrupt page: error and empty output");
-    errors->Reset();
-    const int far[6] = { 50, 69, 40, 49, 30, 40 };
-    vtkNew<vtkPagePoolReader> fresh;
-    errors->Watch(fresh);
-    fresh->SetFileName(bad.c_str());
-    fresh->UpdateExtent(far);
-    std::cout << "far read: " << errors->Errors << " errors (\"" << errors->First << "\"), "
-              << fresh->GetOutput()->GetNumberOfPoints() << " points\n";
-    Check(errors->Errors == 0 && fresh->GetOutput()->GetNumberOfPoints() > 0,
-      "a read away from the corrupt page succeeds");
-
-    // Unwritable output: error, no file.
-    vtkNew<vtkImageToPagePoolWriter> writer;
-    vtkNew<ErrorCounter> werrors;
-    writer->AddObserver(vtkCommand::ErrorEvent, werrors);
-    writer->SetInputData(vol);
-    const std::string nowhere = out + "/no-such-dir/volume.spp";
-    writer->SetFileName(nowhere.c_str());
-    Check(!writer->Write() && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(nowhere),
-      "unwritable output: error, no file");
-    std::cout << "unwritable: \"" << werrors->First << "\"\n";
-
-    // Failing upstream: a raw reader on a missing file.
-    vtkNew<vtkImageReader2> rr;
-    vtkNew<ErrorCounter> rerrors;
-    rerrors->Watch(rr);
-    rr->SetFileName((out + "/missing.raw").c_str());
-    rr->SetDataExtent(0, 9, 0, 9, 0, 9);
-    writer->SetInputConnection(rr->GetOutputPort());
-    const std::string target = out + "/from-missing.spp";
-    vtksys::SystemTools::RemoveFile(target); // a stale one from an earlier run
-    writer->SetFileName(target.c_str());
-    werrors->Reset();
-    const bool wrote = writer->Write();
-    std::cout << "failing upstream: wrote " << wrote << ", " << werrors->Errors
-              << " writer errors (\"" << werrors->First << "\"), " << rerrors->Errors
-              << " reader errors\n";
-    Check(!wrote && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(target),
-      "failing upstream: error, no file");
+    vtkPagePoolFile f;
+    Check(f.Open(bad), "copy opens");
+    offset = f.GetPageEntry(0).Offset;
   }
+  {
+    std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(offset + 5));
+    char c = 0x5a;
+    f.write(&c, 1);
+  }
+  errors->Reset();
+  reader->SetFileName(bad.c_str());
+  reader->GetOutputInformation(0)->Remove(vtkPagePoolReader::UPDATE_RESOLUTION());
+  reader->UpdateInformation();
+  reader->UpdateWholeExtent();
+  std::cout << "corrupt page: \"" << errors->First << "\"\n";
+  Check(errors->Errors > 0 && reader->GetOutput()->GetNumberOfPoints() == 0,
+    "corrupt page: error and empty output");
+  errors->Reset();
+  const int far[6] = { 50, 69, 40, 49, 30, 40 };
+  vtkNew<vtkPagePoolReader> fresh;
+  errors->Watch(fresh);
+  fresh->SetFileName(bad.c_str());
+  fresh->UpdateExtent(far);
+  std::cout << "far read: " << errors->Errors << " errors (\"" << errors->First << "\"), "
+            << fresh->GetOutput()->GetNumberOfPoints() << " points\n";
+  Check(errors->Errors == 0 && fresh->GetOutput()->GetNumberOfPoints() > 0,
+    "a read away from the corrupt page succeeds");
 
-  return strata_test::Failures() == 0 ? 0 : 1;
+  // Unwritable output: error, no file.
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  vtkNew<ErrorCounter> werrors;
+  writer->AddObserver(vtkCommand::ErrorEvent, werrors);
+  writer->SetInputData(vol);
+  const std::string nowhere = out + "/no-such-dir/volume.spp";
+  writer->SetFileName(nowhere.c_str());
+  Check(!writer->Write() && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(nowhere),
+    "unwritable output: error, no file");
+  std::cout << "unwritable: \"" << werrors->First << "\"\n";
+
+  // Failing upstream: a raw reader on a missing file.
+  vtkNew<vtkImageReader2> rr;
+  vtkNew<ErrorCounter> rerrors;
+  rerrors->Watch(rr);
+  rr->SetFileName((out + "/missing.raw").c_str());
+  rr->SetDataExtent(0, 9, 0, 9, 0, 9);
+  writer->SetInputConnection(rr->GetOutputPort());
+  const std::string target = out + "/from-missing.spp";
+  vtksys::SystemTools::RemoveFile(target); // a stale one from an earlier run
+  writer->SetFileName(target.c_str());
+  werrors->Reset();
+  const bool wrote = writer->Write();
+  std::cout << "failing upstream: wrote " << wrote << ", " << werrors->Errors
+            << " writer errors (\"" << werrors->First << "\"), " << rerrors->Errors
+            << " reader errors\n";
+  Check(!wrote && werrors->Errors > 0 && !vtksys::SystemTools::FileExists(target),
+    "failing upstream: error, no file");
+}
+
+}
+
+int TestPagePoolReader(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string out = paths.Output + "/TestPagePoolReader";
+  vtksys::SystemTools::MakeDirectory(out);
+
+  // ---- Generated uint16 volume. ----
+  vtkNew<vtkImageData> vol;
+  vol->SetDimensions(70, 50, 41);
+  vol->SetSpacing(0.5, 0.75, 2.0);
+  vol->SetOrigin(10, -20, 300);
+  vol->AllocateScalars(VTK_UNSIGNED_SHORT, 1);
+  {
+    auto* p = static_cast<unsigned short*>(vol->GetScalarPointer());
+    for (vtkIdType n = 0; n < 70 * 50 * 41; ++n)
+    {
+      p[n] = static_cast<unsigned short>((n * 2654435761u) >> 16);
+    }
+  }
+  const std::string volPath = out + "/volume.spp";
+  return strata_test::RunSubTests(
+    {
+      { "VolumeRoundTrip", [&] { VolumeRoundTrip(vol, volPath); } },
+      { "SubExtent", [&] { SubExtent(vol, volPath); } },
+      { "CoarseReads", [&] { CoarseReads(vol, volPath); } },
+      { "FloatGrid", [&] { FloatGrid(out); } },
+      { "Bucky", [&] { Bucky(out, paths); } },
+      { "Reek", [&] { Reek(out, paths); } },
+      { "Errors", [&] { Errors(out, vol, volPath); } },
+    },
+    strata_test::Failures);
 }

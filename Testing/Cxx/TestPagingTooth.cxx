@@ -7,8 +7,11 @@
 // drew (SetFixedCut on an in-core twin: no holes, no garbage bricks), the hybrid's slabs share
 // one cut per frame, and once settled each paged image equals the in-core one.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h" // For ImageError
 
 #include "vtkCamera.h"
@@ -58,13 +61,159 @@ void Configure(vtkMultiVolumeRayCastMapper* m, int brickSize)
   m->SetAtlasBudget(64.0); // every brick fits
   m->SetPagesPerFrame(8);  // refine slowly: many intermediate frames
 }
+/// The tooth in a Size x Size window, seen as the demo shows it.
+struct ToothView
+{
+  explicit ToothView(vtkImageData* tooth)
+    : Tooth(tooth)
+  {
+    MakeWindow(this->Win, this->Ren, Size, Size);
+    this->Volume->SetProperty(MakeRealVolumeProperty("tooth"));
+    this->Ren->AddVolume(this->Volume);
+    RealVolumeView("tooth", this->ViewDir, this->ViewUp);
+  }
+  /// The demo's view of the tooth.
+  void Frame()
+  {
+    FrameVolumes(
+      this->Ren, { { this->Tooth, this->Volume.Get() } }, this->ViewDir, this->ViewUp, 0.85);
+  }
+  std::vector<unsigned char> Render(vtkVolumeMapper* m)
+  {
+    this->Volume->SetMapper(m);
+    this->Win->Render();
+    return ReadRGB(this->Win);
+  }
+  vtkImageData* Tooth;
+  vtkSmartPointer<vtkRenderWindow> Win;
+  vtkSmartPointer<vtkRenderer> Ren;
+  vtkNew<vtkVolume> Volume;
+  double ViewDir[3], ViewUp[3];
+};
+
+/// Brick pools: the tooth in 16^3 bricks, its 26 x 24 x 41 factor-4 volume in 8^3.
+void WritePools(const std::pair<vtkImageData*, std::pair<std::string, int>> (&pools)[2],
+  const std::string& dir)
+{
+  for (const auto& p : pools)
+  {
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputData(p.first);
+    writer->SetFileName(p.second.first.c_str());
+    writer->SetPageSize(p.second.second);
+    Check(writer->Write(), "pool written: " + p.second.first);
+    std::cout << "PagingTooth: " << p.second.first.substr(dir.size() + 1) << ": "
+              << p.first->GetDimensions()[0] << "x" << p.first->GetDimensions()[1] << "x"
+              << p.first->GetDimensions()[2] << ", " << writer->GetNumberOfPages() << " pages of "
+              << p.second.second << "^3\n";
+  }
 }
 
-int TestPagingTooth(int, char*[])
+void HeldCut(ToothView& v, const std::string& toothPool)
 {
+  auto render = [&v](vtkVolumeMapper* m) { return v.Render(m); };
+  // HoldCut: renders after the first keep its cut while pages arrive (the hybrid's slabs).
+  {
+    v.Frame();
+    vtkNew<vtkPagePoolReader> r;
+    r->SetFileName(toothPool.c_str());
+    vtkNew<vtkMultiVolumeRayCastMapper> m;
+    m->SetInputConnection(r->GetOutputPort());
+    Configure(m, 16);
+    render(m);
+    const auto first = m->GetCutBricks(0);
+    m->HoldCutOn();
+    bool kept = true;
+    for (int f = 0; f < 5; ++f)
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      render(m);
+      kept = kept && m->GetCutBricks(0) == first;
+    }
+    m->HoldCutOff();
+    for (int f = 0; f < 5; ++f)
+      render(m);
+    std::cout << "PagingTooth: held cut: " << first.size() << " bricks over 5 held renders, "
+              << m->GetCutBricks(0).size() << " after 5 more unheld\n";
+    Check(kept, "a held cut stays as it is");
+    Check(m->GetCutBricks(0).size() > first.size(), "released, the cut refines again");
+  }
+}
+
+/// One case's orbit: 8 steps of 5 degrees while the cache fills, then still until it settles;
+/// every frame against the in-core rendering of its own cut, the last against the in-core one.
+void PagedPath(ToothView& v, const Case& c)
+{
+  vtkRenderer* ren = v.Ren;
+  vtkCamera* cam = ren->GetActiveCamera();
+  auto render = [&v](vtkVolumeMapper* m) { return v.Render(m); };
+  v.Frame();
+  // The orbit: 8 steps of 5 degrees while the cache fills, then still until it settles.
+  int frames = 0, compared = 0, converged = -1;
+  double worstRms = 0.0, worstMax = 0.0;
+  long worstDiffering = 0;
+  std::vector<unsigned char> last;
+  for (int f = 0; f < 300 && converged < 0; ++f)
+  {
+    if (f < 8)
+    {
+      cam->Azimuth(5.0);
+      ren->ResetCameraClippingRange();
+    }
+    last = render(c.Paged);
+    ++frames;
+    const bool settled = c.PagedCaster->GetPagingStatistics().Converged;
+    // Every frame of the path against the in-core rendering of its own cut.
+    c.OfCutCaster->SetFixedCut(0, c.PagedCaster->GetCutBricks(0));
+    const auto reference = render(c.OfCut);
+    Check(c.OfCutCaster->GetCutBricks(0) == c.PagedCaster->GetCutBricks(0),
+      "the in-core twin draws the paged frame's cut (" + c.Name + ")");
+    const ChannelError e = ImageError(last, reference);
+    worstRms = std::max(worstRms, e.Rms);
+    worstMax = std::max(worstMax, e.Max);
+    worstDiffering = std::max(worstDiffering, PixelsOff(last, reference, 8));
+    ++compared;
+    if (settled && f >= 8)
+      converged = f;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const auto st = c.PagedCaster->GetPagingStatistics();
+  std::vector<unsigned char> incore;
+  for (int i = 0; i < 2; ++i)
+    incore = render(c.InCore);
+  const ChannelError e = ImageError(last, incore);
+  const auto levels = c.PagedCaster->GetResidentBricksPerLevel(0);
+  std::string perLevel;
+  for (size_t l = 0; l < levels.size(); ++l)
+    perLevel += (l ? "/" : "") + std::to_string(levels[l]);
+  std::cout << "PagingTooth (" << c.Name << "): converged after " << frames << " frames; "
+            << compared << " frames against the in-core rendering of their own cut: worst RMS "
+            << worstRms << ", max " << worstMax << ", " << worstDiffering << " of " << Size * Size
+            << " pixels off by more than 8/255; converged: RMS " << e.Rms << ", max difference "
+            << e.Max << " to in-core; bricks per level " << perLevel << "; roots from the pipeline "
+            << st.RootPagesFromPipeline << ", read on the render thread " << st.RootPagesRead
+            << "; " << st.Failures << " failures\n";
+  Check(converged > 0, "the paged " + c.Name + " view converges");
+  Check(compared == frames, "the path's frames were compared (" + c.Name + ")");
+  // The pool rounds coarse levels to uint8, the in-core tree keeps them in float: a coarse
+  // brick may differ by half a data unit, which the transfer function's slope turns into a
+  // few levels of colour (6 at most here). No hole or garbage brick fits under these bounds.
+  Check(worstRms <= 0.5 && worstMax <= 16,
+    "every intermediate frame is the rendering of its own cut (" + c.Name +
+      "; RMS <= 0.5, max <= 16)");
+  Check(e.Rms <= 0.25 && e.Max <= 2,
+    "converged, the paged image equals the in-core one (" + c.Name + "; RMS <= 0.25, max <= 2)");
+  Check(st.RootPagesRead == 0 && st.Failures == 0,
+    "the root from the reader, no failures (" + c.Name + ")");
+}
+}
+
+int TestPagingTooth(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
   CapturingOutputWindow* output = CapturingOutputWindow::Install();
   std::string why;
-  vtkSmartPointer<vtkImageData> tooth = LoadRealVolume("tooth", why);
+  vtkSmartPointer<vtkImageData> tooth = LoadRealVolume("tooth", paths, why);
   Check(tooth != nullptr, "the tooth loads (" + why + ")");
   if (!tooth)
     return EXIT_FAILURE;
@@ -78,36 +227,17 @@ int TestPagingTooth(int, char*[])
   vtkPolyData* points = hybridFilter->GetPointsOutput();
 
   // Brick pools: the tooth in 16^3 bricks, its 26 x 24 x 41 factor-4 volume in 8^3.
-  const std::string dir = OutputDirectory();
+  const std::string dir = paths.Output;
   const std::string toothPool = dir + "/paging-tooth.spp", lowPool = dir + "/paging-tooth-low.spp";
   const std::pair<vtkImageData*, std::pair<std::string, int>> pools[2] = {
     { tooth, { toothPool, 16 } }, { low, { lowPool, 8 } }
   };
-  for (const auto& p : pools)
-  {
-    vtkNew<vtkImageToPagePoolWriter> writer;
-    writer->SetInputData(p.first);
-    writer->SetFileName(p.second.first.c_str());
-    writer->SetPageSize(p.second.second);
-    Check(writer->Write(), "pool written: " + p.second.first);
-    std::cout << "PagingTooth: " << p.second.first.substr(dir.size() + 1) << ": "
-              << p.first->GetDimensions()[0] << "x" << p.first->GetDimensions()[1] << "x"
-              << p.first->GetDimensions()[2] << ", " << writer->GetNumberOfPages() << " pages of "
-              << p.second.second << "^3\n";
-  }
+  WritePools(pools, dir); // before the readers, the window and the mappers exist, as always
   vtkNew<vtkPagePoolReader> toothReader, lowReader;
   toothReader->SetFileName(toothPool.c_str());
   lowReader->SetFileName(lowPool.c_str());
 
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  MakeWindow(win, ren, Size, Size);
-  vtkNew<vtkVolume> volume;
-  volume->SetProperty(MakeRealVolumeProperty("tooth"));
-  ren->AddVolume(volume);
-  double viewDir[3], viewUp[3];
-  RealVolumeView("tooth", viewDir, viewUp);
-  vtkCamera* cam = ren->GetActiveCamera();
+  ToothView view(tooth);
 
   // Full resolution and the factor-4 volume: plain ray casters.
   vtkNew<vtkMultiVolumeRayCastMapper> fullPaged, fullInCore, fullOfCut, lowPaged, lowInCore,
@@ -143,102 +273,14 @@ int TestPagingTooth(int, char*[])
       hybridPaged->GetVolumeMapper(),
       hybridOfCut->GetVolumeMapper() },
   };
-  auto render = [&](vtkVolumeMapper* m)
-  {
-    volume->SetMapper(m);
-    win->Render();
-    return ReadRGB(win);
-  };
-
-  // HoldCut: renders after the first keep its cut while pages arrive (the hybrid's slabs).
-  {
-    FrameVolumes(ren, { { tooth.Get(), volume.Get() } }, viewDir, viewUp, 0.85);
-    vtkNew<vtkPagePoolReader> r;
-    r->SetFileName(toothPool.c_str());
-    vtkNew<vtkMultiVolumeRayCastMapper> m;
-    m->SetInputConnection(r->GetOutputPort());
-    Configure(m, 16);
-    render(m);
-    const auto first = m->GetCutBricks(0);
-    m->HoldCutOn();
-    bool kept = true;
-    for (int f = 0; f < 5; ++f)
+  RunSubTests(
     {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      render(m);
-      kept = kept && m->GetCutBricks(0) == first;
-    }
-    m->HoldCutOff();
-    for (int f = 0; f < 5; ++f)
-      render(m);
-    std::cout << "PagingTooth: held cut: " << first.size() << " bricks over 5 held renders, "
-              << m->GetCutBricks(0).size() << " after 5 more unheld\n";
-    Check(kept, "a held cut stays as it is");
-    Check(m->GetCutBricks(0).size() > first.size(), "released, the cut refines again");
-  }
-
-  for (const Case& c : cases)
-  {
-    FrameVolumes(ren, { { tooth.Get(), volume.Get() } }, viewDir, viewUp, 0.85);
-    // The orbit: 8 steps of 5 degrees while the cache fills, then still until it settles.
-    int frames = 0, compared = 0, converged = -1;
-    double worstRms = 0.0, worstMax = 0.0;
-    long worstDiffering = 0;
-    std::vector<unsigned char> last;
-    for (int f = 0; f < 300 && converged < 0; ++f)
-    {
-      if (f < 8)
-      {
-        cam->Azimuth(5.0);
-        ren->ResetCameraClippingRange();
-      }
-      last = render(c.Paged);
-      ++frames;
-      const bool settled = c.PagedCaster->GetPagingStatistics().Converged;
-      // Every frame of the path against the in-core rendering of its own cut.
-      c.OfCutCaster->SetFixedCut(0, c.PagedCaster->GetCutBricks(0));
-      const auto reference = render(c.OfCut);
-      Check(c.OfCutCaster->GetCutBricks(0) == c.PagedCaster->GetCutBricks(0),
-        "the in-core twin draws the paged frame's cut (" + c.Name + ")");
-      const ChannelError e = ImageError(last, reference);
-      worstRms = std::max(worstRms, e.Rms);
-      worstMax = std::max(worstMax, e.Max);
-      worstDiffering = std::max(worstDiffering, PixelsOff(last, reference, 8));
-      ++compared;
-      if (settled && f >= 8)
-        converged = f;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    const auto st = c.PagedCaster->GetPagingStatistics();
-    std::vector<unsigned char> incore;
-    for (int i = 0; i < 2; ++i)
-      incore = render(c.InCore);
-    const ChannelError e = ImageError(last, incore);
-    const auto levels = c.PagedCaster->GetResidentBricksPerLevel(0);
-    std::string perLevel;
-    for (size_t l = 0; l < levels.size(); ++l)
-      perLevel += (l ? "/" : "") + std::to_string(levels[l]);
-    std::cout << "PagingTooth (" << c.Name << "): converged after " << frames << " frames; "
-              << compared << " frames against the in-core rendering of their own cut: worst RMS "
-              << worstRms << ", max " << worstMax << ", " << worstDiffering << " of " << Size * Size
-              << " pixels off by more than 8/255; converged: RMS " << e.Rms << ", max difference "
-              << e.Max << " to in-core; bricks per level " << perLevel
-              << "; roots from the pipeline " << st.RootPagesFromPipeline
-              << ", read on the render thread " << st.RootPagesRead << "; " << st.Failures
-              << " failures\n";
-    Check(converged > 0, "the paged " + c.Name + " view converges");
-    Check(compared == frames, "the path's frames were compared (" + c.Name + ")");
-    // The pool rounds coarse levels to uint8, the in-core tree keeps them in float: a coarse
-    // brick may differ by half a data unit, which the transfer function's slope turns into a
-    // few levels of colour (6 at most here). No hole or garbage brick fits under these bounds.
-    Check(worstRms <= 0.5 && worstMax <= 16,
-      "every intermediate frame is the rendering of its own cut (" + c.Name +
-        "; RMS <= 0.5, max <= 16)");
-    Check(e.Rms <= 0.25 && e.Max <= 2,
-      "converged, the paged image equals the in-core one (" + c.Name + "; RMS <= 0.25, max <= 2)");
-    Check(st.RootPagesRead == 0 && st.Failures == 0,
-      "the root from the reader, no failures (" + c.Name + ")");
-  }
+      { "HeldCut", [&] { HeldCut(view, toothPool); } },
+      { "FullResolution", [&] { PagedPath(view, cases[0]); } },
+      { "Factor4", [&] { PagedPath(view, cases[1]); } },
+      { "Hybrid", [&] { PagedPath(view, cases[2]); } },
+    },
+    Failures);
   Check(toothReader->GetLevelRead() == toothReader->GetNumberOfLevels() - 1 &&
           lowReader->GetLevelRead() == lowReader->GetNumberOfLevels() - 1,
     "through the pipeline the readers serve their coarsest levels only");

@@ -4,6 +4,8 @@
 // with exact exponentials): (a) full-table entries and Integrate(); (b) a 1-D ray crossing a TF
 // spike, pre-integrated at step d versus post-classified at d/4; (c) no NaN/Inf, and the
 // s_b -> s_f limit continuous down to 1 ulp; (d) rebuilds only on changed inputs.
+#include "StrataSubTests.h"
+
 #include "vtkPreIntegrationTable.h"
 
 #include <algorithm>
@@ -361,14 +363,16 @@ void TestSpikeRay()
 }
 
 // (c) Finite everywhere; the s_b -> s_f limit continuous with its neighbours.
-void TestLimits(std::mt19937& rng)
+/// The transfer functions of TestLimits: smooth, a spike, zero extinction, opacity 0 or 1, and
+/// extinction 1e30.
+struct LimitCase
 {
-  struct Case
-  {
-    const char* Name;
-    TransferFunction TF;
-  };
-  std::vector<Case> cases;
+  const char* Name;
+  TransferFunction TF;
+};
+std::vector<LimitCase> LimitCases()
+{
+  std::vector<LimitCase> cases;
   cases.push_back({ "smooth", Smooth(300) });
   cases.push_back({ "spike", Spike(256, 0.6, 400.0) });
   TransferFunction zero = Smooth(64);
@@ -384,15 +388,154 @@ void TestLimits(std::mt19937& rng)
   TransferFunction huge = Spike(256, 0.3, 1e30);
   cases.push_back({ "tau-1e30", huge });
 
+  return cases;
+}
+
+/// The largest changes TestLimits finds, over one transfer function.
+struct Jumps
+{
+  double Integrate = 0.0;
+  double Full = 0.0;
+  double Two = 0.0;
+  double Threshold = 0.0;
+  long Lookups = 0;
+};
+
+/// Integrate() and both lookups at s_b == s_f = S(x) against s_b one step (1e-7 of the range or
+/// one ulp) away, within their Lipschitz bounds; the two-integral lookup across its threshold.
+void ContinuityAt(const vtkPreIntegrationTable& table,
+  const TransferFunction& tf,
+  const char* name,
+  double x,
+  double d,
+  int m,
+  double lipExact,
+  double lipTwo,
+  double noiseTwo,
+  Jumps& jumps)
+{
+  const double cMax = tf.MaxColor();
+  const double sd = tf.S(x);
+  const float sfl = float(sd);
+  const RGBA pointExact = table.Integrate(sd, sd, d);
+  const RGBA pointFull = ToDouble(table.LookupFullTable(sfl, sfl));
+  const RGBA pointTwo = ToDouble(table.LookupTwoIntegral(sfl, sfl, float(d)));
+  Check(Finite(pointExact) && Finite(pointFull) && Finite(pointTwo),
+    std::string("(c) s_b == s_f finite: ") + name);
+  Check(MaxAbs(pointExact, table.Classify(sd, d)) == 0.0, "(c) Integrate(s, s) = Classify");
+  const double range = tf.SMax - tf.SMin;
+  for (double db : { 1e-7 * range, -1e-7 * range, 0.0, -0.0 })
+  {
+    // 0.0 / -0.0 stand for one ulp up / down.
+    const double sbd = db != 0.0 ? sd + db : std::nextafter(sd, std::signbit(db) ? -1e300 : 1e300);
+    const float sbf =
+      db != 0.0 ? float(sd + db) : std::nextafter(sfl, std::signbit(db) ? -1e30f : 1e30f);
+    const double dx = std::abs(tf.X(sbd) - tf.X(sd));
+    const double dxf = std::abs(tf.X(sbf) - tf.X(sfl));
+    const RGBA e = table.Integrate(sd, sbd, d);
+    const RGBA f = ToDouble(table.LookupFullTable(sfl, sbf));
+    const RGBA t = ToDouble(table.LookupTwoIntegral(sfl, sbf, float(d)));
+    const RGBA e2 = table.Integrate(sbd, sd, d); // the other direction
+    jumps.Lookups += 4;
+    Check(Finite(e) && Finite(f) && Finite(t) && Finite(e2),
+      std::string("(c) s_b ~ s_f finite: ") + name);
+    const double jE = std::max(MaxAbs(e, pointExact), MaxAbs(e2, pointExact));
+    const double jF = MaxAbs(f, pointFull);
+    const double jT = MaxAbs(t, pointTwo);
+    jumps.Integrate = std::max(jumps.Integrate, jE);
+    jumps.Full = std::max(jumps.Full, jF);
+    jumps.Two = std::max(jumps.Two, jT);
+    Check(jE <= lipExact * dx + 1e-12, std::string("(c) Integrate() continuous: ") + name);
+    Check(
+      jF <= (m - 1) * cMax * 2.0 * dxf + 1e-6, std::string("(c) full lookup continuous: ") + name);
+    Check(
+      jT <= lipTwo * dxf + noiseTwo, std::string("(c) two-integral lookup continuous: ") + name);
+  }
+  // Across the two-integral threshold |x_b - x_f| = h: the step there is no larger than
+  // the steps beside it (plus float noise).
+  auto two = [&](double widthInH)
+  {
+    const double half = 0.5 * widthInH / (m - 1) * (tf.SMax - tf.SMin);
+    return ToDouble(table.LookupTwoIntegral(float(sd - half), float(sd + half), float(d)));
+  };
+  const double across = MaxAbs(two(0.99), two(1.01));
+  const double beside = std::max(MaxAbs(two(0.97), two(0.99)), MaxAbs(two(1.01), two(1.03)));
+  jumps.Threshold = std::max(jumps.Threshold, across - 2.0 * beside);
+  Check(across <= 2.0 * beside + noiseTwo,
+    std::string("(c) two-integral continuous across the threshold: ") + name);
+}
+
+/// One step length d: the tables finite and bounded, the diagonal equal to Classify, continuity
+/// at 47 s_f (7 chosen, 40 drawn from `rng`), out-of-range scalars finite.
+void LimitsAtStep(vtkPreIntegrationTable& table,
+  const TransferFunction& tf,
+  const char* name,
+  double d,
+  int m,
+  double tMax,
+  std::uniform_real_distribution<double>& unit,
+  std::mt19937& rng,
+  Jumps& jumps)
+{
+  const double cMax = tf.MaxColor();
+  table.SetStepLength(d);
+  table.UpdateFullTable();
+  const std::vector<float>& full = table.GetFullTable();
+  bool ok = true;
+  for (size_t i = 0; i < full.size(); i += 4)
+  {
+    const float a = full[i + 3];
+    ok = ok && std::isfinite(a) && a >= 0.0f && a <= 1.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      ok =
+        ok && std::isfinite(full[i + k]) && full[i + k] >= 0.0f && full[i + k] <= cMax * a + 1e-6f;
+    }
+  }
+  Check(ok, std::string("(c) full table finite, 0 <= C <= cMax alpha <= cMax: ") + name);
+  for (int i = 0; i < m; ++i) // the diagonal is post-classification
+  {
+    const RGBA post = table.Classify(tf.S(double(i) / (m - 1)), d);
+    const float* e = &full[4 * (static_cast<size_t>(i) * m + i)];
+    ok = ok && MaxAbs(post, { e[0], e[1], e[2], e[3] }) <= 6e-8;
+  }
+  Check(ok, std::string("(c) full-table diagonal = Classify: ") + name);
+
+  // Lipschitz bounds in x_b of the exact integral, of the bilinear table and of the
+  // two-integral quotient (window moved by dx/2, plus float rounding of T over h).
+  const double lipExact = d * (tf.TauSlope() * (1.0 + cMax) + tf.MaxTau() * tf.ColorSlope());
+  const double lipTwo = d * (m - 1) * tf.MaxTau() * (1.0 + cMax);
+  const double noiseTwo = d * (m - 1) * 2.4e-7 * tMax * (1.0 + cMax) + 1e-6;
+  std::vector<double> xs = { 0.0, 1.0, 0.3, 0.6, 0.5, 153.0 / 255.0, 0.6 + 0.5 / 255.0 };
+  for (int r = 0; r < 40; ++r)
+  {
+    xs.push_back(unit(rng));
+  }
+  for (double x : xs)
+  {
+    ContinuityAt(table, tf, name, x, d, m, lipExact, lipTwo, noiseTwo, jumps);
+  }
+  // Outside the range and NaN clamp like the textures do.
+  for (double sOut : { tf.SMin - 10.0, tf.SMax + 1e6, std::numeric_limits<double>::quiet_NaN() })
+  {
+    Check(Finite(table.Integrate(sOut, tf.S(0.5), d)) &&
+            Finite(ToDouble(table.LookupFullTable(float(sOut), float(tf.S(0.5))))) &&
+            Finite(ToDouble(table.LookupTwoIntegral(float(sOut), float(sOut), float(d)))),
+      std::string("(c) out-of-range scalars finite: ") + name);
+  }
+}
+
+void TestLimits(std::mt19937& rng)
+{
+  const std::vector<LimitCase> cases = LimitCases();
   const int m = 256;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::printf("(c) largest change from s_b == s_f to s_b = s_f +- 1e-7 of the range or +- 1 "
               "ulp, over 47 s_f and d = 0, 1e-3, 1, 100; two-integral change across the threshold "
               "in excess of twice the changes beside it:\n");
-  for (const Case& c : cases)
+  for (const LimitCase& c : cases)
   {
-    double maxJumpIntegrate = 0.0, maxJumpFull = 0.0, maxJumpTwo = 0.0, maxThreshold = 0.0;
-    long lookups = 0;
+    Jumps jumps;
     const TransferFunction& tf = c.TF;
     vtkPreIntegrationTable table;
     Load(table, tf);
@@ -400,116 +543,23 @@ void TestLimits(std::mt19937& rng)
     table.UpdateIntegralTable();
     const double cMax = tf.MaxColor();
     const std::vector<float>& integral = table.GetIntegralTable();
-    bool ok =
+    const bool ok =
       std::all_of(integral.begin(), integral.end(), [](float v) { return std::isfinite(v); });
     Check(ok, std::string("(c) integral table finite: ") + c.Name);
     const double tMax = integral.back();
     for (double d : { 0.0, 1e-3, 1.0, 100.0 })
     {
-      table.SetStepLength(d);
-      table.UpdateFullTable();
-      const std::vector<float>& full = table.GetFullTable();
-      ok = true;
-      for (size_t i = 0; i < full.size(); i += 4)
-      {
-        const float a = full[i + 3];
-        ok = ok && std::isfinite(a) && a >= 0.0f && a <= 1.0f;
-        for (int k = 0; k < 3; ++k)
-        {
-          ok = ok && std::isfinite(full[i + k]) && full[i + k] >= 0.0f &&
-               full[i + k] <= cMax * a + 1e-6f;
-        }
-      }
-      Check(ok, std::string("(c) full table finite, 0 <= C <= cMax alpha <= cMax: ") + c.Name);
-      for (int i = 0; i < m; ++i) // the diagonal is post-classification
-      {
-        const RGBA post = table.Classify(tf.S(double(i) / (m - 1)), d);
-        const float* e = &full[4 * (static_cast<size_t>(i) * m + i)];
-        ok = ok && MaxAbs(post, { e[0], e[1], e[2], e[3] }) <= 6e-8;
-      }
-      Check(ok, std::string("(c) full-table diagonal = Classify: ") + c.Name);
-
-      // Lipschitz bounds in x_b of the exact integral, of the bilinear table and of the
-      // two-integral quotient (window moved by dx/2, plus float rounding of T over h).
-      const double lipExact = d * (tf.TauSlope() * (1.0 + cMax) + tf.MaxTau() * tf.ColorSlope());
-      const double lipTwo = d * (m - 1) * tf.MaxTau() * (1.0 + cMax);
-      const double noiseTwo = d * (m - 1) * 2.4e-7 * tMax * (1.0 + cMax) + 1e-6;
-      std::vector<double> xs = { 0.0, 1.0, 0.3, 0.6, 0.5, 153.0 / 255.0, 0.6 + 0.5 / 255.0 };
-      for (int r = 0; r < 40; ++r)
-      {
-        xs.push_back(unit(rng));
-      }
-      for (double x : xs)
-      {
-        const double sd = tf.S(x);
-        const float sfl = float(sd);
-        const RGBA pointExact = table.Integrate(sd, sd, d);
-        const RGBA pointFull = ToDouble(table.LookupFullTable(sfl, sfl));
-        const RGBA pointTwo = ToDouble(table.LookupTwoIntegral(sfl, sfl, float(d)));
-        Check(Finite(pointExact) && Finite(pointFull) && Finite(pointTwo),
-          std::string("(c) s_b == s_f finite: ") + c.Name);
-        Check(MaxAbs(pointExact, table.Classify(sd, d)) == 0.0, "(c) Integrate(s, s) = Classify");
-        const double range = tf.SMax - tf.SMin;
-        for (double db : { 1e-7 * range, -1e-7 * range, 0.0, -0.0 })
-        {
-          // 0.0 / -0.0 stand for one ulp up / down.
-          const double sbd =
-            db != 0.0 ? sd + db : std::nextafter(sd, std::signbit(db) ? -1e300 : 1e300);
-          const float sbf =
-            db != 0.0 ? float(sd + db) : std::nextafter(sfl, std::signbit(db) ? -1e30f : 1e30f);
-          const double dx = std::abs(tf.X(sbd) - tf.X(sd));
-          const double dxf = std::abs(tf.X(sbf) - tf.X(sfl));
-          const RGBA e = table.Integrate(sd, sbd, d);
-          const RGBA f = ToDouble(table.LookupFullTable(sfl, sbf));
-          const RGBA t = ToDouble(table.LookupTwoIntegral(sfl, sbf, float(d)));
-          const RGBA e2 = table.Integrate(sbd, sd, d); // the other direction
-          lookups += 4;
-          Check(Finite(e) && Finite(f) && Finite(t) && Finite(e2),
-            std::string("(c) s_b ~ s_f finite: ") + c.Name);
-          const double jE = std::max(MaxAbs(e, pointExact), MaxAbs(e2, pointExact));
-          const double jF = MaxAbs(f, pointFull);
-          const double jT = MaxAbs(t, pointTwo);
-          maxJumpIntegrate = std::max(maxJumpIntegrate, jE);
-          maxJumpFull = std::max(maxJumpFull, jF);
-          maxJumpTwo = std::max(maxJumpTwo, jT);
-          Check(jE <= lipExact * dx + 1e-12, std::string("(c) Integrate() continuous: ") + c.Name);
-          Check(jF <= (m - 1) * cMax * 2.0 * dxf + 1e-6,
-            std::string("(c) full lookup continuous: ") + c.Name);
-          Check(jT <= lipTwo * dxf + noiseTwo,
-            std::string("(c) two-integral lookup continuous: ") + c.Name);
-        }
-        // Across the two-integral threshold |x_b - x_f| = h: the step there is no larger than
-        // the steps beside it (plus float noise).
-        auto two = [&](double widthInH)
-        {
-          const double half = 0.5 * widthInH / (m - 1) * (tf.SMax - tf.SMin);
-          return ToDouble(table.LookupTwoIntegral(float(sd - half), float(sd + half), float(d)));
-        };
-        const double across = MaxAbs(two(0.99), two(1.01));
-        const double beside = std::max(MaxAbs(two(0.97), two(0.99)), MaxAbs(two(1.01), two(1.03)));
-        maxThreshold = std::max(maxThreshold, across - 2.0 * beside);
-        Check(across <= 2.0 * beside + noiseTwo,
-          std::string("(c) two-integral continuous across the threshold: ") + c.Name);
-      }
-      // Outside the range and NaN clamp like the textures do.
-      for (double sOut :
-        { tf.SMin - 10.0, tf.SMax + 1e6, std::numeric_limits<double>::quiet_NaN() })
-      {
-        Check(Finite(table.Integrate(sOut, tf.S(0.5), d)) &&
-                Finite(ToDouble(table.LookupFullTable(float(sOut), float(tf.S(0.5))))) &&
-                Finite(ToDouble(table.LookupTwoIntegral(float(sOut), float(sOut), float(d)))),
-          std::string("(c) out-of-range scalars finite: ") + c.Name);
-      }
+      LimitsAtStep(table, tf, c.Name, d, m, tMax, unit, rng, jumps);
     }
     std::printf("(c) %-9s tables finite, %ld lookups finite | Integrate() %.1e, full %.1e, "
                 "two-integral %.1e | threshold excess %.1e | two-integral float noise bound "
                 "at d = 1: %.1e\n",
       c.Name,
-      lookups,
-      maxJumpIntegrate,
-      maxJumpFull,
-      maxJumpTwo,
-      std::max(maxThreshold, 0.0),
+      jumps.Lookups,
+      jumps.Integrate,
+      jumps.Full,
+      jumps.Two,
+      std::max(jumps.Threshold, 0.0),
       (m - 1) * 2.4e-7 * tMax * (1.0 + cMax) + 1e-6);
   }
 }
@@ -559,23 +609,32 @@ void TestRebuild()
   Check(std::abs(-std::expm1(-d * tau) - vtk) < 1e-15, "(d) matches VTK's opacity correction");
   Check(std::abs(opaque * u + std::log(1e-6)) < 1e-9, "(d) alpha = 1 clamps to 1 - 1e-6");
 }
-}
 
-int TestPreIntegrationTable(int, char*[])
+/// Build time at the largest TF the project expects.
+void BuildTime()
 {
-  std::mt19937 rng(12345);
-  TestAccuracy("smooth", Smooth(1000), rng); // TF entries inside table cells
-  TestAccuracy("spike", Spike(256, 0.6, 300.0), rng);
-  TestSpikeRay();
-  TestLimits(rng);
-  TestRebuild();
-
-  // Build time at the largest TF the project expects.
   vtkPreIntegrationTable big;
   Load(big, Smooth(4096));
   const auto start = std::chrono::steady_clock::now();
   big.UpdateFullTable();
   std::printf("M = 256, N = 4096: full table built in %.1f ms\n", 1e3 * Seconds(start));
+}
+}
+
+int TestPreIntegrationTable(int, char*[])
+{
+  std::mt19937 rng(12345);
+  strata_test::RunSubTests(
+    {
+      { "AccuracySmooth",
+        [&] { TestAccuracy("smooth", Smooth(1000), rng); } }, // TF entries inside table cells
+      { "AccuracySpike", [&] { TestAccuracy("spike", Spike(256, 0.6, 300.0), rng); } },
+      { "SpikeRay", TestSpikeRay },
+      { "Limits", [&] { TestLimits(rng); } },
+      { "Rebuild", TestRebuild },
+      { "BuildTime", BuildTime },
+    },
+    [] { return failures; });
 
   std::printf("%s\n", failures == 0 ? "PASSED" : "FAILED");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -13,8 +13,11 @@
 //   longer than the others, format codes 4 and 7 (and SampleFormat overriding a wrong code),
 //   byte positions out of range, wrong byte positions (duplicate positions), a missing file, a
 //   file changed between the information and the data pass.
+#include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
+#include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
 
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -125,87 +128,87 @@ bool SameAsGenerated(vtkImageData* image, const SegyTestFile& file)
 }
 }
 
-int TestSegyVolumeReader(int, char*[])
+namespace
 {
-  const std::string out = strata_test::OutputDirectory() + "/TestSegyVolumeReader";
-  vtksys::SystemTools::MakeDirectory(out);
-
+void F3(const strata_test::TestPaths& paths)
+{
   std::cout << "f3.sgy\n";
+  const std::string path = paths.Data + "/seismic/f3.sgy";
+  const std::string bytes = Slurp(path);
+  vtkNew<vtkSegyVolumeReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  std::cout << "  " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", spacing " << spacing[0]
+            << " " << spacing[1] << " " << spacing[2] << ", origin " << origin[0] << " "
+            << origin[1] << " " << origin[2] << ", " << reader->GetNumberOfTraces()
+            << " traces, format " << reader->GetFormatCode() << "\n";
+  Check(errors->Errors == 0 && errors->Warnings == 0, "f3: no errors or warnings");
+  Check(
+    dims[0] == 18 && dims[1] == 75 && dims[2] == 23, "f3: 18 crosslines x 75 samples x 23 inlines");
+  Check(reader->GetNumberOfTraces() == 414 && reader->GetNumberOfMissingTraces() == 0 &&
+          reader->GetFormatCode() == 3,
+    "f3: 414 traces, none missing, format 3 (int16)");
+  // Inlines 111-133 and crosslines 875-892 step 1, 4 ms, delay recording time 4 ms.
+  Check(spacing[0] == 1 && spacing[1] == 4 && spacing[2] == 1 && origin[0] == 111 &&
+          origin[1] == 875 && origin[2] == 4,
+    "f3: spacing (1, 4 ms, 1), origin (inline 111, crossline 875, 4 ms)");
+  const double expectedDirection[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
+  Check(
+    std::equal(expectedDirection, expectedDirection + 9, image->GetDirectionMatrix()->GetData()) &&
+      image->GetDirectionMatrix()->Determinant() == 1.0,
+    "f3: index (crossline, sample, inline) -> world (inline, crossline, time), a rotation");
+  Check(std::string(image->GetPointData()->GetScalars()->GetName()) == "amplitude" &&
+          image->GetPointData()->GetScalars()->GetDataType() == VTK_FLOAT,
+    "f3: float array \"amplitude\"");
+
+  // The reference, from the bytes: trace t at 3600 + t (240 + 150); inline and crossline as
+  // big-endian int32 at 189 and 193; samples big-endian int16.
+  long mismatches = 0;
+  long nonZero = 0;
+  for (int t = 0; t < 414; ++t)
   {
-    const std::string path = strata_test::TestDataDirectory() + "/seismic/f3.sgy";
-    const std::string bytes = Slurp(path);
-    vtkNew<vtkSegyVolumeReader> reader;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    const double* spacing = image->GetSpacing();
-    const double* origin = image->GetOrigin();
-    std::cout << "  " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", spacing "
-              << spacing[0] << " " << spacing[1] << " " << spacing[2] << ", origin " << origin[0]
-              << " " << origin[1] << " " << origin[2] << ", " << reader->GetNumberOfTraces()
-              << " traces, format " << reader->GetFormatCode() << "\n";
-    Check(errors->Errors == 0 && errors->Warnings == 0, "f3: no errors or warnings");
-    Check(dims[0] == 18 && dims[1] == 75 && dims[2] == 23,
-      "f3: 18 crosslines x 75 samples x 23 inlines");
-    Check(reader->GetNumberOfTraces() == 414 && reader->GetNumberOfMissingTraces() == 0 &&
-            reader->GetFormatCode() == 3,
-      "f3: 414 traces, none missing, format 3 (int16)");
-    // Inlines 111-133 and crosslines 875-892 step 1, 4 ms, delay recording time 4 ms.
-    Check(spacing[0] == 1 && spacing[1] == 4 && spacing[2] == 1 && origin[0] == 111 &&
-            origin[1] == 875 && origin[2] == 4,
-      "f3: spacing (1, 4 ms, 1), origin (inline 111, crossline 875, 4 ms)");
-    const double expectedDirection[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
-    Check(std::equal(
-            expectedDirection, expectedDirection + 9, image->GetDirectionMatrix()->GetData()) &&
-            image->GetDirectionMatrix()->Determinant() == 1.0,
-      "f3: index (crossline, sample, inline) -> world (inline, crossline, time), a rotation");
-    Check(std::string(image->GetPointData()->GetScalars()->GetName()) == "amplitude" &&
-            image->GetPointData()->GetScalars()->GetDataType() == VTK_FLOAT,
-      "f3: float array \"amplitude\"");
-
-    // The reference, from the bytes: trace t at 3600 + t (240 + 150); inline and crossline as
-    // big-endian int32 at 189 and 193; samples big-endian int16.
-    long mismatches = 0;
-    long nonZero = 0;
-    for (int t = 0; t < 414; ++t)
+    const size_t header = 3600 + static_cast<size_t>(t) * 390;
+    const int il = BigEndian(bytes, header + 188, 4);
+    const int xl = BigEndian(bytes, header + 192, 4);
+    for (int s = 0; s < 75; ++s)
     {
-      const size_t header = 3600 + static_cast<size_t>(t) * 390;
-      const int il = BigEndian(bytes, header + 188, 4);
-      const int xl = BigEndian(bytes, header + 192, 4);
-      for (int s = 0; s < 75; ++s)
-      {
-        const int v = BigEndian(bytes, header + 240 + 2 * s, 2);
-        nonZero += v != 0;
-        mismatches += ValueAt(image, xl - 875, s, il - 111) != static_cast<float>(v);
-      }
+      const int v = BigEndian(bytes, header + 240 + 2 * s, 2);
+      nonZero += v != 0;
+      mismatches += ValueAt(image, xl - 875, s, il - 111) != static_cast<float>(v);
     }
-    std::cout << "  " << nonZero << " non-zero samples, " << mismatches << " mismatches\n";
-    Check(mismatches == 0 && nonZero > 10000, "f3: every sample equals the file's int16");
-    std::cout << "  inline 120, crossline 880, samples 30-32: " << ValueAt(image, 5, 30, 9) << " "
-              << ValueAt(image, 5, 31, 9) << " " << ValueAt(image, 5, 32, 9) << "\n";
-
-    // A sub-extent: inlines 5-7 (116-118), crosslines 2-9, samples 10-40.
-    vtkNew<vtkSegyVolumeReader> sub;
-    sub->SetFileName(path.c_str());
-    sub->UpdateInformation();
-    const int extent[6] = { 2, 9, 10, 40, 5, 7 };
-    sub->UpdateExtent(extent);
-    int e[6];
-    sub->GetOutput()->GetExtent(e);
-    bool same = std::equal(extent, extent + 6, e);
-    for (int k = 5; k <= 7 && same; ++k)
-      for (int j = 10; j <= 40; ++j)
-        for (int i = 2; i <= 9; ++i)
-          same = same && ValueAt(sub->GetOutput(), i, j, k) == ValueAt(image, i, j, k);
-    std::cout << "  sub-extent read " << sub->GetNumberOfTracesRead() << " traces\n";
-    Check(same && sub->GetNumberOfTracesRead() == 3 * 8,
-      "f3: a sub-extent has its values and reads only its 24 traces");
   }
+  std::cout << "  " << nonZero << " non-zero samples, " << mismatches << " mismatches\n";
+  Check(mismatches == 0 && nonZero > 10000, "f3: every sample equals the file's int16");
+  std::cout << "  inline 120, crossline 880, samples 30-32: " << ValueAt(image, 5, 30, 9) << " "
+            << ValueAt(image, 5, 31, 9) << " " << ValueAt(image, 5, 32, 9) << "\n";
 
+  // A sub-extent: inlines 5-7 (116-118), crosslines 2-9, samples 10-40.
+  vtkNew<vtkSegyVolumeReader> sub;
+  sub->SetFileName(path.c_str());
+  sub->UpdateInformation();
+  const int extent[6] = { 2, 9, 10, 40, 5, 7 };
+  sub->UpdateExtent(extent);
+  int e[6];
+  sub->GetOutput()->GetExtent(e);
+  bool same = std::equal(extent, extent + 6, e);
+  for (int k = 5; k <= 7 && same; ++k)
+    for (int j = 10; j <= 40; ++j)
+      for (int i = 2; i <= 9; ++i)
+        same = same && ValueAt(sub->GetOutput(), i, j, k) == ValueAt(image, i, j, k);
+  std::cout << "  sub-extent read " << sub->GetNumberOfTracesRead() << " traces\n";
+  Check(same && sub->GetNumberOfTracesRead() == 3 * 8,
+    "f3: a sub-extent has its values and reads only its 24 traces");
+}
+
+void GeneratedFiles(const std::string& out)
+{
   std::cout << "generated files: shuffled, one trace missing, custom byte positions\n";
   for (int format : { 1, 2, 3, 5, 8 })
   {
@@ -253,76 +256,91 @@ int TestSegyVolumeReader(int, char*[])
     Rejects(
       wrong, out + "/shuffled-1.sgy", "are both at inline 0, crossline 0", "wrong byte positions");
   }
+}
 
+void Errors(const std::string& out)
+{
   std::cout << "errors\n";
+  SegyTestFile file;
+  const std::string good = file.Bytes();
+  const std::string bad = out + "/bad.sgy";
+  vtkNew<vtkSegyVolumeReader> reader;
+
+  Spit(bad, good.substr(0, good.size() - 7));
+  Rejects(reader, bad, "not a whole, non-zero number of traces", "truncated file");
+  Spit(bad, good.substr(0, 3600));
+  Rejects(reader, bad, "not a whole, non-zero number of traces", "headers only");
+  Spit(bad, good.substr(0, 3000));
+  Rejects(reader, bad, "fewer than the 3600", "shorter than its headers");
+  SegyTestFile longer = file;
+  longer.LongTrace = 5;
+  Spit(bad, longer.Bytes());
+  Rejects(reader, bad, "not a whole, non-zero number of traces", "a trace 2 samples longer");
+  for (int code : { 4, 7 })
   {
-    SegyTestFile file;
-    const std::string good = file.Bytes();
-    const std::string bad = out + "/bad.sgy";
-    vtkNew<vtkSegyVolumeReader> reader;
-
-    Spit(bad, good.substr(0, good.size() - 7));
-    Rejects(reader, bad, "not a whole, non-zero number of traces", "truncated file");
-    Spit(bad, good.substr(0, 3600));
-    Rejects(reader, bad, "not a whole, non-zero number of traces", "headers only");
-    Spit(bad, good.substr(0, 3000));
-    Rejects(reader, bad, "fewer than the 3600", "shorter than its headers");
-    SegyTestFile longer = file;
-    longer.LongTrace = 5;
-    Spit(bad, longer.Bytes());
-    Rejects(reader, bad, "not a whole, non-zero number of traces", "a trace 2 samples longer");
-    for (int code : { 4, 7 })
+    SegyTestFile other = file;
+    other.Format = 5;
+    std::string bytes = other.Bytes();
+    strata_test::PutBigEndian(bytes, 3224, static_cast<uint32_t>(code), 2);
+    Spit(bad, bytes);
+    Rejects(reader,
+      bad,
+      "sample format code " + std::to_string(code) + " is not supported",
+      "format code " + std::to_string(code));
+    if (code == 4)
     {
-      SegyTestFile other = file;
-      other.Format = 5;
-      std::string bytes = other.Bytes();
-      strata_test::PutBigEndian(bytes, 3224, static_cast<uint32_t>(code), 2);
-      Spit(bad, bytes);
-      Rejects(reader,
-        bad,
-        "sample format code " + std::to_string(code) + " is not supported",
-        "format code " + std::to_string(code));
-      if (code == 4)
-      {
-        vtkNew<vtkSegyVolumeReader> fixed;
-        fixed->SetFileName(bad.c_str());
-        fixed->SetSampleFormat(5);
-        fixed->Update();
-        Check(SameAsGenerated(fixed->GetOutput(), other), "SampleFormat 5 overrides code 4");
-      }
+      vtkNew<vtkSegyVolumeReader> fixed;
+      fixed->SetFileName(bad.c_str());
+      fixed->SetSampleFormat(5);
+      fixed->Update();
+      Check(SameAsGenerated(fixed->GetOutput(), other), "SampleFormat 5 overrides code 4");
     }
-    Spit(bad, good);
-    reader->SetInlineByte(0);
-    Rejects(reader, bad, "outside [1, 237]", "inline byte 0");
-    reader->SetInlineByte(238);
-    Rejects(reader, bad, "outside [1, 237]", "inline byte 238");
-    reader->SetInlineByte(193);
-    Rejects(reader, bad, "both 193", "inline byte = crossline byte");
-    reader->SetInlineByte(189);
-    Rejects(reader, out + "/missing.sgy", "cannot open it", "missing file");
-
-    // Recovers on a good file.
-    reader->SetFileName(bad.c_str());
-    reader->Modified();
-    reader->Update();
-    Check(SameAsGenerated(reader->GetOutput(), file), "the reader recovers on a good file");
-
-    // A file replaced between the information pass and the data pass is not read with the
-    // stale trace index.
-    vtkNew<vtkSegyVolumeReader> stale;
-    vtkNew<ErrorCounter> errors;
-    errors->Watch(stale);
-    stale->SetFileName(bad.c_str());
-    stale->UpdateInformation();
-    SegyTestFile smaller = file;
-    smaller.Inlines = 2;
-    Spit(bad, smaller.Bytes());
-    stale->Update();
-    Check(errors->Errors > 0 && Empty(stale->GetOutput()) &&
-            errors->First.find("changed after its headers were read") != std::string::npos,
-      "a file replaced after the information pass is refused");
-    std::cout << "  file replaced: " << errors->First << "\n";
   }
+  Spit(bad, good);
+  reader->SetInlineByte(0);
+  Rejects(reader, bad, "outside [1, 237]", "inline byte 0");
+  reader->SetInlineByte(238);
+  Rejects(reader, bad, "outside [1, 237]", "inline byte 238");
+  reader->SetInlineByte(193);
+  Rejects(reader, bad, "both 193", "inline byte = crossline byte");
+  reader->SetInlineByte(189);
+  Rejects(reader, out + "/missing.sgy", "cannot open it", "missing file");
 
-  return strata_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  // Recovers on a good file.
+  reader->SetFileName(bad.c_str());
+  reader->Modified();
+  reader->Update();
+  Check(SameAsGenerated(reader->GetOutput(), file), "the reader recovers on a good file");
+
+  // A file replaced between the information pass and the data pass is not read with the
+  // stale trace index.
+  vtkNew<vtkSegyVolumeReader> stale;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(stale);
+  stale->SetFileName(bad.c_str());
+  stale->UpdateInformation();
+  SegyTestFile smaller = file;
+  smaller.Inlines = 2;
+  Spit(bad, smaller.Bytes());
+  stale->Update();
+  Check(errors->Errors > 0 && Empty(stale->GetOutput()) &&
+          errors->First.find("changed after its headers were read") != std::string::npos,
+    "a file replaced after the information pass is refused");
+  std::cout << "  file replaced: " << errors->First << "\n";
+}
+
+}
+
+int TestSegyVolumeReader(int argc, char* argv[])
+{
+  const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
+  const std::string out = paths.Output + "/TestSegyVolumeReader";
+  vtksys::SystemTools::MakeDirectory(out);
+  return strata_test::RunSubTests(
+    {
+      { "F3", [&] { F3(paths); } },
+      { "GeneratedFiles", [&] { GeneratedFiles(out); } },
+      { "Errors", [&] { Errors(out); } },
+    },
+    strata_test::Failures);
 }

@@ -3,6 +3,8 @@
 // The volume BSP tree on canonical box configurations, axis-aligned and rotated at UTM scale,
 // and on random overlapping boxes: exact fragment counts and volume id lists, coverage of sample
 // points, fragment volumes against the union, and front-to-back order along random rays.
+#include "StrataSubTests.h"
+
 #include "vtkVolumeBSPTree.h"
 
 #include <glm/glm.hpp>
@@ -196,23 +198,9 @@ struct Expectation
 // the ~1e-9 rounding of UTM coordinates, so a point's side of every plane is unambiguous.
 constexpr double SkipDistance = 1e-5;
 
-void Verify(const std::string& name,
-  const std::vector<Tree::Box>& boxes,
-  double scale,
-  const Expectation& expect,
-  std::mt19937& rng)
+/// Faces on their planes, closed surfaces, sorted ids and the expected id lists.
+void VerifyFragments(const std::string& name, const Tree& tree, const Expectation& expect)
 {
-  Tree tree;
-  tree.SetBoxes(boxes);
-  tree.Build();
-  const int nf = tree.GetNumberOfFragments();
-  std::cout << name << ": " << nf << " fragments, " << tree.GetNodes().size() << " nodes, depth "
-            << tree.GetDepth() << ", max overlap " << tree.GetMaximumOverlap() << "\n";
-  if (expect.Fragments >= 0)
-  {
-    Check(nf == expect.Fragments,
-      name + ": expected " + std::to_string(expect.Fragments) + " fragments");
-  }
   // Faces lie on their planes: clipped points stay within the tolerance of a plane and merged
   // vertices move by at most as much again.
   std::vector<std::vector<int>> lists;
@@ -260,24 +248,16 @@ void Verify(const std::string& name,
     std::cout << "}";
   }
   std::cout << "\n";
+}
 
-  std::vector<Frame> frames;
-  for (const auto& b : boxes)
-  {
-    frames.push_back(MakeFrame(b));
-  }
-  dvec3 lo(INFINITY);
-  dvec3 hi(-INFINITY);
-  for (const Frame& f : frames)
-  {
-    for (int k = 0; k < 8; ++k)
-    {
-      const dvec3 p = f.T + f.A * dvec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  }
-
+/// Every point in exactly one fragment, whose ids are the boxes (`frames`) containing it.
+void VerifyCoverage(const std::string& name,
+  const Tree& tree,
+  const std::vector<Frame>& frames,
+  double scale,
+  std::mt19937& rng)
+{
+  const int nf = tree.GetNumberOfFragments();
   // Coverage: every point in exactly one fragment, whose ids are the boxes containing it.
   std::uniform_real_distribution<double> uu(-0.25, 1.25);
   int tested = 0;
@@ -333,7 +313,18 @@ void Verify(const std::string& name,
             << " skipped near a plane; wrong fragment count " << wrongCount << ", wrong ids "
             << wrongIds << ", FindFragment disagrees " << wrongFind << "\n";
   Check(wrongCount == 0 && wrongIds == 0 && wrongFind == 0, name + ": point coverage");
+}
 
+/// Fragment volumes against each box's and the union's (exact, or Monte Carlo over [lo, hi]).
+void VerifyVolumes(const std::string& name,
+  const Tree& tree,
+  const std::vector<Frame>& frames,
+  const Expectation& expect,
+  double scale,
+  const dvec3& lo,
+  const dvec3& hi,
+  std::mt19937& rng)
+{
   // Volumes. A cell counts as inside a box when it pokes out by less than the tree's tolerance,
   // so each box face may move by that much: a box's volume by at most tolerance x its surface,
   // the union's by tolerance x all surfaces. Rounding adds ~1e-12 relative (allowed: 1e-9).
@@ -404,7 +395,17 @@ void Verify(const std::string& name,
   std::cout << ", worst per-box error / bound " << worstBox << "\n" << std::setprecision(6);
   Check(worstBox <= 1.0, name + ": fragments listing a box sum to its volume");
   Check(smallest > 0.0, name + ": no empty fragments");
+}
 
+/// Front-to-back and back-to-front orders along rays through the scene [lo, hi].
+void VerifyOrder(const std::string& name,
+  const Tree& tree,
+  const std::vector<Tree::Box>& boxes,
+  const dvec3& lo,
+  const dvec3& hi,
+  std::mt19937& rng)
+{
+  const int nf = tree.GetNumberOfFragments();
   // Order: the fragments a ray passes through must come in the order list as the ray meets
   // them. Rays are in local coordinates (exact relative to the tree's origin).
   const dvec3 origin(tree.GetOrigin()[0], tree.GetOrigin()[1], tree.GetOrigin()[2]);
@@ -476,6 +477,47 @@ void Verify(const std::string& name,
   Check(wrongReverse == 0, name + ": back-to-front is the reverse");
 }
 
+void Verify(const std::string& name,
+  const std::vector<Tree::Box>& boxes,
+  double scale,
+  const Expectation& expect,
+  std::mt19937& rng)
+{
+  Tree tree;
+  tree.SetBoxes(boxes);
+  tree.Build();
+  const int nf = tree.GetNumberOfFragments();
+  std::cout << name << ": " << nf << " fragments, " << tree.GetNodes().size() << " nodes, depth "
+            << tree.GetDepth() << ", max overlap " << tree.GetMaximumOverlap() << "\n";
+  if (expect.Fragments >= 0)
+  {
+    Check(nf == expect.Fragments,
+      name + ": expected " + std::to_string(expect.Fragments) + " fragments");
+  }
+  VerifyFragments(name, tree, expect);
+
+  std::vector<Frame> frames;
+  for (const auto& b : boxes)
+  {
+    frames.push_back(MakeFrame(b));
+  }
+  dvec3 lo(INFINITY);
+  dvec3 hi(-INFINITY);
+  for (const Frame& f : frames)
+  {
+    for (int k = 0; k < 8; ++k)
+    {
+      const dvec3 p = f.T + f.A * dvec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+
+  VerifyCoverage(name, tree, frames, scale, rng);
+  VerifyVolumes(name, tree, frames, expect, scale, lo, hi, rng);
+  VerifyOrder(name, tree, boxes, lo, hi, rng);
+}
+
 std::vector<Tree::Box> RandomBoxes(int n, double spread, const dvec3& t, std::mt19937& rng)
 {
   std::uniform_real_distribution<double> size(2.0, 5.0);
@@ -514,22 +556,11 @@ double TimeBuild(const std::vector<Tree::Box>& boxes, int& fragments)
 }
 }
 
-int TestVolumeBSPTree(int, char*[])
+namespace
 {
-  std::mt19937 rng(20240611);
-  const dvec3 utm(612345.678, 6712345.432, -2345.6);
-  const std::vector<Placement> placements = {
-    { "axis-aligned", dmat3(1.0), dvec3(0.0), 1.0 },
-    { "rotated, UTM", Rotation(dvec3(0.36, -0.48, 0.8), 0.9), utm, 1.0 },
-    { "rotated, UTM, km", Rotation(dvec3(-1.0, 2.0, 0.5), 2.3), utm, 1000.0 },
-    // Counts are affine invariant; shear and a mirror test the plane orientation (|det| = 1).
-    { "sheared, mirrored, UTM",
-      Rotation(dvec3(0.2, 1.0, -0.7), 1.3) *
-        dmat3(dvec3(1, 0, 0), dvec3(0.3, 1, 0), dvec3(0, 0.2, -1)),
-      utm,
-      1.0 },
-  };
-
+/// The paper's configurations (a)-(d), each in every placement, against their minimal counts.
+void Configurations(const std::vector<Placement>& placements, std::mt19937& rng)
+{
   struct Config
   {
     std::string Name;
@@ -589,7 +620,10 @@ int TestVolumeBSPTree(int, char*[])
       Verify(c.Name + ", " + p.Name, boxes, p.Scale, e, rng);
     }
   }
+}
 
+void NineSeparateBoxes(const std::vector<Placement>& placements, std::mt19937& rng)
+{
   // Nine separate boxes in a 3 x 3 grid, one rotation (Table 1, scenario 3): 9 fragments.
   {
     std::vector<AxisBox> grid;
@@ -605,7 +639,10 @@ int TestVolumeBSPTree(int, char*[])
     e.UnionVolume = ExactUnionVolume(grid);
     Verify("nine separate boxes, rotated, UTM", boxes, 1.0, e, rng);
   }
+}
 
+void FiveRandomBoxes(const dvec3& utm, std::mt19937& rng)
+{
   // Five boxes with independent rotations, all overlapping near the centre; the count is what the
   // heuristic gives, not asserted.
   Verify("five random rotated overlapping boxes, UTM",
@@ -613,7 +650,10 @@ int TestVolumeBSPTree(int, char*[])
     1.0,
     Expectation(),
     rng);
+}
 
+void RebuildOnlyOnChange(const dvec3& utm, std::mt19937& rng)
+{
   // Rebuild only on change.
   {
     std::vector<Tree::Box> boxes = RandomBoxes(3, 1.0, utm, rng);
@@ -642,7 +682,10 @@ int TestVolumeBSPTree(int, char*[])
     tree.SortFrontToBack(V(utm), false, V(dvec3(0, 0, 1)), order);
     Check(order.empty(), "no boxes: empty order");
   }
+}
 
+void BuildTimes(const std::vector<Placement>& placements, const dvec3& utm, std::mt19937& rng)
+{
   // Build times, for comparison with Table 1 (0.15-0.29 ms for 3-9 volumes). Not asserted.
   for (int n : { 3, 9 })
   {
@@ -663,6 +706,34 @@ int TestVolumeBSPTree(int, char*[])
     std::cout << "Build time, 9 separate rotated boxes: " << fragments << " fragments, " << ms
               << " ms per build\n";
   }
+}
+}
+
+int TestVolumeBSPTree(int, char*[])
+{
+  std::mt19937 rng(20240611);
+  const dvec3 utm(612345.678, 6712345.432, -2345.6);
+  const std::vector<Placement> placements = {
+    { "axis-aligned", dmat3(1.0), dvec3(0.0), 1.0 },
+    { "rotated, UTM", Rotation(dvec3(0.36, -0.48, 0.8), 0.9), utm, 1.0 },
+    { "rotated, UTM, km", Rotation(dvec3(-1.0, 2.0, 0.5), 2.3), utm, 1000.0 },
+    // Counts are affine invariant; shear and a mirror test the plane orientation (|det| = 1).
+    { "sheared, mirrored, UTM",
+      Rotation(dvec3(0.2, 1.0, -0.7), 1.3) *
+        dmat3(dvec3(1, 0, 0), dvec3(0.3, 1, 0), dvec3(0, 0.2, -1)),
+      utm,
+      1.0 },
+  };
+
+  strata_test::RunSubTests(
+    {
+      { "Configurations", [&] { Configurations(placements, rng); } },
+      { "NineSeparateBoxes", [&] { NineSeparateBoxes(placements, rng); } },
+      { "FiveRandomBoxes", [&] { FiveRandomBoxes(utm, rng); } },
+      { "RebuildOnlyOnChange", [&] { RebuildOnlyOnChange(utm, rng); } },
+      { "BuildTimes", [&] { BuildTimes(placements, utm, rng); } },
+    },
+    [] { return failures; });
 
   if (failures > 0)
   {

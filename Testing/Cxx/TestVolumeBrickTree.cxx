@@ -3,6 +3,8 @@
 // Exact structure of the brick octree: brick counts per level, the shared voxel layer, brick
 // ranges against brute force, the [1 2 1]/4 down-sampling on known fields, and parent/child
 // relations that tile every level exactly once.
+#include "StrataSubTests.h"
+
 #include "vtkVolumeBrickTree.h"
 
 #include <algorithm>
@@ -64,7 +66,23 @@ void CheckCounts(int nx, int ny, int nz, int B, const std::string& expected)
 }
 }
 
-int TestVolumeBrickTree(int, char*[])
+namespace
+{
+/// The brick size of the hashed tree and its stride.
+constexpr int B = 16;
+constexpr int S = B - 1;
+
+/// The tree over a hashed field on odd-sized axes (padding, the shared layer, the ranges), and
+/// every node's brick extracted.
+struct HashedTree
+{
+  int Dims[3] = { 70, 50, 41 };
+  std::vector<uint16_t> Field;
+  vtkVolumeBrickTree Tree;
+  std::vector<std::vector<float>> Bricks;
+};
+
+void CountsPerLevel()
 {
   std::cout << "Brick counts (stride B-1; level n -> n/2+1 points until one brick holds it)\n";
   // 64 points, stride 31: bricks start at 0, 31, 62 -> 3; level 1 has 33 points -> 2.
@@ -77,28 +95,35 @@ int TestVolumeBrickTree(int, char*[])
   CheckCounts(1, 1, 1, 4, "1x1x1");
   // 200 -> 101 -> 51 -> 26 -> 14 points, stride 15.
   CheckCounts(200, 1, 1, 16, "14x1x1 7x1x1 4x1x1 2x1x1 1x1x1");
+}
 
-  // A hashed field on odd-sized axes exercises padding, the shared layer and the ranges.
-  const int dims[3] = { 70, 50, 41 };
-  const int B = 16, S = B - 1;
-  std::vector<uint16_t> field(static_cast<size_t>(dims[0]) * dims[1] * dims[2]);
+void BuildHashedTree(HashedTree& h)
+{
+  const int* dims = h.Dims;
+  std::vector<uint16_t>& field = h.Field;
+  vtkVolumeBrickTree& tree = h.Tree;
+  field.assign(static_cast<size_t>(dims[0]) * dims[1] * dims[2], 0);
   for (int z = 0; z < dims[2]; ++z)
     for (int y = 0; y < dims[1]; ++y)
       for (int x = 0; x < dims[0]; ++x)
         field[(static_cast<size_t>(z) * dims[1] + y) * dims[0] + x] = Hash(x, y, z);
-  vtkVolumeBrickTree tree;
   Check(tree.Build(field.data(), dims, B), "build 70x50x41 uint16, B=16");
   std::cout << "Tree over 70x50x41, B=16: " << BrickCounts(tree) << ", " << tree.GetNumberOfNodes()
             << " nodes\n";
 
-  const size_t B3 = static_cast<size_t>(B) * B * B;
-  std::vector<std::vector<float>> bricks(tree.GetNumberOfNodes(), std::vector<float>(B3));
+  h.Bricks.assign(tree.GetNumberOfNodes(), std::vector<float>(static_cast<size_t>(B) * B * B));
   for (int id = 0; id < tree.GetNumberOfNodes(); ++id)
   {
-    tree.ExtractBrick(id, bricks[id].data());
+    tree.ExtractBrick(id, h.Bricks[id].data());
   }
-  auto at = [&](int id, int a, int b, int c) { return bricks[id][(c * B + b) * B + a]; };
+}
 
+void Extraction(const HashedTree& h)
+{
+  const vtkVolumeBrickTree& tree = h.Tree;
+  const std::vector<std::vector<float>>& bricks = h.Bricks;
+  const size_t B3 = static_cast<size_t>(B) * B * B;
+  auto at = [&](int id, int a, int b, int c) { return bricks[id][(c * B + b) * B + a]; };
   // Extraction: voxel (a, b, c) of brick I is voxel I S + (a, b, c) of its level, clamped.
   bool extracted = true;
   bool native = true;
@@ -123,7 +148,13 @@ int TestVolumeBrickTree(int, char*[])
   Check(tree.GetVoxel(0, 69, 49, 40) == Hash(69, 49, 40) &&
           tree.GetVoxel(0, 80, -3, 40) == Hash(69, 0, 40),
     "level 0 is the input; indices clamp");
+}
 
+void SharedLayer(const HashedTree& h)
+{
+  const vtkVolumeBrickTree& tree = h.Tree;
+  const std::vector<std::vector<float>>& bricks = h.Bricks;
+  auto at = [&](int id, int a, int b, int c) { return bricks[id][(c * B + b) * B + a]; };
   // Shared layer: the last layer of a brick is the first of its neighbour, on every level.
   bool shared = true;
   int sharedPairs = 0;
@@ -152,7 +183,12 @@ int TestVolumeBrickTree(int, char*[])
   Check(shared && sharedPairs > 0,
     "last voxel layer of a brick == first layer of its neighbour (" + std::to_string(sharedPairs) +
       " neighbour pairs, all levels)");
+}
 
+void Ranges(const HashedTree& h)
+{
+  const vtkVolumeBrickTree& tree = h.Tree;
+  const std::vector<std::vector<float>>& bricks = h.Bricks;
   // Ranges against brute force over the extracted B^3 voxels; subtree ranges by recursion.
   bool ranges = true;
   for (int id = 0; id < tree.GetNumberOfNodes(); ++id)
@@ -179,7 +215,13 @@ int TestVolumeBrickTree(int, char*[])
     subtree = subtree && tree.GetNode(id).SubtreeMin == mn && tree.GetNode(id).SubtreeMax == mx;
   }
   Check(subtree, "subtree min/max == union over the node and all its descendants");
+}
 
+void ParentsAndChildren(const HashedTree& h)
+{
+  const int* dims = h.Dims;
+  const vtkVolumeBrickTree& tree = h.Tree;
+  const std::vector<std::vector<float>>& bricks = h.Bricks;
   // Parent/child: every brick of level l-1 is a child of exactly one brick of level l, its
   // parent; each level's bricks own every voxel exactly once ([I S, (I+1) S), the last brick
   // also its end); children's level-0 boxes tile their parent's box exactly.
@@ -265,80 +307,87 @@ int TestVolumeBrickTree(int, char*[])
   Check(tree.GetParent(tree.GetRootId()) == -1 && rb[0] == 0 && rb[1] == 69 && rb[2] == 0 &&
           rb[3] == 49 && rb[4] == 0 && rb[5] == 40,
     "root has no parent and covers [0,69]x[0,49]x[0,40]");
+}
 
+void DownSampling(const HashedTree& h)
+{
+  const std::vector<uint16_t>& field = h.Field;
   std::cout << "Down-sampling ([1 2 1]/4 per axis around fine point 2v, clamped)\n";
+  // A linear field is reproduced exactly wherever no tap is clamped: coarse v == f(2v).
+  const int ld[3] = { 33, 17, 9 };
+  std::vector<float> lin(static_cast<size_t>(ld[0]) * ld[1] * ld[2]);
+  auto f = [](double x, double y, double z) { return 2 * x + 3 * y + 5 * z + 7; };
+  for (int z = 0; z < ld[2]; ++z)
+    for (int y = 0; y < ld[1]; ++y)
+      for (int x = 0; x < ld[0]; ++x)
+        lin[(static_cast<size_t>(z) * ld[1] + y) * ld[0] + x] = static_cast<float>(f(x, y, z));
+  vtkVolumeBrickTree linear;
+  linear.Build(lin.data(), ld, 8);
+  const int* cd = linear.GetLevelDimensions(1);
+  bool exact = cd[0] == 17 && cd[1] == 9 && cd[2] == 5;
+  for (int z = 1; z + 1 < cd[2]; ++z)
+    for (int y = 1; y + 1 < cd[1]; ++y)
+      for (int x = 1; x + 1 < cd[0]; ++x)
+        exact = exact && linear.GetVoxel(1, x, y, z) == f(2 * x, 2 * y, 2 * z);
+  Check(exact, "33x17x9 -> 17x9x5; linear field: interior coarse voxel v == f(2v) exactly");
+  // Level 2 keeps every fourth level-0 point.
+  exact = true;
+  const int* c2 = linear.GetLevelDimensions(2);
+  for (int z = 1; z + 1 < c2[2]; ++z)
+    for (int y = 1; y + 1 < c2[1]; ++y)
+      for (int x = 1; x + 1 < c2[0]; ++x)
+        exact = exact && linear.GetVoxel(2, x, y, z) == f(4 * x, 4 * y, 4 * z);
+  Check(exact, "level 2 interior voxel v == f(4v): level l samples level-0 point 2^l v");
+
+  // Impulses give the filter weights: 64 at an even point lands on one coarse voxel with
+  // weight 2*2*2/64; 64 at an odd x is shared by two coarse voxels with 1*2*2/64.
+  const int id[3] = { 12, 12, 12 };
+  std::vector<uint8_t> imp(static_cast<size_t>(id[0]) * id[1] * id[2], 0);
+  imp[(4 * 12 + 4) * 12 + 4] = 64;
+  vtkVolumeBrickTree even;
+  even.Build(imp.data(), id, 4);
+  double sum = 0;
+  for (int z = 0; z < 7; ++z)
+    for (int y = 0; y < 7; ++y)
+      for (int x = 0; x < 7; ++x)
+        sum += even.GetVoxel(1, x, y, z);
+  Check(even.GetVoxel(1, 2, 2, 2) == 8 && sum == 8, "impulse 64 at (4,4,4) -> 8 at (2,2,2) only");
+  imp[(4 * 12 + 4) * 12 + 4] = 0;
+  imp[(4 * 12 + 4) * 12 + 5] = 64;
+  vtkVolumeBrickTree odd;
+  odd.Build(imp.data(), id, 4);
+  Check(
+    odd.GetVoxel(1, 2, 2, 2) == 4 && odd.GetVoxel(1, 3, 2, 2) == 4 && odd.GetVoxel(1, 1, 2, 2) == 0,
+    "impulse 64 at (5,4,4) -> 4 at (2,2,2) and (3,2,2)");
+  // Integer types round half up: 8 at an odd point gives 0.5 -> 1; 1 gives 1/16 -> 0.
+  imp[(4 * 12 + 4) * 12 + 5] = 8;
+  odd.Build(imp.data(), id, 4);
+  const bool half = odd.GetVoxel(1, 2, 2, 2) == 1;
+  imp[(4 * 12 + 4) * 12 + 5] = 1;
+  odd.Build(imp.data(), id, 4);
+  Check(
+    half && odd.GetVoxel(1, 2, 2, 2) == 0, "uint8 averages round half up (0.5 -> 1, 1/16 -> 0)");
+
+  // A negative int16 constant stays exact; a flat axis stays one point.
+  const int fd[3] = { 40, 30, 1 };
+  std::vector<int16_t> neg(static_cast<size_t>(fd[0]) * fd[1], -7);
+  vtkVolumeBrickTree flat;
+  flat.Build(neg.data(), fd, 8);
+  bool constant = true;
+  for (int l = 0; l < flat.GetNumberOfLevels(); ++l)
   {
-    // A linear field is reproduced exactly wherever no tap is clamped: coarse v == f(2v).
-    const int ld[3] = { 33, 17, 9 };
-    std::vector<float> lin(static_cast<size_t>(ld[0]) * ld[1] * ld[2]);
-    auto f = [](double x, double y, double z) { return 2 * x + 3 * y + 5 * z + 7; };
-    for (int z = 0; z < ld[2]; ++z)
-      for (int y = 0; y < ld[1]; ++y)
-        for (int x = 0; x < ld[0]; ++x)
-          lin[(static_cast<size_t>(z) * ld[1] + y) * ld[0] + x] = static_cast<float>(f(x, y, z));
-    vtkVolumeBrickTree linear;
-    linear.Build(lin.data(), ld, 8);
-    const int* cd = linear.GetLevelDimensions(1);
-    bool exact = cd[0] == 17 && cd[1] == 9 && cd[2] == 5;
-    for (int z = 1; z + 1 < cd[2]; ++z)
-      for (int y = 1; y + 1 < cd[1]; ++y)
-        for (int x = 1; x + 1 < cd[0]; ++x)
-          exact = exact && linear.GetVoxel(1, x, y, z) == f(2 * x, 2 * y, 2 * z);
-    Check(exact, "33x17x9 -> 17x9x5; linear field: interior coarse voxel v == f(2v) exactly");
-    // Level 2 keeps every fourth level-0 point.
-    exact = true;
-    const int* c2 = linear.GetLevelDimensions(2);
-    for (int z = 1; z + 1 < c2[2]; ++z)
-      for (int y = 1; y + 1 < c2[1]; ++y)
-        for (int x = 1; x + 1 < c2[0]; ++x)
-          exact = exact && linear.GetVoxel(2, x, y, z) == f(4 * x, 4 * y, 4 * z);
-    Check(exact, "level 2 interior voxel v == f(4v): level l samples level-0 point 2^l v");
-
-    // Impulses give the filter weights: 64 at an even point lands on one coarse voxel with
-    // weight 2*2*2/64; 64 at an odd x is shared by two coarse voxels with 1*2*2/64.
-    const int id[3] = { 12, 12, 12 };
-    std::vector<uint8_t> imp(static_cast<size_t>(id[0]) * id[1] * id[2], 0);
-    imp[(4 * 12 + 4) * 12 + 4] = 64;
-    vtkVolumeBrickTree even;
-    even.Build(imp.data(), id, 4);
-    double sum = 0;
-    for (int z = 0; z < 7; ++z)
-      for (int y = 0; y < 7; ++y)
-        for (int x = 0; x < 7; ++x)
-          sum += even.GetVoxel(1, x, y, z);
-    Check(even.GetVoxel(1, 2, 2, 2) == 8 && sum == 8, "impulse 64 at (4,4,4) -> 8 at (2,2,2) only");
-    imp[(4 * 12 + 4) * 12 + 4] = 0;
-    imp[(4 * 12 + 4) * 12 + 5] = 64;
-    vtkVolumeBrickTree odd;
-    odd.Build(imp.data(), id, 4);
-    Check(odd.GetVoxel(1, 2, 2, 2) == 4 && odd.GetVoxel(1, 3, 2, 2) == 4 &&
-            odd.GetVoxel(1, 1, 2, 2) == 0,
-      "impulse 64 at (5,4,4) -> 4 at (2,2,2) and (3,2,2)");
-    // Integer types round half up: 8 at an odd point gives 0.5 -> 1; 1 gives 1/16 -> 0.
-    imp[(4 * 12 + 4) * 12 + 5] = 8;
-    odd.Build(imp.data(), id, 4);
-    const bool half = odd.GetVoxel(1, 2, 2, 2) == 1;
-    imp[(4 * 12 + 4) * 12 + 5] = 1;
-    odd.Build(imp.data(), id, 4);
-    Check(
-      half && odd.GetVoxel(1, 2, 2, 2) == 0, "uint8 averages round half up (0.5 -> 1, 1/16 -> 0)");
-
-    // A negative int16 constant stays exact; a flat axis stays one point.
-    const int fd[3] = { 40, 30, 1 };
-    std::vector<int16_t> neg(static_cast<size_t>(fd[0]) * fd[1], -7);
-    vtkVolumeBrickTree flat;
-    flat.Build(neg.data(), fd, 8);
-    bool constant = true;
-    for (int l = 0; l < flat.GetNumberOfLevels(); ++l)
-    {
-      constant = constant && flat.GetLevelDimensions(l)[2] == 1 &&
-                 flat.GetNode(flat.GetLevelOffset(l)).Min == -7 &&
-                 flat.GetNode(flat.GetLevelOffset(l)).Max == -7;
-    }
-    Check(constant && flat.GetNumberOfLevels() == 4 && flat.GetLevelDimensions(3)[0] == 6,
-      "int16 constant -7 stays -7 on 40x30x1 -> 21x16x1 -> 11x9x1 -> 6x5x1");
+    constant = constant && flat.GetLevelDimensions(l)[2] == 1 &&
+               flat.GetNode(flat.GetLevelOffset(l)).Min == -7 &&
+               flat.GetNode(flat.GetLevelOffset(l)).Max == -7;
   }
+  Check(constant && flat.GetNumberOfLevels() == 4 && flat.GetLevelDimensions(3)[0] == 6,
+    "int16 constant -7 stays -7 on 40x30x1 -> 21x16x1 -> 11x9x1 -> 6x5x1");
+}
 
+void InputChecks(const HashedTree& h)
+{
+  const int* dims = h.Dims;
+  const std::vector<uint16_t>& field = h.Field;
   std::cout << "Input checks\n";
   const int bad[3] = { 4, 0, 4 };
   vtkVolumeBrickTree refused;
@@ -346,6 +395,24 @@ int TestVolumeBrickTree(int, char*[])
           !refused.Build(field.data(), dims, 1) &&
           !refused.Build(static_cast<const float*>(nullptr), dims, 8),
     "empty dims, brick size 1 and null scalars are refused with a message");
+}
 
+}
+
+int TestVolumeBrickTree(int, char*[])
+{
+  HashedTree h;
+  strata_test::RunSubTests(
+    {
+      { "CountsPerLevel", CountsPerLevel },
+      { "BuildHashedTree", [&] { BuildHashedTree(h); } },
+      { "Extraction", [&] { Extraction(h); } },
+      { "SharedLayer", [&] { SharedLayer(h); } },
+      { "Ranges", [&] { Ranges(h); } },
+      { "ParentsAndChildren", [&] { ParentsAndChildren(h); } },
+      { "DownSampling", [&] { DownSampling(h); } },
+      { "InputChecks", [&] { InputChecks(h); } },
+    },
+    [] { return failures; });
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -4,11 +4,14 @@
 // limits (all finest, all roots), the paper's Fig. 2 (the nearer volume takes the atlas),
 // empty-space skipping, incremental updates, and the index table checked against the tree
 // and end to end through a CPU copy of the atlas.
+#include "StrataSubTests.h"
+
 #include "vtkBrickAtlasAllocator.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeCut.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -174,6 +177,504 @@ double TrilinearLevel(const vtkVolumeBrickTree& tree, int l, const double u[3])
 }
 }
 
+namespace
+{
+void Limits(const vtkVolumeBrickTree& tree,
+  int finest,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Limits\n";
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.SetBudget(finest);
+  cut.Update(camera);
+  bool allFinest = cut.GetCost() == finest;
+  for (int n : cut.GetCutNodes(0))
+    allFinest = allFinest && tree.GetNode(n).Level == 0;
+  Check(allFinest && CoversOnce(cut, 0),
+    "budget = all " + std::to_string(finest) + " level-0 bricks: the cut is level 0 everywhere");
+  cut.SetBudget(1);
+  cut.Update(camera);
+  Check(cut.GetCutNodes(0) == std::vector<int>{ tree.GetRootId() } && !cut.IsOverBudget(),
+    "budget 1: the root alone (over-budget cut collapsed back in one Update)");
+  cut.SetBudget(7);
+  cut.Update(camera);
+  Check(cut.GetCutNodes(0).size() == 1,
+    "budget 7: still the root (its split costs 8 - 1 = 7 more bricks)");
+  cut.SetBudget(8);
+  cut.Update(camera);
+  Check(cut.GetCost() == 8 && CoversOnce(cut, 0), "budget 8: the root's eight children");
+
+  vtkVolumeCut two;
+  two.AddVolume(&tree, identity);
+  two.AddVolume(&tree, far);
+  two.SetBudget(2 * finest);
+  two.Update(camera);
+  Check(two.GetCost() == 2 * finest && MeanLevel(two, 0) == 0 && MeanLevel(two, 1) == 0,
+    "two volumes, budget = both finest: both at level 0, near and far alike");
+  two.SetBudget(0);
+  two.Update(camera);
+  Check(two.GetCost() == 2 && two.IsOverBudget() && two.GetCutNodes(1).size() == 1,
+    "budget 0: both roots stay (reported over budget)");
+}
+
+void SharedBudget(const vtkVolumeBrickTree& tree,
+  vtkVolumeCut::Camera& camera,
+  const double identity[16])
+{
+  std::cout << "Shared budget between a near and a far volume (paper Fig. 2)\n";
+  // Side by side as in the figure: the eye 150 in front of the first, 250 from the second.
+  double side[16];
+  Translation(260, 0, 0, side);
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.AddVolume(&tree, side);
+  const int budget = 150;
+  cut.SetBudget(budget);
+  cut.Update(camera);
+  double lowSplit = 0, highLeaf = 0;
+  const bool ordered = Ordered(cut, lowSplit, highLeaf);
+  Check(cut.GetCost() <= budget && AllCoverOnce(cut),
+    "budget " + std::to_string(budget) + ": cost " + std::to_string(cut.GetCost()) +
+      ", each volume covered exactly once");
+  Check(cut.GetVolumeCost(0) > cut.GetVolumeCost(1) && MeanLevel(cut, 0) < MeanLevel(cut, 1),
+    "near volume: " + std::to_string(cut.GetVolumeCost(0)) + " bricks, mean level " +
+      Num(MeanLevel(cut, 0)) + "; far: " + std::to_string(cut.GetVolumeCost(1)) +
+      " bricks, mean level " + Num(MeanLevel(cut, 1)));
+  Check(ordered,
+    "one order for both volumes: every split node's error (>= " + Num(lowSplit) +
+      " px) >= every unsplit one's (<= " + Num(highLeaf) + " px)");
+  Check(cut.Update(camera) == 0 && cut.GetCost() <= budget, "a second Update changes nothing");
+
+  // The eye moves over to the second volume; at most 24 new bricks per Update.
+  camera.Position[0] += 260;
+  cut.SetMaxNewBricksPerUpdate(24);
+  bool bounded = true, within = true, covered = true;
+  int updates = 0;
+  for (int added = 1; added > 0 && updates < 100; ++updates)
+  {
+    added = cut.Update(camera);
+    bounded = bounded && added <= 24;
+    within = within && cut.GetCost() <= budget;
+    covered = covered && AllCoverOnce(cut);
+  }
+  const bool orderedAfter = Ordered(cut, lowSplit, highLeaf);
+  Check(bounded && within && covered && updates < 100,
+    "eye moved to the other volume: converged in " + std::to_string(updates) +
+      " Updates of <= 24 new bricks, within budget and covering after each");
+  Check(cut.GetVolumeCost(1) > cut.GetVolumeCost(0) && MeanLevel(cut, 1) < MeanLevel(cut, 0) &&
+          orderedAfter,
+    "the atlas moved with it: near " + std::to_string(cut.GetVolumeCost(1)) +
+      " bricks, mean level " + Num(MeanLevel(cut, 1)) + "; far " +
+      std::to_string(cut.GetVolumeCost(0)) + ", mean level " + Num(MeanLevel(cut, 0)));
+
+  // The incremental result is the greedy one: same cut as one unbounded Update from roots.
+  const auto incremental = CutSet(cut);
+  cut.SetMaxNewBricksPerUpdate(0);
+  cut.Reset();
+  cut.Update(camera);
+  Check(CutSet(cut) == incremental, "bounded incremental Updates reach the unbounded cut");
+  camera.Position[0] -= 260;
+}
+
+void RandomCamerasAndBudgets(const vtkVolumeBrickTree& tree,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Random cameras and budgets\n";
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.AddVolume(&tree, far);
+  double scaled[16];
+  Translation(300, 200, 0, scaled);
+  scaled[0] = scaled[5] = 0.5;
+  scaled[10] = 3.0; // anisotropic spacing
+  cut.AddVolume(&tree, scaled);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(-500, 1500);
+  bool within = true, covered = true, orderedAll = true;
+  for (int step = 0; step < 60; ++step)
+  {
+    vtkVolumeCut::Camera c = camera;
+    c.Position[0] = pos(rng);
+    c.Position[1] = pos(rng) * 0.3;
+    c.Position[2] = pos(rng) * 0.3 - 200;
+    cut.SetBudget(3 + static_cast<int>(rng() % 1200));
+    cut.SetMaxNewBricksPerUpdate(step % 3 == 0 ? 0 : 40);
+    cut.Update(c);
+    within = within && cut.GetCost() <= cut.GetBudget();
+    covered = covered && AllCoverOnce(cut);
+    if (cut.GetMaxNewBricksPerUpdate() == 0)
+    {
+      double lo, hi;
+      orderedAll = orderedAll && Ordered(cut, lo, hi);
+    }
+  }
+  Check(within, "60 random cameras and budgets (3 volumes, one anisotropic): never over budget");
+  Check(covered, "every volume covered exactly once after every Update");
+  Check(orderedAll, "unbounded Updates always end ordered by screen-space error");
+}
+
+void EmptySpaceSkipping(const std::vector<uint8_t>& field,
+  const int dims[3],
+  int finest,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16])
+{
+  std::cout << "Empty-space skipping\n";
+  // Zero left of x = 60, 100..199 from there; opacity 0 below 50, 1 from 100.
+  std::vector<uint8_t> half(field.size());
+  for (int z = 0; z < N; ++z)
+    for (int y = 0; y < N; ++y)
+      for (int x = 0; x < N; ++x)
+        half[(static_cast<size_t>(z) * N + y) * N + x] =
+          static_cast<uint8_t>(x < 60 ? 0 : 100 + (x + y + z) % 100);
+  vtkVolumeBrickTree halfTree;
+  halfTree.Build(half.data(), dims, B);
+  const double tf[8] = { 0, 0, 50, 0, 100, 1, 255, 1 };
+  auto opacity = [&tf](double lo, double hi)
+  { return vtkVolumeCut::MaxOfPiecewiseLinear(tf, 4, lo, hi); };
+  Check(opacity(0, 49) == 0 && opacity(0, 50) == 0 && opacity(0, 75) == 0.5 &&
+          opacity(60, 80) == 0.6 && opacity(120, 130) == 1 && opacity(-5, 300) == 1,
+    "max of the piecewise-linear opacity over value ranges is exact");
+
+  // Brute force: level-0 bricks holding a visible voxel.
+  int visibleBricks = 0;
+  for (int id = 0; id < finest; ++id)
+  {
+    double b[6];
+    halfTree.GetNodeBounds(id, b);
+    visibleBricks += b[1] >= 60 ? 1 : 0;
+  }
+  vtkVolumeCut cut;
+  cut.AddVolume(&halfTree, identity);
+  cut.SetVolumeOpacity(0, opacity);
+  cut.SetBudget(visibleBricks);
+  cut.Update(camera);
+  int emptyNodes = 0, coarseEmpty = 0;
+  bool transparent = true;
+  for (int n : cut.GetCutNodes(0))
+  {
+    if (!cut.IsEmpty(0, n))
+      continue;
+    ++emptyNodes;
+    coarseEmpty += halfTree.GetNode(n).Level > 0 ? 1 : 0;
+    double b[6];
+    halfTree.GetNodeBounds(n, b);
+    for (int z = static_cast<int>(b[4]); z <= b[5]; ++z)
+      for (int y = static_cast<int>(b[2]); y <= b[3]; ++y)
+        for (int x = static_cast<int>(b[0]); x <= b[1]; ++x)
+          transparent = transparent && opacity(half[(static_cast<size_t>(z) * N + y) * N + x],
+                                         half[(static_cast<size_t>(z) * N + y) * N + x]) == 0;
+  }
+  bool emptyNeverSplit = true;
+  for (int n = 0; n < halfTree.GetNumberOfNodes(); ++n)
+  {
+    int children[8];
+    if (halfTree.GetChildren(n, children) > 0 && cut.IsInCut(0, children[0]))
+      emptyNeverSplit = emptyNeverSplit && !cut.IsEmpty(0, n);
+  }
+  bool visibleFinest = true;
+  for (int n : cut.GetCutNodes(0))
+    visibleFinest = visibleFinest && (cut.IsEmpty(0, n) || halfTree.GetNode(n).Level == 0);
+  Check(cut.GetCost() == visibleBricks && visibleFinest && CoversOnce(cut, 0),
+    "budget = the " + std::to_string(visibleBricks) +
+      " visible level-0 bricks: all at level 0, the empty ones cost nothing");
+  Check(emptyNodes > 0 && coarseEmpty > 0 && transparent && emptyNeverSplit,
+    std::to_string(emptyNodes) + " empty cut nodes (" + std::to_string(coarseEmpty) +
+      " coarser than level 0, never split), every voxel under them transparent");
+
+  vtkBrickAtlasAllocator atlas;
+  atlas.Initialize(8, 8, 8, B);
+  atlas.BeginFrame();
+  std::vector<vtkVolumeCut::Upload> uploads;
+  const int failed = cut.AssignSlots(atlas, uploads);
+  bool emptyNoSlot = true;
+  for (int n : cut.GetCutNodes(0))
+    emptyNoSlot = emptyNoSlot && (cut.GetSlot(0, n) < 0) == cut.IsEmpty(0, n);
+  std::vector<uint16_t> table;
+  cut.BuildIndexTable(0, atlas, table);
+  bool emptyCodes = true;
+  for (int id = 0; id < finest; ++id)
+  {
+    double b[6];
+    halfTree.GetNodeBounds(id, b);
+    emptyCodes = emptyCodes && (table[4 * id + 3] == vtkVolumeCut::EmptyLevel) == (b[1] < 60);
+  }
+  Check(failed == 0 && static_cast<int>(uploads.size()) == visibleBricks &&
+          atlas.GetNumberOfUsedSlots() == visibleBricks && emptyNoSlot && emptyCodes,
+    "empty nodes get no slot; their level-0 bricks read EmptyLevel in the index table");
+
+  // A transfer function that hides everything collapses the cut to one empty root.
+  cut.SetVolumeOpacity(0, [](double, double) { return 0.0; });
+  cut.Update(camera);
+  Check(
+    cut.GetCost() == 0 && cut.GetCutNodes(0).size() == 1 && cut.IsEmpty(0, halfTree.GetRootId()),
+    "all transparent: the cut is the empty root, cost 0");
+}
+
+void FrustumAndParallelProjection(const vtkVolumeBrickTree& tree,
+  int finest,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Frustum and parallel projection\n";
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.SetBudget(finest);
+  vtkVolumeCut::Camera c = camera;
+  c.UseFrustum = true;
+  for (int q = 0; q < 6; ++q) // all planes pass; the first keeps x <= 50 only
+  {
+    c.FrustumPlanes[4 * q + 3] = 1.0;
+  }
+  c.FrustumPlanes[0] = -1.0;
+  c.FrustumPlanes[3] = 50.0;
+  cut.Update(c);
+  bool culledKept = true;
+  int culled = 0;
+  for (int n = 0; n < tree.GetNumberOfNodes(); ++n)
+  {
+    double b[6];
+    tree.GetNodeBounds(n, b);
+    if (b[0] > 50)
+    {
+      ++culled;
+      int children[8];
+      culledKept = culledKept && cut.GetPriority(0, n) == 0 &&
+                   !(tree.GetChildren(n, children) > 0 && cut.IsInCut(0, children[0]));
+    }
+  }
+  Check(culled > 0 && culledKept && cut.GetCost() < finest && CoversOnce(cut, 0),
+    "nodes wholly outside the frustum get priority 0 and are never split (cost " +
+      std::to_string(cut.GetCost()) + " of " + std::to_string(finest) + ")");
+
+  vtkVolumeCut parallel;
+  parallel.AddVolume(&tree, identity);
+  parallel.AddVolume(&tree, far);
+  vtkVolumeCut::Camera p = camera;
+  p.PixelsPerUnit = 2.0;
+  parallel.SetBudget(2 + 7 * 18); // both roots and all 16 level-2 nodes split
+  parallel.Update(p);
+  Check(parallel.GetVolumeCost(0) == 64 && parallel.GetVolumeCost(1) == 64,
+    "parallel projection: distance does not matter, 64 bricks each");
+}
+
+/// Copies the bricks of `uploads` into `texels`, a CPU copy of the atlas texture (size `tex`).
+void Upload(const vtkVolumeCut& cut,
+  const vtkBrickAtlasAllocator& atlas,
+  const std::vector<vtkVolumeCut::Upload>& uploads,
+  const std::array<int, 3>& tex,
+  std::vector<float>& texels)
+{
+  std::vector<float> brick(static_cast<size_t>(B) * B * B);
+  for (const auto& u : uploads)
+  {
+    cut.GetTree(u.Volume)->ExtractBrick(u.Node, brick.data());
+    const auto s = atlas.GetSlotPosition(u.Slot);
+    for (int z = 0; z < B; ++z)
+      for (int y = 0; y < B; ++y)
+        std::copy_n(brick.begin() + (z * B + y) * B,
+          B,
+          texels.begin() +
+            ((static_cast<size_t>(s[2] * B + z) * tex[1] + s[1] * B + y) * tex[0] + s[0] * B));
+  }
+}
+
+/// The index tables of both volumes of `cut` against the tree (every level-0 brick's entry is its
+/// cut node's slot and level, no slot shared) and end to end through `texels`; `inside` says
+/// whether every lookup stayed within its slot's texel centres.
+bool CheckTables(const vtkVolumeCut& cut,
+  const vtkBrickAtlasAllocator& atlas,
+  const vtkVolumeBrickTree& tree,
+  int finest,
+  const std::vector<float>& texels,
+  const std::array<int, 3>& tex,
+  bool& inside,
+  int& levelsSeen,
+  double& maxError)
+{
+  bool entries = true, unique = true;
+  inside = true;
+  std::set<int> slots, levels;
+  maxError = 0;
+  for (int v = 0; v < 2; ++v)
+  {
+    std::vector<uint16_t> table;
+    entries = entries && cut.BuildIndexTable(v, atlas, table) == 0;
+    // Every level-0 brick: walk up to the cut node and compare its entry.
+    for (int id = 0; id < finest; ++id)
+    {
+      int n = id;
+      while (!cut.IsInCut(v, n))
+        n = tree.GetParent(n);
+      const auto s = atlas.GetSlotPosition(cut.GetSlot(v, n));
+      const uint16_t* e = &table[4 * id];
+      entries = entries && cut.GetSlot(v, n) >= 0 && e[0] == s[0] && e[1] == s[1] && e[2] == s[2] &&
+                e[3] == tree.GetNode(n).Level;
+      levels.insert(e[3]);
+    }
+    for (int n : cut.GetCutNodes(v))
+      unique = unique && slots.insert(cut.GetSlot(v, n)).second;
+    // End to end: a sample through table and atlas equals trilinear on the node's level.
+    // Same eight voxels, same weights: only double rounding of the coordinate differs.
+    std::mt19937 rng(5 + v);
+    std::uniform_real_distribution<double> u(0.0, N - 1.0);
+    for (int q = 0; q < 3000; ++q)
+    {
+      double p[3] = { u(rng), u(rng), u(rng) };
+      if (q % 3 == 0) // brick faces and corners of every level
+        for (double& x : p)
+          x = std::round(x / S) * S;
+      double at[3];
+      int level = -1;
+      const int* nb = tree.GetLevelBricks(0);
+      if (!vtkVolumeCut::MapToAtlas(table.data(), nb, B, p, at, level))
+      {
+        entries = false;
+        continue;
+      }
+      // Inside the slot's texel centres, so linear filtering never reads a neighbour.
+      int bi[3];
+      for (int a = 0; a < 3; ++a)
+        bi[a] = std::min(static_cast<int>(p[a] / S), nb[a] - 1);
+      const uint16_t* e = &table[4 * ((bi[2] * nb[1] + bi[1]) * nb[0] + bi[0])];
+      for (int a = 0; a < 3; ++a)
+        inside = inside && at[a] >= e[a] * B + 0.5 && at[a] <= e[a] * B + B - 0.5;
+      const double atlasCoord[3] = { at[0] - 0.5, at[1] - 0.5, at[2] - 0.5 };
+      const double levelCoord[3] = {
+        p[0] / (1 << level), p[1] / (1 << level), p[2] / (1 << level)
+      };
+      const double got = Trilinear(texels, tex.data(), atlasCoord);
+      const double want = TrilinearLevel(tree, level, levelCoord);
+      maxError = std::max(maxError, std::abs(got - want));
+    }
+    // Positions half a voxel outside the volume still land inside their slot.
+    for (int q = 0; q < 200; ++q)
+    {
+      double p[3] = { u(rng), u(rng), u(rng) };
+      p[q % 3] = q % 2 ? -0.5 : N - 0.5;
+      double at[3];
+      int level = -1;
+      vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, p, at, level);
+      const double clamped[3] = { std::clamp(p[0], 0.0, N - 1.0),
+        std::clamp(p[1], 0.0, N - 1.0),
+        std::clamp(p[2], 0.0, N - 1.0) };
+      double at2[3];
+      vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, clamped, at2, level);
+      inside = inside && at[0] == at2[0] && at[1] == at2[1] && at[2] == at2[2];
+    }
+  }
+  levelsSeen = static_cast<int>(levels.size());
+  return entries && unique;
+}
+
+void IndexTableAndAtlasLookup(const vtkVolumeBrickTree& tree,
+  int finest,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Index table and atlas lookup\n";
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.AddVolume(&tree, far);
+  vtkBrickAtlasAllocator atlas;
+  atlas.Initialize(8, 8, 4, B); // 256 slots
+  cut.SetBudget(atlas.GetNumberOfSlots());
+  vtkVolumeCut::Camera c = camera;
+  c.Position[2] = -20.7; // close: several levels in the near volume
+  cut.Update(c);
+  const auto tex = atlas.GetTextureSize();
+  std::vector<float> texels(static_cast<size_t>(tex[0]) * tex[1] * tex[2], -1.0f);
+  std::vector<vtkVolumeCut::Upload> uploads;
+  atlas.BeginFrame();
+  const int failed = cut.AssignSlots(atlas, uploads);
+  Upload(cut, atlas, uploads, tex, texels);
+
+  bool inside = true;
+  int levelsSeen = 0;
+  double maxError = 0;
+  const bool tables =
+    CheckTables(cut, atlas, tree, finest, texels, tex, inside, levelsSeen, maxError);
+  Check(
+    failed == 0 && static_cast<int>(uploads.size()) == cut.GetCost() && tables && levelsSeen >= 3,
+    "index entries = (slot, level) of the cut node found by walking up from every level-0 "
+    "brick; " +
+      std::to_string(levelsSeen) + " levels; no slot shared");
+  Check(inside, "lookups stay within the texel centres of their slot, also half a voxel outside");
+  Check(maxError < 1e-9,
+    "6000 samples through index table + atlas == trilinear on the node's level (max error " +
+      Num(maxError) + ", bound 1e-9)");
+
+  // Next frame: the camera moves; only bricks new to the atlas are uploaded.
+  c.Position[0] += 40;
+  cut.Update(c);
+  atlas.BeginFrame();
+  atlas.ResetStatistics();
+  cut.AssignSlots(atlas, uploads);
+  Upload(cut, atlas, uploads, tex, texels);
+  const auto& st = atlas.GetStatistics();
+  const bool tables2 =
+    CheckTables(cut, atlas, tree, finest, texels, tex, inside, levelsSeen, maxError);
+  Check(st.Misses == static_cast<int64_t>(uploads.size()) && st.Hits + st.Misses == cut.GetCost() &&
+          st.Hits > 0 && tables2 && maxError < 1e-9,
+    "after a camera move: " + std::to_string(st.Hits) + " hits, " + std::to_string(uploads.size()) +
+      " uploads, " + std::to_string(st.Evictions) + " evictions; tables and samples still exact");
+}
+
+void PriorityFunction(const vtkVolumeBrickTree& tree,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16])
+{
+  // --- A priority function (what a renderer with level-of-detail feedback gives): rays asked
+  // for the level-0 bricks of the slab i == 0 only; a node's priority is the number of asked
+  // bricks strictly below it. Exactly the nodes with demand are split, nothing else.
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.SetBudget(tree.GetNumberOfNodes());
+  std::vector<double> demand(tree.GetNumberOfNodes(), 0.0);
+  const int* nb = tree.GetLevelBricks(0);
+  std::vector<int> asked;
+  for (int k = 0; k < nb[2]; ++k)
+    for (int j = 0; j < nb[1]; ++j)
+    {
+      asked.push_back(tree.GetNodeId(0, 0, j, k));
+      for (int n = tree.GetParent(asked.back()); n >= 0; n = tree.GetParent(n))
+        demand[n] += 1.0;
+    }
+  cut.SetVolumePriority(0, [&demand](int n, double) { return demand[n]; });
+  int updates = 0;
+  while (cut.Update(camera) > 0 && updates < 100)
+    ++updates;
+  bool askedFinest = true;
+  for (int id : asked)
+    askedFinest = askedFinest && cut.IsInCut(0, id);
+  bool exact = true; // a cut node has no demand of its own, and its parent had some
+  for (int n : cut.GetCutNodes(0))
+  {
+    const int parent = tree.GetParent(n);
+    exact = exact && demand[n] == 0.0 && (parent < 0 || demand[parent] > 0.0);
+  }
+  // The slab's 64 bricks and their 64 siblings (i == 1) at level 0, then 16 level-1 and 4
+  // level-2 nodes beside them.
+  std::cout << "Priority function: " << asked.size() << " bricks asked for, cut of "
+            << cut.GetCost() << " bricks after " << updates << " updates\n";
+  Check(askedFinest && exact && CoversOnce(cut, 0) && cut.GetCost() == 2 * 64 + 16 + 4,
+    "a priority function: only nodes with demand split; the asked bricks finest, the rest "
+    "coarse");
+  cut.SetVolumePriority(0, nullptr);
+  cut.Update(camera);
+  Check(
+    cut.GetCost() > 2 * 64 + 16 + 4, "without it the screen-space error refines the rest again");
+}
+
+}
+
 int TestVolumeCut(int, char*[])
 {
   const int dims[3] = { N, N, N };
@@ -199,451 +700,17 @@ int TestVolumeCut(int, char*[])
   double identity[16], far[16];
   Translation(0, 0, 0, identity);
   Translation(1000, 0, 0, far);
-
-  std::cout << "Limits\n";
-  {
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.SetBudget(finest);
-    cut.Update(camera);
-    bool allFinest = cut.GetCost() == finest;
-    for (int n : cut.GetCutNodes(0))
-      allFinest = allFinest && tree.GetNode(n).Level == 0;
-    Check(allFinest && CoversOnce(cut, 0),
-      "budget = all " + std::to_string(finest) + " level-0 bricks: the cut is level 0 everywhere");
-    cut.SetBudget(1);
-    cut.Update(camera);
-    Check(cut.GetCutNodes(0) == std::vector<int>{ tree.GetRootId() } && !cut.IsOverBudget(),
-      "budget 1: the root alone (over-budget cut collapsed back in one Update)");
-    cut.SetBudget(7);
-    cut.Update(camera);
-    Check(cut.GetCutNodes(0).size() == 1,
-      "budget 7: still the root (its split costs 8 - 1 = 7 more bricks)");
-    cut.SetBudget(8);
-    cut.Update(camera);
-    Check(cut.GetCost() == 8 && CoversOnce(cut, 0), "budget 8: the root's eight children");
-
-    vtkVolumeCut two;
-    two.AddVolume(&tree, identity);
-    two.AddVolume(&tree, far);
-    two.SetBudget(2 * finest);
-    two.Update(camera);
-    Check(two.GetCost() == 2 * finest && MeanLevel(two, 0) == 0 && MeanLevel(two, 1) == 0,
-      "two volumes, budget = both finest: both at level 0, near and far alike");
-    two.SetBudget(0);
-    two.Update(camera);
-    Check(two.GetCost() == 2 && two.IsOverBudget() && two.GetCutNodes(1).size() == 1,
-      "budget 0: both roots stay (reported over budget)");
-  }
-
-  std::cout << "Shared budget between a near and a far volume (paper Fig. 2)\n";
-  {
-    // Side by side as in the figure: the eye 150 in front of the first, 250 from the second.
-    double side[16];
-    Translation(260, 0, 0, side);
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.AddVolume(&tree, side);
-    const int budget = 150;
-    cut.SetBudget(budget);
-    cut.Update(camera);
-    double lowSplit = 0, highLeaf = 0;
-    const bool ordered = Ordered(cut, lowSplit, highLeaf);
-    Check(cut.GetCost() <= budget && AllCoverOnce(cut),
-      "budget " + std::to_string(budget) + ": cost " + std::to_string(cut.GetCost()) +
-        ", each volume covered exactly once");
-    Check(cut.GetVolumeCost(0) > cut.GetVolumeCost(1) && MeanLevel(cut, 0) < MeanLevel(cut, 1),
-      "near volume: " + std::to_string(cut.GetVolumeCost(0)) + " bricks, mean level " +
-        Num(MeanLevel(cut, 0)) + "; far: " + std::to_string(cut.GetVolumeCost(1)) +
-        " bricks, mean level " + Num(MeanLevel(cut, 1)));
-    Check(ordered,
-      "one order for both volumes: every split node's error (>= " + Num(lowSplit) +
-        " px) >= every unsplit one's (<= " + Num(highLeaf) + " px)");
-    Check(cut.Update(camera) == 0 && cut.GetCost() <= budget, "a second Update changes nothing");
-
-    // The eye moves over to the second volume; at most 24 new bricks per Update.
-    camera.Position[0] += 260;
-    cut.SetMaxNewBricksPerUpdate(24);
-    bool bounded = true, within = true, covered = true;
-    int updates = 0;
-    for (int added = 1; added > 0 && updates < 100; ++updates)
+  return strata_test::RunSubTests(
     {
-      added = cut.Update(camera);
-      bounded = bounded && added <= 24;
-      within = within && cut.GetCost() <= budget;
-      covered = covered && AllCoverOnce(cut);
-    }
-    const bool orderedAfter = Ordered(cut, lowSplit, highLeaf);
-    Check(bounded && within && covered && updates < 100,
-      "eye moved to the other volume: converged in " + std::to_string(updates) +
-        " Updates of <= 24 new bricks, within budget and covering after each");
-    Check(cut.GetVolumeCost(1) > cut.GetVolumeCost(0) && MeanLevel(cut, 1) < MeanLevel(cut, 0) &&
-            orderedAfter,
-      "the atlas moved with it: near " + std::to_string(cut.GetVolumeCost(1)) +
-        " bricks, mean level " + Num(MeanLevel(cut, 1)) + "; far " +
-        std::to_string(cut.GetVolumeCost(0)) + ", mean level " + Num(MeanLevel(cut, 0)));
-
-    // The incremental result is the greedy one: same cut as one unbounded Update from roots.
-    const auto incremental = CutSet(cut);
-    cut.SetMaxNewBricksPerUpdate(0);
-    cut.Reset();
-    cut.Update(camera);
-    Check(CutSet(cut) == incremental, "bounded incremental Updates reach the unbounded cut");
-    camera.Position[0] -= 260;
-  }
-
-  std::cout << "Random cameras and budgets\n";
-  {
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.AddVolume(&tree, far);
-    double scaled[16];
-    Translation(300, 200, 0, scaled);
-    scaled[0] = scaled[5] = 0.5;
-    scaled[10] = 3.0; // anisotropic spacing
-    cut.AddVolume(&tree, scaled);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> pos(-500, 1500);
-    bool within = true, covered = true, orderedAll = true;
-    for (int step = 0; step < 60; ++step)
-    {
-      vtkVolumeCut::Camera c = camera;
-      c.Position[0] = pos(rng);
-      c.Position[1] = pos(rng) * 0.3;
-      c.Position[2] = pos(rng) * 0.3 - 200;
-      cut.SetBudget(3 + static_cast<int>(rng() % 1200));
-      cut.SetMaxNewBricksPerUpdate(step % 3 == 0 ? 0 : 40);
-      cut.Update(c);
-      within = within && cut.GetCost() <= cut.GetBudget();
-      covered = covered && AllCoverOnce(cut);
-      if (cut.GetMaxNewBricksPerUpdate() == 0)
-      {
-        double lo, hi;
-        orderedAll = orderedAll && Ordered(cut, lo, hi);
-      }
-    }
-    Check(within, "60 random cameras and budgets (3 volumes, one anisotropic): never over budget");
-    Check(covered, "every volume covered exactly once after every Update");
-    Check(orderedAll, "unbounded Updates always end ordered by screen-space error");
-  }
-
-  std::cout << "Empty-space skipping\n";
-  {
-    // Zero left of x = 60, 100..199 from there; opacity 0 below 50, 1 from 100.
-    std::vector<uint8_t> half(field.size());
-    for (int z = 0; z < N; ++z)
-      for (int y = 0; y < N; ++y)
-        for (int x = 0; x < N; ++x)
-          half[(static_cast<size_t>(z) * N + y) * N + x] =
-            static_cast<uint8_t>(x < 60 ? 0 : 100 + (x + y + z) % 100);
-    vtkVolumeBrickTree halfTree;
-    halfTree.Build(half.data(), dims, B);
-    const double tf[8] = { 0, 0, 50, 0, 100, 1, 255, 1 };
-    auto opacity = [&tf](double lo, double hi)
-    { return vtkVolumeCut::MaxOfPiecewiseLinear(tf, 4, lo, hi); };
-    Check(opacity(0, 49) == 0 && opacity(0, 50) == 0 && opacity(0, 75) == 0.5 &&
-            opacity(60, 80) == 0.6 && opacity(120, 130) == 1 && opacity(-5, 300) == 1,
-      "max of the piecewise-linear opacity over value ranges is exact");
-
-    // Brute force: level-0 bricks holding a visible voxel.
-    int visibleBricks = 0;
-    for (int id = 0; id < finest; ++id)
-    {
-      double b[6];
-      halfTree.GetNodeBounds(id, b);
-      visibleBricks += b[1] >= 60 ? 1 : 0;
-    }
-    vtkVolumeCut cut;
-    cut.AddVolume(&halfTree, identity);
-    cut.SetVolumeOpacity(0, opacity);
-    cut.SetBudget(visibleBricks);
-    cut.Update(camera);
-    int emptyNodes = 0, coarseEmpty = 0;
-    bool transparent = true;
-    for (int n : cut.GetCutNodes(0))
-    {
-      if (!cut.IsEmpty(0, n))
-        continue;
-      ++emptyNodes;
-      coarseEmpty += halfTree.GetNode(n).Level > 0 ? 1 : 0;
-      double b[6];
-      halfTree.GetNodeBounds(n, b);
-      for (int z = static_cast<int>(b[4]); z <= b[5]; ++z)
-        for (int y = static_cast<int>(b[2]); y <= b[3]; ++y)
-          for (int x = static_cast<int>(b[0]); x <= b[1]; ++x)
-            transparent = transparent && opacity(half[(static_cast<size_t>(z) * N + y) * N + x],
-                                           half[(static_cast<size_t>(z) * N + y) * N + x]) == 0;
-    }
-    bool emptyNeverSplit = true;
-    for (int n = 0; n < halfTree.GetNumberOfNodes(); ++n)
-    {
-      int children[8];
-      if (halfTree.GetChildren(n, children) > 0 && cut.IsInCut(0, children[0]))
-        emptyNeverSplit = emptyNeverSplit && !cut.IsEmpty(0, n);
-    }
-    bool visibleFinest = true;
-    for (int n : cut.GetCutNodes(0))
-      visibleFinest = visibleFinest && (cut.IsEmpty(0, n) || halfTree.GetNode(n).Level == 0);
-    Check(cut.GetCost() == visibleBricks && visibleFinest && CoversOnce(cut, 0),
-      "budget = the " + std::to_string(visibleBricks) +
-        " visible level-0 bricks: all at level 0, the empty ones cost nothing");
-    Check(emptyNodes > 0 && coarseEmpty > 0 && transparent && emptyNeverSplit,
-      std::to_string(emptyNodes) + " empty cut nodes (" + std::to_string(coarseEmpty) +
-        " coarser than level 0, never split), every voxel under them transparent");
-
-    vtkBrickAtlasAllocator atlas;
-    atlas.Initialize(8, 8, 8, B);
-    atlas.BeginFrame();
-    std::vector<vtkVolumeCut::Upload> uploads;
-    const int failed = cut.AssignSlots(atlas, uploads);
-    bool emptyNoSlot = true;
-    for (int n : cut.GetCutNodes(0))
-      emptyNoSlot = emptyNoSlot && (cut.GetSlot(0, n) < 0) == cut.IsEmpty(0, n);
-    std::vector<uint16_t> table;
-    cut.BuildIndexTable(0, atlas, table);
-    bool emptyCodes = true;
-    for (int id = 0; id < finest; ++id)
-    {
-      double b[6];
-      halfTree.GetNodeBounds(id, b);
-      emptyCodes = emptyCodes && (table[4 * id + 3] == vtkVolumeCut::EmptyLevel) == (b[1] < 60);
-    }
-    Check(failed == 0 && static_cast<int>(uploads.size()) == visibleBricks &&
-            atlas.GetNumberOfUsedSlots() == visibleBricks && emptyNoSlot && emptyCodes,
-      "empty nodes get no slot; their level-0 bricks read EmptyLevel in the index table");
-
-    // A transfer function that hides everything collapses the cut to one empty root.
-    cut.SetVolumeOpacity(0, [](double, double) { return 0.0; });
-    cut.Update(camera);
-    Check(
-      cut.GetCost() == 0 && cut.GetCutNodes(0).size() == 1 && cut.IsEmpty(0, halfTree.GetRootId()),
-      "all transparent: the cut is the empty root, cost 0");
-  }
-
-  std::cout << "Frustum and parallel projection\n";
-  {
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.SetBudget(finest);
-    vtkVolumeCut::Camera c = camera;
-    c.UseFrustum = true;
-    for (int q = 0; q < 6; ++q) // all planes pass; the first keeps x <= 50 only
-    {
-      c.FrustumPlanes[4 * q + 3] = 1.0;
-    }
-    c.FrustumPlanes[0] = -1.0;
-    c.FrustumPlanes[3] = 50.0;
-    cut.Update(c);
-    bool culledKept = true;
-    int culled = 0;
-    for (int n = 0; n < tree.GetNumberOfNodes(); ++n)
-    {
-      double b[6];
-      tree.GetNodeBounds(n, b);
-      if (b[0] > 50)
-      {
-        ++culled;
-        int children[8];
-        culledKept = culledKept && cut.GetPriority(0, n) == 0 &&
-                     !(tree.GetChildren(n, children) > 0 && cut.IsInCut(0, children[0]));
-      }
-    }
-    Check(culled > 0 && culledKept && cut.GetCost() < finest && CoversOnce(cut, 0),
-      "nodes wholly outside the frustum get priority 0 and are never split (cost " +
-        std::to_string(cut.GetCost()) + " of " + std::to_string(finest) + ")");
-
-    vtkVolumeCut parallel;
-    parallel.AddVolume(&tree, identity);
-    parallel.AddVolume(&tree, far);
-    vtkVolumeCut::Camera p = camera;
-    p.PixelsPerUnit = 2.0;
-    parallel.SetBudget(2 + 7 * 18); // both roots and all 16 level-2 nodes split
-    parallel.Update(p);
-    Check(parallel.GetVolumeCost(0) == 64 && parallel.GetVolumeCost(1) == 64,
-      "parallel projection: distance does not matter, 64 bricks each");
-  }
-
-  std::cout << "Index table and atlas lookup\n";
-  {
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.AddVolume(&tree, far);
-    vtkBrickAtlasAllocator atlas;
-    atlas.Initialize(8, 8, 4, B); // 256 slots
-    cut.SetBudget(atlas.GetNumberOfSlots());
-    vtkVolumeCut::Camera c = camera;
-    c.Position[2] = -20.7; // close: several levels in the near volume
-    cut.Update(c);
-    const auto tex = atlas.GetTextureSize();
-    std::vector<float> texels(static_cast<size_t>(tex[0]) * tex[1] * tex[2], -1.0f);
-    std::vector<float> brick(static_cast<size_t>(B) * B * B);
-    auto upload = [&](const std::vector<vtkVolumeCut::Upload>& uploads)
-    {
-      for (const auto& u : uploads)
-      {
-        cut.GetTree(u.Volume)->ExtractBrick(u.Node, brick.data());
-        const auto s = atlas.GetSlotPosition(u.Slot);
-        for (int z = 0; z < B; ++z)
-          for (int y = 0; y < B; ++y)
-            std::copy_n(brick.begin() + (z * B + y) * B,
-              B,
-              texels.begin() +
-                ((static_cast<size_t>(s[2] * B + z) * tex[1] + s[1] * B + y) * tex[0] + s[0] * B));
-      }
-    };
-    std::vector<vtkVolumeCut::Upload> uploads;
-    atlas.BeginFrame();
-    const int failed = cut.AssignSlots(atlas, uploads);
-    upload(uploads);
-
-    bool inside = true;
-    auto checkTables = [&](int& levelsSeen, double& maxError)
-    {
-      bool entries = true, unique = true;
-      inside = true;
-      std::set<int> slots, levels;
-      maxError = 0;
-      for (int v = 0; v < 2; ++v)
-      {
-        std::vector<uint16_t> table;
-        entries = entries && cut.BuildIndexTable(v, atlas, table) == 0;
-        // Every level-0 brick: walk up to the cut node and compare its entry.
-        for (int id = 0; id < finest; ++id)
-        {
-          int n = id;
-          while (!cut.IsInCut(v, n))
-            n = tree.GetParent(n);
-          const auto s = atlas.GetSlotPosition(cut.GetSlot(v, n));
-          const uint16_t* e = &table[4 * id];
-          entries = entries && cut.GetSlot(v, n) >= 0 && e[0] == s[0] && e[1] == s[1] &&
-                    e[2] == s[2] && e[3] == tree.GetNode(n).Level;
-          levels.insert(e[3]);
-        }
-        for (int n : cut.GetCutNodes(v))
-          unique = unique && slots.insert(cut.GetSlot(v, n)).second;
-        // End to end: a sample through table and atlas equals trilinear on the node's level.
-        // Same eight voxels, same weights: only double rounding of the coordinate differs.
-        std::mt19937 rng(5 + v);
-        std::uniform_real_distribution<double> u(0.0, N - 1.0);
-        for (int q = 0; q < 3000; ++q)
-        {
-          double p[3] = { u(rng), u(rng), u(rng) };
-          if (q % 3 == 0) // brick faces and corners of every level
-            for (double& x : p)
-              x = std::round(x / S) * S;
-          double at[3];
-          int level = -1;
-          const int* nb = tree.GetLevelBricks(0);
-          if (!vtkVolumeCut::MapToAtlas(table.data(), nb, B, p, at, level))
-          {
-            entries = false;
-            continue;
-          }
-          // Inside the slot's texel centres, so linear filtering never reads a neighbour.
-          int bi[3];
-          for (int a = 0; a < 3; ++a)
-            bi[a] = std::min(static_cast<int>(p[a] / S), nb[a] - 1);
-          const uint16_t* e = &table[4 * ((bi[2] * nb[1] + bi[1]) * nb[0] + bi[0])];
-          for (int a = 0; a < 3; ++a)
-            inside = inside && at[a] >= e[a] * B + 0.5 && at[a] <= e[a] * B + B - 0.5;
-          const double atlasCoord[3] = { at[0] - 0.5, at[1] - 0.5, at[2] - 0.5 };
-          const double levelCoord[3] = {
-            p[0] / (1 << level), p[1] / (1 << level), p[2] / (1 << level)
-          };
-          const double got = Trilinear(texels, tex.data(), atlasCoord);
-          const double want = TrilinearLevel(tree, level, levelCoord);
-          maxError = std::max(maxError, std::abs(got - want));
-        }
-        // Positions half a voxel outside the volume still land inside their slot.
-        for (int q = 0; q < 200; ++q)
-        {
-          double p[3] = { u(rng), u(rng), u(rng) };
-          p[q % 3] = q % 2 ? -0.5 : N - 0.5;
-          double at[3];
-          int level = -1;
-          vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, p, at, level);
-          const double clamped[3] = { std::clamp(p[0], 0.0, N - 1.0),
-            std::clamp(p[1], 0.0, N - 1.0),
-            std::clamp(p[2], 0.0, N - 1.0) };
-          double at2[3];
-          vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, clamped, at2, level);
-          inside = inside && at[0] == at2[0] && at[1] == at2[1] && at[2] == at2[2];
-        }
-      }
-      levelsSeen = static_cast<int>(levels.size());
-      return entries && unique;
-    };
-    int levelsSeen = 0;
-    double maxError = 0;
-    const bool tables = checkTables(levelsSeen, maxError);
-    Check(
-      failed == 0 && static_cast<int>(uploads.size()) == cut.GetCost() && tables && levelsSeen >= 3,
-      "index entries = (slot, level) of the cut node found by walking up from every level-0 "
-      "brick; " +
-        std::to_string(levelsSeen) + " levels; no slot shared");
-    Check(inside, "lookups stay within the texel centres of their slot, also half a voxel outside");
-    Check(maxError < 1e-9,
-      "6000 samples through index table + atlas == trilinear on the node's level (max error " +
-        Num(maxError) + ", bound 1e-9)");
-
-    // Next frame: the camera moves; only bricks new to the atlas are uploaded.
-    c.Position[0] += 40;
-    cut.Update(c);
-    atlas.BeginFrame();
-    atlas.ResetStatistics();
-    cut.AssignSlots(atlas, uploads);
-    upload(uploads);
-    const auto& st = atlas.GetStatistics();
-    const bool tables2 = checkTables(levelsSeen, maxError);
-    Check(st.Misses == static_cast<int64_t>(uploads.size()) &&
-            st.Hits + st.Misses == cut.GetCost() && st.Hits > 0 && tables2 && maxError < 1e-9,
-      "after a camera move: " + std::to_string(st.Hits) + " hits, " +
-        std::to_string(uploads.size()) + " uploads, " + std::to_string(st.Evictions) +
-        " evictions; tables and samples still exact");
-  }
-
-  // --- A priority function (what a renderer with level-of-detail feedback gives): rays asked
-  // for the level-0 bricks of the slab i == 0 only; a node's priority is the number of asked
-  // bricks strictly below it. Exactly the nodes with demand are split, nothing else.
-  {
-    vtkVolumeCut cut;
-    cut.AddVolume(&tree, identity);
-    cut.SetBudget(tree.GetNumberOfNodes());
-    std::vector<double> demand(tree.GetNumberOfNodes(), 0.0);
-    const int* nb = tree.GetLevelBricks(0);
-    std::vector<int> asked;
-    for (int k = 0; k < nb[2]; ++k)
-      for (int j = 0; j < nb[1]; ++j)
-      {
-        asked.push_back(tree.GetNodeId(0, 0, j, k));
-        for (int n = tree.GetParent(asked.back()); n >= 0; n = tree.GetParent(n))
-          demand[n] += 1.0;
-      }
-    cut.SetVolumePriority(0, [&demand](int n, double) { return demand[n]; });
-    int updates = 0;
-    while (cut.Update(camera) > 0 && updates < 100)
-      ++updates;
-    bool askedFinest = true;
-    for (int id : asked)
-      askedFinest = askedFinest && cut.IsInCut(0, id);
-    bool exact = true; // a cut node has no demand of its own, and its parent had some
-    for (int n : cut.GetCutNodes(0))
-    {
-      const int parent = tree.GetParent(n);
-      exact = exact && demand[n] == 0.0 && (parent < 0 || demand[parent] > 0.0);
-    }
-    // The slab's 64 bricks and their 64 siblings (i == 1) at level 0, then 16 level-1 and 4
-    // level-2 nodes beside them.
-    std::cout << "Priority function: " << asked.size() << " bricks asked for, cut of "
-              << cut.GetCost() << " bricks after " << updates << " updates\n";
-    Check(askedFinest && exact && CoversOnce(cut, 0) && cut.GetCost() == 2 * 64 + 16 + 4,
-      "a priority function: only nodes with demand split; the asked bricks finest, the rest "
-      "coarse");
-    cut.SetVolumePriority(0, nullptr);
-    cut.Update(camera);
-    Check(
-      cut.GetCost() > 2 * 64 + 16 + 4, "without it the screen-space error refines the rest again");
-  }
-
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+      { "Limits", [&] { Limits(tree, finest, camera, identity, far); } },
+      { "SharedBudget", [&] { SharedBudget(tree, camera, identity); } },
+      { "RandomCamerasAndBudgets", [&] { RandomCamerasAndBudgets(tree, camera, identity, far); } },
+      { "EmptySpaceSkipping", [&] { EmptySpaceSkipping(field, dims, finest, camera, identity); } },
+      { "FrustumAndParallelProjection",
+        [&] { FrustumAndParallelProjection(tree, finest, camera, identity, far); } },
+      { "IndexTableAndAtlasLookup",
+        [&] { IndexTableAndAtlasLookup(tree, finest, camera, identity, far); } },
+      { "PriorityFunction", [&] { PriorityFunction(tree, camera, identity); } },
+    },
+    [] { return failures; });
 }

@@ -1,8 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataRealVolumes.h"
 
-#include "StrataTestHelpers.h"
-
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkImageData.h"
@@ -25,10 +23,9 @@ namespace strata_test
 {
 namespace
 {
-std::string SharedData()
+std::string SharedData(const TestPaths& paths)
 {
-  const std::string d = SharedDataDirectory();
-  return d.empty() ? "../shared/data" : d;
+  return paths.SharedData.empty() ? "../shared/data" : paths.SharedData;
 }
 
 bool Readable(const std::string& path)
@@ -38,13 +35,15 @@ bool Readable(const std::string& path)
 }
 
 /// Reads a data set by name; on failure returns nullptr and says why in `why`.
-vtkSmartPointer<vtkImageData> LoadRealVolume(const std::string& name, std::string& why)
+vtkSmartPointer<vtkImageData> LoadRealVolume(const std::string& name,
+  const TestPaths& paths,
+  std::string& why)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
-  const std::string dir = SharedData() + "/volumes/";
+  const std::string dir = SharedData(paths) + "/volumes/";
   if (name == "bucky")
   {
-    std::string path = TestDataDirectory() + "/volumes/bucky.raw";
+    std::string path = paths.Data + "/volumes/bucky.raw";
     if (!Readable(path))
       path = dir + "bucky.raw";
     if (!Readable(path))
@@ -63,7 +62,7 @@ vtkSmartPointer<vtkImageData> LoadRealVolume(const std::string& name, std::strin
   }
   else if (name == "tooth")
   {
-    std::string path = TestDataDirectory() + "/volumes/tooth.nrrd";
+    std::string path = paths.Data + "/volumes/tooth.nrrd";
     if (!Readable(path))
       path = dir + "tooth.nrrd";
     if (!Readable(path))

@@ -74,11 +74,13 @@ long PixelsOff(const std::vector<unsigned char>& image,
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with
-/// several rays per pixel the reference averages the same sub-pixel rays as the mapper.
+/// several rays per pixel the reference averages the same sub-pixel rays as the mapper. Writes
+/// both images as <imageDirectory>/<name>-gpu.png and -ref.png.
 VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
   const std::string& name,
+  const std::string& imageDirectory,
   double stepFraction = 1.0 / 16.0,
   int raysPerPixel = 1);
 

@@ -1,13 +1,16 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
-// CompareWithBaseline (StrataTestHelpers.h), apart from the other helpers because it needs
-// VTK::TestingRendering, which the demo and the benchmarks do not link.
-#include "StrataTestHelpers.h"
+// CompareWithBaseline: VTK::TestingRendering's regression image test, then a pixel-by-pixel
+// count.
+#include "StrataRegressionImage.h"
+
+#include "StrataImageHelpers.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPointData.h"
+#include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkTesting.h"
 #include "vtkUnsignedCharArray.h"
@@ -18,17 +21,25 @@
 
 namespace strata_test
 {
-bool CompareWithBaseline(vtkRenderWindow* win, const std::string& name, double threshold)
+bool CompareWithBaseline(int argc,
+  char* argv[],
+  vtkRenderWindow* win,
+  const std::string& name,
+  double threshold)
 {
-  vtkNew<vtkTesting> testing;
-  const std::string baseline = TestDataDirectory() + "/Baseline/" + name + ".png";
-  for (const std::string& arg :
-    { std::string("-V"), baseline, std::string("-T"), OutputDirectory() })
+  // The baseline as vtkTesting finds it on the command line: -V, relative to -D unless absolute.
+  vtkNew<vtkTesting> arguments;
+  for (int i = 0; i < argc; ++i)
   {
-    testing->AddArgument(arg.c_str());
+    arguments->AddArgument(argv[i]);
   }
-  testing->SetRenderWindow(win);
-  const bool vtkPassed = testing->RegressionTest(threshold, std::cout) == vtkTesting::PASSED;
+  if (!arguments->IsValidImageSpecified())
+  {
+    std::cout << name << ": no baseline image given (-V)\n";
+    return false;
+  }
+  const std::string baseline = arguments->GetValidImageFileName();
+  const bool vtkPassed = vtkRegressionTestImageThreshold(win, threshold) == vtkTesting::PASSED;
   std::cout << name << ": vtkTesting regression image against " << baseline << " (threshold "
             << threshold << "): " << (vtkPassed ? "passed" : "FAILED") << "\n";
   if (!vtkPassed)

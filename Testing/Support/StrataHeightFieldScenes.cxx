@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataHeightFieldScenes.h"
 
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -122,7 +123,8 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
   vtkActor* actor,
   vtkStackedHeightFieldMapper* mapper,
   const std::vector<vtkSmartPointer<vtkImageData>>& images,
-  const std::string& name)
+  const std::string& name,
+  const std::string& imageDirectory)
 {
   ReferenceResult r;
   const auto oldMode = mapper->GetOutputMode();
@@ -225,7 +227,7 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
     }
     r.MaxRelDepthError = std::max(r.MaxRelDepthError, rel);
   }
-  const std::string base = OutputDirectory() + "/" + name;
+  const std::string base = imageDirectory + "/" + name;
   WriteIdPNG(base + "-gpu.png", r.GpuIds, w, h);
   WriteIdPNG(base + "-ref.png", r.RefIds, w, h);
   return r;

@@ -56,13 +56,15 @@ struct ReferenceResult
 
 /// Renders `mapper` (switched to HorizonId output) in `win`/`ren` and compares ids and depth,
 /// pixel by pixel, with vtkHeightFieldReferenceCaster on rays built from VTK's camera in
-/// double precision. `images` are the mapper's inputs (for the grid geometry).
+/// double precision. `images` are the mapper's inputs (for the grid geometry). Writes both id
+/// images as <imageDirectory>/<name>-gpu.png and -ref.png.
 ReferenceResult CompareWithReference(vtkRenderWindow* win,
   vtkRenderer* ren,
   vtkActor* actor,
   vtkStackedHeightFieldMapper* mapper,
   const std::vector<vtkSmartPointer<vtkImageData>>& images,
-  const std::string& name);
+  const std::string& name,
+  const std::string& imageDirectory);
 
 /// Asserts the bounds on a comparison, printing the numbers: mismatches <= 0.5 % of
 /// covered pixels, no mismatched region wider than one pixel, depth within its bound, and at

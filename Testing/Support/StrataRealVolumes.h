@@ -5,6 +5,8 @@
 #ifndef StrataRealVolumes_h
 #define StrataRealVolumes_h
 
+#include "StrataTestPaths.h" // For TestPaths
+
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -18,10 +20,12 @@ class vtkVolumeProperty;
 
 namespace strata_test
 {
-/// Reads a data set by name (bucky first from TestDataDirectory(), the others from
-/// SharedDataDirectory(), tooth also from TestDataDirectory()); on failure returns nullptr and
-/// says why in `why`. The origin is set to 0.
-vtkSmartPointer<vtkImageData> LoadRealVolume(const std::string& name, std::string& why);
+/// Reads a data set by name (bucky and tooth first from paths.Data, all from paths.SharedData,
+/// ../shared/data when that is not given); on failure returns nullptr and says why in `why`.
+/// The origin is set to 0.
+vtkSmartPointer<vtkImageData> LoadRealVolume(const std::string& name,
+  const TestPaths& paths,
+  std::string& why);
 
 /// Hand-tuned transfer functions over the full 8-bit range of each data set, opacity per voxel,
 /// trilinear interpolation.

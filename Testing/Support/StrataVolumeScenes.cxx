@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataVolumeScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCamera.h"
@@ -129,6 +130,7 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
   const std::string& name,
+  const std::string& imageDirectory,
   double stepFraction,
   int raysPerPixel)
 {
@@ -176,8 +178,8 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   r.Rms = e.Rms;
   r.Max = e.Max;
   ren->SetBackground(oldBackground);
-  WritePNG(OutputDirectory() + "/" + name + "-gpu.png", r.Gpu, w, h);
-  WritePNG(OutputDirectory() + "/" + name + "-ref.png", refImage, w, h);
+  WritePNG(imageDirectory + "/" + name + "-gpu.png", r.Gpu, w, h);
+  WritePNG(imageDirectory + "/" + name + "-ref.png", refImage, w, h);
   return r;
 }
 

@@ -1,0 +1,159 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "StrataMultiVolumeCase.h"
+
+#include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataTestHelpers.h"
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTransform.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+namespace strata_test
+{
+VolumeScene::VolumeScene(const std::string& imageDirectory)
+  : ImageDirectory(imageDirectory)
+{
+  MakeWindow(this->Win, this->Ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
+  this->Mapper->SetSampleDistance(0.25);
+  this->Multi->SetMapper(this->Mapper);
+}
+
+vtkVolume* VolumeScene::Add(vtkImageData* image,
+  vtkVolumeProperty* property,
+  vtkTransform* transform)
+{
+  const int port = static_cast<int>(this->Images.size());
+  this->Mapper->SetInputDataObject(port, image);
+  auto v = vtkSmartPointer<vtkVolume>::New();
+  v->SetProperty(property);
+  if (transform)
+  {
+    v->SetUserTransform(transform);
+  }
+  this->Multi->SetVolume(v, port);
+  this->Images.emplace_back(image);
+  this->Volumes.push_back(v);
+  return v;
+}
+
+void VolumeScene::UseSingleVolume()
+{
+  this->Volumes[0]->SetMapper(this->Mapper);
+  this->Ren->AddVolume(this->Volumes[0]);
+}
+
+void VolumeScene::UseMultiVolume()
+{
+  this->Ren->AddVolume(this->Multi);
+}
+
+void VolumeScene::Camera(const double pos[3], const double focal[3])
+{
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX },
+         hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (size_t v = 0; v < this->Images.size(); ++v)
+  {
+    double b[6];
+    this->Images[v]->GetBounds(b);
+    this->Volumes[v]->ComputeMatrix();
+    vtkMatrix4x4* m = this->Volumes[v]->GetMatrix();
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double p[4] = {
+        b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1.0
+      };
+      double w[4];
+      m->MultiplyPoint(p, w);
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], w[c]);
+        hi[c] = std::max(hi[c], w[c]);
+      }
+    }
+  }
+  double centre[3], dir[3], radius = 0.0, len = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    centre[c] = 0.5 * (lo[c] + hi[c]);
+    radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
+    dir[c] = pos[c] - focal[c];
+    len += dir[c] * dir[c];
+  }
+  radius = std::sqrt(radius);
+  len = std::sqrt(len);
+  const double distance = 0.8 * radius / std::sin(15.0 * std::acos(-1.0) / 180.0);
+  vtkCamera* cam = this->Ren->GetActiveCamera();
+  cam->SetFocalPoint(centre);
+  cam->SetPosition(centre[0] + distance * dir[0] / len,
+    centre[1] + distance * dir[1] / len,
+    centre[2] + distance * dir[2] / len);
+  cam->SetViewUp(0, 0, 1);
+  cam->SetViewAngle(30);
+  this->Ren->ResetCameraClippingRange(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+}
+
+VolumeComparison VolumeScene::Compare(const std::string& name, int raysPerPixel)
+{
+  std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
+  for (size_t i = 0; i < this->Images.size(); ++i)
+    list.emplace_back(this->Images[i], this->Volumes[i]);
+  return CompareVolumesWithReference(
+    this->Win, this->Ren, list, name, this->ImageDirectory, 1.0 / 16.0, raysPerPixel);
+}
+
+vtkSmartPointer<vtkImageData> Blob(int nx,
+  int ny,
+  int nz,
+  double s0,
+  double s1,
+  double s2,
+  double o0,
+  double o1,
+  double o2,
+  int seed)
+{
+  const double s[3] = { s0, s1, s2 }, o[3] = { o0, o1, o2 };
+  return MakeBlobVolume(nx, ny, nz, s, o, seed);
+}
+
+VolumeComparison RenderTwoVolumes(double ox,
+  double oy,
+  const std::string& tag,
+  const std::string& imageDirectory)
+{
+  VolumeScene s(imageDirectory);
+  s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, ox, oy, 0, 1), MakeVolumeProperty(0));
+  vtkNew<vtkTransform> t;
+  t->Translate(ox + 30, oy + 10, 4);
+  t->RotateZ(30);
+  t->Translate(-ox, -oy, 0);
+  s.Add(Blob(24, 20, 18, 1.6, 1.5, 1.4, ox, oy, 0, 2), MakeVolumeProperty(1), t);
+  s.UseMultiVolume();
+  const double pos[3] = { ox - 50, oy - 70, 80 }, foc[3] = { ox + 30, oy + 25, 14 };
+  s.Camera(pos, foc);
+  auto r = s.Compare(tag);
+  std::cout << tag << ": " << s.Mapper->GetNumberOfFragments() << " fragments\n";
+  return r;
+}
+
+int CaseResult(bool ok, const CapturingOutputWindow* output)
+{
+  if (output->Errors || output->Warnings)
+  {
+    std::cerr << "FAILED: VTK printed " << output->Errors << " errors and " << output->Warnings
+              << " warnings\n";
+    ok = false;
+  }
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+}
