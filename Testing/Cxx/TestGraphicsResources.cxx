@@ -18,6 +18,11 @@
 //   error, no crash, nothing reported.
 // Memory: resident size after the sixth round within 24 MB of the one after the third (each
 // round creates and destroys 18 windows and scenes; a leak of one atlas a round would be 8 MB).
+#include "StrataHeightFieldScenes.h" // For MakeHorizon
+#include "StrataTestHelpers.h"
+#include "StrataTestPaths.h"
+#include "StrataVolumeScenes.h" // For MakeBlobVolume, MakeVolumeProperty
+
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -32,7 +37,6 @@
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkOutputWindow.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -53,35 +57,12 @@
 #include <functional>
 #include <iostream>
 #include <string>
-#include <unistd.h>
 #include <vector>
+
+using namespace strata_test;
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "  ok   " : "  FAIL ") << what << "\n";
-  Failures += ok ? 0 : 1;
-}
-
-// Counts what VTK reports as errors and warnings (a GL error after a release would be one),
-// from every object.
-class Counter : public vtkOutputWindow
-{
-public:
-  static Counter* New() { return new Counter; }
-  vtkTypeMacro(Counter, vtkOutputWindow);
-  void DisplayErrorText(const char* text) override
-  {
-    ++this->Count;
-    std::cout << "  (reported: " << text << ")\n";
-  }
-  void DisplayWarningText(const char* text) override { this->DisplayErrorText(text); }
-  int Count = 0;
-};
-
 // Live GL names of each kind in the current context. Names are small integers handed out from
 // 1 up; 16384 is far beyond what one window of these scenes makes.
 struct Names
@@ -125,49 +106,25 @@ long ResidentKiB()
   return -1;
 }
 
+// A gently waving horizon of n x n points.
 vtkSmartPointer<vtkImageData> Grid(int n, double height, double slope)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, 1);
-  vtkNew<vtkFloatArray> z;
-  z->SetNumberOfValues(n * n);
+  std::vector<float> z(size_t(n) * n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
-      z->SetValue(j * n + i, static_cast<float>(height + slope * std::sin(0.3 * i) * j));
-  image->GetPointData()->SetScalars(z);
-  return image;
+      z[size_t(j) * n + i] = static_cast<float>(height + slope * std::sin(0.3 * i) * j);
+  return MakeHorizon(n, n, 0.0, 0.0, 1.0, 1.0, 0.0, z);
 }
 
 vtkSmartPointer<vtkImageData> Blob(int n, double shift)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, n);
-  image->SetOrigin(shift, 0.0, 0.0);
-  image->AllocateScalars(VTK_FLOAT, 1);
-  auto* v = static_cast<float*>(image->GetScalarPointer());
-  const double c = 0.5 * (n - 1);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-      {
-        const double r2 = (i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c);
-        v[(size_t(k) * n + j) * n + i] = static_cast<float>(100.0 * std::exp(-r2 / (0.1 * n * n)));
-      }
-  return image;
+  const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { shift, 0.0, 0.0 };
+  return MakeBlobVolume(n, n, n, spacing, origin, 1);
 }
 
 vtkSmartPointer<vtkVolumeProperty> Property(bool shade)
 {
-  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
-  vtkNew<vtkPiecewiseFunction> a;
-  a->AddPoint(0.0, 0.0);
-  a->AddPoint(20.0, 0.0);
-  a->AddPoint(100.0, 0.3);
-  vtkNew<vtkColorTransferFunction> c;
-  c->AddRGBPoint(0.0, 0.2, 0.4, 0.9);
-  c->AddRGBPoint(100.0, 0.9, 0.6, 0.2);
-  p->SetScalarOpacity(a);
-  p->SetColor(c);
+  vtkSmartPointer<vtkVolumeProperty> p = MakeVolumeProperty(shade ? 1 : 0);
   p->SetShade(shade);
   return p;
 }
@@ -179,6 +136,7 @@ std::string WritePool(vtkImageData* image, const std::string& name, int page)
   writer->SetFileName(name.c_str());
   writer->SetPageSize(page);
   Check(writer->Write(), "pool " + name + " written");
+  std::cout << "pool " << name << " written\n";
   return name;
 }
 
@@ -337,7 +295,7 @@ void Frame(vtkRenderer* ren, vtkRenderWindow* win, vtkProp* prop)
 }
 
 // One round of the three orders for one scene; `report` prints the counts (first round).
-void Round(const std::string& name, const Maker& make, Counter* errors, bool report)
+void Round(const std::string& name, const Maker& make, CapturingOutputWindow* errors, bool report)
 {
   // Mapper first.
   {
@@ -358,8 +316,7 @@ void Round(const std::string& name, const Maker& make, Counter* errors, bool rep
     if (report)
       std::cout << name << ": " << before.Text() << " before, " << drawn.Text() << " drawn, "
                 << after.Text() << " after the mapper\n";
-    if (report)
-      Check(drawn.Total() > before.Total(), name + ": the mapper made GL names");
+    Check(drawn.Total() > before.Total(), name + ": the mapper made GL names");
     Check(after == before, name + ", mapper first: every name it made is gone");
   }
   // Window change.
@@ -388,26 +345,26 @@ void Round(const std::string& name, const Maker& make, Counter* errors, bool rep
     auto win = MakeWindow(ren);
     Scene scene = make();
     Frame(ren, win, scene.Prop);
-    const int reported = errors->Count;
+    const int reported = errors->Errors + errors->Warnings;
     win = nullptr;
     ren->RemoveAllViewProps();
     scene = Scene();
-    Check(errors->Count == reported, name + ", window first: the mapper went without a word");
+    Check(errors->Errors + errors->Warnings == reported,
+      name + ", window first: the mapper went without a word");
   }
 }
 }
 
-int TestGraphicsResources(int, char*[])
+int TestGraphicsResources(int argc, char* argv[])
 {
-  vtkNew<Counter> errors;
-  vtkOutputWindow::SetInstance(errors);
-  auto dir = std::filesystem::temp_directory_path() /
-             ("strata-graphics-resources-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const std::vector<std::string> tiles = { WritePool(
-                                             Grid(33, 0.0, 0.5), (dir / "a.spp").string(), 9),
-    WritePool(Grid(33, 4.0, -0.5), (dir / "b.spp").string(), 9) };
-  const std::string bricks = WritePool(Blob(20, 0.0), (dir / "v.spp").string(), 8);
+  CapturingOutputWindow* errors = CapturingOutputWindow::Install();
+  const std::filesystem::path dir = TestPaths::FromArguments(argc, argv).Output;
+  const std::vector<std::string> tiles = {
+    WritePool(Grid(33, 0.0, 0.5), (dir / "graphics-resources-a.spp").string(), 9),
+    WritePool(Grid(33, 4.0, -0.5), (dir / "graphics-resources-b.spp").string(), 9)
+  };
+  const std::string bricks =
+    WritePool(Blob(20, 0.0), (dir / "graphics-resources-v.spp").string(), 8);
 
   const std::vector<std::pair<std::string, Maker>> scenes = {
     { "horizons in core", [] { return Horizons({}); } },
@@ -430,8 +387,7 @@ int TestGraphicsResources(int, char*[])
   std::cout << "resident " << rss3 / 1024.0 << " MB after round 3, " << rss / 1024.0
             << " MB after round " << rounds << "\n";
   Check(rss - rss3 < 24 * 1024, "memory does not grow over the rounds (< 24 MB)");
-  Check(errors->Count == 0, "no VTK error or warning");
-  std::filesystem::remove_all(dir);
-  std::cout << "TestGraphicsResources: " << Failures << " failure(s)\n";
-  return Failures == 0 ? 0 : 1;
+  Check(errors->Errors + errors->Warnings == 0, "no VTK error or warning");
+  std::cout << "TestGraphicsResources: " << Failures() << " failure(s)\n";
+  return Failures() == 0 ? 0 : 1;
 }

@@ -9,6 +9,10 @@
 // mapper (solid colours, then a lookup table), the multi-volume mapper (two overlapping
 // volumes: two one-volume fragments and one two-volume fragment, then two rays per pixel) and
 // the hybrid mapper (squares, then splats).
+#include "StrataHeightFieldScenes.h" // For MakeHorizon
+#include "StrataTestHelpers.h"
+#include "StrataVolumeScenes.h" // For MakeBlobVolume, MakeVolumeProperty
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -35,16 +39,10 @@
 #include <iostream>
 #include <string>
 
+using namespace strata_test;
+
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "  ok   " : "  FAIL ") << what << "\n";
-  Failures += ok ? 0 : 1;
-}
-
 /// Sources built and compilations of a mapper so far.
 struct Counts
 {
@@ -75,47 +73,17 @@ Counts Render(vtkRenderWindow* win, Mapper* m)
 
 vtkSmartPointer<vtkImageData> Grid(int n, double height)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, 1);
-  vtkNew<vtkFloatArray> z;
-  z->SetNumberOfValues(n * n);
+  std::vector<float> z(size_t(n) * n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
-      z->SetValue(j * n + i, static_cast<float>(height + std::sin(0.3 * i) * std::cos(0.2 * j)));
-  image->GetPointData()->SetScalars(z);
-  return image;
+      z[size_t(j) * n + i] = static_cast<float>(height + std::sin(0.3 * i) * std::cos(0.2 * j));
+  return MakeHorizon(n, n, 0.0, 0.0, 1.0, 1.0, 0.0, z);
 }
 
 vtkSmartPointer<vtkImageData> Blob(int n, double shift)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, n);
-  image->SetOrigin(shift, 0.0, 0.0);
-  image->AllocateScalars(VTK_FLOAT, 1);
-  auto* v = static_cast<float*>(image->GetScalarPointer());
-  const double c = 0.5 * (n - 1);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-      {
-        const double r2 = (i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c);
-        v[(size_t(k) * n + j) * n + i] = static_cast<float>(100.0 * std::exp(-r2 / (0.1 * n * n)));
-      }
-  return image;
-}
-
-vtkSmartPointer<vtkVolumeProperty> Property()
-{
-  auto p = vtkSmartPointer<vtkVolumeProperty>::New();
-  vtkNew<vtkPiecewiseFunction> a;
-  a->AddPoint(0.0, 0.0);
-  a->AddPoint(100.0, 0.3);
-  vtkNew<vtkColorTransferFunction> c;
-  c->AddRGBPoint(0.0, 0.2, 0.4, 0.9);
-  c->AddRGBPoint(100.0, 0.9, 0.6, 0.2);
-  p->SetScalarOpacity(a);
-  p->SetColor(c);
-  return p;
+  const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { shift, 0.0, 0.0 };
+  return MakeBlobVolume(n, n, n, spacing, origin, 1);
 }
 
 /// The common sequence: first frame, an unchanged frame, a moved camera, a new feature, the
@@ -203,7 +171,7 @@ int TestShaderCache(int, char*[])
     {
       mapper->SetInputDataObject(port, Blob(20, 10.0 * port));
       vtkNew<vtkVolume> member;
-      member->SetProperty(Property());
+      member->SetProperty(MakeVolumeProperty(0));
       multi->SetVolume(member, port);
     }
     ren->AddVolume(multi);
@@ -245,7 +213,7 @@ int TestShaderCache(int, char*[])
     mapper->SetPointsInputData(points);
     vtkNew<vtkVolume> volume;
     volume->SetMapper(mapper);
-    volume->SetProperty(Property());
+    volume->SetProperty(MakeVolumeProperty(0));
     ren->AddVolume(volume);
     ren->ResetCamera();
     Sequence("hybrid points",
@@ -263,6 +231,6 @@ int TestShaderCache(int, char*[])
     Check(inner.Sources == 2,
       "hybrid: its ray caster built one fragment and one composite source (" + inner.Text() + ")");
   }
-  std::cout << "TestShaderCache: " << Failures << " failure(s)\n";
-  return Failures == 0 ? 0 : 1;
+  std::cout << "TestShaderCache: " << Failures() << " failure(s)\n";
+  return Failures() == 0 ? 0 : 1;
 }
