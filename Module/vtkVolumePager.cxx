@@ -169,7 +169,7 @@ public:
       {
         paged->Held.erase(root);
         error =
-          "cannot read the root page of \"" + this->Pools.GetPoolName(volume.Port) + "\": " + why;
+          "Cannot read the root page of \"" + this->Pools.GetPoolName(volume.Port) + "\": " + why;
         return false;
       }
     }
@@ -260,8 +260,10 @@ bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
   const double budget = std::min(budgetMiB, (allBricks + 0.5) * brickMiB);
   if (!in.Atlas.InitializeFromBudget(budget, brickSize, 4, std::min(maxTextureSize, 2048)))
   {
-    error = "an atlas budget of " + std::to_string(budgetMiB) + " MB holds no brick of " +
-            std::to_string(brickSize) + "^3 float voxels";
+    std::ostringstream msg;
+    msg << "An atlas budget of " << budgetMiB << " MB holds no brick of " << brickSize
+        << "^3 float voxels.";
+    error = msg.str();
     this->CutValid = false;
     return false;
   }
