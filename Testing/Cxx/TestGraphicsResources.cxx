@@ -27,8 +27,6 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkHybridVolumeMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
@@ -39,8 +37,6 @@
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -235,25 +231,7 @@ Scene Hybrid()
   Scene s;
   vtkNew<vtkHybridVolumeMapper> mapper;
   mapper->SetInputData(Blob(12, 0.0));
-  vtkNew<vtkPolyData> points;
-  vtkNew<vtkPoints> p;
-  vtkNew<vtkFloatArray> value, error, spacing;
-  value->SetName("Value");
-  error->SetName("Error");
-  spacing->SetName("PointSpacing");
-  for (int i = 0; i < 50; ++i)
-  {
-    p->InsertNextPoint(2.0 + 0.15 * i, 5.0, 5.0);
-    value->InsertNextValue(90.0f);
-    error->InsertNextValue(40.0f);
-  }
-  for (int c = 0; c < 3; ++c)
-    spacing->InsertNextValue(0.25f);
-  points->SetPoints(p);
-  points->GetPointData()->AddArray(value);
-  points->GetPointData()->AddArray(error);
-  points->GetFieldData()->AddArray(spacing);
-  mapper->SetPointsInputData(points);
+  mapper->SetPointsInputData(MakeHybridPointLine(50, 0.15));
   mapper->SetNumberOfSlabs(3);
   s.Attach = [](vtkAbstractMapper3D* m, vtkProp* p)
   {

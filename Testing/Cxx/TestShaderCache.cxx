@@ -16,8 +16,6 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkHybridVolumeMapper.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -25,8 +23,6 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -192,25 +188,7 @@ int TestShaderCache(int, char*[])
     auto win = MakeWindow(ren);
     vtkNew<vtkHybridVolumeMapper> mapper;
     mapper->SetInputData(Blob(12, 0.0));
-    vtkNew<vtkPolyData> points;
-    vtkNew<vtkPoints> p;
-    vtkNew<vtkFloatArray> value, error, spacing;
-    value->SetName("Value");
-    error->SetName("Error");
-    spacing->SetName("PointSpacing");
-    for (int i = 0; i < 40; ++i)
-    {
-      p->InsertNextPoint(2.0 + 0.2 * i, 5.0, 5.0);
-      value->InsertNextValue(90.0f);
-      error->InsertNextValue(40.0f);
-    }
-    for (int c = 0; c < 3; ++c)
-      spacing->InsertNextValue(0.25f);
-    points->SetPoints(p);
-    points->GetPointData()->AddArray(value);
-    points->GetPointData()->AddArray(error);
-    points->GetFieldData()->AddArray(spacing);
-    mapper->SetPointsInputData(points);
+    mapper->SetPointsInputData(MakeHybridPointLine(40, 0.2));
     vtkNew<vtkVolume> volume;
     volume->SetMapper(mapper);
     volume->SetProperty(MakeVolumeProperty(0));

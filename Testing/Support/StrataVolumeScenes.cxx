@@ -6,6 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
@@ -16,6 +17,8 @@
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTransferFunctionTable.h"
@@ -93,6 +96,31 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDi
   p->SetScalarOpacityUnitDistance(unitDistance);
   p->SetInterpolationTypeToLinear();
   return p;
+}
+
+vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step)
+{
+  auto points = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> p;
+  vtkNew<vtkFloatArray> value, error, spacing;
+  value->SetName("Value");
+  error->SetName("Error");
+  spacing->SetName("PointSpacing");
+  for (int i = 0; i < n; ++i)
+  {
+    p->InsertNextPoint(2.0 + step * i, 5.0, 5.0);
+    value->InsertNextValue(90.0f);
+    error->InsertNextValue(40.0f);
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    spacing->InsertNextValue(0.25f);
+  }
+  points->SetPoints(p);
+  points->GetPointData()->AddArray(value);
+  points->GetPointData()->AddArray(error);
+  points->GetFieldData()->AddArray(spacing);
+  return points;
 }
 
 vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image, vtkVolume* member)

@@ -14,6 +14,7 @@
 
 class vtkImageData;
 class vtkMatrix4x4;
+class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
 class vtkVolume;
@@ -33,6 +34,10 @@ vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx,
 /// A property with a colour ramp (hue by `variant`) and a piecewise-linear opacity, linear
 /// interpolation, opacity per unit distance `unitDistance`.
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDistance = 1.0);
+
+/// Points for vtkHybridVolumeMapper: `n` points on the line y = z = 5 from x = 2 in steps of
+/// `step`, "Value" 90 and "Error" 40 each, and the field "PointSpacing" (0.25, 0.25, 0.25).
+vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step);
 
 /// The reference's description of a mapper input: geometry, model matrix of `member`, scalars as
 /// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does.
