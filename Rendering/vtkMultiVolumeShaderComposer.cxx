@@ -145,9 +145,10 @@ std::string Lookup(const Key& key, int n)
 std::string Lights(const Key& key)
 {
   return AnyShaded(key)
-           ? "uniform int uNumLights;\nuniform vec3 uLightDirection[8]; // towards the light, "
-             "unit\n"
-             "uniform vec3 uLightColor[8];\nvec3 gViewDirection; // towards the eye, set per ray\n"
+           ? "uniform int uNumLights;\n"
+             "uniform vec3 uLightDirection[8]; // towards the light, unit\n"
+             "uniform vec3 uLightColor[8];\n"
+             "vec3 gViewDirection; // towards the eye, set per ray\n"
            : "";
 }
 

@@ -381,8 +381,7 @@ int Report(const std::string& csv, const std::string& png)
     wins += familyCompared > 0 && familyWon == familyCompared ? 1 : 0;
   }
   std::printf("hybrid (ranked by missing opacity, error grid 2) beats plain down-sampling at equal "
-              "bytes at every "
-              "size on %d of %zu volumes\n",
+              "bytes at every size on %d of %zu volumes\n",
     wins,
     datasets.size());
   std::printf(

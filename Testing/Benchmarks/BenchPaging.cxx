@@ -276,14 +276,11 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
   else
     fb << "no feedback (screen-space cut)";
   fb << "; prefetch " << (prefetch ? "on" : "off");
-  std::printf(
-    "%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of 1024^3 "
-    "(9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages from the readers' "
-    "pipeline update%s); %d frames (%d moving) in %.0f s; io_wait_frames counts frames in which "
-    "the render "
-    "thread read a page (%d roots read by the mapper itself); %d failed pages; sample distance 2 "
-    "voxels; "
-    "%dx%d\n",
+  std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB; 9 uint8 volumes of "
+              "1024^3 (9.66 GB of voxels) in 32^3 bricks; %s; opened in %.0f ms (%lld root pages "
+              "from the readers' pipeline update%s); %d frames (%d moving) in %.0f s; "
+              "io_wait_frames counts frames in which the render thread read a page (%d roots read "
+              "by the mapper itself); %d failed pages; sample distance 2 voxels; %dx%d\n",
     name.c_str(),
     cacheMB + atlasMB,
     PeakRssMB(),
@@ -585,8 +582,7 @@ int main(int argc, char* argv[])
   if (mode == "header")
   {
     std::printf("case,budget_mb,peak_rss_mb,io_wait_frames,frames_to_converge,ms_per_frame_median,"
-                "ms_per_frame_p99,"
-                "mb_read_per_frame,mb_uploaded_per_frame,note\n");
+                "ms_per_frame_p99,mb_read_per_frame,mb_uploaded_per_frame,note\n");
     return 0;
   }
   if (mode == "flythrough" && argc > 4)

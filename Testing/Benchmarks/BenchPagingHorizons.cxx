@@ -240,13 +240,12 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool pref
   for (double u : uploaded)
     upTotal += u;
   const auto st = mapper->GetPagingStatistics();
-  std::printf("%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); "
-              "3 uint16 horizons of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d "
-              "moving) in %.0f s; "
-              "feedback 1/4, level of detail 1 cell per pixel, prefetch %s, refinements blended "
-              "over %d frames; the readers read the 3 root tiles before the first frame; "
-              "io_wait_frames counts frames in which the "
-              "render thread read tiles itself; %d failed tiles; %dx%d\n",
+  std::printf(
+    "%s,%g,%.0f,%d,%d,%.1f,%.1f,%.2f,%.2f,cache %g MB + atlas %g MB (%d tiles); 3 uint16 horizons "
+    "of 6870 x 14300 (589 MB of heights) in 257^2 tiles; %d frames (%d moving) in %.0f s; feedback "
+    "1/4, level of detail 1 cell per pixel, prefetch %s, refinements blended over %d frames; the "
+    "readers read the 3 root tiles before the first frame; io_wait_frames counts frames in which "
+    "the render thread read tiles itself; %d failed tiles; %dx%d\n",
     name.c_str(),
     cacheMB + atlasMB,
     PeakRssMB(),
