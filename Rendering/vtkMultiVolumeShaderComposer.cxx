@@ -144,12 +144,11 @@ std::string Lookup(const Key& key, int n)
 
 std::string Lights(const Key& key)
 {
-  return AnyShaded(key)
-           ? "uniform int uNumLights;\n"
-             "uniform vec3 uLightDirection[8]; // towards the light, unit\n"
-             "uniform vec3 uLightColor[8];\n"
-             "vec3 gViewDirection; // towards the eye, set per ray\n"
-           : "";
+  return AnyShaded(key) ? "uniform int uNumLights;\n"
+                          "uniform vec3 uLightDirection[8]; // towards the light, unit\n"
+                          "uniform vec3 uLightColor[8];\n"
+                          "vec3 gViewDirection; // towards the eye, set per ray\n"
+                        : "";
 }
 
 // --- Classification: the transfer table (post) or the pre-integration table of a volume.
