@@ -86,6 +86,18 @@ public:
     int Entered = 0;        ///< tiles that entered the cut this frame
     int FeedbackPages = 0;  ///< distinct tiles the feedback asked for (last cycle)
     int MorphingTiles = 0;  ///< tiles still blending from their parent's surface
+
+    template<typename Visit>
+    void ForEachField(Visit&& visit) const
+    {
+      vtkPagedPools::Statistics::ForEachField(visit);
+      visit("Converged", this->Converged);
+      visit("CutTiles", this->CutTiles);
+      visit("FinestTiles", this->FinestTiles);
+      visit("Entered", this->Entered);
+      visit("FeedbackPages", this->FeedbackPages);
+      visit("MorphingTiles", this->MorphingTiles);
+    }
   };
 
   vtkHeightFieldPager();

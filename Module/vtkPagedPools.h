@@ -49,6 +49,18 @@ public:
     long long CacheBytes = 0; ///< resident in the page cache now
     int RootPagesRead = 0;    ///< roots the render thread read itself (ReadRoot)
     int Failures = 0;         ///< pages whose load failed, in all (TakeNewFailures)
+
+    /// Calls `visit(name, value)` for each field, in declaration order (wrappable forms, logs).
+    template<typename Visit>
+    void ForEachField(Visit&& visit) const
+    {
+      visit("PendingPages", this->PendingPages);
+      visit("MissesThisFrame", this->MissesThisFrame);
+      visit("BytesRead", this->BytesRead);
+      visit("CacheBytes", this->CacheBytes);
+      visit("RootPagesRead", this->RootPagesRead);
+      visit("Failures", this->Failures);
+    }
   };
 
   vtkPagedPools();

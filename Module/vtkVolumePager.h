@@ -71,6 +71,16 @@ public:
     int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest levels
     int FeedbackPages = 0;         ///< distinct pages in the last feedback reduced
     int FeedbackPixels = 0;        ///< its pixels that asked for a page
+
+    template<typename Visit>
+    void ForEachField(Visit&& visit) const
+    {
+      vtkPagedPools::Statistics::ForEachField(visit);
+      visit("Converged", this->Converged);
+      visit("RootPagesFromPipeline", this->RootPagesFromPipeline);
+      visit("FeedbackPages", this->FeedbackPages);
+      visit("FeedbackPixels", this->FeedbackPixels);
+    }
   };
 
   /// Per-frame settings of the cut and the paging.

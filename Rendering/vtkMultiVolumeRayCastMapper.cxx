@@ -21,6 +21,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationStringKey.h"
+#include "vtkIntArray.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -920,6 +921,37 @@ void vtkMultiVolumeRayCastMapper::SetFixedCut(int port,
   this->Modified();
 }
 
+void vtkMultiVolumeRayCastMapper::GetCutBricks(int port, vtkIntArray* bricks) const
+{
+  if (!bricks)
+  {
+    return;
+  }
+  const std::vector<std::array<int, 2>> cut = this->GetCutBricks(port);
+  bricks->SetNumberOfComponents(2);
+  bricks->SetNumberOfTuples(static_cast<vtkIdType>(cut.size()));
+  for (size_t i = 0; i < cut.size(); ++i)
+  {
+    bricks->SetTypedTuple(static_cast<vtkIdType>(i), cut[i].data());
+  }
+}
+
+void vtkMultiVolumeRayCastMapper::SetFixedCut(int port, vtkIntArray* bricks)
+{
+  if (!bricks || bricks->GetNumberOfComponents() != 2)
+  {
+    vtkErrorMacro("SetFixedCut needs an array of two components (level, brick), not "
+                  << (bricks ? bricks->GetNumberOfComponents() : 0));
+    return;
+  }
+  std::vector<std::array<int, 2>> cut(static_cast<size_t>(bricks->GetNumberOfTuples()));
+  for (size_t i = 0; i < cut.size(); ++i)
+  {
+    bricks->GetTypedTuple(static_cast<vtkIdType>(i), cut[i].data());
+  }
+  this->SetFixedCut(port, cut);
+}
+
 void vtkMultiVolumeRayCastMapper::RemoveAllFixedCuts()
 {
   if (!this->Internals->Pager.HasFixedCuts())
@@ -1003,9 +1035,19 @@ vtkMultiVolumeRayCastMapper::PagingStatistics vtkMultiVolumeRayCastMapper::GetPa
   return this->Internals->Paging;
 }
 
+void vtkMultiVolumeRayCastMapper::GetPagingStatistics(vtkFieldData* statistics) const
+{
+  vtkStrataRenderUtilities::ToFieldData(this->Internals->Paging, statistics);
+}
+
 void vtkMultiVolumeRayCastMapper::RetryFailedPages()
 {
   this->Internals->Pager.RetryFailedPages();
+}
+
+bool vtkMultiVolumeRayCastMapper::WaitForPages(double seconds)
+{
+  return this->Internals->Pager.WaitForIdle(seconds);
 }
 
 // One frame: what to draw, its inputs on the GPU, the view, the cut and atlas, then the

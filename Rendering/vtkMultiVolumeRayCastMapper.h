@@ -38,6 +38,8 @@
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+class vtkFieldData;
+class vtkIntArray;
 class vtkWindow;
 
 class STRATARENDERING_EXPORT vtkMultiVolumeRayCastMapper : public vtkGPUVolumeRayCastMapper
@@ -206,10 +208,24 @@ public:
     long long BytesUploaded = 0;       ///< to the atlas in the last frame (paged or not)
     double FeedbackMilliseconds = 0.0; ///< its read-back and reduction (propagation included)
     bool FeedbackOpenCL = false;       ///< whether OpenCL reduced it (else the CPU)
+
+    template<typename Visit>
+    void ForEachField(Visit&& visit) const
+    {
+      vtkVolumePager::Statistics::ForEachField(visit);
+      visit("BytesUploaded", this->BytesUploaded);
+      visit("FeedbackMilliseconds", this->FeedbackMilliseconds);
+      visit("FeedbackOpenCL", this->FeedbackOpenCL);
+    }
   };
   PagingStatistics GetPagingStatistics() const;
+  /// The same statistics as one-value arrays named as the fields ("PendingPages", "BytesRead",
+  /// "Converged", ...; vtkStrataRenderUtilities::ToFieldData), for Python and ParaView.
+  void GetPagingStatistics(vtkFieldData* statistics) const;
   /// Loads failed pages again (after a transient error).
   void RetryFailedPages();
+  /// Waits (scripts, tests, benchmarks) until no page load is queued or running; false on timeout.
+  bool WaitForPages(double seconds);
 
   /// Bricks resident in the atlas after the last frame, and atlas slots.
   int GetNumberOfResidentBricks() const;
@@ -231,6 +247,12 @@ public:
   std::vector<std::array<int, 2>> GetCutBricks(int port) const;
   void SetFixedCut(int port, const std::vector<std::array<int, 2>>& bricks);
   void RemoveAllFixedCuts();
+  ///@}
+
+  ///@{
+  /// The same cuts as two-component arrays (level, brick), one tuple a brick, for Python.
+  void GetCutBricks(int port, vtkIntArray* bricks) const;
+  void SetFixedCut(int port, vtkIntArray* bricks);
   ///@}
 
   ///@{

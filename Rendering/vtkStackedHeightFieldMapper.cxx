@@ -506,10 +506,20 @@ bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageDat
   return true;
 }
 
+void vtkStackedHeightFieldMapper::AddInputData(vtkImageData* horizon)
+{
+  this->AddInputDataInternal(0, horizon);
+}
+
 vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPagingStatistics()
   const
 {
   return this->Internals->Paging;
+}
+
+void vtkStackedHeightFieldMapper::GetPagingStatistics(vtkFieldData* statistics) const
+{
+  vtkStrataRenderUtilities::ToFieldData(this->Internals->Paging, statistics);
 }
 
 void vtkStackedHeightFieldMapper::RetryFailedPages()

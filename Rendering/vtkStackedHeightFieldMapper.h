@@ -53,6 +53,7 @@
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+class vtkFieldData;
 class vtkHeightFieldStack;
 class vtkImageData;
 class vtkMatrix4x4;
@@ -76,6 +77,16 @@ public:
     Shaded,    ///< colour and lighting
     HorizonId, ///< flat colour id + 1 packed in 24-bit RGB, for tests and picking
   };
+
+  ///@{
+  /**
+   * Horizons are inputs on port 0, one connection each, bottom of the list drawn with the last
+   * id: AddInputConnection(reader->GetOutputPort()) for a pipeline, AddInputData(image) for an
+   * image made in memory (from NumPy, say). RemoveAllInputs() empties the stack.
+   */
+  void AddInputData(vtkImageData* horizon);
+  using vtkAlgorithm::AddInputConnection;
+  ///@}
 
   ///@{
   /**
@@ -238,8 +249,23 @@ public:
     bool FeedbackUsed = false;         ///< the cut was driven by feedback this frame
     double FeedbackMilliseconds = 0.0; ///< mapping and reduction of the last buffer
     bool FeedbackOpenCL = false;       ///< whether OpenCL reduced it (else the CPU)
+
+    template<typename Visit>
+    void ForEachField(Visit&& visit) const
+    {
+      vtkHeightFieldPager::Statistics::ForEachField(visit);
+      visit("Paged", this->Paged);
+      visit("AtlasSlots", this->AtlasSlots);
+      visit("BytesUploaded", this->BytesUploaded);
+      visit("FeedbackUsed", this->FeedbackUsed);
+      visit("FeedbackMilliseconds", this->FeedbackMilliseconds);
+      visit("FeedbackOpenCL", this->FeedbackOpenCL);
+    }
   };
   PagingStatistics GetPagingStatistics() const;
+  /// The same statistics as one-value arrays named as the fields ("Paged", "CutTiles",
+  /// "BytesRead", ...; vtkStrataRenderUtilities::ToFieldData), for Python and ParaView.
+  void GetPagingStatistics(vtkFieldData* statistics) const;
   /// Forgets failed page loads so that they are tried again.
   void RetryFailedPages();
   /// Waits (tests, benchmarks) until no page load is queued or running.

@@ -2,9 +2,13 @@
 #include "vtkStrataRenderUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkNew.h"
 #include "vtkRenderer.h"
+#include "vtkTypeInt64Array.h"
 
 #include <cmath>
 
@@ -58,4 +62,32 @@ void vtkStrataRenderUtilities::ToColumnMajor(const double rowMajor[16], float co
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
       columnMajor[4 * c + r] = static_cast<float>(rowMajor[4 * r + c]);
+}
+
+namespace
+{
+template<typename Array, typename Value>
+void SetOneValue(vtkFieldData* out, const char* name, Value value)
+{
+  if (!out)
+  {
+    return;
+  }
+  vtkNew<Array> array;
+  array->SetName(name);
+  array->SetNumberOfValues(1);
+  array->SetValue(0, value);
+  out->RemoveArray(name);
+  out->AddArray(array);
+}
+}
+
+void vtkStrataRenderUtilities::SetField(vtkFieldData* out, const char* name, double value)
+{
+  SetOneValue<vtkDoubleArray>(out, name, value);
+}
+
+void vtkStrataRenderUtilities::SetField(vtkFieldData* out, const char* name, long long value)
+{
+  SetOneValue<vtkTypeInt64Array>(out, name, static_cast<vtkTypeInt64>(value));
 }

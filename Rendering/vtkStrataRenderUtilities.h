@@ -14,8 +14,10 @@
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkVolumeCut.h"          // For vtkVolumeCut::Camera
 
-#include <vector> // For std::vector
+#include <type_traits> // For std::is_floating_point
+#include <vector>      // For std::vector
 
+class vtkFieldData;
 class vtkRenderer;
 
 class STRATARENDERING_EXPORT vtkStrataRenderUtilities
@@ -40,6 +42,35 @@ public:
   /// A row-major double matrix (vtkMatrix4x4::GetData()) as the column-major floats that
   /// vtkShaderProgram::SetUniformMatrix4x4 hands to glUniformMatrix4fv.
   static void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);
+
+  /**
+   * A statistics struct (one with ForEachField, e.g. vtkVolumePager::Statistics) as field data
+   * the wrappers can take: one one-component, one-tuple array per field, named as the field;
+   * floating-point fields as vtkDoubleArray, integers and flags (0 or 1) as vtkTypeInt64Array.
+   * Arrays of those names already in `out` are replaced; others are kept.
+   */
+  template<typename Statistics>
+  static void ToFieldData(const Statistics& statistics, vtkFieldData* out)
+  {
+    statistics.ForEachField(
+      [out](const char* name, auto value)
+      {
+        if (std::is_floating_point<decltype(value)>::value)
+        {
+          SetField(out, name, static_cast<double>(value));
+        }
+        else
+        {
+          SetField(out, name, static_cast<long long>(value));
+        }
+      });
+  }
+
+  ///@{
+  /// One named one-value array in `out` (replacing an array of that name).
+  static void SetField(vtkFieldData* out, const char* name, double value);
+  static void SetField(vtkFieldData* out, const char* name, long long value);
+  ///@}
 };
 
 #endif

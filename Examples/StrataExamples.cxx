@@ -1,0 +1,397 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// The scenes of Examples/Python/*.py written in C++, line for line: what a C++ user writes for
+// each renderer, and the reference the Python tests compare the scripts' images with.
+//
+//   StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|paged_horizons>
+//                  <out.png> [--data <folder with horizons/ and volumes/>] [--work <folder>]
+//
+// --work is where the paged scenes write their pools (default: the folder of out.png).
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDoubleArray.h"
+#include "vtkHybridVolumeFilter.h"
+#include "vtkHybridVolumeMapper.h"
+#include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
+#include "vtkIrapBinaryGridReader.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkNew.h"
+#include "vtkNrrdReader.h"
+#include "vtkNumpyGridReader.h"
+#include "vtkPNGWriter.h"
+#include "vtkPagePoolReader.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkStackedHeightFieldMapper.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+struct Arguments
+{
+  std::string Output;
+  std::string Data;
+  std::string Work;
+};
+
+const char* const ReekNames[4] = { "reek_01_topreek_rota",
+  "reek_02_midreek_rota",
+  "reek_03_lowreek_rota",
+  "reek_04_basereek_rota" };
+
+bool Save(vtkRenderWindow* window, const std::string& path)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  std::cout << path << "\n";
+  return writer->GetErrorCode() == 0;
+}
+
+/// The examples' view: reset to the scene, tilt, turn, zoom.
+void View(vtkRenderer* renderer, double elevation, double azimuth, double zoom)
+{
+  renderer->ResetCamera();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->Elevation(elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Azimuth(azimuth);
+  camera->Zoom(zoom);
+  renderer->ResetCameraClippingRange();
+}
+
+vtkSmartPointer<vtkRenderWindow> Window(vtkRenderer* renderer, int width, int height)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetSize(width, height);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  return window;
+}
+
+vtkSmartPointer<vtkRenderer> Renderer()
+{
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetBackground(0.08, 0.09, 0.12);
+  return renderer;
+}
+
+/// A property from (value, r, g, b) and (value, opacity) points, linear interpolation.
+vtkSmartPointer<vtkVolumeProperty> VolumeProperty(const std::vector<std::array<double, 4>>& colors,
+  const std::vector<std::array<double, 2>>& opacities)
+{
+  vtkNew<vtkColorTransferFunction> color;
+  for (const auto& c : colors)
+  {
+    color->AddRGBPoint(c[0], c[1], c[2], c[3]);
+  }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const auto& o : opacities)
+  {
+    opacity->AddPoint(o[0], o[1]);
+  }
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToLinear();
+  return property;
+}
+
+vtkSmartPointer<vtkVolumeProperty> ToothProperty()
+{
+  return VolumeProperty(
+    { { 0, 0.5, 0.5, 0.5 }, { 140, 0.8, 0.35, 0.25 }, { 200, 1.0, 0.9, 0.8 }, { 255, 1, 1, 1 } },
+    { { 0, 0.0 }, { 110, 0.0 }, { 150, 0.03 }, { 255, 0.5 } });
+}
+
+/// The Reek stack's actor and its view, in core or paged (the mapper is given).
+int ShowReek(const Arguments& args, vtkStackedHeightFieldMapper* mapper, bool paged)
+{
+  mapper->SetHeightScale(-1.0); // depths grow downwards
+  mapper->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetScale(1, 1, 8); // 8x vertical exaggeration: the reservoir is thin
+  actor->GetProperty()->SetSpecular(0.2);
+  auto renderer = Renderer();
+  renderer->AddActor(actor);
+  View(renderer, -60, 30, 1.9);
+  auto window = Window(renderer, 320, 240);
+  int frames = 0;
+  if (paged)
+  {
+    // What strata.render_until_converged does.
+    for (; frames < 500; ++frames)
+    {
+      window->Render();
+      if (mapper->GetPagingStatistics().Converged)
+      {
+        break;
+      }
+      mapper->WaitForPages(1.0);
+    }
+    const auto st = mapper->GetPagingStatistics();
+    std::cerr << "settled after " << frames << " frames, " << st.FinestTiles
+              << " level-0 tiles of " << st.CutTiles << ", " << st.BytesRead / 1024
+              << " KiB read\n";
+  }
+  else
+  {
+    window->Render();
+  }
+  return Save(window, args.Output) ? 0 : 1;
+}
+
+int Horizons(const Arguments& args)
+{
+  vtkNew<vtkStackedHeightFieldMapper> mapper;
+  for (const char* name : ReekNames)
+  {
+    vtkNew<vtkIrapBinaryGridReader> reader;
+    reader->SetFileName((args.Data + "/horizons/" + name + ".gri").c_str());
+    mapper->AddInputConnection(reader->GetOutputPort());
+  }
+  return ShowReek(args, mapper, false);
+}
+
+int PagedHorizons(const Arguments& args)
+{
+  vtkNew<vtkStackedHeightFieldMapper> mapper;
+  for (const char* name : ReekNames)
+  {
+    vtkNew<vtkIrapBinaryGridReader> grid;
+    grid->SetFileName((args.Data + "/horizons/" + name + ".gri").c_str());
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputConnection(grid->GetOutputPort());
+    writer->SetFileName((args.Work + "/" + name + ".spp").c_str());
+    writer->SetPageSize(65); // tiles of 64 cells, the mapper's TileSize
+    if (!writer->Write())
+    {
+      return 1;
+    }
+    vtkNew<vtkPagePoolReader> reader;
+    reader->SetFileName(writer->GetFileName());
+    mapper->AddInputConnection(reader->GetOutputPort());
+  }
+  mapper->SetPagesPerFrame(16);
+  const int result = ShowReek(args, mapper, true);
+  for (const char* name : ReekNames)
+  {
+    std::remove((args.Work + "/" + name + ".spp").c_str());
+  }
+  return result;
+}
+
+int HorizonsNumpy(const Arguments& args)
+{
+  // The NumPy array's (inline, crossline) index is the image's (i, j): vtkNumpyGridReader's
+  // convention and the example's Fortran-order flattening agree.
+  vtkNew<vtkNumpyGridReader> reader;
+  reader->SetFileName((args.Data + "/horizons/penobscot_seabed_crop.npy").c_str());
+  reader->SetSpacing(25.0, 25.0);
+  reader->SetArrayName("twt");
+  reader->Update();
+  vtkNew<vtkImageData> seabed, below;
+  seabed->ShallowCopy(reader->GetOutput());
+  below->DeepCopy(reader->GetOutput());
+  vtkDataArray* times = below->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < times->GetNumberOfTuples(); ++i)
+  {
+    times->SetTuple1(i, times->GetTuple1(i) + 40.0);
+  }
+  vtkNew<vtkStackedHeightFieldMapper> mapper;
+  mapper->AddInputData(seabed);
+  mapper->AddInputData(below);
+  mapper->SetHeightScale(-10.0); // two-way time grows downwards, exaggerated 10x
+  mapper->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  auto renderer = Renderer();
+  renderer->AddActor(actor);
+  View(renderer, -55, 30, 1.1);
+  auto window = Window(renderer, 320, 240);
+  window->Render();
+  return Save(window, args.Output) ? 0 : 1;
+}
+
+/// The spherical shell of volumes.py: 255 on the sphere of radius 24 voxels, fading over 21.
+vtkSmartPointer<vtkImageData> Shell()
+{
+  auto shell = vtkSmartPointer<vtkImageData>::New();
+  shell->SetDimensions(64, 64, 64);
+  shell->SetSpacing(1.5, 1.5, 1.5);
+  shell->SetOrigin(20.0, 0.0, 60.0);
+  vtkNew<vtkUnsignedCharArray> values;
+  values->SetNumberOfValues(64 * 64 * 64);
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+      {
+        const double di = i - 31.5, dj = j - 31.5, dk = k - 31.5;
+        const double r = std::sqrt(di * di + dj * dj + dk * dk);
+        const double v = std::floor(std::min(255.0, std::max(0.0, 255.0 - 12.0 * std::abs(r - 24.0))));
+        values->SetValue(i + 64 * (j + 64 * k), static_cast<unsigned char>(v));
+      }
+  shell->GetPointData()->SetScalars(values);
+  return shell;
+}
+
+int Volumes(const Arguments& args)
+{
+  vtkNew<vtkNrrdReader> tooth;
+  tooth->SetFileName((args.Data + "/volumes/tooth.nrrd").c_str());
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetSampleDistance(0.5);
+  mapper->SetInputConnection(0, tooth->GetOutputPort());
+  mapper->SetInputDataObject(1, Shell());
+  vtkNew<vtkMultiVolume> scene;
+  scene->SetMapper(mapper);
+  const vtkSmartPointer<vtkVolumeProperty> properties[2] = { ToothProperty(),
+    VolumeProperty({ { 0, 0.1, 0.3, 0.9 }, { 255, 0.3, 0.9, 1.0 } },
+      { { 0, 0.0 }, { 120, 0.0 }, { 255, 0.08 } }) };
+  vtkNew<vtkVolume> members[2];
+  for (int port = 0; port < 2; ++port)
+  {
+    members[port]->SetProperty(properties[port]);
+    scene->SetVolume(members[port], port);
+  }
+  auto renderer = Renderer();
+  renderer->AddVolume(scene);
+  View(renderer, -80, 35, 1.1);
+  auto window = Window(renderer, 240, 240);
+  window->Render();
+  return Save(window, args.Output) ? 0 : 1;
+}
+
+int Hybrid(const Arguments& args)
+{
+  vtkNew<vtkNrrdReader> tooth;
+  tooth->SetFileName((args.Data + "/volumes/tooth.nrrd").c_str());
+  vtkNew<vtkHybridVolumeFilter> hybrid;
+  hybrid->SetInputConnection(tooth->GetOutputPort());
+  hybrid->SetFactor(4, 4, 4);
+  hybrid->SetFilterToCubic();
+  hybrid->SetThreshold(24.0); // a point wherever the low resolution misses more than 24 of 255
+  vtkNew<vtkHybridVolumeMapper> mapper;
+  mapper->SetInputConnection(hybrid->GetOutputPort(0));
+  mapper->SetPointsInputConnection(hybrid->GetOutputPort(1));
+  mapper->SetPointShape(vtkHybridVolumeMapper::PointShapes::GaussianSplats);
+  mapper->GetVolumeMapper()->SetSampleDistance(0.5);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(ToothProperty());
+  auto renderer = Renderer();
+  renderer->AddVolume(volume);
+  View(renderer, -80, 35, 1.3);
+  auto window = Window(renderer, 240, 240);
+  window->Render();
+  std::cerr << mapper->GetNumberOfPointsDrawn() << " points drawn\n";
+  return Save(window, args.Output) ? 0 : 1;
+}
+
+int PagedVolume(const Arguments& args)
+{
+  const std::string pool = args.Work + "/tooth.spp";
+  vtkNew<vtkNrrdReader> tooth;
+  tooth->SetFileName((args.Data + "/volumes/tooth.nrrd").c_str());
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  writer->SetInputConnection(tooth->GetOutputPort());
+  writer->SetFileName(pool.c_str());
+  writer->SetPageSize(32);
+  if (!writer->Write())
+  {
+    return 1;
+  }
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(pool.c_str());
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  mapper->SetSampleDistance(0.5);
+  mapper->SetAtlasBudget(16);  // MB of bricks on the GPU
+  mapper->SetPagesPerFrame(8); // uploads per frame: the cut refines over several frames
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(ToothProperty());
+  auto renderer = Renderer();
+  renderer->AddVolume(volume);
+  View(renderer, -80, 35, 1.3);
+  auto window = Window(renderer, 240, 240);
+  int frames = 0;
+  for (; frames < 500; ++frames)
+  {
+    window->Render();
+    if (mapper->GetPagingStatistics().Converged)
+    {
+      break;
+    }
+    mapper->WaitForPages(1.0);
+  }
+  std::cerr << "settled after " << frames << " frames, " << mapper->GetNumberOfResidentBricks()
+            << " bricks resident, " << mapper->GetPagingStatistics().BytesRead / 1024
+            << " KiB read\n";
+  const int result = Save(window, args.Output) ? 0 : 1;
+  std::remove(pool.c_str());
+  return result;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<int(const Arguments&)>> scenes = {
+    { "horizons", Horizons },
+    { "horizons_numpy", HorizonsNumpy },
+    { "volumes", Volumes },
+    { "hybrid", Hybrid },
+    { "paged_volume", PagedVolume },
+    { "paged_horizons", PagedHorizons },
+  };
+  if (argc < 3 || !scenes.count(argv[1]))
+  {
+    std::cerr << "usage: StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|"
+                 "paged_horizons> <out.png> [--data <folder>] [--work <folder>]\n";
+    return 2;
+  }
+  Arguments args;
+  args.Output = argv[2];
+  args.Data = STRATA_EXAMPLES_DATA;
+  const size_t slash = args.Output.find_last_of('/');
+  args.Work = slash == std::string::npos ? "." : args.Output.substr(0, slash);
+  for (int a = 3; a + 1 < argc; a += 2)
+  {
+    const std::string option = argv[a];
+    if (option == "--data")
+      args.Data = argv[a + 1];
+    else if (option == "--work")
+      args.Work = argv[a + 1];
+    else
+    {
+      std::cerr << "unknown option " << option << "\n";
+      return 2;
+    }
+  }
+  return scenes.at(argv[1])(args);
+}
