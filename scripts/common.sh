@@ -3,7 +3,7 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${STRATA_BUILD_DIR:-$ROOT/build}"
-PACKAGES="cmake ninja-build g++ clang-format universal-ctags libvtk9-dev libglm-dev libegl-dev libegl-mesa0 libgl1-mesa-dri pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libzstd-dev libsegyio-dev"
+PACKAGES="cmake ninja-build g++ clang-format universal-ctags libvtk9-dev python3-vtk9 python3-dev python3-numpy libglm-dev libegl-dev libegl-mesa0 libgl1-mesa-dri pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libzstd-dev libsegyio-dev"
 
 strata_install() {
   local missing=()
