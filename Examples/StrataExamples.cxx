@@ -155,9 +155,8 @@ int ShowReek(const Arguments& args, vtkStackedHeightFieldMapper* mapper, bool pa
       mapper->WaitForPages(1.0);
     }
     const auto st = mapper->GetPagingStatistics();
-    std::cerr << "settled after " << frames << " frames, " << st.FinestTiles
-              << " level-0 tiles of " << st.CutTiles << ", " << st.BytesRead / 1024
-              << " KiB read\n";
+    std::cerr << "settled after " << frames << " frames, " << st.FinestTiles << " level-0 tiles of "
+              << st.CutTiles << ", " << st.BytesRead / 1024 << " KiB read\n";
   }
   else
   {
@@ -253,7 +252,8 @@ vtkSmartPointer<vtkImageData> Shell()
       {
         const double di = i - 31.5, dj = j - 31.5, dk = k - 31.5;
         const double r = std::sqrt(di * di + dj * dj + dk * dk);
-        const double v = std::floor(std::min(255.0, std::max(0.0, 255.0 - 12.0 * std::abs(r - 24.0))));
+        const double v =
+          std::floor(std::min(255.0, std::max(0.0, 255.0 - 12.0 * std::abs(r - 24.0))));
         values->SetValue(i + 64 * (j + 64 * k), static_cast<unsigned char>(v));
       }
   shell->GetPointData()->SetScalars(values);
