@@ -5,8 +5,12 @@
 //
 //   StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|paged_horizons>
 //                  <out.png> [--data <folder with horizons/ and volumes/>] [--work <folder>]
+//                  [--camera <view.json>] [--keep-pools]
 //
-// --work is where the paged scenes write their pools (default: the folder of out.png).
+// --work is where the paged scenes write their pools (default: the folder of out.png);
+// --keep-pools leaves them there. --camera writes the view (camera, viewport size, background,
+// the visible props' bounds) as JSON, so that another front end (the ParaView plugin's test)
+// renders the same scene from the same point of view.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -28,6 +32,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkUnsignedCharArray.h"
@@ -39,6 +44,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -53,6 +59,8 @@ struct Arguments
   std::string Output;
   std::string Data;
   std::string Work;
+  std::string Camera;
+  bool KeepPools = false;
 };
 
 const char* const ReekNames[4] = { "reek_01_topreek_rota",
@@ -60,8 +68,46 @@ const char* const ReekNames[4] = { "reek_01_topreek_rota",
   "reek_03_lowreek_rota",
   "reek_04_basereek_rota" };
 
-bool Save(vtkRenderWindow* window, const std::string& path)
+void WriteVector(std::ostream& os, const char* name, const double* v, int n, const char* end)
 {
+  os << "  \"" << name << "\": [";
+  for (int i = 0; i < n; ++i)
+    os << (i ? ", " : "") << v[i];
+  os << "]" << end << "\n";
+}
+
+/// The view as JSON (see --camera).
+bool WriteCamera(vtkRenderWindow* window, const std::string& path)
+{
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double bounds[6];
+  renderer->ComputeVisiblePropBounds(bounds);
+  const double size[2] = { double(window->GetSize()[0]), double(window->GetSize()[1]) };
+  const double angle = camera->GetViewAngle();
+  std::ofstream os(path);
+  os.precision(17);
+  os << "{\n";
+  WriteVector(os, "size", size, 2, ",");
+  WriteVector(os, "background", renderer->GetBackground(), 3, ",");
+  WriteVector(os, "position", camera->GetPosition(), 3, ",");
+  WriteVector(os, "focal_point", camera->GetFocalPoint(), 3, ",");
+  WriteVector(os, "view_up", camera->GetViewUp(), 3, ",");
+  WriteVector(os, "view_angle", &angle, 1, ",");
+  WriteVector(os, "clipping_range", camera->GetClippingRange(), 2, ",");
+  WriteVector(os, "bounds", bounds, 6, "");
+  os << "}\n";
+  return bool(os);
+}
+
+bool Save(vtkRenderWindow* window, const Arguments& args)
+{
+  if (!args.Camera.empty() && !WriteCamera(window, args.Camera))
+  {
+    std::cerr << "cannot write " << args.Camera << "\n";
+    return false;
+  }
+  const std::string& path = args.Output;
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   vtkNew<vtkPNGWriter> writer;
@@ -162,7 +208,7 @@ int ShowReek(const Arguments& args, vtkStackedHeightFieldMapper* mapper, bool pa
   {
     window->Render();
   }
-  return Save(window, args.Output) ? 0 : 1;
+  return Save(window, args) ? 0 : 1;
 }
 
 int Horizons(const Arguments& args)
@@ -200,7 +246,8 @@ int PagedHorizons(const Arguments& args)
   const int result = ShowReek(args, mapper, true);
   for (const char* name : ReekNames)
   {
-    std::remove((args.Work + "/" + name + ".spp").c_str());
+    if (!args.KeepPools)
+      std::remove((args.Work + "/" + name + ".spp").c_str());
   }
   return result;
 }
@@ -234,7 +281,7 @@ int HorizonsNumpy(const Arguments& args)
   View(renderer, -55, 30, 1.1);
   auto window = Window(renderer, 320, 240);
   window->Render();
-  return Save(window, args.Output) ? 0 : 1;
+  return Save(window, args) ? 0 : 1;
 }
 
 /// The spherical shell of volumes.py: 255 on the sphere of radius 24 voxels, fading over 21.
@@ -284,7 +331,7 @@ int Volumes(const Arguments& args)
   View(renderer, -80, 35, 1.1);
   auto window = Window(renderer, 240, 240);
   window->Render();
-  return Save(window, args.Output) ? 0 : 1;
+  return Save(window, args) ? 0 : 1;
 }
 
 int Hybrid(const Arguments& args)
@@ -310,7 +357,7 @@ int Hybrid(const Arguments& args)
   auto window = Window(renderer, 240, 240);
   window->Render();
   std::cerr << mapper->GetNumberOfPointsDrawn() << " points drawn\n";
-  return Save(window, args.Output) ? 0 : 1;
+  return Save(window, args) ? 0 : 1;
 }
 
 int PagedVolume(const Arguments& args)
@@ -353,8 +400,9 @@ int PagedVolume(const Arguments& args)
   std::cerr << "settled after " << frames << " frames, " << mapper->GetNumberOfResidentBricks()
             << " bricks resident, " << mapper->GetPagingStatistics().BytesRead / 1024
             << " KiB read\n";
-  const int result = Save(window, args.Output) ? 0 : 1;
-  std::remove(pool.c_str());
+  const int result = Save(window, args) ? 0 : 1;
+  if (!args.KeepPools)
+    std::remove(pool.c_str());
   return result;
 }
 }
@@ -371,8 +419,10 @@ int main(int argc, char* argv[])
   };
   if (argc < 3 || !scenes.count(argv[1]))
   {
-    std::cerr << "usage: StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|"
-                 "paged_horizons> <out.png> [--data <folder>] [--work <folder>]\n";
+    std::cerr
+      << "usage: StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|"
+         "paged_horizons> <out.png> [--data <folder>] [--work <folder>] [--camera <view.json>] "
+         "[--keep-pools]\n";
     return 2;
   }
   Arguments args;
@@ -380,13 +430,26 @@ int main(int argc, char* argv[])
   args.Data = STRATA_EXAMPLES_DATA;
   const size_t slash = args.Output.find_last_of('/');
   args.Work = slash == std::string::npos ? "." : args.Output.substr(0, slash);
-  for (int a = 3; a + 1 < argc; a += 2)
+  for (int a = 3; a < argc; a += 2)
   {
     const std::string option = argv[a];
+    if (option == "--keep-pools")
+    {
+      args.KeepPools = true;
+      --a;
+      continue;
+    }
+    if (a + 1 >= argc)
+    {
+      std::cerr << option << " needs a value\n";
+      return 2;
+    }
     if (option == "--data")
       args.Data = argv[a + 1];
     else if (option == "--work")
       args.Work = argv[a + 1];
+    else if (option == "--camera")
+      args.Camera = argv[a + 1];
     else
     {
       std::cerr << "unknown option " << option << "\n";

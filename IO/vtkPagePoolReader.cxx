@@ -4,18 +4,21 @@
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPagePoolFile.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkType.h"
 
 #include <vtksys/FStream.hxx>
@@ -83,6 +86,8 @@ int PageOf(int p, int stride, int pages)
 }
 
 //------------------------------------------------------------------------------
+const char* const vtkPagePoolReader::PoolFileNameArray = "PagePoolFileName";
+const char* const vtkPagePoolReader::PoolLayerArray = "PagePoolLayer";
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_FILE_NAME, String);
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_LAYER, Integer);
 
@@ -119,6 +124,38 @@ void vtkPagePoolReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IsTilePool: " << this->IsTilePool << "\n";
   os << indent << "NumberOfPagesRead: " << this->NumberOfPagesRead << "\n";
   os << indent << "LevelRead: " << this->LevelRead << "\n";
+}
+
+//------------------------------------------------------------------------------
+void vtkPagePoolReader::MarkPool(vtkImageData* output, const std::string& name)
+{
+  output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
+  vtkNew<vtkStringArray> file;
+  file->SetName(PoolFileNameArray);
+  file->InsertNextValue(name);
+  vtkNew<vtkIntArray> layer;
+  layer->SetName(PoolLayerArray);
+  layer->InsertNextValue(this->IsTilePool ? this->Layer : 0);
+  output->GetFieldData()->AddArray(file);
+  output->GetFieldData()->AddArray(layer);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPagePoolReader::GetPoolFileName(vtkDataObject* data)
+{
+  vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
+  auto* file = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(PoolFileNameArray)) : nullptr;
+  return file && file->GetNumberOfValues() == 1 && !file->GetValue(0).empty()
+           ? file->GetValue(0).c_str()
+           : nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkPagePoolReader::GetPoolLayer(vtkDataObject* data)
+{
+  vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
+  auto* layer = fd ? vtkIntArray::SafeDownCast(fd->GetAbstractArray(PoolLayerArray)) : nullptr;
+  return layer && layer->GetNumberOfValues() == 1 ? layer->GetValue(0) : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -264,7 +301,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   if (this->LastOutput && this->LastRequest == request.str() && this->LastTime >= this->GetMTime())
   {
     output->ShallowCopy(this->LastOutput);
-    output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
+    this->MarkPool(output, name);
     this->LevelRead = ResolutionToLevel(
       outInfo->Has(UPDATE_RESOLUTION()) ? outInfo->Get(UPDATE_RESOLUTION()) : this->Resolution,
       this->NumberOfLevels);
@@ -334,7 +371,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   }
 
   output->SetExtent(extent);
-  output->GetInformation()->Set(POOL_FILE_NAME(), name.c_str());
+  this->MarkPool(output, name);
   output->SetSpacing(spacing);
   output->SetOrigin(h.Origin);
   output->SetDirectionMatrix(h.Direction);

@@ -100,6 +100,22 @@ public:
 
   static vtkInformationDoubleKey* UPDATE_RESOLUTION();
 
+  ///@{
+  /**
+   * The pool behind an output, as it travels with the data: RequestData also writes the file
+   * name and the layer into the output's field data (one-value arrays PoolFileNameArray and
+   * PoolLayerArray), which shallow copies and pass-through filters keep where pipeline
+   * information is lost (ParaView hands a representation a copy of the reader's output).
+   * GetPoolFileName returns null when `data` names no pool; GetPoolLayer returns 0 then. A
+   * consumer that pages from the named pool must only do so when the data is the reader's
+   * output unchanged (the ParaView representations take it straight from the reader).
+   */
+  static const char* GetPoolFileName(vtkDataObject* data);
+  static int GetPoolLayer(vtkDataObject* data);
+  static const char* const PoolFileNameArray;
+  static const char* const PoolLayerArray;
+  ///@}
+
   /// Level that resolution `r` selects in a pool of `levels` levels.
   static int ResolutionToLevel(double r, int levels);
   /**
@@ -133,6 +149,8 @@ public:
   ///@}
 
 protected:
+  void MarkPool(vtkImageData* output, const std::string& name);
+
   vtkPagePoolReader();
   ~vtkPagePoolReader() override;
 

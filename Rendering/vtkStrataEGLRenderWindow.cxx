@@ -465,10 +465,12 @@ vtkTypeBool vtkStrataEGLRenderWindow::IsDirect()
   return this->Internals->Context != EGL_NO_CONTEXT ? 1 : 0;
 }
 
+#if VTK_VERSION_NUMBER < VTK_VERSION_CHECK(9, 2, 0)
 bool vtkStrataEGLRenderWindow::IsDrawable()
 {
   return this->Internals->Context != EGL_NO_CONTEXT;
 }
+#endif
 
 void vtkStrataEGLRenderWindow::SetShowWindow(bool)
 {

@@ -21,6 +21,7 @@
 
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkVersionMacros.h" // For VTK_VERSION_CHECK (VTK 9.1 and ParaView's 9.2)
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -55,7 +56,9 @@ public:
   void SetSize(int a[2]) override { this->SetSize(a[0], a[1]); }
   void* GetGenericContext() override;
   void* GetGenericDisplayId() override;
-  bool IsDrawable() override;
+#if VTK_VERSION_NUMBER < VTK_VERSION_CHECK(9, 2, 0)
+  bool IsDrawable() override; // (VTK 9.2 dropped it from vtkRenderWindow)
+#endif
   void SetShowWindow(bool) override;
 
   /**

@@ -2,7 +2,9 @@
 //
 // Strata's object factory, registered by VTK's autoinit (the module IMPLEMENTS
 // VTK::RenderingCore). Written by hand rather than by vtk_object_factory_configure because
-// whether the EGL window replaces VTK's X window is decided at run time.
+// whether the EGL window replaces VTK's X window is decided at run time. A build with
+// STRATA_OVERRIDE_RENDER_WINDOW off (the ParaView plugin: ParaView chooses its own windows)
+// registers nothing.
 
 #include "StrataRenderingModule.h"
 #include "vtkObjectFactory.h"
@@ -45,6 +47,10 @@ unsigned int StrataFactoryCount = 0;
 
 STRATARENDERING_EXPORT void StrataRendering_AutoInit_Construct()
 {
+#if !STRATA_OVERRIDE_RENDER_WINDOW
+  // Built into a host that owns its windows (the ParaView plugin): never replace them.
+  return;
+#endif
   if (++StrataFactoryCount != 1 || !vtkStrataEGLRenderWindow::ShouldOverrideRenderWindow())
   {
     return;

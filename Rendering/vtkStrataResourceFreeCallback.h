@@ -12,9 +12,9 @@
  * that made them and never after it is gone.
  *
  * vtkOpenGLRenderWindow keeps these callbacks as vtkGenericOpenGLResourceFreeCallback, whose
- * header Debian's libvtk9-dev does not install (ParaView's VTK does); where it is missing the
- * interface is declared here with the same virtual functions in the same order and the same
- * members, which is all the window relies on (it calls Release() on each registered one).
+ * header neither Debian's libvtk9-dev nor paraview-dev (ParaView 5.11) installs; where it is
+ * missing the interface is declared here with the same virtual functions in the same order and the
+ * same members, which is all the window relies on (it calls Release() on each registered one).
  */
 #ifndef vtkStrataResourceFreeCallback_h
 #define vtkStrataResourceFreeCallback_h

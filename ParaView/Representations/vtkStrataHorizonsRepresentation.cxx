@@ -1,0 +1,280 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkStrataHorizonsRepresentation.h"
+
+#include "vtkActor.h"
+#include "vtkAlgorithmOutput.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleKey.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkPagePoolReader.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkStackedHeightFieldMapper.h"
+#include "vtkStrataPooledProducer.h"
+
+vtkStandardNewMacro(vtkStrataHorizonsRepresentation);
+
+//------------------------------------------------------------------------------
+vtkStrataHorizonsRepresentation::vtkStrataHorizonsRepresentation()
+{
+  this->Actor->SetMapper(this->Mapper);
+  vtkMath::UninitializeBounds(this->DataBounds);
+}
+
+//------------------------------------------------------------------------------
+vtkStrataHorizonsRepresentation::~vtkStrataHorizonsRepresentation() = default;
+
+//------------------------------------------------------------------------------
+void vtkStrataHorizonsRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Horizons: " << this->Producers.size() << "\n";
+  os << indent << "Mapper:\n";
+  this->Mapper->PrintSelf(os, indent.GetNextIndent());
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // A pooled horizon shown directly (no Stack Horizons between) gives its coarsest level.
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    inputVector[0]->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  std::vector<vtkImageData*> horizons;
+  vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? vtkDataObject::GetData(inputVector[0], 0)
+    : nullptr;
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    horizons.push_back(image);
+  }
+  else if (auto* stack = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(stack->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto* block = vtkImageData::SafeDownCast(it->GetCurrentDataObject()))
+        horizons.push_back(block);
+    }
+  }
+
+  // One producer per horizon, kept across updates so the mapper's stack is rebuilt only when
+  // the data changes.
+  this->Mapper->RemoveAllInputConnections(0);
+  this->Producers.resize(horizons.size());
+  this->DataSize = 0;
+  for (size_t i = 0; i < horizons.size(); ++i)
+  {
+    if (!this->Producers[i])
+      this->Producers[i] = vtkSmartPointer<vtkStrataPooledProducer>::New();
+    vtkNew<vtkImageData> copy;
+    copy->ShallowCopy(horizons[i]);
+    this->Producers[i]->SetOutput(copy);
+    this->Mapper->AddInputConnection(this->Producers[i]->GetOutputPort());
+    this->DataSize += copy->GetActualMemorySize();
+  }
+  this->Cache = input;
+  vtkMath::UninitializeBounds(this->DataBounds);
+  if (!horizons.empty())
+  {
+    this->Mapper->GetBounds(this->DataBounds);
+  }
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request == vtkPVView::REQUEST_UPDATE())
+  {
+    // Rendered where the data is; ParaView only needs its size and bounds (camera resets).
+    vtkPVRenderView::SetPiece(inInfo, this, this->Cache, this->DataSize, 0);
+    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false, 0);
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+    {
+      vtkNew<vtkMatrix4x4> matrix;
+      this->Actor->GetMatrix(matrix);
+      vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, matrix);
+    }
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+  }
+  else if (request == vtkPVView::REQUEST_UPDATE_LOD())
+  {
+    vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkStrataHorizonsRepresentation::AddToView(vtkView* view)
+{
+  auto* rview = vtkPVRenderView::SafeDownCast(view);
+  if (!rview)
+  {
+    return false;
+  }
+  rview->GetRenderer()->AddActor(this->Actor);
+  return this->Superclass::AddToView(view);
+}
+
+//------------------------------------------------------------------------------
+bool vtkStrataHorizonsRepresentation::RemoveFromView(vtkView* view)
+{
+  auto* rview = vtkPVRenderView::SafeDownCast(view);
+  if (!rview)
+  {
+    return false;
+  }
+  rview->GetRenderer()->RemoveActor(this->Actor);
+  return this->Superclass::RemoveFromView(view);
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataHorizonsRepresentation::SetVisibility(bool visible)
+{
+  this->Superclass::SetVisibility(visible);
+  this->Actor->SetVisibility(visible);
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::GetPagingConverged()
+{
+  return this->Mapper->GetPagingStatistics().Converged ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHorizonsRepresentation::GetNumberOfPagedHorizons()
+{
+  int paged = 0;
+  for (const auto& producer : this->Producers)
+    paged += *producer->GetPoolFileName() ? 1 : 0;
+  return paged;
+}
+
+// The actor's and the mapper's settings, passed through.
+void vtkStrataHorizonsRepresentation::SetScale(double x, double y, double z)
+{
+  this->Actor->SetScale(x, y, z);
+}
+void vtkStrataHorizonsRepresentation::SetPosition(double x, double y, double z)
+{
+  this->Actor->SetPosition(x, y, z);
+}
+void vtkStrataHorizonsRepresentation::SetAmbient(double value)
+{
+  this->Actor->GetProperty()->SetAmbient(value);
+}
+void vtkStrataHorizonsRepresentation::SetDiffuse(double value)
+{
+  this->Actor->GetProperty()->SetDiffuse(value);
+}
+void vtkStrataHorizonsRepresentation::SetSpecular(double value)
+{
+  this->Actor->GetProperty()->SetSpecular(value);
+}
+void vtkStrataHorizonsRepresentation::SetSpecularPower(double value)
+{
+  this->Actor->GetProperty()->SetSpecularPower(value);
+}
+void vtkStrataHorizonsRepresentation::SetOpacity(double value)
+{
+  this->Actor->GetProperty()->SetOpacity(value);
+}
+void vtkStrataHorizonsRepresentation::SetHeightScale(double scale)
+{
+  this->Mapper->SetHeightScale(scale);
+}
+void vtkStrataHorizonsRepresentation::SetColorMode(int mode)
+{
+  this->Mapper->SetColorMode(mode == 0 ? vtkStackedHeightFieldMapper::ColorModes::Solid
+                                       : vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+}
+void vtkStrataHorizonsRepresentation::SetLookupTable(vtkScalarsToColors* lut)
+{
+  this->Mapper->SetHeightLookupTable(lut);
+}
+void vtkStrataHorizonsRepresentation::SetNullValue(double value)
+{
+  this->Mapper->SetNullValue(value);
+}
+void vtkStrataHorizonsRepresentation::SetUseNullValue(bool use)
+{
+  this->Mapper->SetUseNullValue(use);
+}
+void vtkStrataHorizonsRepresentation::SetTileSize(int size)
+{
+  this->Mapper->SetTileSize(size);
+}
+void vtkStrataHorizonsRepresentation::SetLinearSearchStep(double step)
+{
+  this->Mapper->SetLinearSearchStep(step);
+}
+void vtkStrataHorizonsRepresentation::SetPageCacheBudget(double megabytes)
+{
+  this->Mapper->SetPageCacheBudget(megabytes);
+}
+void vtkStrataHorizonsRepresentation::SetAtlasBudget(double megabytes)
+{
+  this->Mapper->SetAtlasBudget(megabytes);
+}
+void vtkStrataHorizonsRepresentation::SetPagesPerFrame(int pages)
+{
+  this->Mapper->SetPagesPerFrame(pages);
+}
+void vtkStrataHorizonsRepresentation::SetPrefetch(bool prefetch)
+{
+  this->Mapper->SetPrefetch(prefetch);
+}
+void vtkStrataHorizonsRepresentation::SetMorphFrames(int frames)
+{
+  this->Mapper->SetMorphFrames(frames);
+}
+void vtkStrataHorizonsRepresentation::SetLevelOfDetailFeedback(bool feedback)
+{
+  this->Mapper->SetLevelOfDetailFeedback(feedback);
+}
+void vtkStrataHorizonsRepresentation::SetFeedbackScale(int scale)
+{
+  this->Mapper->SetFeedbackScale(scale);
+}
+void vtkStrataHorizonsRepresentation::SetLevelOfDetailThreshold(double threshold)
+{
+  this->Mapper->SetLevelOfDetailThreshold(threshold);
+}

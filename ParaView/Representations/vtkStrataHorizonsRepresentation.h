@@ -1,0 +1,111 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkStrataHorizonsRepresentation
+ * @brief   ParaView's "Strata Horizons" representation: a stack of horizons ray cast in one
+ *          pass by vtkStackedHeightFieldMapper.
+ *
+ * Input: a horizon (vtkImageData) or a stack of them (a multiblock of images, as the Stack
+ * Horizons filter or ParaView's Group Datasets make). Each horizon reaches the mapper through a
+ * vtkStrataPooledProducer, so horizons read from tile pools are paged by the mapper (every
+ * horizon of a stack pooled, or none). The mapper's options are the representation's properties;
+ * PagingConverged (an information property) tells a script when the paged stack has settled.
+ *
+ * The data stays where it was read (it is never delivered to the client): the view renders it
+ * where the pipeline ran, as ParaView's own volume representation does.
+ */
+#ifndef vtkStrataHorizonsRepresentation_h
+#define vtkStrataHorizonsRepresentation_h
+
+#include "StrataParaViewModule.h" // For export macro
+#include "vtkNew.h"               // For vtkNew
+#include "vtkPVDataRepresentation.h"
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+
+#include <vector> // For std::vector
+
+class vtkActor;
+class vtkScalarsToColors;
+class vtkStackedHeightFieldMapper;
+class vtkStrataPooledProducer;
+
+class STRATAPARAVIEW_EXPORT vtkStrataHorizonsRepresentation : public vtkPVDataRepresentation
+{
+public:
+  static vtkStrataHorizonsRepresentation* New();
+  vtkTypeMacro(vtkStrataHorizonsRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(vtkInformationRequestKey* request,
+    vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+  void SetVisibility(bool visible) override;
+
+  ///@{
+  /// The actor's transform and material (as ParaView's surface representation names them).
+  void SetScale(double x, double y, double z);
+  void SetPosition(double x, double y, double z);
+  void SetAmbient(double value);
+  void SetDiffuse(double value);
+  void SetSpecular(double value);
+  void SetSpecularPower(double value);
+  void SetOpacity(double value);
+  ///@}
+
+  ///@{
+  /// vtkStackedHeightFieldMapper's options (its documentation says what each does).
+  void SetHeightScale(double scale);
+  void SetColorMode(int mode); ///< 0 one colour per horizon, 1 lookup table over the height
+  void SetLookupTable(vtkScalarsToColors* lut);
+  void SetNullValue(double value);
+  void SetUseNullValue(bool use);
+  void SetTileSize(int size);
+  void SetLinearSearchStep(double step);
+  void SetPageCacheBudget(double megabytes);
+  void SetAtlasBudget(double megabytes);
+  void SetPagesPerFrame(int pages);
+  void SetPrefetch(bool prefetch);
+  void SetMorphFrames(int frames);
+  void SetLevelOfDetailFeedback(bool feedback);
+  void SetFeedbackScale(int scale);
+  void SetLevelOfDetailThreshold(double threshold);
+  ///@}
+
+  ///@{
+  /// After a render: whether the paged stack has settled (always 1 in core), the number of
+  /// horizons drawn and of those paged from pools.
+  int GetPagingConverged();
+  int GetNumberOfHorizons() const { return static_cast<int>(this->Producers.size()); }
+  int GetNumberOfPagedHorizons();
+  ///@}
+
+  /// The mapper and the actor, for C++ callers and tests.
+  vtkStackedHeightFieldMapper* GetMapper() { return this->Mapper; }
+  vtkActor* GetActor() { return this->Actor; }
+
+protected:
+  vtkStrataHorizonsRepresentation();
+  ~vtkStrataHorizonsRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+private:
+  vtkStrataHorizonsRepresentation(const vtkStrataHorizonsRepresentation&) = delete;
+  void operator=(const vtkStrataHorizonsRepresentation&) = delete;
+
+  vtkNew<vtkStackedHeightFieldMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+  std::vector<vtkSmartPointer<vtkStrataPooledProducer>> Producers;
+  vtkSmartPointer<vtkDataObject> Cache;
+  double DataBounds[6];
+  unsigned long DataSize = 0;
+};
+
+#endif

@@ -1,0 +1,52 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkStrataPooledProducer
+ * @brief   A trivial producer that says which page pool its data came from.
+ *
+ * Strata's mappers page from a pool when their input's pipeline information carries
+ * vtkPagePoolReader::POOL_FILE_NAME (and POOL_LAYER). Inside ParaView a representation gets a
+ * copy of the reader's output, past ParaView's own pipeline, with that information gone; the
+ * pool travels in the data's field data instead (vtkPagePoolReader::GetPoolFileName). The
+ * representations hand their mappers the data through this producer, which puts the keys back
+ * on its output information at every information pass, so a pool opened in ParaView is paged
+ * by the mapper and never read whole.
+ */
+#ifndef vtkStrataPooledProducer_h
+#define vtkStrataPooledProducer_h
+
+#include "StrataParaViewModule.h" // For export macro
+#include "vtkTrivialProducer.h"
+
+#include <string> // For std::string
+
+class STRATAPARAVIEW_EXPORT vtkStrataPooledProducer : public vtkTrivialProducer
+{
+public:
+  static vtkStrataPooledProducer* New();
+  vtkTypeMacro(vtkStrataPooledProducer, vtkTrivialProducer);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Sets the output and reads the pool it names, if any, from its field data.
+  void SetOutput(vtkDataObject* output) override;
+
+  /// The pool behind the output ("" when none) and its layer.
+  const char* GetPoolFileName() const { return this->PoolFileName.c_str(); }
+  int GetPoolLayer() const { return this->PoolLayer; }
+
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inInfo,
+    vtkInformationVector* outInfo) override;
+
+protected:
+  vtkStrataPooledProducer() = default;
+  ~vtkStrataPooledProducer() override = default;
+
+private:
+  vtkStrataPooledProducer(const vtkStrataPooledProducer&) = delete;
+  void operator=(const vtkStrataPooledProducer&) = delete;
+
+  std::string PoolFileName;
+  int PoolLayer = 0;
+};
+
+#endif

@@ -1,0 +1,371 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkStrataVolumeRepresentation.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleKey.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkMultiVolume.h"
+#include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODVolume.h"
+#include "vtkPVRenderView.h"
+#include "vtkPagePoolReader.h"
+#include "vtkRenderer.h"
+#include "vtkStrataPooledProducer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+/**
+ * The volumes of one view: the mapper, the prop in the renderer (the only volume, or a
+ * vtkMultiVolume of them all) and the representations that contribute, in the order shown.
+ * Sync() makes the mapper's ports and the prop match the visible members; every member calls
+ * it before each render, and it changes nothing when nothing changed.
+ */
+class vtkStrataVolumeRepresentation::vtkScene
+{
+public:
+  explicit vtkScene(vtkRenderer* renderer)
+    : Renderer(renderer)
+  {
+  }
+  ~vtkScene() { this->Show(nullptr); }
+
+  void Sync();
+  std::vector<vtkStrataVolumeRepresentation*> Visible() const;
+  void Show(vtkProp3D* prop);
+  void Apply(const Settings& s);
+
+  vtkSmartPointer<vtkRenderer> Renderer; // kept: the view may drop its renderer before its representations
+  vtkNew<vtkMultiVolumeRayCastMapper> Mapper;
+  vtkNew<vtkMultiVolume> Multi;
+  std::vector<vtkStrataVolumeRepresentation*> Members;
+  vtkProp3D* Shown = nullptr;
+  int Ports = 0;      // input ports connected, 0 .. Ports - 1
+  int MultiPorts = 0; // volumes set on Multi
+};
+
+namespace
+{
+std::map<vtkView*, vtkStrataVolumeRepresentation::vtkScene*> Scenes;
+}
+
+//------------------------------------------------------------------------------
+std::vector<vtkStrataVolumeRepresentation*> vtkStrataVolumeRepresentation::vtkScene::Visible()
+  const
+{
+  std::vector<vtkStrataVolumeRepresentation*> shown;
+  for (auto* member : this->Members)
+  {
+    if (member->GetVisibility() && member->HasData)
+      shown.push_back(member);
+  }
+  return shown;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::vtkScene::Show(vtkProp3D* prop)
+{
+  if (prop == this->Shown)
+    return;
+  if (this->Shown)
+    this->Renderer->RemoveVolume(this->Shown);
+  if (prop)
+    this->Renderer->AddVolume(prop);
+  this->Shown = prop;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::vtkScene::Sync()
+{
+  const auto shown = this->Visible();
+  const int n = static_cast<int>(shown.size());
+  for (int port = 0; port < n; ++port)
+  {
+    vtkAlgorithmOutput* output = shown[port]->Producer->GetOutputPort();
+    if (port >= this->Ports || this->Mapper->GetInputConnection(port, 0) != output)
+      this->Mapper->SetInputConnection(port, output);
+  }
+  for (int port = n; port < this->Ports; ++port)
+    this->Mapper->RemoveInputConnection(port, 0);
+  this->Ports = n;
+
+  // Each volume carries its representation's transform.
+  for (auto* member : shown)
+  {
+    member->Member->SetPosition(member->Actor->GetPosition());
+    member->Member->SetOrientation(member->Actor->GetOrientation());
+    member->Member->SetScale(member->Actor->GetScale());
+    member->Member->SetOrigin(member->Actor->GetOrigin());
+  }
+  if (n == 1)
+  {
+    for (int port = 0; port < this->MultiPorts; ++port)
+      this->Multi->RemoveVolume(port);
+    this->MultiPorts = 0;
+    shown[0]->Member->SetMapper(this->Mapper);
+    this->Show(shown[0]->Member);
+  }
+  else if (n > 1)
+  {
+    for (auto* member : this->Members)
+      member->Member->SetMapper(nullptr);
+    for (int port = 0; port < n; ++port)
+    {
+      if (this->Multi->GetVolume(port) != shown[port]->Member.GetPointer())
+        this->Multi->SetVolume(shown[port]->Member, port);
+    }
+    for (int port = n; port < this->MultiPorts; ++port)
+      this->Multi->RemoveVolume(port);
+    this->MultiPorts = n;
+    this->Multi->SetMapper(this->Mapper);
+    this->Show(this->Multi);
+  }
+  else
+  {
+    this->Show(nullptr);
+  }
+  if (n > 0)
+    this->Apply(shown[0]->Options);
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::vtkScene::Apply(const Settings& s)
+{
+  vtkMultiVolumeRayCastMapper* m = this->Mapper;
+  m->SetSampleDistance(s.SampleDistance);
+  m->SetClassification(
+    static_cast<vtkMultiVolumeRayCastMapper::Classifications>(std::min(2, std::max(0, s.Classification))));
+  m->SetPreIntegrationTableSize(s.PreIntegrationTableSize);
+  m->SetRaysPerPixel(s.RaysPerPixel);
+  m->SetRayCoherence(s.RayCoherence);
+  m->SetCompositeOrder(s.CompositeOrder == 1 ? vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront
+                                             : vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
+  m->SetTerminationOpacity(s.TerminationOpacity);
+  m->SetUseBrickAtlas(s.UseBrickAtlas);
+  m->SetBrickSize(s.BrickSize);
+  m->SetAtlasBudget(s.AtlasBudget);
+  m->SetEmptySpaceSkipping(s.EmptySpaceSkipping);
+  m->SetSkipCellSize(s.SkipCellSize);
+  m->SetPageCacheBudget(s.PageCacheBudget);
+  m->SetPagesPerFrame(s.PagesPerFrame);
+  m->SetPrefetch(s.Prefetch);
+  m->SetLevelOfDetailFeedback(s.LevelOfDetailFeedback);
+  m->SetFeedbackScale(s.FeedbackScale);
+  m->SetLevelOfDetailThreshold(s.LevelOfDetailThreshold);
+}
+
+vtkStandardNewMacro(vtkStrataVolumeRepresentation);
+
+//------------------------------------------------------------------------------
+vtkStrataVolumeRepresentation::vtkStrataVolumeRepresentation()
+{
+  this->Member->SetProperty(this->Property);
+}
+
+//------------------------------------------------------------------------------
+vtkStrataVolumeRepresentation::~vtkStrataVolumeRepresentation() = default;
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Paged: " << this->GetPaged() << "\n";
+  os << indent << "VolumesInScene: " << (this->Scene ? this->Scene->Members.size() : 0) << "\n";
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // A pool gives its coarsest level (the mapper pages the rest); other readers ignore the key.
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    inputVector[0]->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkMath::UninitializeBounds(this->DataBounds);
+  this->DataSize = 0;
+  vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? vtkImageData::GetData(inputVector[0], 0)
+    : nullptr;
+  this->HasData = input && input->GetNumberOfPoints() > 0;
+  if (this->HasData)
+  {
+    vtkNew<vtkImageData> cache;
+    cache->ShallowCopy(input);
+    this->Producer->SetOutput(cache);
+    cache->GetBounds(this->DataBounds);
+    this->DataSize = cache->GetActualMemorySize();
+    this->Cache = cache;
+  }
+  else
+  {
+    this->Cache = vtkSmartPointer<vtkImageData>::New();
+  }
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request == vtkPVView::REQUEST_UPDATE())
+  {
+    // Rendered where it was read: ParaView needs only its size and bounds.
+    vtkPVRenderView::SetPiece(inInfo, this, this->Cache, this->DataSize, 0);
+    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false, 0);
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+      vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkPVRenderView::SetOrderedCompositingConfiguration(
+      inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION);
+  }
+  else if (request == vtkPVView::REQUEST_UPDATE_LOD())
+  {
+    vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
+  }
+  else if (request == vtkPVView::REQUEST_RENDER() && this->Scene)
+  {
+    this->Scene->Sync();
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkStrataVolumeRepresentation::AddToView(vtkView* view)
+{
+  auto* rview = vtkPVRenderView::SafeDownCast(view);
+  if (!rview)
+  {
+    return false;
+  }
+  vtkScene*& scene = Scenes[view];
+  if (!scene)
+    scene = new vtkScene(rview->GetRenderer());
+  scene->Members.push_back(this);
+  this->Scene = scene;
+  return this->Superclass::AddToView(view);
+}
+
+//------------------------------------------------------------------------------
+bool vtkStrataVolumeRepresentation::RemoveFromView(vtkView* view)
+{
+  auto it = Scenes.find(view);
+  if (it == Scenes.end() || it->second != this->Scene)
+  {
+    return false;
+  }
+  auto& members = this->Scene->Members;
+  members.erase(std::remove(members.begin(), members.end(), this), members.end());
+  this->Member->SetMapper(nullptr);
+  if (members.empty())
+  {
+    delete this->Scene;
+    Scenes.erase(it);
+  }
+  else
+  {
+    this->Scene->Sync();
+  }
+  this->Scene = nullptr;
+  return this->Superclass::RemoveFromView(view);
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::SetVisibility(bool visible)
+{
+  this->Superclass::SetVisibility(visible);
+  if (this->Scene)
+    this->Scene->Sync();
+}
+
+//------------------------------------------------------------------------------
+vtkMultiVolumeRayCastMapper* vtkStrataVolumeRepresentation::GetMapper()
+{
+  return this->Scene ? this->Scene->Mapper.GetPointer() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetPagingConverged()
+{
+  return !this->Scene || this->Scene->Mapper->GetPagingStatistics().Converged ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetNumberOfVolumesInScene()
+{
+  return this->Scene ? static_cast<int>(this->Scene->Visible().size()) : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetPaged()
+{
+  return *this->Producer->GetPoolFileName() ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::SettingsChanged()
+{
+  this->Modified();
+  if (this->Scene)
+    this->Scene->Sync();
+}
+
+#define STRATA_SETTING(type, name)                                                                \
+  void vtkStrataVolumeRepresentation::Set##name(type value)                                       \
+  {                                                                                               \
+    if (this->Options.name != value)                                                              \
+    {                                                                                             \
+      this->Options.name = value;                                                                 \
+      this->SettingsChanged();                                                                    \
+    }                                                                                             \
+  }
+STRATA_SETTING(double, SampleDistance)
+STRATA_SETTING(int, Classification)
+STRATA_SETTING(int, PreIntegrationTableSize)
+STRATA_SETTING(int, RaysPerPixel)
+STRATA_SETTING(bool, RayCoherence)
+STRATA_SETTING(int, CompositeOrder)
+STRATA_SETTING(double, TerminationOpacity)
+STRATA_SETTING(bool, UseBrickAtlas)
+STRATA_SETTING(int, BrickSize)
+STRATA_SETTING(double, AtlasBudget)
+STRATA_SETTING(bool, EmptySpaceSkipping)
+STRATA_SETTING(int, SkipCellSize)
+STRATA_SETTING(double, PageCacheBudget)
+STRATA_SETTING(int, PagesPerFrame)
+STRATA_SETTING(bool, Prefetch)
+STRATA_SETTING(bool, LevelOfDetailFeedback)
+STRATA_SETTING(int, FeedbackScale)
+STRATA_SETTING(double, LevelOfDetailThreshold)
+#undef STRATA_SETTING

@@ -1,0 +1,136 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkStrataVolumeRepresentation
+ * @brief   ParaView's "Strata Volume" representation: every volume shown with it in a view is
+ *          ray cast together, overlapping volumes included, by one vtkMultiVolumeRayCastMapper.
+ *
+ * ParaView makes one representation per data set and view. This one adds its volume (its
+ * vtkVolumeProperty: the lookup table and scalar opacity function ParaView's colour-map editor
+ * edits, interpolation, scalar opacity unit distance) to a scene shared by all the Strata
+ * Volume representations of its view: one mapper, one input port per visible volume (a
+ * vtkMultiVolume when there are several; a plain vtkVolume for one), so that overlapping volumes
+ * blend sample by sample in one pass, each through its own transfer function, which ParaView's
+ * own volume representation cannot do. Settings that belong to the ray cast as a whole
+ * (classification, rays per pixel, sample distance, budgets, paging) are taken from the first
+ * visible Strata volume of the view, in the order they were shown.
+ *
+ * A volume read from a page pool (vtkPagePoolReader, whose ParaView source reads only the
+ * coarsest level) is paged by the mapper from the pool; PagingConverged says when the cut has
+ * settled. The data stays where it was read (never delivered to the client).
+ */
+#ifndef vtkStrataVolumeRepresentation_h
+#define vtkStrataVolumeRepresentation_h
+
+#include "StrataParaViewModule.h" // For export macro
+#include "vtkNew.h"               // For vtkNew
+#include "vtkSmartPointer.h"      // For vtkSmartPointer
+#include "vtkVolumeRepresentation.h"
+
+class vtkMultiVolumeRayCastMapper;
+class vtkStrataPooledProducer;
+class vtkVolume;
+
+class STRATAPARAVIEW_EXPORT vtkStrataVolumeRepresentation : public vtkVolumeRepresentation
+{
+public:
+  static vtkStrataVolumeRepresentation* New();
+  vtkTypeMacro(vtkStrataVolumeRepresentation, vtkVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(vtkInformationRequestKey* request,
+    vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+  void SetVisibility(bool visible) override;
+
+  /// The ray cast's settings (vtkMultiVolumeRayCastMapper's documentation says what each does).
+  struct Settings
+  {
+    double SampleDistance = 1.0;
+    int Classification = 0; ///< 0 post-classification, 1 pre-integrated, 2 its approximation
+    int PreIntegrationTableSize = 256;
+    int RaysPerPixel = 1;
+    bool RayCoherence = false;
+    int CompositeOrder = 0; ///< 0 front to back, 1 back to front
+    double TerminationOpacity = 0.999;
+    bool UseBrickAtlas = true;
+    int BrickSize = 32;
+    double AtlasBudget = 256.0;
+    bool EmptySpaceSkipping = true;
+    int SkipCellSize = 8;
+    double PageCacheBudget = 512.0;
+    int PagesPerFrame = 64;
+    bool Prefetch = false;
+    bool LevelOfDetailFeedback = true;
+    int FeedbackScale = 4;
+    double LevelOfDetailThreshold = 0.0;
+  };
+
+  ///@{
+  /// Setters of the Settings, one per ParaView property.
+  void SetSampleDistance(double value);
+  void SetClassification(int value);
+  void SetPreIntegrationTableSize(int value);
+  void SetRaysPerPixel(int value);
+  void SetRayCoherence(bool value);
+  void SetCompositeOrder(int value);
+  void SetTerminationOpacity(double value);
+  void SetUseBrickAtlas(bool value);
+  void SetBrickSize(int value);
+  void SetAtlasBudget(double value);
+  void SetEmptySpaceSkipping(bool value);
+  void SetSkipCellSize(int value);
+  void SetPageCacheBudget(double value);
+  void SetPagesPerFrame(int value);
+  void SetPrefetch(bool value);
+  void SetLevelOfDetailFeedback(bool value);
+  void SetFeedbackScale(int value);
+  void SetLevelOfDetailThreshold(double value);
+  ///@}
+  const Settings& GetSettings() const { return this->Options; }
+
+  ///@{
+  /// After a render: whether the view's volumes have settled (1 in core), how many volumes the
+  /// view's scene ray casts together, whether this one is paged from a pool.
+  int GetPagingConverged();
+  int GetNumberOfVolumesInScene();
+  int GetPaged();
+  ///@}
+
+  /// The mapper of this representation's view (null before it is added to one).
+  vtkMultiVolumeRayCastMapper* GetMapper();
+  /// The volume this representation contributes to the scene.
+  vtkVolume* GetVolume() { return this->Member; }
+  /// The producer the mapper reads this volume from.
+  vtkStrataPooledProducer* GetProducer() { return this->Producer; }
+
+  class vtkScene;
+
+protected:
+  vtkStrataVolumeRepresentation();
+  ~vtkStrataVolumeRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+private:
+  vtkStrataVolumeRepresentation(const vtkStrataVolumeRepresentation&) = delete;
+  void operator=(const vtkStrataVolumeRepresentation&) = delete;
+
+  void SettingsChanged();
+
+  Settings Options;
+  vtkNew<vtkVolume> Member;
+  vtkNew<vtkStrataPooledProducer> Producer;
+  vtkSmartPointer<vtkDataObject> Cache;
+  bool HasData = false;
+  vtkScene* Scene = nullptr; // shared with the view's other Strata volumes; owned by them all
+};
+
+#endif

@@ -1,0 +1,237 @@
+# Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+"""pvbatch (or pvpython) test of Strata's ParaView plugin.
+
+    pvbatch TestPlugin.py --plugin Strata.so --scene <paged_volume|paged_horizons|proxies>
+                          [--work <folder>] [--tolerance <max channel difference>]
+
+paged_volume and paged_horizons: the folder holds what `StrataExamples <scene>
+<folder>/cxx_<scene>.png --work <folder> --camera <folder>/<scene>.json --keep-pools` wrote: the
+standalone C++ rendering, its view and the page pools. The script opens the pools with the
+plugin's reader, shows them through Strata's representations from the same view, renders until
+the paging has settled, and asserts: the pipeline read only the pools' coarsest level (one page
+each), the data are paged by the representation, the visible bounds equal the C++ ones, the
+render window is ParaView's own, and the image matches the C++ one (max channel difference and
+number of differing pixels printed; the maximum asserted).
+
+proxies: loads the plugin and lists its proxies (sources, filters, representations), asserting
+that each is there.
+"""
+import argparse
+import json
+import os
+import time
+
+import paraview.simple
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface)
+
+STRATA_PROXIES = {
+    "sources": ["StrataPagePoolReader", "StrataIrapGridReader", "StrataNumpyGridReader",
+                "StrataHorizonColumnReader", "StrataSegyVolumeReader",
+                "StrataStreamingMetaImageReader", "StrataHybridVolumeReader"],
+    "filters": ["StrataStackHorizons"],
+    "representations": ["StrataVolumeRepresentation", "StrataHorizonsRepresentation"],
+}
+REEK = ["reek_01_topreek_rota", "reek_02_midreek_rota", "reek_03_lowreek_rota",
+        "reek_04_basereek_rota"]
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def list_proxies():
+    manager = servermanager.ProxyManager().SMProxyManager
+    for group, names in STRATA_PROXIES.items():
+        for name in names:
+            proxy = manager.GetPrototypeProxy(group, name)
+            label = proxy.GetXMLLabel() if proxy else None
+            check(proxy is not None, "proxy %s/%s (%s) is defined" % (group, name, label))
+    # The Python names of the readers and the filter, from their labels.
+    for name in ["StrataPagePool", "StrataIrapBinaryGrid", "StrataNumPyHorizon",
+                 "StrataHorizonColumns", "StrataSEGYVolume", "StackHorizons"]:
+        check(name in globals(), "paraview.simple has %s()" % name)
+
+
+def setup_view(camera):
+    view = CreateView("RenderView")
+    view.ViewSize = [int(v) for v in camera["size"]]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = camera["background"]
+    view.UseFXAA = 0
+    view.UseToneMapping = 0
+    # The standalone scenes have VTK's default light: one white headlight of intensity 1.
+    view.UseLight = 0
+    light = AddLight(view=view)
+    light.Coords = "Headlight"
+    light.Intensity = 1.0
+    view.CameraPosition = camera["position"]
+    view.CameraFocalPoint = camera["focal_point"]
+    view.CameraViewUp = camera["view_up"]
+    view.CameraViewAngle = camera["view_angle"][0]
+    view.CameraParallelProjection = 0
+    paraview.simple._DisableFirstRenderCameraReset()
+    return view
+
+
+def render_until_converged(view, display, prefix, frames=500):
+    """Renders until the representation's PagingConverged is 1 (the pages arrive on worker
+    threads between renders)."""
+    for frame in range(1, frames + 1):
+        Render(view)
+        display.UpdatePropertyInformation()
+        if display.GetPropertyValue(prefix + "PagingConverged") == 1:
+            return frame
+        time.sleep(0.02)
+    return frames + 1
+
+
+def compare(view, camera, work, scene, tolerance):
+    # The camera as the C++ view had it (ParaView resets the clipping range on render).
+    view.CameraPosition = camera["position"]
+    view.CameraFocalPoint = camera["focal_point"]
+    view.CameraViewUp = camera["view_up"]
+    Render(view)
+    active = view.GetActiveCamera()
+    print("camera: position %s, view angle %.6g, clipping range %s" % (
+        ["%.6g" % v for v in active.GetPosition()], active.GetViewAngle(),
+        ["%.6g" % v for v in active.GetClippingRange()]))
+    renderer = view.GetRenderer()
+    bounds = [0.0] * 6
+    renderer.ComputeVisiblePropBounds(bounds)
+    expected = camera["bounds"]
+    scale = max(abs(b) for b in expected) or 1.0
+    error = max(abs(a - b) for a, b in zip(bounds, expected)) / scale
+    print("bounds: ParaView %s, C++ %s (relative difference %.2e)" % (
+        ["%.6g" % b for b in bounds], ["%.6g" % b for b in expected], error))
+    check(error < 1e-9, "the visible bounds equal the standalone scene's")
+    window = view.GetRenderWindow()
+    check(window.GetClassName() != "vtkStrataEGLRenderWindow",
+          "ParaView keeps its own render window (%s)" % window.GetClassName())
+
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import numpy
+    out = os.path.join(work, "pv_%s.png" % scene)
+    SaveScreenshot(out, view, ImageResolution=view.ViewSize, TransparentBackground=0)
+
+    def load(path):
+        reader = vtkPNGReader()
+        reader.SetFileName(path)
+        reader.Update()
+        image = reader.GetOutput()
+        dims = image.GetDimensions()
+        values = vtk_to_numpy(image.GetPointData().GetScalars())
+        return dims, values[:, :3].astype(numpy.int32)
+
+    dims_pv, pv = load(out)
+    dims_cxx, cxx = load(os.path.join(work, "cxx_%s.png" % scene))
+    check(dims_pv == dims_cxx, "image sizes match (%s, %s)" % (dims_pv[:2], dims_cxx[:2]))
+    if dims_pv != dims_cxx:
+        return
+    difference = numpy.abs(pv - cxx)
+    background = numpy.round(numpy.array(camera["background"]) * 255).astype(numpy.int32)
+    covered = numpy.count_nonzero(numpy.any(numpy.abs(cxx - background) > 2, axis=1))
+    print("%s: %s, max channel difference %d of 255, %d of %d pixels differ, %d pixels covered"
+          % (scene, out, difference.max(), numpy.count_nonzero(difference.max(axis=1)),
+             len(difference), covered))
+    check(covered > len(difference) // 10, "the scene covers more than a tenth of the view")
+    check(difference.max() <= tolerance,
+          "ParaView's image equals the standalone one within %d of 255" % tolerance)
+
+
+def check_pool_reads(reader, what):
+    reader.UpdatePropertyInformation()
+    levels = reader.GetPropertyValue("NumberOfLevels")
+    level = reader.GetPropertyValue("LevelRead")
+    pages = reader.GetPropertyValue("NumberOfPagesRead")
+    print("%s: %d levels, the pipeline read level %d, %d page(s)" % (what, levels, level, pages))
+    # (0 pages: ParaView's update found the level already read.)
+    check(levels > 1 and level == levels - 1 and pages <= 1,
+          "%s: ParaView's pipeline read only the coarsest level (one page)" % what)
+
+
+def paged_volume(args, camera):
+    reader = StrataPagePool(FileName=os.path.join(args.work, "tooth.spp"))
+    view = setup_view(camera)
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Volume")
+    ColorBy(display, ("POINTS", "values"))
+    lut = GetColorTransferFunction("values")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = [0, 0.5, 0.5, 0.5, 140, 0.8, 0.35, 0.25, 200, 1.0, 0.9, 0.8, 255, 1, 1, 1]
+    opacity = GetOpacityTransferFunction("values")
+    opacity.Points = [0, 0, 0.5, 0, 110, 0, 0.5, 0, 150, 0.03, 0.5, 0, 255, 0.5, 0.5, 0]
+    display.InterpolationType = "Linear"
+    display.ScalarOpacityUnitDistance = 1.0
+    display.StrataVolumeSampleDistance = 0.5
+    display.StrataVolumeAtlasBudget = 16
+    display.StrataVolumePagesPerFrame = 8
+    frames = render_until_converged(view, display, "StrataVolume")
+    print("paged volume settled after %d renders" % frames)
+    check(frames <= 500, "the paged volume settles")
+    display.UpdatePropertyInformation()
+    check(display.GetPropertyValue("StrataVolumePaged") == 1,
+          "the volume is paged by the representation")
+    check(display.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 1,
+          "one volume in the view's ray cast")
+    check_pool_reads(reader, "tooth.spp")
+    compare(view, camera, args.work, "paged_volume", args.tolerance)
+
+
+def paged_horizons(args, camera):
+    readers = [StrataPagePool(FileName=os.path.join(args.work, name + ".spp"))
+               for name in REEK]
+    stack = StackHorizons(Input=readers)
+    view = setup_view(camera)
+    display = Show(stack, view)
+    display.SetRepresentationType("Strata Horizons")
+    display.StrataHorizonsHeightScale = -1.0
+    display.StrataHorizonsColorMode = "Height"
+    display.StrataHorizonsScale = [1, 1, 8]
+    display.StrataHorizonsSpecular = 0.2
+    display.StrataHorizonsPagesPerFrame = 16
+    frames = render_until_converged(view, display, "StrataHorizons")
+    print("paged horizons settled after %d renders" % frames)
+    check(frames <= 500, "the paged stack settles")
+    display.UpdatePropertyInformation()
+    check(display.GetPropertyValue("StrataHorizonsNumberOfHorizons") == 4,
+          "four horizons in the stack")
+    check(display.GetPropertyValue("StrataHorizonsNumberOfPagedHorizons") == 4,
+          "all four paged by the representation")
+    for name, reader in zip(REEK, readers):
+        check_pool_reads(reader, name + ".spp")
+    compare(view, camera, args.work, "paged_horizons", args.tolerance)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--plugin", required=True)
+    parser.add_argument("--scene", required=True,
+                        choices=["paged_volume", "paged_horizons", "proxies"])
+    parser.add_argument("--work", default=".")
+    parser.add_argument("--tolerance", type=int, default=0)
+    args = parser.parse_args()
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    print("ParaView %d.%d, plugin %s" % (GetParaViewVersion().major,
+                                         GetParaViewVersion().minor, args.plugin))
+    if args.scene == "proxies":
+        list_proxies()
+    else:
+        with open(os.path.join(args.work, args.scene + ".json")) as f:
+            camera = json.load(f)
+        globals()[args.scene](args, camera)
+    print("%d failure(s)" % len(failures))
+    if failures:
+        # (An exception makes pvbatch exit 1; sys.exit in pvbatch crashes ParaView 5.11's
+        # finalisation, with or without Strata.)
+        raise RuntimeError("%d check(s) failed: %s" % (len(failures), "; ".join(failures)))
+
+
+main()
