@@ -8,9 +8,10 @@
 //                  [--camera <view.json>] [--keep-pools]
 //
 // --work is where the paged scenes write their pools (default: the folder of out.png);
-// --keep-pools leaves them there. --camera writes the view (camera, viewport size, background,
-// the visible props' bounds) as JSON, so that another front end (the ParaView plugin's test)
-// renders the same scene from the same point of view.
+// --keep-pools leaves them there (and the volumes scene writes its shell as shell.vti). --camera
+// writes the view (camera, viewport size, background, the visible props' bounds) as JSON, so that
+// another front end (the ParaView plugin's test) renders the same scene from the same point of
+// view.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -39,6 +40,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
 #include <array>
@@ -314,7 +316,20 @@ int Volumes(const Arguments& args)
   vtkNew<vtkMultiVolumeRayCastMapper> mapper;
   mapper->SetSampleDistance(0.5);
   mapper->SetInputConnection(0, tooth->GetOutputPort());
-  mapper->SetInputDataObject(1, Shell());
+  const auto shell = Shell();
+  mapper->SetInputDataObject(1, shell);
+  if (args.KeepPools)
+  {
+    // The shell as a file too, for front ends that cannot build it (the plugin's test).
+    vtkNew<vtkImageData> copy;
+    copy->DeepCopy(shell);
+    copy->GetPointData()->GetScalars()->SetName("shell");
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetInputData(copy);
+    writer->SetFileName((args.Work + "/shell.vti").c_str());
+    if (!writer->Write())
+      return 1;
+  }
   vtkNew<vtkMultiVolume> scene;
   scene->SetMapper(mapper);
   const vtkSmartPointer<vtkVolumeProperty> properties[2] = { ToothProperty(),

@@ -51,8 +51,9 @@ int vtkStrataHorizonsRepresentation::FillInputPortInformation(int, vtkInformatio
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHorizonsRepresentation::RequestUpdateExtent(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataHorizonsRepresentation::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
   {
@@ -67,13 +68,14 @@ int vtkStrataHorizonsRepresentation::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHorizonsRepresentation::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataHorizonsRepresentation::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   std::vector<vtkImageData*> horizons;
   vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() == 1
-    ? vtkDataObject::GetData(inputVector[0], 0)
-    : nullptr;
+                           ? vtkDataObject::GetData(inputVector[0], 0)
+                           : nullptr;
   if (auto* image = vtkImageData::SafeDownCast(input))
   {
     horizons.push_back(image);
@@ -114,8 +116,9 @@ int vtkStrataHorizonsRepresentation::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHorizonsRepresentation::ProcessViewRequest(
-  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey* request,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
 {
   if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
   {

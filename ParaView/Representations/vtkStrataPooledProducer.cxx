@@ -36,8 +36,9 @@ void vtkStrataPooledProducer::SetOutput(vtkDataObject* output)
 }
 
 //------------------------------------------------------------------------------
-vtkTypeBool vtkStrataPooledProducer::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo)
+vtkTypeBool vtkStrataPooledProducer::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inInfo,
+  vtkInformationVector* outInfo)
 {
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inInfo, outInfo);
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))

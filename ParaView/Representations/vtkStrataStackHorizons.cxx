@@ -32,8 +32,9 @@ int vtkStrataStackHorizons::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataStackHorizons::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkStrataStackHorizons::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   // Pools give their coarsest level (one page); every other reader ignores the key.
   for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
@@ -44,8 +45,9 @@ int vtkStrataStackHorizons::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataStackHorizons::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataStackHorizons::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
   const int n = inputVector[0]->GetNumberOfInformationObjects();
@@ -61,7 +63,8 @@ int vtkStrataStackHorizons::RequestData(
     vtkNew<vtkImageData> horizon;
     horizon->ShallowCopy(input);
     output->SetBlock(i, horizon);
-    output->GetMetaData(i)->Set(vtkCompositeDataSet::NAME(), ("Horizon " + std::to_string(i)).c_str());
+    output->GetMetaData(i)->Set(
+      vtkCompositeDataSet::NAME(), ("Horizon " + std::to_string(i)).c_str());
   }
   return 1;
 }

@@ -42,7 +42,8 @@ public:
   void Show(vtkProp3D* prop);
   void Apply(const Settings& s);
 
-  vtkSmartPointer<vtkRenderer> Renderer; // kept: the view may drop its renderer before its representations
+  vtkSmartPointer<vtkRenderer>
+    Renderer; // kept: the view may drop its renderer before its representations
   vtkNew<vtkMultiVolumeRayCastMapper> Mapper;
   vtkNew<vtkMultiVolume> Multi;
   std::vector<vtkStrataVolumeRepresentation*> Members;
@@ -57,8 +58,7 @@ std::map<vtkView*, vtkStrataVolumeRepresentation::vtkScene*> Scenes;
 }
 
 //------------------------------------------------------------------------------
-std::vector<vtkStrataVolumeRepresentation*> vtkStrataVolumeRepresentation::vtkScene::Visible()
-  const
+std::vector<vtkStrataVolumeRepresentation*> vtkStrataVolumeRepresentation::vtkScene::Visible() const
 {
   std::vector<vtkStrataVolumeRepresentation*> shown;
   for (auto* member : this->Members)
@@ -140,13 +140,14 @@ void vtkStrataVolumeRepresentation::vtkScene::Apply(const Settings& s)
 {
   vtkMultiVolumeRayCastMapper* m = this->Mapper;
   m->SetSampleDistance(s.SampleDistance);
-  m->SetClassification(
-    static_cast<vtkMultiVolumeRayCastMapper::Classifications>(std::min(2, std::max(0, s.Classification))));
+  m->SetClassification(static_cast<vtkMultiVolumeRayCastMapper::Classifications>(
+    std::min(2, std::max(0, s.Classification))));
   m->SetPreIntegrationTableSize(s.PreIntegrationTableSize);
   m->SetRaysPerPixel(s.RaysPerPixel);
   m->SetRayCoherence(s.RayCoherence);
-  m->SetCompositeOrder(s.CompositeOrder == 1 ? vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront
-                                             : vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
+  m->SetCompositeOrder(s.CompositeOrder == 1
+                         ? vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront
+                         : vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
   m->SetTerminationOpacity(s.TerminationOpacity);
   m->SetUseBrickAtlas(s.UseBrickAtlas);
   m->SetBrickSize(s.BrickSize);
@@ -189,8 +190,9 @@ int vtkStrataVolumeRepresentation::FillInputPortInformation(int, vtkInformation*
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataVolumeRepresentation::RequestUpdateExtent(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataVolumeRepresentation::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
   {
@@ -205,14 +207,15 @@ int vtkStrataVolumeRepresentation::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataVolumeRepresentation::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataVolumeRepresentation::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkMath::UninitializeBounds(this->DataBounds);
   this->DataSize = 0;
   vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() == 1
-    ? vtkImageData::GetData(inputVector[0], 0)
-    : nullptr;
+                          ? vtkImageData::GetData(inputVector[0], 0)
+                          : nullptr;
   this->HasData = input && input->GetNumberOfPoints() > 0;
   if (this->HasData)
   {
@@ -231,8 +234,9 @@ int vtkStrataVolumeRepresentation::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataVolumeRepresentation::ProcessViewRequest(
-  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+int vtkStrataVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* request,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
 {
   if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
   {
@@ -341,14 +345,14 @@ void vtkStrataVolumeRepresentation::SettingsChanged()
     this->Scene->Sync();
 }
 
-#define STRATA_SETTING(type, name)                                                                \
-  void vtkStrataVolumeRepresentation::Set##name(type value)                                       \
-  {                                                                                               \
-    if (this->Options.name != value)                                                              \
-    {                                                                                             \
-      this->Options.name = value;                                                                 \
-      this->SettingsChanged();                                                                    \
-    }                                                                                             \
+#define STRATA_SETTING(type, name)                                                                 \
+  void vtkStrataVolumeRepresentation::Set##name(type value)                                        \
+  {                                                                                                \
+    if (this->Options.name != value)                                                               \
+    {                                                                                              \
+      this->Options.name = value;                                                                  \
+      this->SettingsChanged();                                                                     \
+    }                                                                                              \
   }
 STRATA_SETTING(double, SampleDistance)
 STRATA_SETTING(int, Classification)

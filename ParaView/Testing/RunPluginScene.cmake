@@ -15,7 +15,7 @@ if (NOT result EQUAL 0)
 endif ()
 execute_process(
   COMMAND "${XVFB_RUN}" -a "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --scene "${SCENE}"
-    --work "${WORK}" --tolerance "${TOLERANCE}"
+    --work "${WORK}" --data "${DATA}" --tolerance "${TOLERANCE}"
   RESULT_VARIABLE result)
 if (NOT result EQUAL 0)
   message(FATAL_ERROR "pvbatch ${SCENE} failed (${result})")

@@ -4,12 +4,12 @@
     pvbatch TestPlugin.py --plugin Strata.so --scene <paged_volume|paged_horizons|proxies>
                           [--work <folder>] [--tolerance <max channel difference>]
 
-paged_volume and paged_horizons: the folder holds what `StrataExamples <scene>
+paged_volume, paged_horizons and volumes: the folder holds what `StrataExamples <scene>
 <folder>/cxx_<scene>.png --work <folder> --camera <folder>/<scene>.json --keep-pools` wrote: the
 standalone C++ rendering, its view and the page pools. The script opens the pools with the
 plugin's reader, shows them through Strata's representations from the same view, renders until
 the paging has settled, and asserts: the pipeline read only the pools' coarsest level (one page
-each), the data are paged by the representation, the visible bounds equal the C++ ones, the
+each), the data are paged by the representation, overlapping volumes share one ray cast, the visible bounds equal the C++ ones, the
 render window is ParaView's own, and the image matches the C++ one (max channel difference and
 number of differing pixels printed; the maximum asserted).
 
@@ -158,18 +158,7 @@ def check_pool_reads(reader, what):
 def paged_volume(args, camera):
     reader = StrataPagePool(FileName=os.path.join(args.work, "tooth.spp"))
     view = setup_view(camera)
-    display = Show(reader, view)
-    display.SetRepresentationType("Strata Volume")
-    ColorBy(display, ("POINTS", "values"))
-    lut = GetColorTransferFunction("values")
-    lut.AutomaticRescaleRangeMode = "Never"
-    lut.ColorSpace = "RGB"
-    lut.Discretize = 0
-    lut.RGBPoints = [0, 0.5, 0.5, 0.5, 140, 0.8, 0.35, 0.25, 200, 1.0, 0.9, 0.8, 255, 1, 1, 1]
-    opacity = GetOpacityTransferFunction("values")
-    opacity.Points = [0, 0, 0.5, 0, 110, 0, 0.5, 0, 150, 0.03, 0.5, 0, 255, 0.5, 0.5, 0]
-    display.InterpolationType = "Linear"
-    display.ScalarOpacityUnitDistance = 1.0
+    display = show_volume(reader, view, TOOTH_COLORS, TOOTH_OPACITIES)
     display.StrataVolumeSampleDistance = 0.5
     display.StrataVolumeAtlasBudget = 16
     display.StrataVolumePagesPerFrame = 8
@@ -183,6 +172,53 @@ def paged_volume(args, camera):
           "one volume in the view's ray cast")
     check_pool_reads(reader, "tooth.spp")
     compare(view, camera, args.work, "paged_volume", args.tolerance)
+
+
+def show_volume(reader, view, colors, opacities):
+    """A Strata Volume of `reader` with its own transfer functions ((value, r, g, b) and
+    (value, opacity) points, linear), as the C++ scenes' VolumeProperty builds them."""
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Volume")
+    array = reader.PointData.keys()[0]
+    ColorBy(display, ("POINTS", array))
+    lut = GetColorTransferFunction(array)
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = [v for c in colors for v in c]
+    opacity = GetOpacityTransferFunction(array)
+    opacity.Points = [v for o in opacities for v in (o[0], o[1], 0.5, 0.0)]
+    display.InterpolationType = "Linear"
+    display.ScalarOpacityUnitDistance = 1.0
+    return display
+
+
+TOOTH_COLORS = [(0, 0.5, 0.5, 0.5), (140, 0.8, 0.35, 0.25), (200, 1.0, 0.9, 0.8), (255, 1, 1, 1)]
+TOOTH_OPACITIES = [(0, 0.0), (110, 0.0), (150, 0.03), (255, 0.5)]
+
+
+def volumes(args, camera):
+    """Two overlapping volumes, each with its own transfer function, in one ray cast: the
+    tooth (ParaView's own NRRD reader) and the shell around it (a .vti)."""
+    tooth = OpenDataFile(os.path.join(args.data, "volumes", "tooth.nrrd"))
+    shell = OpenDataFile(os.path.join(args.work, "shell.vti"))
+    view = setup_view(camera)
+    first = show_volume(tooth, view, TOOTH_COLORS, TOOTH_OPACITIES)
+    first.StrataVolumeSampleDistance = 0.5
+    second = show_volume(shell, view, [(0, 0.1, 0.3, 0.9), (255, 0.3, 0.9, 1.0)],
+                         [(0, 0.0), (120, 0.0), (255, 0.08)])
+    Render(view)
+    for display in (first, second):
+        display.UpdatePropertyInformation()
+        check(display.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 2,
+              "both volumes in the view's one ray cast")
+    compare(view, camera, args.work, "volumes", args.tolerance)
+    # Hiding one leaves the other alone in the ray cast.
+    Hide(shell, view)
+    Render(view)
+    first.UpdatePropertyInformation()
+    check(first.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 1,
+          "hiding the shell leaves the tooth alone")
 
 
 def paged_horizons(args, camera):
@@ -214,8 +250,9 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--scene", required=True,
-                        choices=["paged_volume", "paged_horizons", "proxies"])
+                        choices=["paged_volume", "paged_horizons", "volumes", "proxies"])
     parser.add_argument("--work", default=".")
+    parser.add_argument("--data", default=".", help="Testing/Data (the volumes scene)")
     parser.add_argument("--tolerance", type=int, default=0)
     args = parser.parse_args()
     LoadPlugin(args.plugin, remote=False, ns=globals())
