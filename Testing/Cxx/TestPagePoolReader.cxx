@@ -250,7 +250,16 @@ void CoarseReads(vtkImageData* vol, const std::string& volPath)
         "resolution 0 reads the single root page");
     }
     Check(sameBounds, "coarse read covers the same physical bounds");
+    // The pool travels with the data through copies (what ParaView hands a representation).
+    vtkNew<vtkImageData> copy;
+    copy->ShallowCopy(coarse);
+    const char* pool = vtkPagePoolReader::GetPoolFileName(copy);
+    Check(pool && volPath == pool && vtkPagePoolReader::GetPoolLayer(copy) == 0,
+      "a shallow copy of the output names its pool (field data)");
   }
+  Check(vtkPagePoolReader::GetPoolFileName(vol) == nullptr &&
+      vtkPagePoolReader::GetPoolFileName(nullptr) == nullptr,
+    "an image not read from a pool names none");
 }
 
 void FloatGrid(const std::string& out)
