@@ -8,10 +8,10 @@
 //                  [--camera <view.json>] [--keep-pools]
 //
 // --work is where the paged scenes write their pools (default: the folder of out.png);
-// --keep-pools leaves them there (and the volumes scene writes its shell as shell.vti). --camera
-// writes the view (camera, viewport size, background, the visible props' bounds) as JSON, so that
-// another front end (the ParaView plugin's test) renders the same scene from the same point of
-// view.
+// --keep-pools leaves them there (the volumes scene also writes its shell as shell.vti, the hybrid
+// scene its representation as tooth.shv). --camera writes the view (camera, viewport size,
+// background, the visible props' bounds) as JSON, so that another front end (the ParaView plugin's
+// test) renders the same scene from the same point of view.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -358,6 +358,8 @@ int Hybrid(const Arguments& args)
   hybrid->SetFactor(4, 4, 4);
   hybrid->SetFilterToCubic();
   hybrid->SetThreshold(24.0); // a point wherever the low resolution misses more than 24 of 255
+  if (args.KeepPools)
+    hybrid->SetFileName((args.Work + "/tooth.shv").c_str()); // the same representation as a file
   vtkNew<vtkHybridVolumeMapper> mapper;
   mapper->SetInputConnection(hybrid->GetOutputPort(0));
   mapper->SetPointsInputConnection(hybrid->GetOutputPort(1));

@@ -14,7 +14,7 @@ if (NOT result EQUAL 0)
   message(FATAL_ERROR "StrataExamples ${SCENE} failed (${result})")
 endif ()
 execute_process(
-  COMMAND "${XVFB_RUN}" -a "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --scene "${SCENE}"
+  COMMAND "${WITH_XVFB}" "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --scene "${SCENE}"
     --work "${WORK}" --data "${DATA}" --tolerance "${TOLERANCE}"
   RESULT_VARIABLE result)
 if (NOT result EQUAL 0)

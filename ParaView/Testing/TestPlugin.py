@@ -30,7 +30,8 @@ STRATA_PROXIES = {
                 "StrataHorizonColumnReader", "StrataSegyVolumeReader",
                 "StrataStreamingMetaImageReader", "StrataHybridVolumeReader"],
     "filters": ["StrataStackHorizons"],
-    "representations": ["StrataVolumeRepresentation", "StrataHorizonsRepresentation"],
+    "representations": ["StrataVolumeRepresentation", "StrataHorizonsRepresentation",
+                        "StrataHybridRepresentation"],
 }
 REEK = ["reek_01_topreek_rota", "reek_02_midreek_rota", "reek_03_lowreek_rota",
         "reek_04_basereek_rota"]
@@ -52,7 +53,8 @@ def list_proxies():
             check(proxy is not None, "proxy %s/%s (%s) is defined" % (group, name, label))
     # The Python names of the readers and the filter, from their labels.
     for name in ["StrataPagePool", "StrataIrapBinaryGrid", "StrataNumPyHorizon",
-                 "StrataHorizonColumns", "StrataSEGYVolume", "StackHorizons"]:
+                 "StrataHorizonColumns", "StrataSEGYVolume", "StrataHybridVolume",
+                 "StackHorizons"]:
         check(name in globals(), "paraview.simple has %s()" % name)
 
 
@@ -221,6 +223,33 @@ def volumes(args, camera):
           "hiding the shell leaves the tooth alone")
 
 
+def hybrid(args, camera):
+    """The tooth's hybrid point + volume representation, read from the .shv the C++ scene wrote."""
+    reader = StrataHybridVolume(FileName=os.path.join(args.work, "tooth.shv"))
+    view = setup_view(camera)
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Hybrid")
+    ColorBy(display, ("POINTS", "LowResolution"))
+    lut = GetColorTransferFunction("LowResolution")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = [v for c in TOOTH_COLORS for v in c]
+    opacity = GetOpacityTransferFunction("LowResolution")
+    opacity.Points = [v for o in TOOTH_OPACITIES for v in (o[0], o[1], 0.5, 0.0)]
+    display.StrataHybridScalarOpacityFunction = opacity
+    display.StrataHybridInterpolationType = "Linear"
+    display.StrataHybridScalarOpacityUnitDistance = 1.0
+    display.StrataHybridPointShape = "Gaussian splats"
+    display.StrataHybridSampleDistance = 0.5
+    Render(view)
+    display.UpdatePropertyInformation()
+    drawn = display.GetPropertyValue("StrataHybridNumberOfPointsDrawn")
+    print("hybrid: %d points drawn" % drawn)
+    check(drawn > 0, "the hybrid representation draws its points")
+    compare(view, camera, args.work, "hybrid", args.tolerance)
+
+
 def paged_horizons(args, camera):
     readers = [StrataPagePool(FileName=os.path.join(args.work, name + ".spp"))
                for name in REEK]
@@ -250,7 +279,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--scene", required=True,
-                        choices=["paged_volume", "paged_horizons", "volumes", "proxies"])
+                        choices=["paged_volume", "paged_horizons", "volumes", "hybrid", "proxies"])
     parser.add_argument("--work", default=".")
     parser.add_argument("--data", default=".", help="Testing/Data (the volumes scene)")
     parser.add_argument("--tolerance", type=int, default=0)

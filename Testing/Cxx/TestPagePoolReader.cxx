@@ -258,7 +258,7 @@ void CoarseReads(vtkImageData* vol, const std::string& volPath)
       "a shallow copy of the output names its pool (field data)");
   }
   Check(vtkPagePoolReader::GetPoolFileName(vol) == nullptr &&
-      vtkPagePoolReader::GetPoolFileName(nullptr) == nullptr,
+          vtkPagePoolReader::GetPoolFileName(nullptr) == nullptr,
     "an image not read from a pool names none");
 }
 
