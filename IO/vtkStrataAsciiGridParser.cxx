@@ -296,9 +296,9 @@ public:
   size_t Pending() const { return this->Tokens.size() - this->Index; }
 
   /// Reads `count` values into the sink (node of value k: node(k)); false on a non-number, too
-  /// few values, or more values than `count`.
+  /// few values, or more values than `count`. `done` values were read before (for messages).
   template<typename Node>
-  bool Values(size_t count, ValueSink& sink, Node node, std::string& error)
+  bool Values(size_t count, ValueSink& sink, Node node, std::string& error, size_t done = 0)
   {
     for (size_t k = 0; k < count; ++k)
     {
@@ -307,8 +307,8 @@ public:
         std::string_view line;
         if (!this->Source.NextLine(line))
         {
-          error = "the file ends after " + std::to_string(k) + " of the " + std::to_string(count) +
-                  " values the header announces";
+          error = "the file ends after " + std::to_string(done + k) + " of the " +
+                  std::to_string(done + count) + " values the header announces";
           return false;
         }
         Tokenize(line, this->Tokens);
@@ -318,13 +318,13 @@ public:
       double v = 0.0;
       if (!ParseNumber(token, v))
       {
-        error = AtLine(this->Source.LineNumber()) + "value " + std::to_string(k + 1) + " is " +
-                Shown(token) + ", not a number";
+        error = AtLine(this->Source.LineNumber()) + "value " + std::to_string(done + k + 1) +
+                " is " + Shown(token) + ", not a number";
         return false;
       }
       sink.Set(node(k), v);
     }
-    return this->NothingAfter(count, error);
+    return this->NothingAfter(done + count, error);
   }
 
   /// False (with a message) when anything but blanks follows the values.
@@ -744,7 +744,7 @@ bool ReadEsri(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, std:
   const size_t done = k;
   NumberStream numbers(text);
   return numbers.Values(
-    total - done, sink, [&](size_t m) { return node(m + done); }, error);
+    total - done, sink, [&](size_t m) { return node(m + done); }, error, done);
 }
 
 //------------------------------------------------------------------------------
