@@ -219,6 +219,12 @@ int main(int argc, char* argv[])
     Usage(std::cerr);
     return Die("cannot tell the format of \"" + input + "\" (use --raw for raw files)");
   }
+  if (auto* vti = vtkXMLImageDataReader::SafeDownCast(reader))
+  {
+    const std::string pieceError = strata_cli::CheckImagePieces(vti);
+    if (!pieceError.empty())
+      return Die("\"" + input + "\": " + pieceError + "; no output written");
+  }
 
   RemoveStaleTemporaries(output);
   vtkNew<vtkImageToPagePoolWriter> writer;

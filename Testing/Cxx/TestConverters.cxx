@@ -16,6 +16,8 @@
 //   columns, as tile pools (and the whole Penobscot horizon of ../shared/data when present);
 // - strata-convert on the SEG-Y files (default and custom byte positions) and on the raw and
 //   compressed .mhd gives the same pools;
+// - strata-convert on a .vti whose WholeExtent is larger than its pieces fails with a message,
+//   leaving no output (issue 14, defect 2); one of two pieces that cover it converts;
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
 //   the output name (its temporary <output>.tmp-<pid> is left), and the next conversion to that
 //   name removes the stale temporary and succeeds.
@@ -50,6 +52,7 @@
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <vtksys/Directory.hxx>
 #include <vtksys/SystemTools.hxx>
 
 #include <fcntl.h>
@@ -228,8 +231,9 @@ void Spit(const std::string& path, const void* data, size_t size)
     .write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
 }
 
-/// Starts `args` (args[0] is the program) with stdout and stderr sent to /dev/null.
-pid_t Spawn(const std::vector<std::string>& args)
+/// Starts `args` (args[0] is the program) with stdout sent to /dev/null and stderr to
+/// `errorLog` (/dev/null by default).
+pid_t Spawn(const std::vector<std::string>& args, const std::string& errorLog = "/dev/null")
 {
   std::vector<char*> argv;
   for (const std::string& a : args)
@@ -240,7 +244,8 @@ pid_t Spawn(const std::vector<std::string>& args)
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(
+    &actions, 2, errorLog.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = -1;
   if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0)
   {
@@ -251,9 +256,9 @@ pid_t Spawn(const std::vector<std::string>& args)
 }
 
 /// Runs `args` to the end; its exit code, -1 if it could not run or did not exit.
-int Run(const std::vector<std::string>& args)
+int Run(const std::vector<std::string>& args, const std::string& errorLog = "/dev/null")
 {
-  const pid_t pid = Spawn(args);
+  const pid_t pid = Spawn(args, errorLog);
   int status = 0;
   if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status))
   {
@@ -548,6 +553,64 @@ void Horizons(const strata_test::TestPaths& paths, const std::string& dir, const
   }
 }
 
+/// Issue 14, defect 2: a .vti whose WholeExtent is larger than the union of its pieces used to
+/// convert (exit 0, no message) into a pool whose uncovered part is zeros. strata-convert must
+/// fail with a message naming the WholeExtent and leave no file under the output name (nor a
+/// temporary). A .vti of two pieces that do cover it (the positive control) converts to the
+/// same values.
+void UncoveredVti(const std::string& tool, const std::string& dir)
+{
+  vtkSmartPointer<vtkImageData> image =
+    MakeImage(24, 20, 16, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 100 - 50; });
+  const std::string covered = dir + "/two-pieces.vti";
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(covered.c_str());
+  writer->SetNumberOfPieces(2);
+  writer->Write();
+  const std::string coveredPool = dir + "/two-pieces.spp";
+  Check(Run({ tool, covered, coveredPool, "--page-size", "8" }) == 0 &&
+          SameAsSource(image, ReadPool(coveredPool)),
+    "strata-convert, .vti of two pieces covering its WholeExtent: the generated image");
+
+  // The same file claiming 32 slices instead of 16: slices 16..31 are in no piece.
+  std::ifstream in(covered, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string whole = "WholeExtent=\"0 23 0 19 0 15\"";
+  const size_t at = text.find(whole);
+  Check(at != std::string::npos, "the written .vti states WholeExtent=\"0 23 0 19 0 15\"");
+  if (at == std::string::npos)
+  {
+    return;
+  }
+  text.replace(at, whole.size(), "WholeExtent=\"0 23 0 19 0 31\"");
+  const std::string uncovered = dir + "/uncovered.vti";
+  Spit(uncovered, text.data(), text.size());
+  const std::string pool = dir + "/uncovered.spp";
+  const std::string log = dir + "/uncovered.log";
+  std::remove(pool.c_str());
+  const int rc = Run({ tool, uncovered, pool, "--page-size", "8" }, log);
+  std::ifstream logIn(log);
+  const std::string message(
+    (std::istreambuf_iterator<char>(logIn)), std::istreambuf_iterator<char>());
+  bool temporaryLeft = false;
+  vtksys::Directory listing;
+  listing.Load(dir);
+  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+  {
+    temporaryLeft |= std::string(listing.GetFile(f)).rfind("uncovered.spp.tmp-", 0) == 0;
+  }
+  std::cout << "  uncovered .vti: exit " << rc << ", output "
+            << (vtksys::SystemTools::FileExists(pool) ? "written" : "absent")
+            << ", message: " << message;
+  Check(rc != 0, "strata-convert, .vti with uncovered WholeExtent: nonzero exit");
+  Check(message.find("WholeExtent") != std::string::npos &&
+          message.find("0 23 0 19 16 31") != std::string::npos,
+    "strata-convert, uncovered .vti: the message names the WholeExtent and the uncovered part");
+  Check(!vtksys::SystemTools::FileExists(pool) && !temporaryLeft,
+    "strata-convert, uncovered .vti: no output file and no temporary left");
+}
+
 void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
 {
   const std::string f3 = paths.Data + "/seismic/f3.sgy";
@@ -587,6 +650,7 @@ void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
         std::string("strata-convert ") + name + ": the same pool as the writer's");
     }
     KilledConversion(tool, paths.Data, dir);
+    UncoveredVti(tool, dir);
   }
 }
 
