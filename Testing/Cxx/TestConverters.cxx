@@ -16,6 +16,8 @@
 //   columns, as tile pools (and the whole Penobscot horizon of ../shared/data when present);
 // - strata-convert on the SEG-Y files (default and custom byte positions) and on the raw and
 //   compressed .mhd gives the same pools;
+// - the text grids (Irap classic ASCII, ZMAP+, ESRI ASCII, a whitespace matrix), 12 x 9 with a
+//   hole each, through the writer and through strata-convert (format told by content);
 // - strata-convert on a .vti whose WholeExtent is larger than its pieces fails with a message,
 //   leaving no output (issue 14, defect 2); one of two pieces that cover it converts;
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
@@ -27,6 +29,7 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -611,6 +614,86 @@ void UncoveredVti(const std::string& tool, const std::string& dir)
     "strata-convert, uncovered .vti: no output file and no temporary left");
 }
 
+/// The text grids of issue 14 (written here, small): each read by its reader and converted both
+/// by vtkImageToPagePoolWriter and by strata-convert, which must tell the format from the
+/// content (or, for the matrix, from the .txt extension) and give the same pool.
+void TextGrids(const std::string& tool, const std::string& dir)
+{
+  std::cout << "text grids: Irap classic, ZMAP+, ESRI ASCII, whitespace matrix\n";
+  auto z = [](int i, int j)
+  { return std::to_string(1500 + 7 * i - 3 * j) + "." + std::to_string(i % 10); };
+  std::string irap =
+    "-996 9 12.5 25.0\n100.0 237.5 200.0 400.0\n12 15.0 100.0 200.0\n0 0 0 0 0 0 0\n";
+  std::string zmap =
+    "! test\n@g HEADER, GRID, 4\n15, -99999.0, , 3, 1\n9, 12, 0.0, 110.0, 0.0, 80.0\n"
+    "0.0, 0.0, 0.0\n@\n";
+  std::string esri =
+    "ncols 12\nnrows 9\nxllcorner 1000\nyllcorner 2000\ncellsize 5\nNODATA_value -9999\n";
+  std::string matrix = "# 12 rows of 9\n";
+  for (int j = 0; j < 9; ++j)
+  {
+    for (int i = 0; i < 12; ++i)
+    {
+      irap += (i == 3 && j == 4 ? std::string("9999900.0") : z(i, j)) + (i % 6 == 5 ? "\n" : " ");
+      esri += (i == 5 && j == 2 ? std::string("-9999") : z(i, 8 - j)) + (i == 11 ? "\n" : " ");
+    }
+  }
+  for (int i = 0; i < 12; ++i)
+  {
+    for (int j = 8; j >= 0; --j)
+    {
+      zmap += (i == 2 && j == 2 ? std::string("-99999.0") : z(i, j)) + (j % 4 == 0 ? "\n" : " ");
+    }
+    for (int j = 0; j < 9; ++j)
+    {
+      matrix += (i == 7 && j == 1 ? std::string("nan") : z(i, j)) + (j == 8 ? "\n" : " ");
+    }
+  }
+  const std::pair<const char*, const std::string*> files[] = {
+    { "irap.fgr", &irap }, { "grid.zmap", &zmap }, { "grid.asc", &esri }, { "matrix.txt", &matrix }
+  };
+  for (const auto& f : files)
+  {
+    const std::string path = dir + "/" + f.first;
+    Spit(path, f.second->data(), f.second->size());
+    vtkSmartPointer<vtkAlgorithm> reader;
+    if (std::string(f.first) == "matrix.txt")
+    {
+      auto r = vtkSmartPointer<vtkHorizonColumnReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else
+    {
+      auto r = vtkSmartPointer<vtkAsciiGridReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    RoundTrip(reader, path + ".spp", f.first, 8);
+    vtkImageData* source = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+    int dims[3] = { 0, 0, 0 };
+    source->GetDimensions(dims);
+    vtkDataArray* values = source->GetPointData()->GetScalars();
+    int holes = 0;
+    for (vtkIdType n = 0; values && n < values->GetNumberOfTuples(); ++n)
+    {
+      holes += std::isnan(values->GetComponent(n, 0)) ? 1 : 0;
+    }
+    const int rc = tool.empty() ? -1 : Run({ tool, path, path + "-tool.spp", "--page-size", "8" });
+    std::cout << "  " << f.first << ": " << dims[0] << " x " << dims[1] << ", " << holes
+              << " hole(s), strata-convert exit " << rc << "\n";
+    Check(dims[0] == 12 && dims[1] == 9 && dims[2] == 1 && holes == 1,
+      std::string(f.first) + ": 12 x 9 nodes, one hole");
+    if (tool.empty())
+    {
+      continue;
+    }
+    const std::string pool = path + "-tool.spp";
+    Check(rc == 0 && SameAsSource(source, ReadPool(pool)),
+      std::string("strata-convert ") + f.first + ": the same pool as the reader's");
+  }
+}
+
 void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
 {
   const std::string f3 = paths.Data + "/seismic/f3.sgy";
@@ -669,6 +752,7 @@ int TestConverters(int argc, char* argv[])
       { "Segy", [&] { Segy(dir, data); } },
       { "Horizons", [&] { Horizons(paths, dir, data); } },
       { "StrataConvert", [&] { StrataConvert(paths, dir); } },
+      { "TextGrids", [&] { TextGrids(FindConverter(), dir); } },
     },
     strata_test::Failures);
 }
