@@ -280,7 +280,7 @@ public:
         error = std::string("the file ends before ") + field;
         return false;
       }
-      Tokenize(line, this->Tokens);
+      this->Split(line);
       this->Index = 0;
     }
     const std::string_view token = this->Tokens[this->Index++];
@@ -291,6 +291,11 @@ public:
     }
     return true;
   }
+
+  /// ZMAP+: the header's field width. A line holding something that is not a number with
+  /// separators (writers let wide values touch: "-1234.5678-1234.5678") is cut into fields
+  /// of this width instead. 0: never.
+  int FieldWidth = 0;
 
   /// Tokens of the current line not consumed yet.
   size_t Pending() const { return this->Tokens.size() - this->Index; }
@@ -311,7 +316,7 @@ public:
                   std::to_string(done + count) + " values the header announces";
           return false;
         }
-        Tokenize(line, this->Tokens);
+        this->Split(line);
         this->Index = 0;
       }
       const std::string_view token = this->Tokens[this->Index++];
@@ -333,7 +338,7 @@ public:
     std::string_view line;
     while (this->Index >= this->Tokens.size() && this->Source.NextLine(line))
     {
-      Tokenize(line, this->Tokens);
+      this->Split(line);
       this->Index = 0;
     }
     if (this->Index < this->Tokens.size())
@@ -349,6 +354,37 @@ public:
   Text& Source;
 
 private:
+  void Split(std::string_view line)
+  {
+    Tokenize(line, this->Tokens);
+    double v = 0.0;
+    auto numbers = [&](const std::vector<std::string_view>& tokens)
+    {
+      return std::all_of(
+        tokens.begin(), tokens.end(), [&](std::string_view t) { return ParseNumber(t, v); });
+    };
+    if (this->FieldWidth <= 0 || numbers(this->Tokens))
+    {
+      return;
+    }
+    // Fields of the width, used only when they all are numbers: otherwise the whitespace tokens
+    // stay, so that the error quotes the offending one.
+    std::vector<std::string_view> fields;
+    const size_t w = static_cast<size_t>(this->FieldWidth);
+    for (size_t at = 0; at < line.size(); at += w)
+    {
+      const std::string_view field = Trim(line.substr(at, w));
+      if (!field.empty())
+      {
+        fields.push_back(field);
+      }
+    }
+    if (numbers(fields))
+    {
+      this->Tokens.swap(fields);
+    }
+  }
+
   std::vector<std::string_view> Tokens;
   size_t Index = 0;
 };
@@ -525,6 +561,8 @@ bool ReadZmapHeader(Text& text, AsciiGrid& grid, double& rows, double& cols, std
     return false;
   }
   grid.FileNullValue = nullValue;
+  grid.FieldWidth =
+    (width >= 1.0 && width <= 1000.0 && width == std::floor(width)) ? static_cast<int>(width) : 0;
 
   if (!ZmapHeaderLine(text, "dimensions line", line, error))
   {
@@ -605,6 +643,7 @@ bool ReadZmap(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, std:
   const size_t ny = static_cast<size_t>(grid.NY);
   ValueSink sink(grid, options, /*irapHoles=*/false);
   NumberStream numbers(text);
+  numbers.FieldWidth = grid.FieldWidth;
   return numbers.Values(
     nx * ny, sink, [&](size_t k) { return k / ny + (ny - 1 - k % ny) * nx; }, error);
 }

@@ -50,6 +50,7 @@ struct AsciiGrid
   double FileNullValue = std::numeric_limits<double>::quiet_NaN();
   bool CellCorner = false; ///< ESRI: the header gave xllcorner/yllcorner (not ...center)
   int NodesPerLine = 0;    ///< ZMAP+: the header's nodes per line
+  int FieldWidth = 0;      ///< ZMAP+: the header's field width (0 if not a usable integer)
   std::string Name;        ///< ZMAP+: the grid name of the '@' line
   long long NumberOfNoDataValues = 0;
   std::vector<float> Values;

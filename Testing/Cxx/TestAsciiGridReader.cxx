@@ -9,7 +9,8 @@
 // against this test's own), every node's value, and the number of holes against the count of
 // no-data values written:
 // - Irap classic ASCII, 37 x 23, rotated 30 degrees, UTM-sized origin, 9999900 holes;
-// - ZMAP+, 31 columns x 19 rows, comments, column-major from the top, null -99999;
+// - ZMAP+, 31 columns x 19 rows, comments, column-major from the top, null -99999; and one
+//   whose values fill their 10-character fields and touch;
 // - ESRI ASCII with xllcorner and cellsize (nodes at cell centres) and with xllcenter, dx, dy;
 // - a numpy.savetxt matrix, both axis conventions, placed by Origin, Spacing and Rotation.
 // Absurd and malformed headers (issue 14): dimensions that overflow, exceed 2^31 nodes, or need
@@ -262,6 +263,49 @@ void Zmap(const std::string& dir)
     tag + ": null value -99999, 5 nodes per line, name \"testgrid HEADER\"");
 }
 
+/// ZMAP+ values that fill their field width touch ("-1234.5678-1234.5678"): read by the width.
+void ZmapFixedWidth(const std::string& dir)
+{
+  // 3 columns x 4 rows, width 10, 3 nodes per line; node (i, j) = -1000 - 100 i - 10 j - 0.5678,
+  // node (1, 2) the null value.
+  std::string text = "@fixed HEADER, GRID, 3\n10, -99999.000, , 4, 1\n4, 3, 0, 20, 0, 30\n"
+                     "0.0, 0.0, 0.0\n@\n";
+  int k = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 3; j >= 0; --j, ++k)
+    {
+      char field[16];
+      std::snprintf(field, sizeof(field), "%10.4f", -1000.0 - 100 * i - 10 * j - 0.5678);
+      text += i == 1 && j == 2 ? "-99999.000" : field;
+      text += k % 3 == 2 ? "\n" : "";
+    }
+  }
+  const std::string path = dir + "/fixed.zmap";
+  Spit(path, text + "\n");
+  vtkNew<vtkAsciiGridReader> r;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(r);
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkDataArray* v = r->GetOutput()->GetPointData()->GetScalars();
+  int wrong = v ? 0 : 12;
+  for (int j = 0; v && j < 4; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      const float want = static_cast<float>(-1000.0 - 100 * i - 10 * j - 0.5678);
+      const double got = v->GetComponent(i + 3 * j, 0);
+      wrong += (i == 1 && j == 2) ? (std::isnan(got) ? 0 : 1) : (got == want ? 0 : 1);
+    }
+  }
+  std::cout << "ZMAP+ fixed width (touching values): " << r->GetNX() << " x " << r->GetNY() << ", "
+            << wrong << " of 12 values wrong, " << r->GetNumberOfNoDataValues() << " hole(s), "
+            << errors->Errors << " error(s) " << errors->First << "\n";
+  Check(errors->Errors == 0 && wrong == 0 && r->GetNumberOfNoDataValues() == 1,
+    "ZMAP+ with touching fields: read by the field width, every value, one hole");
+}
+
 //------------------------------------------------------------------------------
 void EsriAscii(const std::string& dir)
 {
@@ -466,6 +510,7 @@ int TestAsciiGridReader(int argc, char* argv[])
     {
       { "IrapClassic", [&] { IrapClassic(dir); } },
       { "Zmap", [&] { Zmap(dir); } },
+      { "ZmapFixedWidth", [&] { ZmapFixedWidth(dir); } },
       { "EsriAscii", [&] { EsriAscii(dir); } },
       { "Matrix", [&] { Matrix(dir); } },
       { "AbsurdHeaders", [&] { AbsurdHeaders(dir); } },
