@@ -114,6 +114,17 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
     return false;
   }
   const bool matrix = grid.Format == AsciiGridFormat::Matrix;
+  // Lines of a few numbers are far more often columns (inline crossline z, x y z) than a
+  // matrix: Auto mode does not guess, as vtkHorizonColumnReader's Auto mode does not either.
+  const int valuesPerLine = this->SwapAxes ? grid.NX : grid.NY;
+  if (matrix && this->Format == GridFormat::Auto && valuesPerLine <= MatrixMinimumColumns)
+  {
+    error = "every line holds " + std::to_string(valuesPerLine) +
+            " numbers: columns (read them with vtkHorizonColumnReader) or a narrow matrix (set "
+            "Format to Matrix); Auto takes only lines of more than " +
+            std::to_string(MatrixMinimumColumns) + " numbers for a matrix";
+    return false;
+  }
   if (matrix && (!(this->Spacing[0] > 0.0) || !(this->Spacing[1] > 0.0) ||
                   !std::isfinite(this->Spacing[0]) || !std::isfinite(this->Spacing[1])))
   {

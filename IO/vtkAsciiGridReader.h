@@ -21,7 +21,9 @@
  *   rows from the top down. Each value is a cell, and the output's nodes are the cell centres:
  *   a corner header puts node (0, 0) half a cell inside it. NODATA_value is a hole.
  * - Matrix: a whitespace matrix, one grid row per line, as numpy.savetxt writes a 2-D array
- *   ('#' comment lines; commas or semicolons may separate too). Line r, value c is node (r, c):
+ *   ('#' comment lines; commas or semicolons may separate too). Auto detects one only when its
+ *   lines hold more than MatrixMinimumColumns (8) values, as vtkHorizonColumnReader does: fewer
+ *   are more likely columns, and an error says so. Line r, value c is node (r, c):
  *   the first numpy axis is x, as vtkNumpyGridReader and vtkHorizonColumnReader's Matrix mode
  *   have it; SwapAxes makes line r the row j = r. The file has no geometry: Origin, Spacing and
  *   Rotation place it.
@@ -53,6 +55,9 @@ public:
   static vtkAsciiGridReader* New();
   vtkTypeMacro(vtkAsciiGridReader, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Auto takes rows of numbers for a matrix only when they hold more values than this.
+  static constexpr int MatrixMinimumColumns = 8;
 
   /// The text grid formats.
   enum class GridFormat : int

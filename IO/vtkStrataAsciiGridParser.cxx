@@ -943,6 +943,10 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
   int lines = 0;
   while (std::getline(in, line) && ++lines < 1000)
   {
+    if (lines == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    {
+      line.erase(0, 3); // a UTF-8 byte order mark
+    }
     if (IsBlank(line))
     {
       continue;
@@ -1000,6 +1004,10 @@ bool ReadAsciiGrid(const std::string& path,
   if (!Slurp(path, data, error))
   {
     return false;
+  }
+  if (data.compare(0, 3, "\xEF\xBB\xBF") == 0)
+  {
+    data.erase(0, 3); // a UTF-8 byte order mark
   }
   if (data.find('\0') != std::string::npos)
   {
