@@ -19,7 +19,8 @@
 // - the text grids (Irap classic ASCII, ZMAP+, ESRI ASCII, a whitespace matrix), 12 x 9 with a
 //   hole each, through the writer and through strata-convert (format told by content);
 // - strata-convert on a .vti whose WholeExtent is larger than its pieces fails with a message,
-//   leaving no output (issue 14, defect 2); one of two pieces that cover it converts;
+//   leaving no output (issue 14, defect 2), and so does strata-hybrid; one of two pieces that
+//   cover it converts;
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
 //   the output name (its temporary <output>.tmp-<pid> is left), and the next conversion to that
 //   name removes the stale temporary and succeeds.
@@ -612,6 +613,23 @@ void UncoveredVti(const std::string& tool, const std::string& dir)
     "strata-convert, uncovered .vti: the message names the WholeExtent and the uncovered part");
   Check(!vtksys::SystemTools::FileExists(pool) && !temporaryLeft,
     "strata-convert, uncovered .vti: no output file and no temporary left");
+  // strata-hybrid reads a .vti whole through the same reader: the same refusal.
+  const std::string hybrid = vtksys::SystemTools::GetFilenamePath(tool) + "/strata-hybrid";
+  if (vtksys::SystemTools::FileExists(hybrid, true))
+  {
+    const std::string shv = dir + "/uncovered.shv";
+    const std::string hybridLog = dir + "/uncovered-hybrid.log";
+    std::remove(shv.c_str());
+    const int hybridRc = Run({ hybrid, uncovered, shv }, hybridLog);
+    std::ifstream hybridIn(hybridLog);
+    const std::string hybridMessage(
+      (std::istreambuf_iterator<char>(hybridIn)), std::istreambuf_iterator<char>());
+    std::cout << "  uncovered .vti, strata-hybrid: exit " << hybridRc
+              << ", message: " << hybridMessage;
+    Check(hybridRc != 0 && hybridMessage.find("0 23 0 19 16 31") != std::string::npos &&
+            !vtksys::SystemTools::FileExists(shv),
+      "strata-hybrid, uncovered .vti: nonzero exit, the uncovered extent named, no output");
+  }
 }
 
 /// The text grids of issue 14 (written here, small): each read by its reader and converted both
