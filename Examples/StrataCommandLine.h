@@ -13,15 +13,21 @@
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
 
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace strata_cli
 {
@@ -224,6 +230,99 @@ public:
 private:
   int Last = -1;
 };
+
+/// Where the pieces of an image leave points of `whole` uncovered: "" when their union covers
+/// it, else the first uncovered box as "x0 x1 y0 y1 z0 z1". The boundaries of the pieces cut
+/// each axis into intervals; every box of intervals lies inside a piece or outside all of them,
+/// so testing one corner of each box decides its points.
+inline std::string UncoveredExtent(const int whole[6],
+  const std::vector<std::array<int, 6>>& pieces)
+{
+  std::vector<int> cuts[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int lo = whole[2 * a];
+    const int end = whole[2 * a + 1] + 1;
+    cuts[a] = { lo, end };
+    for (const auto& p : pieces)
+    {
+      for (const int c : { p[2 * a], p[2 * a + 1] + 1 })
+      {
+        if (c > lo && c < end)
+        {
+          cuts[a].push_back(c);
+        }
+      }
+    }
+    std::sort(cuts[a].begin(), cuts[a].end());
+    cuts[a].erase(std::unique(cuts[a].begin(), cuts[a].end()), cuts[a].end());
+  }
+  for (size_t k = 0; k + 1 < cuts[2].size(); ++k)
+  {
+    for (size_t j = 0; j + 1 < cuts[1].size(); ++j)
+    {
+      for (size_t i = 0; i + 1 < cuts[0].size(); ++i)
+      {
+        const int corner[3] = { cuts[0][i], cuts[1][j], cuts[2][k] };
+        const bool inside = std::any_of(pieces.begin(),
+          pieces.end(),
+          [&](const auto& p)
+          {
+            return p[0] <= corner[0] && corner[0] <= p[1] && p[2] <= corner[1] &&
+                   corner[1] <= p[3] && p[4] <= corner[2] && corner[2] <= p[5];
+          });
+        if (!inside)
+        {
+          std::ostringstream box;
+          box << cuts[0][i] << " " << cuts[0][i + 1] - 1 << " " << cuts[1][j] << " "
+              << cuts[1][j + 1] - 1 << " " << cuts[2][k] << " " << cuts[2][k + 1] - 1;
+          return box.str();
+        }
+      }
+    }
+  }
+  return std::string();
+}
+
+/// For a .vti reader: "" when its pieces cover its WholeExtent, else why not. VTK's reader
+/// fills points outside every piece with zeros and says nothing, so a converter must refuse.
+inline std::string CheckImagePieces(vtkXMLImageDataReader* reader)
+{
+  reader->UpdateInformation();
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = root ? root->FindNestedElementWithName("ImageData") : nullptr;
+  int whole[6];
+  if (!image || image->GetVectorAttribute("WholeExtent", 6, whole) != 6)
+  {
+    return "cannot read the ImageData element's WholeExtent";
+  }
+  std::vector<std::array<int, 6>> pieces;
+  for (int n = 0; n < image->GetNumberOfNestedElements(); ++n)
+  {
+    vtkXMLDataElement* piece = image->GetNestedElement(n);
+    std::array<int, 6> e;
+    if (std::strcmp(piece->GetName(), "Piece") == 0)
+    {
+      if (piece->GetVectorAttribute("Extent", 6, e.data()) != 6)
+      {
+        return "a Piece without an Extent";
+      }
+      pieces.push_back(e);
+    }
+  }
+  const std::string uncovered = UncoveredExtent(whole, pieces);
+  if (uncovered.empty())
+  {
+    return uncovered;
+  }
+  std::ostringstream msg;
+  msg << "its WholeExtent " << whole[0] << " " << whole[1] << " " << whole[2] << " " << whole[3]
+      << " " << whole[4] << " " << whole[5] << " is larger than the union of its " << pieces.size()
+      << " piece(s): the points of extent " << uncovered
+      << " are in none of them (VTK's reader would make them zeros)";
+  return msg.str();
+}
 
 /// A reader for a .vti, .mhd/.mha or .nrrd/.nhdr volume, chosen by extension; null otherwise.
 inline vtkSmartPointer<vtkAlgorithm> NewVolumeReader(const std::string& path)

@@ -4,12 +4,16 @@
 // the input slab by slab with bounded memory (vtkImageToPagePoolWriter).
 //   volumes -> brick pool: .vti, .mhd/.mha (compressed ones read whole), .nrrd/.nhdr,
 //                          raw (--raw ...), SEG-Y (.sgy/.segy, read inline by inline)
-//   grids   -> tile pool:  .npy, .gri, and any 2-D input (one point along z)
+//   grids   -> tile pool:  .npy, .gri (Irap binary), text grids told by their content (Irap
+//                          classic ASCII, ZMAP+, ESRI ASCII .asc), columns or a whitespace
+//                          matrix (.txt, .dat, .xyz, .csv), and any 2-D input (one point along z)
 // The pool is written to <output>.tmp-<pid> and renamed when complete; temporaries that killed
 // runs left beside the output are removed first.
 #include "StrataCommandLine.h"
+#include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkHorizonColumnReader.h"
 #include "vtkImageReader2.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkIrapBinaryGridReader.h"
@@ -38,7 +42,9 @@ void Usage(std::ostream& os)
      << "\n"
         "         [--inline-byte N] [--crossline-byte N] [--segy-format CODE]\n"
         "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw), .sgy/.segy -> brick pool;\n"
-        "        .npy, .gri (and any input one point thick along z) -> tile pool\n"
+        "        .npy, .gri, Irap classic ASCII, ZMAP+, ESRI ASCII (.asc), columns or a\n"
+        "        whitespace matrix (.txt, .dat, .xyz, .csv), and any input one point thick\n"
+        "        along z -> tile pool\n"
         "SEG-Y: inline and crossline numbers at trace-header bytes 189 and 193 unless given;\n"
         "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8)\n";
 }
@@ -104,6 +110,30 @@ vtkSmartPointer<vtkAlgorithm> NewRawReader(const std::string& path,
   else
     r->SetDataByteOrderToLittleEndian();
   return r;
+}
+
+/// A volume reader by extension, else a text grid reader by content (Irap classic, ZMAP+, ESRI
+/// ASCII), else the column reader for text extensions (it reads a whitespace matrix too).
+vtkSmartPointer<vtkAlgorithm> NewGridOrVolumeReader(const std::string& input,
+  const std::string& ext)
+{
+  if (vtkSmartPointer<vtkAlgorithm> volume = strata_cli::NewVolumeReader(input))
+  {
+    return volume;
+  }
+  if (vtkAsciiGridReader::CanReadFile(input.c_str()))
+  {
+    auto r = vtkSmartPointer<vtkAsciiGridReader>::New();
+    r->SetFileName(input.c_str());
+    return r;
+  }
+  if (ext == ".txt" || ext == ".dat" || ext == ".xyz" || ext == ".csv")
+  {
+    auto r = vtkSmartPointer<vtkHorizonColumnReader>::New();
+    r->SetFileName(input.c_str());
+    return r;
+  }
+  return nullptr;
 }
 }
 
@@ -204,7 +234,7 @@ int main(int argc, char* argv[])
     r->SetFileName(input.c_str());
     reader = r;
   }
-  else if (ext == ".gri")
+  else if (ext == ".gri" && !vtkAsciiGridReader::CanReadFile(input.c_str()))
   {
     auto r = vtkSmartPointer<vtkIrapBinaryGridReader>::New();
     r->SetFileName(input.c_str());
@@ -212,12 +242,18 @@ int main(int argc, char* argv[])
   }
   else
   {
-    reader = strata_cli::NewVolumeReader(input);
+    reader = NewGridOrVolumeReader(input, ext);
   }
   if (!reader)
   {
     Usage(std::cerr);
     return Die("cannot tell the format of \"" + input + "\" (use --raw for raw files)");
+  }
+  if (auto* vti = vtkXMLImageDataReader::SafeDownCast(reader))
+  {
+    const std::string pieceError = strata_cli::CheckImagePieces(vti);
+    if (!pieceError.empty())
+      return Die("\"" + input + "\": " + pieceError + "; no output written");
   }
 
   RemoveStaleTemporaries(output);

@@ -246,6 +246,12 @@ int main(int argc, char* argv[])
       Usage(std::cerr);
       return Die("cannot tell the format of \"" + input + "\" (use --raw for raw files)");
     }
+    if (auto* vti = vtkXMLImageDataReader::SafeDownCast(reader))
+    {
+      const std::string pieceError = strata_cli::CheckImagePieces(vti);
+      if (!pieceError.empty())
+        return Die("\"" + input + "\": " + pieceError + "; no output written");
+    }
     // Some VTK readers report a bad file with an error and still succeed, with garbage data.
     int errors = 0;
     vtkNew<vtkCallbackCommand> onError;

@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonColumnReader.h"
+#include "vtkStrataAsciiGridParser.h"
 #include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
@@ -63,6 +64,8 @@ const char* ModeName(ColumnMode mode)
       return "InlineCrossline";
     case ColumnMode::XYZ:
       return "XYZ";
+    case ColumnMode::Matrix:
+      return "Matrix";
     default:
       return "Auto";
   }
@@ -632,6 +635,10 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
     error = "file does not exist or is not a regular file";
     return false;
   }
+  if (this->Mode == ColumnMode::Matrix)
+  {
+    return this->ReadMatrixGrid(error);
+  }
   vtksys::ifstream in(this->FileName, std::ios::in | std::ios::binary);
   if (!in)
   {
@@ -649,6 +656,9 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   std::vector<std::pair<size_t, size_t>> tokens;
   long long lineNumber = 0;
   bool sawContent = false;
+  // Values per data line, smallest and largest: a matrix has many, the same on every line.
+  size_t fewestValues = std::numeric_limits<size_t>::max();
+  size_t mostValues = 0;
   this->UpdateProgress(0.0);
   try
   {
@@ -703,6 +713,8 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
       }
       sawContent = true;
       records.push_back({ v[0], v[1], v[2], lineNumber });
+      fewestValues = std::min(fewestValues, tokens.size());
+      mostValues = std::max(mostValues, tokens.size());
       if ((records.size() & 0x3fff) == 0)
       {
         this->UpdateProgress(0.8 * static_cast<double>(in.tellg()) / fileSize);
@@ -726,7 +738,14 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   }
   this->NumberOfRecords = static_cast<vtkIdType>(records.size());
 
-  // Which mode.
+  // Which mode. Every line as long as the others and longer than any columns file's: a matrix.
+  const bool sameLength = fewestValues == mostValues && mostValues > 3;
+  if (this->Mode == ColumnMode::Auto && sameLength && !this->HasHeaderLine &&
+      mostValues > static_cast<size_t>(MatrixMinimumColumns))
+  {
+    in.close();
+    return this->ReadMatrixGrid(error);
+  }
   ColumnMode mode = this->Mode;
   if (mode == ColumnMode::Auto)
   {
@@ -866,6 +885,20 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
     noData += std::isnan(values[id]) ? 1 : 0;
   }
 
+  // A small matrix read as columns puts its few rows on nodes already set, or on a grid that is
+  // mostly holes (one row per node of a rows x rows grid): in Auto mode, an error that says so.
+  if (this->Mode == ColumnMode::Auto && sameLength && (duplicates > 0 || 2 * noData > total))
+  {
+    std::ostringstream msg;
+    msg << "every data line holds " << mostValues << " values, and read as " << ModeName(mode)
+        << " columns " << duplicates << " of them fall on a grid node already set and " << noData
+        << " of the " << total << " nodes stay holes: this looks like a whitespace "
+        << "matrix (one grid row per line), not columns; set Mode to Matrix to read it as one, "
+        << "or to " << ModeName(mode) << " to read it as columns";
+    error = msg.str();
+    return false;
+  }
+
   this->DetectedMode = mode;
   this->NX = static_cast<int>(nx);
   this->NY = static_cast<int>(ny);
@@ -877,6 +910,58 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
     vtkWarningMacro(<< this->FileName << ": " << duplicates
                     << " data lines fall on a grid node already set; the last one was kept.");
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkHorizonColumnReader::ReadMatrixGrid(std::string& error)
+{
+  this->ResetResults();
+  strata_io::AsciiGridOptions options;
+  options.NullValue = this->NullValue;
+  strata_io::AsciiGrid matrix;
+  if (!strata_io::ReadAsciiGrid(
+        this->FileName, strata_io::AsciiGridFormat::Matrix, options, matrix, error))
+  {
+    error = "reading it as a whitespace matrix: " + error;
+    return false;
+  }
+  if (this->IndexCoordinates)
+  {
+    this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
+    this->GridSpacing[0] = this->GridSpacing[1] = 1.0;
+    this->GridRotation = 0.0;
+  }
+  else
+  {
+    if (!(this->InlineSpacing > 0.0) || !(this->CrosslineSpacing > 0.0) ||
+        !std::isfinite(this->InlineSpacing) || !std::isfinite(this->CrosslineSpacing))
+    {
+      error = "InlineSpacing and CrosslineSpacing must be positive";
+      return false;
+    }
+    this->GridOrigin[0] = this->Origin[0];
+    this->GridOrigin[1] = this->Origin[1];
+    this->GridSpacing[0] = this->InlineSpacing;
+    this->GridSpacing[1] = this->CrosslineSpacing;
+    this->GridRotation = this->Rotation;
+  }
+  vtkSmartPointer<vtkFloatArray> grid = vtkSmartPointer<vtkFloatArray>::New();
+  grid->SetName(this->ArrayName);
+  const vtkIdType total = static_cast<vtkIdType>(matrix.Values.size());
+  grid->SetNumberOfTuples(total);
+  if (grid->GetNumberOfTuples() != total)
+  {
+    error = "cannot allocate the grid values";
+    return false;
+  }
+  std::copy(matrix.Values.begin(), matrix.Values.end(), grid->GetPointer(0));
+  this->DetectedMode = ColumnMode::Matrix;
+  this->NumberOfRecords = matrix.NX;
+  this->NX = matrix.NX;
+  this->NY = matrix.NY;
+  this->NumberOfNoDataValues = static_cast<vtkIdType>(matrix.NumberOfNoDataValues);
+  this->Internals->Grid = grid;
   return true;
 }
 

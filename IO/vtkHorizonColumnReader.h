@@ -32,10 +32,21 @@
  *   Tolerance * (smaller spacing) from its node. The lattice does not say which of its axes is
  *   "x": the reader picks the axis within 45 degrees of world x, so the recovered rotation is in
  *   (-45, 45] degrees and axes are right-handed.
- * - Auto (default): a header line whose first two names say so ("inline xline ...",
- *   "x y ...", "easting northing ...") decides; otherwise integer-valued first two columns mean
- *   InlineCrossline, anything else XYZ. (Integer world coordinates need an explicit mode or a
- *   header.)
+ * - Matrix: not columns but a whitespace matrix of heights, one grid row per line, as
+ *   numpy.savetxt writes a 2-D array ('#' comment lines, every row the same number of values;
+ *   see vtkAsciiGridReader, which reads it the same way). Line r, value c is node (r, c): the
+ *   lines are inlines (the image x axis), as vtkNumpyGridReader has the first numpy axis, so a
+ *   savetxt and an np.save of one array give the same grid. Placed like InlineCrossline: at the
+ *   index numbers (origin 0, spacing 1) with IndexCoordinates on, by Origin, InlineSpacing,
+ *   CrosslineSpacing and Rotation with it off. NaN and NullValue are holes.
+ * - Auto (default): every data line holding the same number of values, more than
+ *   MatrixMinimumColumns (8), and no header line, mean Matrix: no columns file has that many
+ *   columns on every line. Otherwise a header line whose first two names say so ("inline xline
+ *   ...", "x y ...", "easting northing ...") decides; otherwise integer-valued first two columns
+ *   mean InlineCrossline, anything else XYZ. (Integer world coordinates need an explicit mode or
+ *   a header.) A file of 4 to 8 values on every line that the column modes read with data lines
+ *   falling on nodes already set, or into a grid more than half holes, is an error: it is
+ *   probably a small matrix, to be read with Mode Matrix (or as columns with an explicit mode).
  *
  * The output is one float point-data array (ArrayName, "depth" by default); the grid rotation is
  * the image's direction matrix. The file is parsed in RequestInformation (the dimensions depend on
@@ -66,8 +77,12 @@ public:
   {
     Auto = 0,
     InlineCrossline = 1,
-    XYZ = 2
+    XYZ = 2,
+    Matrix = 3
   };
+
+  /// Auto mode takes a file whose every line holds more values than this for a matrix.
+  static constexpr int MatrixMinimumColumns = 8;
 
   ///@{
   /**
@@ -103,6 +118,7 @@ public:
   void SetModeToAuto() { this->SetMode(ColumnMode::Auto); }
   void SetModeToInlineCrossline() { this->SetMode(ColumnMode::InlineCrossline); }
   void SetModeToXYZ() { this->SetMode(ColumnMode::XYZ); }
+  void SetModeToMatrix() { this->SetMode(ColumnMode::Matrix); }
   ///@}
 
   ///@{
@@ -160,7 +176,8 @@ public:
   /**
    * What the last UpdateInformation() found: the mode used (never Auto after a successful read),
    * whether there was a header line, the number of data lines, the number of data lines that
-   * hit a node already set (the last one wins), and the grid dimensions.
+   * hit a node already set (the last one wins; zero for a matrix), and the grid dimensions.
+   * A matrix's records are its lines.
    */
   vtkGetEnumMacro(DetectedMode, ColumnMode);
   vtkGetMacro(HasHeaderLine, bool);
@@ -246,6 +263,8 @@ private:
 
   /// Parses the file and builds the grid into Internals; false (with the reason) on failure.
   bool ReadGrid(std::string& error);
+  /// ReadGrid for a whitespace matrix (Matrix mode, or Auto mode's finding).
+  bool ReadMatrixGrid(std::string& error);
   void ResetResults();
 
   class vtkInternals;

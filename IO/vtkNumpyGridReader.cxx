@@ -449,10 +449,12 @@ bool ReadHeader(std::istream& in, long long fileSize, NpyHeader& h, std::string&
   }
   const long long d0 = h.Shape[0];
   const long long d1 = axes > 1 ? h.Shape[1] : 1;
-  if (d0 <= 0 || d1 <= 0 || d0 * d1 > MaxNodes)
+  // Each factor is bounded first: shape values up to 2^40 multiply past 2^63.
+  if (d0 <= 0 || d1 <= 0 || d0 > MaxNodes || d1 > MaxNodes || d0 > MaxNodes / d1)
   {
     std::ostringstream msg;
-    msg << "absurd grid dimensions " << d0 << " x " << d1 << " (need 0 < n < 2^31 nodes)";
+    msg << "absurd grid dimensions in 'shape': " << d0 << " x " << d1
+        << " (need 0 < n < 2^31 nodes)";
     error = msg.str();
     return false;
   }

@@ -22,6 +22,7 @@
 #include "vtkType.h"
 
 #include <vtksys/FStream.hxx>
+#include <vtksys/SystemInformation.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -119,6 +120,7 @@ void vtkPagePoolReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
   os << indent << "Layer: " << this->Layer << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MB\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
   os << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n";
   os << indent << "IsTilePool: " << this->IsTilePool << "\n";
@@ -370,6 +372,31 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
     }
   }
 
+  // Before allocating: the output of this level and extent must fit the memory limit.
+  double outputMB = Format::GetScalarSize(h.Type) / 1048576.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    outputMB *= extent[2 * a + 1] - extent[2 * a] + 1;
+  }
+  double limitMB = this->MemoryLimit;
+  if (limitMB <= 0.0)
+  {
+    vtksys::SystemInformation system;
+    system.RunMemoryCheck();
+    limitMB = static_cast<double>(system.GetTotalPhysicalMemory()); // MiB; 0 if unknown
+  }
+  if (limitMB > 0.0 && outputMB > limitMB)
+  {
+    std::ostringstream msg;
+    msg << "level " << level << ", extent " << extent[0] << " " << extent[1] << " " << extent[2]
+        << " " << extent[3] << " " << extent[4] << " " << extent[5] << ", needs " << outputMB
+        << " MB of " << Format::GetScalarTypeName(h.Type)
+        << " values, more than the MemoryLimit of " << limitMB << " MB"
+        << (this->MemoryLimit > 0.0 ? "" : " (the physical memory)")
+        << ": ask for a lower Resolution or a smaller update extent";
+    return fail(msg.str());
+  }
+
   output->SetExtent(extent);
   this->MarkPool(output, name);
   output->SetSpacing(spacing);
@@ -378,6 +405,10 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   const int vtkType = ToVTKType(h.Type);
   output->AllocateScalars(vtkType, 1);
   vtkDataArray* scalars = output->GetPointData()->GetScalars();
+  if (!scalars || scalars->GetNumberOfTuples() != output->GetNumberOfPoints())
+  {
+    return fail("cannot allocate " + std::to_string(outputMB) + " MB for the output");
+  }
   scalars->SetName(this->ArrayName);
   const int valueSize = Format::GetScalarSize(h.Type);
   auto* dst = static_cast<unsigned char*>(scalars->GetVoidPointer(0));

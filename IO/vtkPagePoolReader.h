@@ -81,6 +81,15 @@ public:
   ///@}
 
   ///@{
+  /// The most memory, in MB, that one output may take: a request whose level and extent need
+  /// more (a whole terabyte pool at full resolution, say) is an error naming this limit and the
+  /// level, raised before anything is allocated; ask for a lower Resolution or a smaller update
+  /// extent instead. 0 (the default) means the machine's physical memory.
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  ///@{
   /// Name of the output point-data array. Default: "values".
   vtkSetStringMacro(ArrayName);
   vtkGetStringMacro(ArrayName);
@@ -165,6 +174,7 @@ protected:
   char* ArrayName = nullptr;
   int Layer = 0;
   double Resolution = 1.0;
+  double MemoryLimit = 0.0;
   int NumberOfLevels = 0;
   int NumberOfLayers = 0;
   bool IsTilePool = false;

@@ -30,6 +30,9 @@ namespace
 {
 /// A header is text; a "line" longer than this is binary data, never a key.
 constexpr size_t MaxHeaderLine = 1 << 16;
+// Bounds that keep the data's byte count in 64 bits; no volume comes near them.
+constexpr int MaxChannels = 1 << 16;
+constexpr double MaxDataBytes = 4611686018427387904.0; // 2^62
 
 std::string Trim(const std::string& s)
 {
@@ -197,9 +200,25 @@ bool vtkStreamingMetaImageReader::vtkInternals::Parse(const std::string& path, s
     this->Dimensions[a] = static_cast<int>(sizes[a]);
   }
   this->Type = ScalarType(element, this->TypeSize);
-  if (this->Type == VTK_VOID || this->Channels < 1)
+  if (this->Type == VTK_VOID || this->Channels < 1 || this->Channels > MaxChannels)
   {
     error = "ElementType \"" + element + "\" or ElementNumberOfChannels is not supported";
+    return false;
+  }
+  // DataBytes() multiplies in 64 bits: sizes up to 2^31 each would overflow it.
+  const double bytes = static_cast<double>(this->Dimensions[0]) * this->Dimensions[1] *
+                       (dims > 2 ? this->Dimensions[2] : 1) * this->Channels * this->TypeSize;
+  if (bytes > MaxDataBytes)
+  {
+    std::ostringstream msg;
+    msg << "DimSize";
+    for (int a = 0; a < dims; ++a)
+    {
+      msg << " " << this->Dimensions[a];
+    }
+    msg << " of " << this->Channels << " x " << this->TypeSize << "-byte values is " << bytes
+        << " bytes, beyond any file (2^62)";
+    error = msg.str();
     return false;
   }
   // A list ("LIST") or a pattern ("slice%03d.raw 1 40 1") names several data files.

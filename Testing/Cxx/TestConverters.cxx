@@ -16,6 +16,11 @@
 //   columns, as tile pools (and the whole Penobscot horizon of ../shared/data when present);
 // - strata-convert on the SEG-Y files (default and custom byte positions) and on the raw and
 //   compressed .mhd gives the same pools;
+// - the text grids (Irap classic ASCII, ZMAP+, ESRI ASCII, a whitespace matrix), 12 x 9 with a
+//   hole each, through the writer and through strata-convert (format told by content);
+// - strata-convert on a .vti whose WholeExtent is larger than its pieces fails with a message,
+//   leaving no output (issue 14, defect 2), and so does strata-hybrid; one of two pieces that
+//   cover it converts;
 // - strata-convert killed with SIGKILL while writing a 256^3 float volume leaves no file under
 //   the output name (its temporary <output>.tmp-<pid> is left), and the next conversion to that
 //   name removes the stale temporary and succeeds.
@@ -25,6 +30,7 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -50,6 +56,7 @@
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <vtksys/Directory.hxx>
 #include <vtksys/SystemTools.hxx>
 
 #include <fcntl.h>
@@ -228,8 +235,9 @@ void Spit(const std::string& path, const void* data, size_t size)
     .write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
 }
 
-/// Starts `args` (args[0] is the program) with stdout and stderr sent to /dev/null.
-pid_t Spawn(const std::vector<std::string>& args)
+/// Starts `args` (args[0] is the program) with stdout sent to /dev/null and stderr to
+/// `errorLog` (/dev/null by default).
+pid_t Spawn(const std::vector<std::string>& args, const std::string& errorLog = "/dev/null")
 {
   std::vector<char*> argv;
   for (const std::string& a : args)
@@ -240,7 +248,8 @@ pid_t Spawn(const std::vector<std::string>& args)
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(
+    &actions, 2, errorLog.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = -1;
   if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0)
   {
@@ -251,9 +260,9 @@ pid_t Spawn(const std::vector<std::string>& args)
 }
 
 /// Runs `args` to the end; its exit code, -1 if it could not run or did not exit.
-int Run(const std::vector<std::string>& args)
+int Run(const std::vector<std::string>& args, const std::string& errorLog = "/dev/null")
 {
-  const pid_t pid = Spawn(args);
+  const pid_t pid = Spawn(args, errorLog);
   int status = 0;
   if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status))
   {
@@ -548,6 +557,161 @@ void Horizons(const strata_test::TestPaths& paths, const std::string& dir, const
   }
 }
 
+/// Issue 14, defect 2: a .vti whose WholeExtent is larger than the union of its pieces used to
+/// convert (exit 0, no message) into a pool whose uncovered part is zeros. strata-convert must
+/// fail with a message naming the WholeExtent and leave no file under the output name (nor a
+/// temporary). A .vti of two pieces that do cover it (the positive control) converts to the
+/// same values.
+void UncoveredVti(const std::string& tool, const std::string& dir)
+{
+  vtkSmartPointer<vtkImageData> image =
+    MakeImage(24, 20, 16, VTK_FLOAT, [](vtkIdType i) { return Noise(i) * 100 - 50; });
+  const std::string covered = dir + "/two-pieces.vti";
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(covered.c_str());
+  writer->SetNumberOfPieces(2);
+  writer->Write();
+  const std::string coveredPool = dir + "/two-pieces.spp";
+  Check(Run({ tool, covered, coveredPool, "--page-size", "8" }) == 0 &&
+          SameAsSource(image, ReadPool(coveredPool)),
+    "strata-convert, .vti of two pieces covering its WholeExtent: the generated image");
+
+  // The same file claiming 32 slices instead of 16: slices 16..31 are in no piece.
+  std::ifstream in(covered, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string whole = "WholeExtent=\"0 23 0 19 0 15\"";
+  const size_t at = text.find(whole);
+  Check(at != std::string::npos, "the written .vti states WholeExtent=\"0 23 0 19 0 15\"");
+  if (at == std::string::npos)
+  {
+    return;
+  }
+  text.replace(at, whole.size(), "WholeExtent=\"0 23 0 19 0 31\"");
+  const std::string uncovered = dir + "/uncovered.vti";
+  Spit(uncovered, text.data(), text.size());
+  const std::string pool = dir + "/uncovered.spp";
+  const std::string log = dir + "/uncovered.log";
+  std::remove(pool.c_str());
+  const int rc = Run({ tool, uncovered, pool, "--page-size", "8" }, log);
+  std::ifstream logIn(log);
+  const std::string message(
+    (std::istreambuf_iterator<char>(logIn)), std::istreambuf_iterator<char>());
+  bool temporaryLeft = false;
+  vtksys::Directory listing;
+  listing.Load(dir);
+  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+  {
+    temporaryLeft |= std::string(listing.GetFile(f)).rfind("uncovered.spp.tmp-", 0) == 0;
+  }
+  std::cout << "  uncovered .vti: exit " << rc << ", output "
+            << (vtksys::SystemTools::FileExists(pool) ? "written" : "absent")
+            << ", message: " << message;
+  Check(rc != 0, "strata-convert, .vti with uncovered WholeExtent: nonzero exit");
+  Check(message.find("WholeExtent") != std::string::npos &&
+          message.find("0 23 0 19 16 31") != std::string::npos,
+    "strata-convert, uncovered .vti: the message names the WholeExtent and the uncovered part");
+  Check(!vtksys::SystemTools::FileExists(pool) && !temporaryLeft,
+    "strata-convert, uncovered .vti: no output file and no temporary left");
+  // strata-hybrid reads a .vti whole through the same reader: the same refusal.
+  const std::string hybrid = vtksys::SystemTools::GetFilenamePath(tool) + "/strata-hybrid";
+  if (vtksys::SystemTools::FileExists(hybrid, true))
+  {
+    const std::string shv = dir + "/uncovered.shv";
+    const std::string hybridLog = dir + "/uncovered-hybrid.log";
+    std::remove(shv.c_str());
+    const int hybridRc = Run({ hybrid, uncovered, shv }, hybridLog);
+    std::ifstream hybridIn(hybridLog);
+    const std::string hybridMessage(
+      (std::istreambuf_iterator<char>(hybridIn)), std::istreambuf_iterator<char>());
+    std::cout << "  uncovered .vti, strata-hybrid: exit " << hybridRc
+              << ", message: " << hybridMessage;
+    Check(hybridRc != 0 && hybridMessage.find("0 23 0 19 16 31") != std::string::npos &&
+            !vtksys::SystemTools::FileExists(shv),
+      "strata-hybrid, uncovered .vti: nonzero exit, the uncovered extent named, no output");
+  }
+}
+
+/// The text grids of issue 14 (written here, small): each read by its reader and converted both
+/// by vtkImageToPagePoolWriter and by strata-convert, which must tell the format from the
+/// content (or, for the matrix, from the .txt extension) and give the same pool.
+void TextGrids(const std::string& tool, const std::string& dir)
+{
+  std::cout << "text grids: Irap classic, ZMAP+, ESRI ASCII, whitespace matrix\n";
+  auto z = [](int i, int j)
+  { return std::to_string(1500 + 7 * i - 3 * j) + "." + std::to_string(i % 10); };
+  std::string irap =
+    "-996 9 12.5 25.0\n100.0 237.5 200.0 400.0\n12 15.0 100.0 200.0\n0 0 0 0 0 0 0\n";
+  std::string zmap =
+    "! test\n@g HEADER, GRID, 4\n15, -99999.0, , 3, 1\n9, 12, 0.0, 110.0, 0.0, 80.0\n"
+    "0.0, 0.0, 0.0\n@\n";
+  std::string esri =
+    "ncols 12\nnrows 9\nxllcorner 1000\nyllcorner 2000\ncellsize 5\nNODATA_value -9999\n";
+  std::string matrix = "# 12 rows of 9\n";
+  for (int j = 0; j < 9; ++j)
+  {
+    for (int i = 0; i < 12; ++i)
+    {
+      irap += (i == 3 && j == 4 ? std::string("9999900.0") : z(i, j)) + (i % 6 == 5 ? "\n" : " ");
+      esri += (i == 5 && j == 2 ? std::string("-9999") : z(i, 8 - j)) + (i == 11 ? "\n" : " ");
+    }
+  }
+  for (int i = 0; i < 12; ++i)
+  {
+    for (int j = 8; j >= 0; --j)
+    {
+      zmap += (i == 2 && j == 2 ? std::string("-99999.0") : z(i, j)) + (j % 4 == 0 ? "\n" : " ");
+    }
+    for (int j = 0; j < 9; ++j)
+    {
+      matrix += (i == 7 && j == 1 ? std::string("nan") : z(i, j)) + (j == 8 ? "\n" : " ");
+    }
+  }
+  const std::pair<const char*, const std::string*> files[] = {
+    { "irap.fgr", &irap }, { "grid.zmap", &zmap }, { "grid.asc", &esri }, { "matrix.txt", &matrix }
+  };
+  for (const auto& f : files)
+  {
+    const std::string path = dir + "/" + f.first;
+    Spit(path, f.second->data(), f.second->size());
+    vtkSmartPointer<vtkAlgorithm> reader;
+    if (std::string(f.first) == "matrix.txt")
+    {
+      auto r = vtkSmartPointer<vtkHorizonColumnReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else
+    {
+      auto r = vtkSmartPointer<vtkAsciiGridReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    RoundTrip(reader, path + ".spp", f.first, 8);
+    vtkImageData* source = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+    int dims[3] = { 0, 0, 0 };
+    source->GetDimensions(dims);
+    vtkDataArray* values = source->GetPointData()->GetScalars();
+    int holes = 0;
+    for (vtkIdType n = 0; values && n < values->GetNumberOfTuples(); ++n)
+    {
+      holes += std::isnan(values->GetComponent(n, 0)) ? 1 : 0;
+    }
+    const int rc = tool.empty() ? -1 : Run({ tool, path, path + "-tool.spp", "--page-size", "8" });
+    std::cout << "  " << f.first << ": " << dims[0] << " x " << dims[1] << ", " << holes
+              << " hole(s), strata-convert exit " << rc << "\n";
+    Check(dims[0] == 12 && dims[1] == 9 && dims[2] == 1 && holes == 1,
+      std::string(f.first) + ": 12 x 9 nodes, one hole");
+    if (tool.empty())
+    {
+      continue;
+    }
+    const std::string pool = path + "-tool.spp";
+    Check(rc == 0 && SameAsSource(source, ReadPool(pool)),
+      std::string("strata-convert ") + f.first + ": the same pool as the reader's");
+  }
+}
+
 void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
 {
   const std::string f3 = paths.Data + "/seismic/f3.sgy";
@@ -587,6 +751,7 @@ void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)
         std::string("strata-convert ") + name + ": the same pool as the writer's");
     }
     KilledConversion(tool, paths.Data, dir);
+    UncoveredVti(tool, dir);
   }
 }
 
@@ -605,6 +770,7 @@ int TestConverters(int argc, char* argv[])
       { "Segy", [&] { Segy(dir, data); } },
       { "Horizons", [&] { Horizons(paths, dir, data); } },
       { "StrataConvert", [&] { StrataConvert(paths, dir); } },
+      { "TextGrids", [&] { TextGrids(FindConverter(), dir); } },
     },
     strata_test::Failures);
 }

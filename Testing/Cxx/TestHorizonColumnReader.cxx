@@ -9,6 +9,11 @@
 //   missing node and scrambled line order (the expected grid is the one they were generated
 //   from), inline/crossline columns with a header, comments, blank lines, CRLF, a missing node,
 //   a null value and a duplicate;
+// - whitespace matrices (issue 14, defect 1): 40 x 300 written as numpy.savetxt does (fmt
+//   "%.18e" and "%d", one "nan") read in Auto mode as the matrix, every value compared with the
+//   function that generated it; a 6 x 5 matrix in Matrix mode placed by Origin, spacings and
+//   Rotation (node (5, 4) against its position computed here), the same file in Auto mode an
+//   error, a ragged matrix and one with a word errors;
 // - bad input: a missing file, a truncated copy, a garbage file, an empty file, points off any
 //   regular grid, non-integer indices in InlineCrossline mode. Each must raise an error (caught
 //   by an observer) and leave the output with no points.
@@ -425,6 +430,146 @@ void BadInput(const std::string& dataDir, const std::string& outDir)
   CheckBadInput(outDir + "TestHorizonColumnReader_same.txt", "all points at one position");
 }
 
+/// z of the whitespace-matrix tests at row i, column j. Real: smooth and non-integer
+/// everywhere, so no two nodes are equal; integer: what savetxt(fmt="%d") writes of integer
+/// depths, whose first two values look like inline and crossline numbers.
+double MatrixZ(int i, int j, bool integer)
+{
+  return integer ? 2000.0 + 3.0 * i + j : 2000.0 + 25.0 * std::sin(i / 7.0) + 0.3 * j + 0.001;
+}
+
+/// A 2-D array as numpy.savetxt writes it (delimiter " ", header "# ..."; fmt "%.18e", its
+/// default, or "%d"): one line per row i, `cols` values per line; (holeI, holeJ) is "nan".
+std::string SavetxtMatrix(int rows, int cols, bool integer, int holeI, int holeJ)
+{
+  std::string text = "# depth grid, rows = inlines, written by numpy.savetxt\n";
+  char value[64];
+  for (int i = 0; i < rows; ++i)
+  {
+    for (int j = 0; j < cols; ++j)
+    {
+      if (i == holeI && j == holeJ)
+      {
+        std::snprintf(value, sizeof(value), "%s", "nan");
+      }
+      else if (integer)
+      {
+        std::snprintf(value, sizeof(value), "%d", static_cast<int>(MatrixZ(i, j, true)));
+      }
+      else
+      {
+        std::snprintf(value, sizeof(value), "%.18e", MatrixZ(i, j, false));
+      }
+      text += (j ? " " : "") + std::string(value);
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+/// Issue 14, defect 1: a numpy.savetxt matrix (40 rows of 300 values) used to become a small
+/// wrong grid (integer values: the first two of each row taken as inline and crossline, 40 x 40
+/// nodes for 40 "records") or an error about x y points (real values). It must be read as the
+/// 40 x 300 matrix it is, every value in place, the one "nan" a hole, without error or warning.
+void SavetxtMatrixAuto(const std::string& outDir, bool integer)
+{
+  const int rows = 40;
+  const int cols = 300;
+  const std::string tag = std::string("savetxt matrix (fmt ") + (integer ? "%d" : "%.18e") + ")";
+  const std::string path =
+    outDir + "TestHorizonColumnReader_savetxt" + (integer ? "_int" : "") + ".txt";
+  Spit(path, SavetxtMatrix(rows, cols, integer, 5, 7));
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3] = { 0, 0, 0 };
+  image->GetDimensions(dims);
+  std::cout << tag << " " << rows << " x " << cols << ": " << errors->Errors << " error(s), "
+            << errors->Warnings << " warning(s) " << errors->First << "; grid " << dims[0] << " x "
+            << dims[1] << ", " << reader->GetNumberOfNoDataValues() << " no-data node(s)\n";
+  Check(errors->Errors == 0 && errors->Warnings == 0, tag + ": no error, no warning");
+  Check(dims[0] == rows && dims[1] == cols && dims[2] == 1,
+    tag + ": the grid is rows x columns (40 x 300)");
+  if (dims[0] != rows || dims[1] != cols)
+  {
+    return;
+  }
+  int wrong = 0;
+  for (int i = 0; i < rows; ++i)
+  {
+    for (int j = 0; j < cols; ++j)
+    {
+      const double v = ValueAt(image, i, j);
+      const bool hole = i == 5 && j == 7;
+      wrong += (hole ? std::isnan(v) : v == static_cast<float>(MatrixZ(i, j, integer))) ? 0 : 1;
+    }
+  }
+  std::cout << tag << ": " << wrong << " of " << rows * cols << " values wrong\n";
+  Check(wrong == 0, tag + ": every value at (row, column), the nan a hole");
+  Check(reader->GetNumberOfNoDataValues() == 1, tag + ": one no-data node");
+}
+
+/// Mode Matrix on a small matrix (too narrow for Auto to call it one) placed by Origin,
+/// spacings and Rotation, with a NullValue hole; the same file in Auto mode is an error (read
+/// as columns it would be a 6 x 6 grid of six nodes), and so is a ragged matrix in Matrix mode.
+void MatrixMode(const std::string& outDir)
+{
+  const std::string path = outDir + "TestHorizonColumnReader_small_matrix.txt";
+  std::string text = "# 6 x 5\n";
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int j = 0; j < 5; ++j)
+    {
+      text += std::to_string(i == 2 && j == 3 ? -999 : 100 + 10 * i + j) + (j < 4 ? " " : "\n");
+    }
+  }
+  Spit(path, text);
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->SetModeToMatrix();
+  reader->IndexCoordinatesOff();
+  reader->SetOrigin(1000.0, 2000.0);
+  reader->SetInlineSpacing(25.0);
+  reader->SetCrosslineSpacing(12.5);
+  reader->SetRotation(30.0);
+  reader->SetNullValue(-999.0);
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3] = { 0, 0, 0 };
+  image->GetDimensions(dims);
+  double p[3] = { 0, 0, 0 };
+  const int ijk[3] = { 5, 4, 0 };
+  image->TransformIndexToPhysicalPoint(ijk, p);
+  // Node (5, 4): origin + 5 x 25 along 30 degrees + 4 x 12.5 along 120 degrees.
+  const double a = vtkMath::RadiansFromDegrees(30.0);
+  const double ex = 1000.0 + 125.0 * std::cos(a) - 50.0 * std::sin(a);
+  const double ey = 2000.0 + 125.0 * std::sin(a) + 50.0 * std::cos(a);
+  std::cout << "Matrix mode 6 x 5: grid " << dims[0] << " x " << dims[1] << ", node (5, 4) at "
+            << p[0] << " " << p[1] << " (expected " << ex << " " << ey << "), value "
+            << ValueAt(image, 5, 4) << ", " << reader->GetNumberOfNoDataValues() << " hole(s)\n";
+  Check(errors->Errors == 0 && errors->Warnings == 0, "Matrix mode: no error, no warning");
+  Check(dims[0] == 6 && dims[1] == 5, "Matrix mode: 6 lines x 5 values = 6 x 5 nodes");
+  Check(reader->GetDetectedMode() == Mode::Matrix, "Matrix mode: detected mode Matrix");
+  Check(dims[0] == 6 && ValueAt(image, 5, 4) == 154.0 && ValueAt(image, 1, 0) == 110.0 &&
+          std::isnan(ValueAt(image, 2, 3)),
+    "Matrix mode: (5, 4) = 154, (1, 0) = 110, (2, 3) a NullValue hole");
+  Check(reader->GetNumberOfNoDataValues() == 1, "Matrix mode: one hole");
+  Check(Near(p[0], ex, 1e-9) && Near(p[1], ey, 1e-9) && DirectionIs(image, 30.0, 1e-12),
+    "Matrix mode: placed by Origin, InlineSpacing, CrosslineSpacing and Rotation");
+
+  CheckBadInput(path, "6 x 5 matrix in Auto mode (as columns: 6 nodes of 36)");
+  Spit(outDir + "TestHorizonColumnReader_ragged.txt", "1 2 3 4\n5 6 7 8\n9 10 11\n");
+  CheckBadInput(outDir + "TestHorizonColumnReader_ragged.txt", "ragged matrix", Mode::Matrix);
+  Spit(outDir + "TestHorizonColumnReader_text_matrix.txt", "1 2 3 4\n5 6 x 8\n");
+  CheckBadInput(
+    outDir + "TestHorizonColumnReader_text_matrix.txt", "matrix with a word", Mode::Matrix);
+}
+
 void PrintSelf()
 {
   vtkNew<vtkHorizonColumnReader> printed;
@@ -445,6 +590,9 @@ int TestHorizonColumnReader(int argc, char* argv[])
       { "RotatedXYZ", [&] { RotatedXYZ(outDir); } },
       { "ReekRotationXYZ", [&] { ReekRotationXYZ(outDir); } },
       { "BadInput", [&] { BadInput(dataDir, outDir); } },
+      { "SavetxtMatrixAuto", [&] { SavetxtMatrixAuto(outDir, false); } },
+      { "SavetxtMatrixAutoInteger", [&] { SavetxtMatrixAuto(outDir, true); } },
+      { "MatrixMode", [&] { MatrixMode(outDir); } },
       { "PrintSelf", PrintSelf },
     },
     strata_test::Failures);

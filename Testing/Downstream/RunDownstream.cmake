@@ -1,6 +1,9 @@
-# Installs Strata from STRATA_BUILD into WORK/install, then configures, builds and runs the
-# downstream consumer in this folder against that install tree alone.
-foreach (v STRATA_BUILD WORK SOURCE)
+# Installs Strata from STRATA_BUILD into WORK/install, converts a horizon grid (DATA's Reek .gri)
+# into a page pool and a volume (DATA's bucky.raw) into a hybrid file with the INSTALLED
+# strata-convert and strata-hybrid, then configures, builds and runs the downstream consumer in
+# this folder against that install tree alone; the consumer renders the flat horizon and reads
+# the pool back.
+foreach (v STRATA_BUILD WORK SOURCE DATA)
   if (NOT DEFINED ${v})
     message(FATAL_ERROR "RunDownstream.cmake needs -D${v}=...")
   endif ()
@@ -15,8 +18,27 @@ function (step what)
   set(step_output "${out}" PARENT_SCOPE)
 endfunction ()
 step("install" "${CMAKE_COMMAND}" --install "${STRATA_BUILD}" --prefix "${WORK}/install")
+set(bin "${WORK}/install/bin")
+foreach (tool strata-convert strata-hybrid)
+  if (NOT EXISTS "${bin}/${tool}")
+    message(FATAL_ERROR "cmake --install put no ${tool} in ${bin}")
+  endif ()
+endforeach ()
+# Run with no build-tree library path: the installed tools must find the installed libraries.
+step("installed strata-convert" "${CMAKE_COMMAND}" -E env --unset=LD_LIBRARY_PATH
+  "${bin}/strata-convert" "${DATA}/horizons/reek_01_topreek_rota.gri" "${WORK}/reek.spp"
+  --page-size 64)
+step("installed strata-hybrid" "${CMAKE_COMMAND}" -E env --unset=LD_LIBRARY_PATH
+  "${bin}/strata-hybrid" "${DATA}/volumes/bucky.raw" "${WORK}/bucky.shv" --raw 32 32 32 uint8
+  --factor 4)
+foreach (out reek.spp bucky.shv)
+  if (NOT EXISTS "${WORK}/${out}")
+    message(FATAL_ERROR "the installed tools wrote no ${WORK}/${out}")
+  endif ()
+endforeach ()
 step("configure" "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${WORK}/build" -G Ninja
   -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${WORK}/install")
 step("build" "${CMAKE_COMMAND}" --build "${WORK}/build")
-step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 "${WORK}/build/StrataDownstream")
+step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 "${WORK}/build/StrataDownstream"
+  "${WORK}/reek.spp")
 message("${step_output}")

@@ -3,12 +3,16 @@
 // The downstream consumer: one flat horizon of 100 x 50 points (spacing 1) seen straight down
 // through a parallel camera. Its image covers a rectangle whose area in pixels is known exactly,
 // so the test can tell a working install (library, headers, autoinit, EGL window, shaders) from
-// one that links but draws nothing. Prints one line and exits non-zero on failure.
+// one that links but draws nothing. Given a page pool (what the installed strata-convert made of
+// the 554 x 451 Reek horizon), it also reads the pool back at full resolution with
+// vtkPagePoolReader and prints its dimensions. Prints one line per check and exits non-zero on
+// failure.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -19,7 +23,30 @@
 #include <cstdio>
 #include <cstring>
 
-int main()
+namespace
+{
+/// Reads the tile pool at `path` whole; true when it is the 554 x 451 x 1 Reek grid.
+bool ReadPool(const char* path)
+{
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(path);
+  reader->Update();
+  int dims[3] = { 0, 0, 0 };
+  reader->GetOutput()->GetDimensions(dims);
+  const bool ok = reader->GetIsTilePool() && dims[0] == 554 && dims[1] == 451 && dims[2] == 1 &&
+                  reader->GetOutput()->GetPointData()->GetScalars() != nullptr;
+  std::printf("downstream: pool from the installed strata-convert: %d x %d x %d points, %lld "
+              "pages read: %s\n",
+    dims[0],
+    dims[1],
+    dims[2],
+    static_cast<long long>(reader->GetNumberOfPagesRead()),
+    ok ? "ok" : "FAILED");
+  return ok;
+}
+}
+
+int main(int argc, char* argv[])
 {
   const int nx = 100, ny = 50, size = 128;
   vtkNew<vtkImageData> horizon;
@@ -70,5 +97,6 @@ int main()
     expected,
     slack,
     ok ? "ok" : "FAILED");
-  return ok && std::strcmp(win->GetClassName(), "vtkStrataEGLRenderWindow") == 0 ? 0 : 1;
+  const bool poolOk = argc < 2 || ReadPool(argv[1]);
+  return ok && poolOk && std::strcmp(win->GetClassName(), "vtkStrataEGLRenderWindow") == 0 ? 0 : 1;
 }

@@ -1,0 +1,210 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkAsciiGridReader
+ * @brief   Reads a horizon from a text grid (Irap classic, ZMAP+, ESRI ASCII, matrix).
+ *
+ * Besides Irap binary, NumPy arrays and columns, horizons are exchanged as text grids that
+ * state their own geometry. This reader takes the four common ones, detected from the first
+ * line (Format Auto, the default) or named:
+ *
+ * - IrapClassic: the ASCII twin of Irap binary (vtkIrapBinaryGridReader). Header
+ *   "-996 ny xinc yinc / xmin xmax ymin ymax / nx rotation xori yori / 0 0 0 0 0 0 0", then
+ *   nx * ny values, x fastest. Origin (xori, yori), spacing (xinc, yinc), rotation in degrees
+ *   counterclockwise; 9999900 (and magnitudes from 1e30) are holes, as in the binary reader.
+ * - Zmap: ZMAP+ grids. '!' comment lines, then the header between '@' lines:
+ *   "@name HEADER, GRID, nodes per line", "field width, null value, [null text,] decimals,
+ *   start column", "rows, columns, min X, max X, min Y, max Y", "0.0, 0.0, 0.0", "@". The
+ *   values are column-major, each column from the top (max Y) down. Nodes span min..max X and
+ *   Y, so the spacing is (max - min) / (count - 1); no rotation; the null value is a hole.
+ * - EsriAscii: ESRI ASCII grids (.asc): "ncols", "nrows", "xllcorner" or "xllcenter",
+ *   "yllcorner" or "yllcenter", "cellsize" (or "dx" and "dy"), optional "NODATA_value", then the
+ *   rows from the top down. Each value is a cell, and the output's nodes are the cell centres:
+ *   a corner header puts node (0, 0) half a cell inside it. NODATA_value is a hole.
+ * - Matrix: a whitespace matrix, one grid row per line, as numpy.savetxt writes a 2-D array
+ *   ('#' comment lines; commas or semicolons may separate too). Auto detects one only when its
+ *   lines hold more than MatrixMinimumColumns (8) values, as vtkHorizonColumnReader does: fewer
+ *   are more likely columns, and an error says so. Line r, value c is node (r, c):
+ *   the first numpy axis is x, as vtkNumpyGridReader and vtkHorizonColumnReader's Matrix mode
+ *   have it; SwapAxes makes line r the row j = r. The file has no geometry: Origin, Spacing and
+ *   Rotation place it.
+ *
+ * In every format NaN and NullValue (when set) are holes too; holes are NaN in the output, as
+ * in the other horizon readers. The output is an nx x ny x 1 vtkImageData with one float
+ * point-data array (ArrayName, "depth" by default) and the rotation as its direction matrix.
+ *
+ * The file is read in RequestInformation and the grid handed over in RequestData. Errors
+ * (missing, truncated or malformed file, a header whose dimensions overflow, need more nodes
+ * than a horizon can have (2^31) or more values than the file can hold, checked before
+ * anything is allocated) are reported with vtkErrorMacro naming the line or header field, and
+ * leave the output empty.
+ *
+ * @sa vtkIrapBinaryGridReader vtkNumpyGridReader vtkHorizonColumnReader
+ */
+#ifndef vtkAsciiGridReader_h
+#define vtkAsciiGridReader_h
+
+#include "StrataIOModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class STRATAIO_EXPORT vtkAsciiGridReader : public vtkImageAlgorithm
+{
+public:
+  static vtkAsciiGridReader* New();
+  vtkTypeMacro(vtkAsciiGridReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Auto takes rows of numbers for a matrix only when they hold more values than this.
+  static constexpr int MatrixMinimumColumns = 8;
+
+  /// The text grid formats.
+  enum class GridFormat : int
+  {
+    Auto = 0,
+    IrapClassic = 1,
+    Zmap = 2,
+    EsriAscii = 3,
+    Matrix = 4
+  };
+
+  ///@{
+  /**
+   * The text grid to read. Default: none.
+   */
+  vtkSetFilePathMacro(FileName);
+  vtkGetFilePathMacro(FileName);
+  ///@}
+
+  ///@{
+  /**
+   * Name of the output point-data array. Default: "depth".
+   */
+  vtkSetStringMacro(ArrayName);
+  vtkGetStringMacro(ArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * The format of the file. Default: Auto (detected from the first non-blank line).
+   */
+  vtkSetEnumMacro(Format, GridFormat);
+  vtkGetEnumMacro(Format, GridFormat);
+  void SetFormatToAuto() { this->SetFormat(GridFormat::Auto); }
+  void SetFormatToIrapClassic() { this->SetFormat(GridFormat::IrapClassic); }
+  void SetFormatToZmap() { this->SetFormat(GridFormat::Zmap); }
+  void SetFormatToEsriAscii() { this->SetFormat(GridFormat::EsriAscii); }
+  void SetFormatToMatrix() { this->SetFormat(GridFormat::Matrix); }
+  ///@}
+
+  ///@{
+  /**
+   * An extra no-data value (e.g. -999.25), turned into NaN like the format's own. Default: NaN,
+   * meaning none.
+   */
+  vtkSetMacro(NullValue, double);
+  vtkGetMacro(NullValue, double);
+  ///@}
+
+  ///@{
+  /**
+   * Matrix only: line r of the file is the row j = r (an image stored as (y, x)) instead of
+   * the column i = r. Default: false.
+   */
+  vtkSetMacro(SwapAxes, bool);
+  vtkGetMacro(SwapAxes, bool);
+  vtkBooleanMacro(SwapAxes, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Matrix only (the other formats state their geometry): world x, y of node (0, 0), node
+   * spacing and rotation (degrees counterclockwise from x). Defaults: (0, 0), (1, 1), 0.
+   */
+  vtkSetVector2Macro(Origin, double);
+  vtkGetVector2Macro(Origin, double);
+  vtkSetVector2Macro(Spacing, double);
+  vtkGetVector2Macro(Spacing, double);
+  vtkSetMacro(Rotation, double);
+  vtkGetMacro(Rotation, double);
+  ///@}
+
+  /**
+   * The format of `fileName` judged from its first non-blank line (Auto when it is none of
+   * them or cannot be read).
+   */
+  static GridFormat DetectFormat(const char* fileName);
+
+  /// True when DetectFormat finds a format other than Matrix (a matrix is any rows of numbers).
+  static bool CanReadFile(const char* fileName);
+
+  ///@{
+  /**
+   * What the last UpdateInformation() read (zeros, Auto, NaN, empty before or after a failure):
+   * the format, the dimensions, the output geometry (origin = node (0, 0), node spacing,
+   * rotation), the header's bounds (Irap: xmin xmax ymin ymax as written; ZMAP+: min/max X and
+   * Y; ESRI: the first and last cell centres; a matrix: zeros), the file's own no-data value
+   * (Irap: 9999900; a matrix: NaN), whether an ESRI header gave the lower-left corner (true) or
+   * centre, a ZMAP+ grid's name and nodes per line, and the number of holes in the grid.
+   */
+  vtkGetEnumMacro(DetectedFormat, GridFormat);
+  vtkGetMacro(NX, int);
+  vtkGetMacro(NY, int);
+  vtkGetVector2Macro(GridOrigin, double);
+  vtkGetVector2Macro(GridSpacing, double);
+  vtkGetMacro(GridRotation, double);
+  vtkGetVector4Macro(HeaderBounds, double);
+  vtkGetMacro(FileNullValue, double);
+  vtkGetMacro(CellCorner, bool);
+  vtkGetMacro(NodesPerLine, int);
+  const char* GetGridName() const { return this->GridName.c_str(); }
+  vtkGetMacro(NumberOfNoDataValues, vtkIdType);
+  ///@}
+
+protected:
+  vtkAsciiGridReader();
+  ~vtkAsciiGridReader() override;
+
+  int RequestInformation(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  char* FileName = nullptr;
+  char* ArrayName = nullptr;
+  GridFormat Format = GridFormat::Auto;
+  double NullValue;
+  bool SwapAxes = false;
+  double Origin[2] = { 0.0, 0.0 };
+  double Spacing[2] = { 1.0, 1.0 };
+  double Rotation = 0.0;
+
+  GridFormat DetectedFormat = GridFormat::Auto;
+  int NX = 0;
+  int NY = 0;
+  double GridOrigin[2] = { 0.0, 0.0 };
+  double GridSpacing[2] = { 0.0, 0.0 };
+  double GridRotation = 0.0;
+  double HeaderBounds[4] = { 0.0, 0.0, 0.0, 0.0 };
+  double FileNullValue;
+  bool CellCorner = false;
+  int NodesPerLine = 0;
+  std::string GridName;
+  vtkIdType NumberOfNoDataValues = 0;
+
+private:
+  vtkAsciiGridReader(const vtkAsciiGridReader&) = delete;
+  void operator=(const vtkAsciiGridReader&) = delete;
+
+  /// Reads the file into Internals and the results; false (with the reason) on failure.
+  bool ReadGrid(std::string& error);
+  void ResetResults();
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
