@@ -46,16 +46,17 @@ int vtkStrataHybridRepresentation::FillInputPortInformation(int, vtkInformation*
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHybridRepresentation::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkStrataHybridRepresentation::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkMath::UninitializeBounds(this->DataBounds);
   this->DataSize = 0;
   vtkImageData* volume = nullptr;
   vtkPolyData* points = nullptr;
   auto* input = inputVector[0]->GetNumberOfInformationObjects() == 1
-    ? vtkCompositeDataSet::GetData(inputVector[0], 0)
-    : nullptr;
+                  ? vtkCompositeDataSet::GetData(inputVector[0], 0)
+                  : nullptr;
   if (input)
   {
     vtkSmartPointer<vtkCompositeDataIterator> it;
@@ -92,8 +93,9 @@ int vtkStrataHybridRepresentation::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHybridRepresentation::ProcessViewRequest(
-  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* request,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
 {
   if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
   {

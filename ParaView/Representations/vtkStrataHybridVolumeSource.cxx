@@ -50,16 +50,19 @@ vtkMTimeType vtkStrataHybridVolumeSource::GetMTime()
 }
 
 //------------------------------------------------------------------------------
-int vtkStrataHybridVolumeSource::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkStrataHybridVolumeSource::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   // The reader's errors reach this algorithm's observers as errors of its own.
   vtkNew<vtkCallbackCommand> forward;
   forward->SetClientData(this);
-  forward->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
-    auto* source = static_cast<vtkStrataHybridVolumeSource*>(self);
-    vtkErrorWithObjectMacro(source, << static_cast<const char*>(message));
-  });
+  forward->SetCallback(
+    [](vtkObject*, unsigned long, void* self, void* message)
+    {
+      auto* source = static_cast<vtkStrataHybridVolumeSource*>(self);
+      vtkErrorWithObjectMacro(source, << static_cast<const char*>(message));
+    });
   const unsigned long tag = this->Reader->AddObserver(vtkCommand::ErrorEvent, forward);
   this->Reader->Update();
   this->Reader->RemoveObserver(tag);

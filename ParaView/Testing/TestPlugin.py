@@ -4,7 +4,7 @@
     pvbatch TestPlugin.py --plugin Strata.so --scene <paged_volume|paged_horizons|proxies>
                           [--work <folder>] [--tolerance <max channel difference>]
 
-paged_volume, paged_horizons and volumes: the folder holds what `StrataExamples <scene>
+paged_volume, paged_horizons, horizons, volumes and hybrid: the folder holds what `StrataExamples <scene>
 <folder>/cxx_<scene>.png --work <folder> --camera <folder>/<scene>.json --keep-pools` wrote: the
 standalone C++ rendering, its view and the page pools. The script opens the pools with the
 plugin's reader, shows them through Strata's representations from the same view, renders until
@@ -27,7 +27,7 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface
 
 STRATA_PROXIES = {
     "sources": ["StrataPagePoolReader", "StrataIrapGridReader", "StrataNumpyGridReader",
-                "StrataHorizonColumnReader", "StrataSegyVolumeReader",
+                "StrataHorizonColumnReader", "StrataAsciiGridReader", "StrataSegyVolumeReader",
                 "StrataStreamingMetaImageReader", "StrataHybridVolumeReader"],
     "filters": ["StrataStackHorizons"],
     "representations": ["StrataVolumeRepresentation", "StrataHorizonsRepresentation",
@@ -53,8 +53,8 @@ def list_proxies():
             check(proxy is not None, "proxy %s/%s (%s) is defined" % (group, name, label))
     # The Python names of the readers and the filter, from their labels.
     for name in ["StrataPagePool", "StrataIrapBinaryGrid", "StrataNumPyHorizon",
-                 "StrataHorizonColumns", "StrataSEGYVolume", "StrataHybridVolume",
-                 "StackHorizons"]:
+                 "StrataHorizonColumns", "StrataTextHorizonGrid", "StrataSEGYVolume",
+                 "StrataHybridVolume", "StackHorizons"]:
         check(name in globals(), "paraview.simple has %s()" % name)
 
 
@@ -250,18 +250,36 @@ def hybrid(args, camera):
     compare(view, camera, args.work, "hybrid", args.tolerance)
 
 
-def paged_horizons(args, camera):
-    readers = [StrataPagePool(FileName=os.path.join(args.work, name + ".spp"))
-               for name in REEK]
-    stack = StackHorizons(Input=readers)
-    view = setup_view(camera)
+def show_reek(stack, view, paged):
     display = Show(stack, view)
     display.SetRepresentationType("Strata Horizons")
     display.StrataHorizonsHeightScale = -1.0
     display.StrataHorizonsColorMode = "Height"
     display.StrataHorizonsScale = [1, 1, 8]
     display.StrataHorizonsSpecular = 0.2
-    display.StrataHorizonsPagesPerFrame = 16
+    if paged:
+        display.StrataHorizonsPagesPerFrame = 16
+    return display
+
+
+def horizons(args, camera):
+    """The Reek stack in core: four Irap binary grids stacked and ray cast in one pass."""
+    readers = [StrataIrapBinaryGrid(FileName=os.path.join(args.data, "horizons", name + ".gri"))
+               for name in REEK]
+    view = setup_view(camera)
+    display = show_reek(StackHorizons(Input=readers), view, False)
+    Render(view)
+    display.UpdatePropertyInformation()
+    check(display.GetPropertyValue("StrataHorizonsNumberOfHorizons") == 4,
+          "four horizons in the stack")
+    check(display.GetPropertyValue("StrataHorizonsNumberOfPagedHorizons") == 0, "none paged")
+    compare(view, camera, args.work, "horizons", args.tolerance)
+
+
+def paged_horizons(args, camera):
+    readers = [StrataPagePool(FileName=os.path.join(args.work, name + ".spp")) for name in REEK]
+    view = setup_view(camera)
+    display = show_reek(StackHorizons(Input=readers), view, True)
     frames = render_until_converged(view, display, "StrataHorizons")
     print("paged horizons settled after %d renders" % frames)
     check(frames <= 500, "the paged stack settles")
@@ -279,7 +297,8 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--scene", required=True,
-                        choices=["paged_volume", "paged_horizons", "volumes", "hybrid", "proxies"])
+                        choices=["paged_volume", "paged_horizons", "horizons", "volumes", "hybrid",
+                                 "proxies"])
     parser.add_argument("--work", default=".")
     parser.add_argument("--data", default=".", help="Testing/Data (the volumes scene)")
     parser.add_argument("--tolerance", type=int, default=0)
