@@ -18,6 +18,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkStackedHeightFieldMapper.h"
+#include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
 
 vtkStandardNewMacro(vtkStrataHorizonsRepresentation);
@@ -60,10 +61,7 @@ int vtkStrataHorizonsRepresentation::RequestUpdateExtent(vtkInformation* request
     return 0;
   }
   // A pooled horizon shown directly (no Stack Horizons between) gives its coarsest level.
-  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
-  {
-    inputVector[0]->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-  }
+  vtkStrataParaViewUtilities::RequestCoarsestLevels(inputVector[0]);
   return 1;
 }
 
@@ -126,17 +124,10 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
-    // Rendered where the data is; ParaView only needs its size and bounds (camera resets).
-    vtkPVRenderView::SetPiece(inInfo, this, this->Cache, this->DataSize, 0);
-    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false, 0);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-    {
-      vtkNew<vtkMatrix4x4> matrix;
-      this->Actor->GetMatrix(matrix);
-      vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, matrix);
-    }
-    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkNew<vtkMatrix4x4> matrix;
+    this->Actor->GetMatrix(matrix);
+    vtkStrataParaViewUtilities::DeclareLocalPiece(
+      this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds, matrix);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {

@@ -14,6 +14,7 @@
 #include "vtkPVRenderView.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
+#include "vtkStrataParaViewUtilities.h"
 #include "vtkTrivialProducer.h"
 #include "vtkVolume.h"
 
@@ -103,12 +104,8 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
-    vtkPVRenderView::SetPiece(inInfo, this, this->Cache, this->DataSize, 0);
-    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false, 0);
-    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-      vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkStrataParaViewUtilities::DeclareLocalPiece(
+      this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -116,10 +113,7 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
-    this->Member->SetPosition(this->Actor->GetPosition());
-    this->Member->SetOrientation(this->Actor->GetOrientation());
-    this->Member->SetScale(this->Actor->GetScale());
-    this->Member->SetOrigin(this->Actor->GetOrigin());
+    vtkStrataParaViewUtilities::CopyTransform(this->Actor, this->Member);
   }
   return 1;
 }

@@ -10,7 +10,7 @@
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolReader.h"
+#include "vtkStrataParaViewUtilities.h"
 
 #include <string>
 
@@ -37,10 +37,7 @@ int vtkStrataStackHorizons::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector*)
 {
   // Pools give their coarsest level (one page); every other reader ignores the key.
-  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
-  {
-    inputVector[0]->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-  }
+  vtkStrataParaViewUtilities::RequestCoarsestLevels(inputVector[0]);
   return 1;
 }
 

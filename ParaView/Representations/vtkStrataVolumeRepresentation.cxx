@@ -14,6 +14,7 @@
 #include "vtkPVRenderView.h"
 #include "vtkPagePoolReader.h"
 #include "vtkRenderer.h"
+#include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -98,12 +99,7 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
 
   // Each volume carries its representation's transform.
   for (auto* member : shown)
-  {
-    member->Member->SetPosition(member->Actor->GetPosition());
-    member->Member->SetOrientation(member->Actor->GetOrientation());
-    member->Member->SetScale(member->Actor->GetScale());
-    member->Member->SetOrigin(member->Actor->GetOrigin());
-  }
+    vtkStrataParaViewUtilities::CopyTransform(member->Actor, member->Member);
   if (n == 1)
   {
     for (int port = 0; port < this->MultiPorts; ++port)
@@ -198,11 +194,8 @@ int vtkStrataVolumeRepresentation::RequestUpdateExtent(vtkInformation* request,
   {
     return 0;
   }
-  // A pool gives its coarsest level (the mapper pages the rest); other readers ignore the key.
-  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
-  {
-    inputVector[0]->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
-  }
+  // A pool gives its coarsest level (the mapper pages the rest).
+  vtkStrataParaViewUtilities::RequestCoarsestLevels(inputVector[0]);
   return 1;
 }
 
@@ -244,13 +237,8 @@ int vtkStrataVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
-    // Rendered where it was read: ParaView needs only its size and bounds.
-    vtkPVRenderView::SetPiece(inInfo, this, this->Cache, this->DataSize, 0);
-    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false, 0);
-    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-      vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkStrataParaViewUtilities::DeclareLocalPiece(
+      this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
     vtkPVRenderView::SetOrderedCompositingConfiguration(
       inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION);
   }
