@@ -250,6 +250,16 @@ public:
       const double null = this->Grid.FileNullValue;
       hole = hole || std::fabs(v - null) <= 1e-9 * std::max(1.0, std::fabs(null));
     }
+    // A value no float holds (|v| > 3.4e38, not a no-data value) would become infinity: counted,
+    // and the read fails with it.
+    if (!hole && std::fabs(v) > std::numeric_limits<float>::max())
+    {
+      if (this->Grid.OutOfRangeValues++ == 0)
+      {
+        this->Grid.FirstOutOfRange = v;
+      }
+      hole = true;
+    }
     this->Grid.Values[id] = hole ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
     this->Grid.NumberOfNoDataValues += hole ? 1 : 0;
   }
@@ -1041,6 +1051,14 @@ bool ReadAsciiGrid(const std::string& path,
     default:
       ok = ReadMatrix(text, options, grid, error);
       break;
+  }
+  if (ok && grid.OutOfRangeValues > 0)
+  {
+    std::ostringstream msg;
+    msg << grid.OutOfRangeValues << " value(s) beyond the range of float (3.4e38), the first "
+        << grid.FirstOutOfRange << ", and not the no-data value";
+    error = msg.str();
+    ok = false;
   }
   if (!ok)
   {

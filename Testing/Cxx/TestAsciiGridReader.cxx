@@ -17,9 +17,9 @@
 // far more values than the file holds are errors naming the header field, raised before the
 // values are allocated (peak RSS grows by less than 64 MB, where 2 x 10^9 float nodes would take
 // 8 GB); truncated data, extra values, unknown ESRI keys, a broken ZMAP+ header, binary garbage,
-// an empty and a missing file, and "inline crossline z" columns in Auto mode (not taken for a
-// 3-column matrix) are errors with an empty output. A byte order mark before an ESRI header is
-// skipped.
+// an empty and a missing file, a value beyond float's range, and "inline crossline z" columns in
+// Auto mode (not taken for a 3-column matrix) are errors with an empty output. A byte order mark
+// before an ESRI header is skipped.
 #include "StrataErrorCounter.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
@@ -494,6 +494,10 @@ void BadInput(const std::string& dir)
     "ends after 3 of the 4 values");
   CheckBad(dir, "irap_header_cut.fgr", "-996 2 25 25\n0 1 0 1\n2 0\n", "before xori");
   CheckBad(dir, "not_irap.fgr", "-995 2 25 25\n", "not an Irap classic grid", Format::IrapClassic);
+  CheckBad(dir,
+    "esri_float_range.asc",
+    "ncols 3\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1.5 1e300 3.5\n",
+    "1 value(s) beyond the range of float");
   CheckBad(dir,
     "columns.txt",
     "1300 1500 2.5\n1300 1502 2.75\n1304 1500 3.0\n",
