@@ -54,6 +54,7 @@ public:
   }
 
   long long LineNumber() const { return this->Line; }
+  const char* End() const { return this->Data.data() + this->Data.size(); }
   double BytesLeft() const { return static_cast<double>(this->Data.size() - this->Position); }
 
 private:
@@ -949,14 +950,19 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
   {
     return AsciiGridFormat::Unknown;
   }
-  std::string line;
-  int lines = 0;
-  while (std::getline(in, line) && ++lines < 1000)
+  // The first 64 KiB decide: a binary file need not hold a line break soon.
+  std::string head(1 << 16, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  const bool full = in.gcount() == static_cast<std::streamsize>(head.size());
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (head.compare(0, 3, "\xEF\xBB\xBF") == 0)
   {
-    if (lines == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
-    {
-      line.erase(0, 3); // a UTF-8 byte order mark
-    }
+    head.erase(0, 3); // a UTF-8 byte order mark
+  }
+  Text text(std::move(head));
+  std::string_view line;
+  while (text.NextLine(line))
+  {
     if (IsBlank(line))
     {
       continue;
@@ -972,6 +978,10 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
     }
     std::vector<std::string_view> tokens;
     Tokenize(t, tokens);
+    if (full && line.data() + line.size() == text.End() && tokens.size() > 1)
+    {
+      tokens.pop_back(); // a line longer than the head: its last token may be cut
+    }
     const std::string key = Lower(tokens[0]);
     for (const char* k : { "ncols",
            "nrows",

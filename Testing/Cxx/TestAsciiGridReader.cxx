@@ -393,6 +393,38 @@ void Matrix(const std::string& dir)
   }
 }
 
+/// Format detection looks at the first 64 KiB: rows of 6000 values in "%.18e" (150 KB a line)
+/// must still be detected as a matrix, with the line cut mid-number inside that window.
+void LongRows(const std::string& dir)
+{
+  std::string text;
+  char value[64];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 6000; ++j)
+    {
+      std::snprintf(value, sizeof(value), "%.18e", 1000.0 + i + j / 8.0);
+      text += (j ? " " : "") + std::string(value);
+    }
+    text += "\n";
+  }
+  const std::string path = dir + "/long_rows.txt";
+  Spit(path, text);
+  vtkNew<vtkAsciiGridReader> r;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(r);
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkDataArray* v = r->GetOutput()->GetPointData()->GetScalars();
+  std::cout << "rows of 6000 values: detected "
+            << static_cast<int>(vtkAsciiGridReader::DetectFormat(path.c_str())) << ", grid "
+            << r->GetNX() << " x " << r->GetNY() << ", " << errors->Errors << " error(s)\n";
+  Check(errors->Errors == 0 && r->GetDetectedFormat() == Format::Matrix && r->GetNX() == 3 &&
+          r->GetNY() == 6000 && v &&
+          v->GetComponent(2 + 3 * 5999, 0) == static_cast<float>(1002.0 + 5999 / 8.0),
+    "rows of 6000 values (150 KB lines): a 3 x 6000 matrix, node (2, 5999) = 1751.875");
+}
+
 //------------------------------------------------------------------------------
 /// `text` as `name` must give an error whose message contains `field`, and no points.
 void CheckBad(const std::string& dir,
@@ -523,6 +555,7 @@ int TestAsciiGridReader(int argc, char* argv[])
       { "ZmapFixedWidth", [&] { ZmapFixedWidth(dir); } },
       { "EsriAscii", [&] { EsriAscii(dir); } },
       { "Matrix", [&] { Matrix(dir); } },
+      { "LongRows", [&] { LongRows(dir); } },
       { "AbsurdHeaders", [&] { AbsurdHeaders(dir); } },
       { "BadInput", [&] { BadInput(dir); } },
       { "PrintSelf", PrintSelf },
