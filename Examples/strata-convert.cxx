@@ -41,12 +41,15 @@ void Usage(std::ostream& os)
      << strata_cli::RawVolumeOptions::Usage
      << "\n"
         "         [--inline-byte N] [--crossline-byte N] [--segy-format CODE]\n"
+        "         [--grid-format irap-ascii|zmap|esri|matrix|columns]\n"
         "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw), .sgy/.segy -> brick pool;\n"
         "        .npy, .gri, Irap classic ASCII, ZMAP+, ESRI ASCII (.asc), columns or a\n"
         "        whitespace matrix (.txt, .dat, .xyz, .csv), and any input one point thick\n"
         "        along z -> tile pool\n"
         "SEG-Y: inline and crossline numbers at trace-header bytes 189 and 193 unless given;\n"
-        "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8)\n";
+        "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8)\n"
+        "text grids: told by their content unless --grid-format names one (a matrix of 8\n"
+        "       values a line or fewer needs --grid-format matrix)\n";
 }
 
 int Die(const std::string& message)
@@ -112,6 +115,33 @@ vtkSmartPointer<vtkAlgorithm> NewRawReader(const std::string& path,
   return r;
 }
 
+/// The text grid reader that --grid-format names; null for an unknown name.
+vtkSmartPointer<vtkAlgorithm> NewTextGridReader(const std::string& input, const std::string& format)
+{
+  if (format == "columns")
+  {
+    auto r = vtkSmartPointer<vtkHorizonColumnReader>::New();
+    r->SetFileName(input.c_str());
+    return r;
+  }
+  using Format = vtkAsciiGridReader::GridFormat;
+  const std::pair<const char*, Format> names[] = { { "irap-ascii", Format::IrapClassic },
+    { "zmap", Format::Zmap },
+    { "esri", Format::EsriAscii },
+    { "matrix", Format::Matrix } };
+  for (const auto& n : names)
+  {
+    if (format == n.first)
+    {
+      auto r = vtkSmartPointer<vtkAsciiGridReader>::New();
+      r->SetFileName(input.c_str());
+      r->SetFormat(n.second);
+      return r;
+    }
+  }
+  return nullptr;
+}
+
 /// A volume reader by extension, else a text grid reader by content (Irap classic, ZMAP+, ESRI
 /// ASCII), else the column reader for text extensions (it reads a whitespace matrix too).
 vtkSmartPointer<vtkAlgorithm> NewGridOrVolumeReader(const std::string& input,
@@ -147,6 +177,7 @@ int main(int argc, char* argv[])
   int inlineByte = 189;
   int crosslineByte = 193;
   int segyFormat = 0;
+  std::string gridFormat;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -182,6 +213,12 @@ int main(int argc, char* argv[])
       if (!ParseInt(argv[++i], byte) || byte < 1 || byte > 237)
         return Die(a + " needs a trace-header byte position in [1, 237]");
     }
+    else if (a == "--grid-format" && need(1))
+    {
+      gridFormat = argv[++i];
+      if (!NewTextGridReader("", gridFormat))
+        return Die("--grid-format needs irap-ascii, zmap, esri, matrix or columns");
+    }
     else if (a == "--segy-format" && need(1))
     {
       if (!ParseInt(argv[++i], segyFormat) || segyFormat < 1)
@@ -211,6 +248,10 @@ int main(int argc, char* argv[])
     if (!sizeError.empty())
       return Die(sizeError);
     reader = NewRawReader(input, raw);
+  }
+  else if (!gridFormat.empty())
+  {
+    reader = NewTextGridReader(input, gridFormat);
   }
   else if (ext == ".sgy" || ext == ".segy")
   {

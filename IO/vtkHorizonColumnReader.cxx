@@ -877,7 +877,17 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
     }
     set[id] = true;
     const double z = records[k].Z;
-    values[id] = (std::isnan(z) || (hasNull && z == this->NullValue)) ? nan : static_cast<float>(z);
+    const bool hole = !std::isfinite(z) || (hasNull && z == this->NullValue);
+    if (!hole && std::fabs(z) > std::numeric_limits<float>::max())
+    {
+      // Stored as float it would be infinity: a misread, not a depth.
+      std::ostringstream msg;
+      msg << "line " << records[k].Line << ": z = " << z
+          << " is beyond the range of float (3.4e38) and not the NullValue";
+      error = msg.str();
+      return false;
+    }
+    values[id] = hole ? nan : static_cast<float>(z);
   }
   vtkIdType noData = 0;
   for (vtkIdType id = 0; id < total; ++id)

@@ -11,8 +11,8 @@
  *
  * Text: columns separated by whitespace, commas or semicolons; blank lines and lines starting
  * with '#' are skipped; the first remaining line may be a non-numeric header ("x y z",
- * "inline,xline,twt"); columns after the third are ignored. A NaN z, or z equal to NullValue, is a
- * hole.
+ * "inline,xline,twt"); columns after the third are ignored. A NaN or infinite z, or z equal to
+ * NullValue, is a hole (as in vtkAsciiGridReader); a finite z beyond float's range is an error.
  *
  * Mode:
  * - InlineCrossline: the first two columns are integer inline and crossline numbers. The grid

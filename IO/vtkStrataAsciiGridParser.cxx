@@ -54,6 +54,7 @@ public:
   }
 
   long long LineNumber() const { return this->Line; }
+  const char* End() const { return this->Data.data() + this->Data.size(); }
   double BytesLeft() const { return static_cast<double>(this->Data.size() - this->Position); }
 
 private:
@@ -249,6 +250,16 @@ public:
       // Written with the header's number of decimals the null value may come back rounded.
       const double null = this->Grid.FileNullValue;
       hole = hole || std::fabs(v - null) <= 1e-9 * std::max(1.0, std::fabs(null));
+    }
+    // A value no float holds (|v| > 3.4e38, not a no-data value) would become infinity: counted,
+    // and the read fails with it.
+    if (!hole && std::fabs(v) > std::numeric_limits<float>::max())
+    {
+      if (this->Grid.OutOfRangeValues++ == 0)
+      {
+        this->Grid.FirstOutOfRange = v;
+      }
+      hole = true;
     }
     this->Grid.Values[id] = hole ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
     this->Grid.NumberOfNoDataValues += hole ? 1 : 0;
@@ -939,14 +950,19 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
   {
     return AsciiGridFormat::Unknown;
   }
-  std::string line;
-  int lines = 0;
-  while (std::getline(in, line) && ++lines < 1000)
+  // The first 64 KiB decide: a binary file need not hold a line break soon.
+  std::string head(1 << 16, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  const bool full = in.gcount() == static_cast<std::streamsize>(head.size());
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (head.compare(0, 3, "\xEF\xBB\xBF") == 0)
   {
-    if (lines == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
-    {
-      line.erase(0, 3); // a UTF-8 byte order mark
-    }
+    head.erase(0, 3); // a UTF-8 byte order mark
+  }
+  Text text(std::move(head));
+  std::string_view line;
+  while (text.NextLine(line))
+  {
     if (IsBlank(line))
     {
       continue;
@@ -962,6 +978,10 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
     }
     std::vector<std::string_view> tokens;
     Tokenize(t, tokens);
+    if (full && line.data() + line.size() == text.End() && tokens.size() > 1)
+    {
+      tokens.pop_back(); // a line longer than the head: its last token may be cut
+    }
     const std::string key = Lower(tokens[0]);
     for (const char* k : { "ncols",
            "nrows",
@@ -1041,6 +1061,14 @@ bool ReadAsciiGrid(const std::string& path,
     default:
       ok = ReadMatrix(text, options, grid, error);
       break;
+  }
+  if (ok && grid.OutOfRangeValues > 0)
+  {
+    std::ostringstream msg;
+    msg << grid.OutOfRangeValues << " value(s) beyond the range of float (3.4e38), the first "
+        << grid.FirstOutOfRange << ", and not the no-data value";
+    error = msg.str();
+    ok = false;
   }
   if (!ok)
   {

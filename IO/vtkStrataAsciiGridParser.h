@@ -53,6 +53,8 @@ struct AsciiGrid
   int FieldWidth = 0;      ///< ZMAP+: the header's field width (0 if not a usable integer)
   std::string Name;        ///< ZMAP+: the grid name of the '@' line
   long long NumberOfNoDataValues = 0;
+  long long OutOfRangeValues = 0; ///< values beyond float's range: a failed read
+  double FirstOutOfRange = 0.0;
   std::vector<float> Values;
 };
 

@@ -17,7 +17,8 @@
 //   announcing 2^60 points;
 // - page pool (vtkPagePoolReader): a valid 64^3 float pool read whole with a MemoryLimit of
 //   0.5 MB: the 1 MB output it would need is refused, naming the limit and the level;
-//   a coarser level that fits is read.
+//   a coarser level that fits is read; the pool's header re-encoded (valid checksum) with
+//   2^21 x 64 x 64 and with 2^20 x 2^20 x 2^20 voxels.
 #include "StrataErrorCounter.h"
 #include "StrataSegyTestFile.h"
 #include "StrataSubTests.h"
@@ -33,6 +34,7 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
+#include "vtkPagePoolFormat.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkSegyVolumeReader.h"
@@ -288,6 +290,31 @@ void PagePoolLimit(const std::string& dir)
             << dims[2] << ", " << errors->Errors << " error(s)\n";
   Check(
     errors->Errors == 0 && dims[0] > 0 && dims[0] < 64, "a coarser level within the limit is read");
+
+  // The same pool's header re-encoded (valid checksum) with absurd dimensions: 2^21 along x
+  // (beyond the format's 2^20), and 2^20 on every axis (2^60 voxels: more than 2^31 pages of
+  // 16^3).
+  std::ifstream in(pool, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  using Format = vtkPagePoolFormat;
+  Format::Header h;
+  Format::DecodeHeader(reinterpret_cast<const unsigned char*>(bytes.data()), h);
+  const int absurd[2][3] = { { 1 << 21, 64, 64 }, { 1 << 20, 1 << 20, 1 << 20 } };
+  const char* field[2] = { "dimension 0 is 2097152", "more than 2^31 pages" };
+  for (int c = 0; c < 2; ++c)
+  {
+    Format::Header bad = h;
+    std::copy(absurd[c], absurd[c] + 3, bad.Dimensions);
+    std::string copy = bytes;
+    Format::EncodeHeader(bad, reinterpret_cast<unsigned char*>(&copy[0]));
+    const std::string path = dir + "/absurd" + std::to_string(c) + ".spp";
+    Spit(path, copy);
+    vtkNew<vtkPagePoolReader> reader;
+    reader->SetFileName(path.c_str());
+    CheckRejected(reader,
+      c ? "page pool header 2^20 x 2^20 x 2^20" : "page pool header 2^21 x 64 x 64",
+      field[c]);
+  }
 }
 }
 

@@ -17,9 +17,9 @@
 // far more values than the file holds are errors naming the header field, raised before the
 // values are allocated (peak RSS grows by less than 64 MB, where 2 x 10^9 float nodes would take
 // 8 GB); truncated data, extra values, unknown ESRI keys, a broken ZMAP+ header, binary garbage,
-// an empty and a missing file, and "inline crossline z" columns in Auto mode (not taken for a
-// 3-column matrix) are errors with an empty output. A byte order mark before an ESRI header is
-// skipped.
+// an empty and a missing file, a value beyond float's range, and "inline crossline z" columns in
+// Auto mode (not taken for a 3-column matrix) are errors with an empty output. A byte order mark
+// before an ESRI header is skipped.
 #include "StrataErrorCounter.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
@@ -393,6 +393,38 @@ void Matrix(const std::string& dir)
   }
 }
 
+/// Format detection looks at the first 64 KiB: rows of 6000 values in "%.18e" (150 KB a line)
+/// must still be detected as a matrix, with the line cut mid-number inside that window.
+void LongRows(const std::string& dir)
+{
+  std::string text;
+  char value[64];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 6000; ++j)
+    {
+      std::snprintf(value, sizeof(value), "%.18e", 1000.0 + i + j / 8.0);
+      text += (j ? " " : "") + std::string(value);
+    }
+    text += "\n";
+  }
+  const std::string path = dir + "/long_rows.txt";
+  Spit(path, text);
+  vtkNew<vtkAsciiGridReader> r;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(r);
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkDataArray* v = r->GetOutput()->GetPointData()->GetScalars();
+  std::cout << "rows of 6000 values: detected "
+            << static_cast<int>(vtkAsciiGridReader::DetectFormat(path.c_str())) << ", grid "
+            << r->GetNX() << " x " << r->GetNY() << ", " << errors->Errors << " error(s)\n";
+  Check(errors->Errors == 0 && r->GetDetectedFormat() == Format::Matrix && r->GetNX() == 3 &&
+          r->GetNY() == 6000 && v &&
+          v->GetComponent(2 + 3 * 5999, 0) == static_cast<float>(1002.0 + 5999 / 8.0),
+    "rows of 6000 values (150 KB lines): a 3 x 6000 matrix, node (2, 5999) = 1751.875");
+}
+
 //------------------------------------------------------------------------------
 /// `text` as `name` must give an error whose message contains `field`, and no points.
 void CheckBad(const std::string& dir,
@@ -495,6 +527,10 @@ void BadInput(const std::string& dir)
   CheckBad(dir, "irap_header_cut.fgr", "-996 2 25 25\n0 1 0 1\n2 0\n", "before xori");
   CheckBad(dir, "not_irap.fgr", "-995 2 25 25\n", "not an Irap classic grid", Format::IrapClassic);
   CheckBad(dir,
+    "esri_float_range.asc",
+    "ncols 3\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1.5 1e300 3.5\n",
+    "1 value(s) beyond the range of float");
+  CheckBad(dir,
     "columns.txt",
     "1300 1500 2.5\n1300 1502 2.75\n1304 1500 3.0\n",
     "every line holds 3 numbers");
@@ -519,6 +555,7 @@ int TestAsciiGridReader(int argc, char* argv[])
       { "ZmapFixedWidth", [&] { ZmapFixedWidth(dir); } },
       { "EsriAscii", [&] { EsriAscii(dir); } },
       { "Matrix", [&] { Matrix(dir); } },
+      { "LongRows", [&] { LongRows(dir); } },
       { "AbsurdHeaders", [&] { AbsurdHeaders(dir); } },
       { "BadInput", [&] { BadInput(dir); } },
       { "PrintSelf", PrintSelf },

@@ -17,7 +17,8 @@
 // - strata-convert on the SEG-Y files (default and custom byte positions) and on the raw and
 //   compressed .mhd gives the same pools;
 // - the text grids (Irap classic ASCII, ZMAP+, ESRI ASCII, a whitespace matrix), 12 x 9 with a
-//   hole each, through the writer and through strata-convert (format told by content);
+//   hole each, through the writer and through strata-convert (format told by content); a
+//   4 x 5 matrix refused as columns and converted with --grid-format matrix;
 // - strata-convert on a .vti whose WholeExtent is larger than its pieces fails with a message,
 //   leaving no output (issue 14, defect 2), and so does strata-hybrid; one of two pieces that
 //   cover it converts;
@@ -710,6 +711,29 @@ void TextGrids(const std::string& tool, const std::string& dir)
     Check(rc == 0 && SameAsSource(source, ReadPool(pool)),
       std::string("strata-convert ") + f.first + ": the same pool as the reader's");
   }
+  if (tool.empty())
+  {
+    return;
+  }
+  // A matrix too narrow for Auto (5 values a line): refused as columns, read with
+  // --grid-format matrix (line r = node row i, as vtkAsciiGridReader's Matrix format).
+  const std::string narrow = dir + "/narrow.txt";
+  const std::string text = "# 4 x 5\n1 2 3 4 5\n6 7 8 9 10\n11 12 13 14 15\n16 17 18 19 nan\n";
+  Spit(narrow, text.data(), text.size());
+  const int refused = Run({ tool, narrow, narrow + ".spp", "--page-size", "8" });
+  const int forced =
+    Run({ tool, narrow, narrow + "-matrix.spp", "--page-size", "8", "--grid-format", "matrix" });
+  vtkSmartPointer<vtkImageData> pool = ReadPool(narrow + "-matrix.spp");
+  int dims[3] = { 0, 0, 0 };
+  pool->GetDimensions(dims);
+  vtkDataArray* v = pool->GetPointData()->GetScalars();
+  std::cout << "  narrow.txt: exit " << refused << " without --grid-format, " << forced
+            << " with --grid-format matrix: " << dims[0] << " x " << dims[1] << "\n";
+  Check(refused != 0 && !vtksys::SystemTools::FileExists(narrow + ".spp"),
+    "strata-convert, a 4 x 5 matrix as columns: refused, nothing written");
+  Check(forced == 0 && dims[0] == 4 && dims[1] == 5 && v && v->GetComponent(1, 0) == 6.0 &&
+          v->GetComponent(4, 0) == 2.0 && std::isnan(v->GetComponent(19, 0)),
+    "strata-convert --grid-format matrix: 4 x 5, node (1, 0) = 6, (0, 1) = 2, (3, 4) a hole");
 }
 
 void StrataConvert(const strata_test::TestPaths& paths, const std::string& dir)

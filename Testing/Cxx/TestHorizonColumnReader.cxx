@@ -426,6 +426,8 @@ void BadInput(const std::string& dataDir, const std::string& outDir)
     Mode::InlineCrossline);
   Spit(outDir + "TestHorizonColumnReader_sparse.txt", "1 1 3\n2 1 3\n2000000000 1 3\n");
   CheckBadInput(outDir + "TestHorizonColumnReader_sparse.txt", "absurd index range");
+  Spit(outDir + "TestHorizonColumnReader_float_range.txt", "1 1 3\n2 1 1e300\n");
+  CheckBadInput(outDir + "TestHorizonColumnReader_float_range.txt", "z beyond float's range");
   Spit(outDir + "TestHorizonColumnReader_same.txt", "5.5 6.5 1\n5.5 6.5 2\n");
   CheckBadInput(outDir + "TestHorizonColumnReader_same.txt", "all points at one position");
 }

@@ -6,9 +6,9 @@ Import it beside VTK's own modules::
     import strata
     mapper = strata.vtkStackedHeightFieldMapper()
 
-``strata.vtkHorizonColumnReader``, ``strata.vtkIrapBinaryGridReader`` ... are the readers,
-``strata.vtkStackedHeightFieldMapper``, ``strata.vtkMultiVolumeRayCastMapper`` and
-``strata.vtkHybridVolumeMapper`` the renderers. Importing the package also registers Strata's
+``strata.vtkHorizonColumnReader``, ``strata.vtkIrapBinaryGridReader``, ``strata.vtkAsciiGridReader``
+... are the readers, ``strata.vtkStackedHeightFieldMapper``, ``strata.vtkMultiVolumeRayCastMapper``
+and ``strata.vtkHybridVolumeMapper`` the renderers. Importing the package also registers Strata's
 offscreen EGL render window where there is no X display (or with STRATA_OFFSCREEN=1), as the C++
 modules do through VTK's autoinit.
 """
