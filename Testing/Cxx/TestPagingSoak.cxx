@@ -6,12 +6,13 @@
 // refine and coarsen, the atlases evict and the caches turn over all the way. Asserted:
 // - memory stays flat over the second pass (the caches are full and every pose, page and
 //   shader variant of the path was met in the first): the least-squares slope of the bytes
-//   the allocator has handed out (mallinfo2) is below HeapSlopeBoundKiB per frame (measured
-//   0.003; one volume brick kept per frame would be 2 KB, one horizon tile 4.3 KB), and that
-//   of the resident set (VmRSS) below RssSlopeBoundKiB. The resident set is measured 0-0.13
-//   KB a frame, but now and then it takes a step of about 1-2 MB that the heap
-//   does not (0.34 and 2.4 KB a frame over the pass): memory mapped outside malloc, not
-//   identified here (Mesa's llvmpipe keeps its compiled shader code that way).
+//   the allocator has handed out (mallinfo2, all arenas) is below HeapSlopeBoundKiB per frame
+//   (measured 0.003-0.017; one volume brick kept per frame would be 2 KB, one horizon tile
+//   4.3 KB), and that of the resident set (VmRSS) below RssSlopeBoundKiB, which only a gross
+//   leak exceeds. The resident set's slope is measured 0-0.13 KB a frame, but now and then it
+//   takes a step of 1-3 MB that the bytes in use do not (up to 2.8 KB a frame over the pass):
+//   /proc/self/smaps shows the main heap's break and a page-cache worker's arena moving up,
+//   free lists of pages freed on one thread and allocated on another.
 // - GL objects do not grow: the window's live GL names (StrataGLNames) after the last frame
 //   equal those after the first Warm frames, and with the props and mappers gone they are
 //   those of the empty window before.
@@ -53,7 +54,7 @@ const int Frames = 2000;
 const int Warm = 100;
 const int Size = 64;
 const double HeapSlopeBoundKiB = 0.1;
-const double RssSlopeBoundKiB = 4.0;
+const double RssSlopeBoundKiB = 8.0;
 
 // Bytes the allocator has handed out and not had back, over all arenas (mmapped blocks too).
 double HeapInUseKiB()
