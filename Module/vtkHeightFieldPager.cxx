@@ -96,6 +96,37 @@ public:
   int64_t CycleStart = 0;
   std::unordered_map<uint32_t, std::pair<uint32_t, int64_t>> Requests;
   std::vector<std::vector<double>> SubtreeRequests;
+  /// Per horizon and node: the most pixels that asked at or below it since the view last
+  /// changed, what the priority of a split node (a collapse candidate) reads. Requests stop
+  /// once the rays get their detail, so without this memory a refined node would rank 0 and
+  /// be the first collapse paid for another split; under a budget too small for every
+  /// request the cut then traded tiles forever (issue 14). With it a split node keeps the
+  /// claim its pixels made, a split pays only with strictly lower claims, and the cut
+  /// settles. Tiles of the cut still split only for live requests, so a claim made by rays
+  /// that hit a coarser surface elsewhere refines nothing once they stop; a view change
+  /// forgets the claims (the live requests stay).
+  std::vector<std::vector<double>> Demand;
+
+  void UpdateDemand(bool viewChanged)
+  {
+    if (this->Demand.size() != this->SubtreeRequests.size())
+    {
+      this->Demand = this->SubtreeRequests;
+      return;
+    }
+    for (size_t h = 0; h < this->Demand.size(); ++h)
+    {
+      std::vector<double>& d = this->Demand[h];
+      const std::vector<double>& asked = this->SubtreeRequests[h];
+      if (d.size() != asked.size())
+      {
+        d = asked;
+        continue;
+      }
+      for (size_t n = 0; n < d.size(); ++n)
+        d[n] = viewChanged ? asked[n] : std::max(d[n], asked[n]);
+    }
+  }
 
   void SumRequests()
   {
@@ -784,11 +815,15 @@ public:
       {
         if (!this->UseFeedback)
           return screenSpaceError;
+        // A tile of the cut splits for the requests alive now; a split one is held by its
+        // claim (see Demand).
+        const std::vector<double>& demand =
+          this->Cut.IsInCut(h, node) ? this->SubtreeRequests[h] : this->Demand[h];
         int children[8];
         const int count = tree->GetChildren(node, children);
         double asked = 0.0;
         for (int c = 0; c < count; ++c)
-          asked += this->SubtreeRequests[h][children[c]];
+          asked += demand[children[c]];
         return asked;
       });
     this->Cut.SetVolumeAvailability(v,
@@ -850,6 +885,7 @@ public:
     this->UseFeedback = false;
     this->Requests.clear();
     this->SubtreeRequests.clear();
+    this->Demand.clear();
     this->Paging.Close();
     this->Pools.clear();
     this->Horizons.clear();
@@ -1177,6 +1213,7 @@ void vtkHeightFieldPager::SetFeedback(const std::vector<uint32_t>& pages,
     it = in.FeedbackFrame - it->second.second >= in.FeedbackCycle ? in.Requests.erase(it)
                                                                   : std::next(it);
   in.SumRequests();
+  in.UpdateDemand(viewChanged);
 }
 
 void vtkHeightFieldPager::ClearFeedback()
@@ -1187,6 +1224,7 @@ void vtkHeightFieldPager::ClearFeedback()
   in.UseFeedback = false;
   in.Requests.clear();
   in.SubtreeRequests.clear();
+  in.Demand.clear();
 }
 
 const int* vtkHeightFieldPager::GetLevelTiles(int level) const

@@ -33,6 +33,7 @@ public:
     OpacityRangeFunction Opacity;
     AvailabilityFunction Available;
     PriorityFunction Rank;
+    bool Halo = false;
     double VoxelSize = 1.0; ///< world length of the longest level-0 voxel edge
     std::vector<uint8_t> State;
     std::vector<uint8_t> Empty;
@@ -47,6 +48,44 @@ public:
   double Threshold = 0.0;
 
   Entry Key(int v, int n) const { return Entry(this->Volumes[v].Priority[n], v, n); }
+
+  // Empty by its own subtree range and, with a halo, by those of its level's 26 neighbours.
+  void Classify(int v)
+  {
+    Volume& vol = this->Volumes[v];
+    const vtkVolumeBrickTree& tree = *vol.Tree;
+    std::vector<uint8_t> own(tree.GetNumberOfNodes(), 0);
+    for (int n = 0; n < tree.GetNumberOfNodes(); ++n)
+    {
+      const auto& node = tree.GetNode(n);
+      // Min > Max only for all-NaN bricks: nothing to show.
+      const double opacity = !vol.Opacity ? 1.0
+                             : node.SubtreeMin <= node.SubtreeMax
+                               ? vol.Opacity(node.SubtreeMin, node.SubtreeMax)
+                               : 0.0;
+      own[n] = opacity <= 0.0;
+    }
+    if (!vol.Halo)
+    {
+      vol.Empty.swap(own);
+      return;
+    }
+    for (int n = 0; n < tree.GetNumberOfNodes(); ++n)
+    {
+      const auto& node = tree.GetNode(n);
+      const int* bricks = tree.GetLevelBricks(node.Level);
+      bool empty = true;
+      for (int dk = -1; dk <= 1 && empty; ++dk)
+        for (int dj = -1; dj <= 1 && empty; ++dj)
+          for (int di = -1; di <= 1 && empty; ++di)
+          {
+            const int i = node.Index[0] + di, j = node.Index[1] + dj, k = node.Index[2] + dk;
+            if (i >= 0 && j >= 0 && k >= 0 && i < bricks[0] && j < bricks[1] && k < bricks[2])
+              empty = own[tree.GetNodeId(node.Level, i, j, k)] != 0;
+          }
+      vol.Empty[n] = empty;
+    }
+  }
 
   int VisibleChildren(int v, int n) const
   {
@@ -254,6 +293,11 @@ void vtkVolumeCut::SetVolumeOpacity(int volume, OpacityRangeFunction maxOpacity)
   this->Internals->Volumes[volume].Opacity = std::move(maxOpacity);
 }
 
+void vtkVolumeCut::SetVolumeHalo(int volume, bool halo)
+{
+  this->Internals->Volumes[volume].Halo = halo;
+}
+
 void vtkVolumeCut::RemoveAllVolumes()
 {
   this->Internals->Volumes.clear();
@@ -342,17 +386,16 @@ int vtkVolumeCut::Update(const Camera& camera)
   for (int v = 0; v < this->GetNumberOfVolumes(); ++v)
   {
     vtkInternals::Volume& vol = in.Volumes[v];
+    in.Classify(v);
     for (int n = 0; n < vol.Tree->GetNumberOfNodes(); ++n)
     {
-      const auto& node = vol.Tree->GetNode(n);
       double opacity = 1.0;
-      if (vol.Opacity)
+      if (vol.Opacity && this->OpacityWeighting)
       {
-        // Min > Max only for all-NaN bricks: nothing to show.
+        const auto& node = vol.Tree->GetNode(n);
         opacity =
           node.SubtreeMin <= node.SubtreeMax ? vol.Opacity(node.SubtreeMin, node.SubtreeMax) : 0.0;
       }
-      vol.Empty[n] = opacity <= 0.0;
       double priority = vol.Empty[n] ? 0.0 : this->ComputeScreenSpaceError(v, n, camera);
       if (vol.Rank && !vol.Empty[n])
       {

@@ -97,6 +97,19 @@ public:
   /// Transfer function of a volume; an empty function makes every brick visible (default).
   void SetVolumeOpacity(int volume, OpacityRangeFunction maxOpacity);
   /**
+   * A halo of one brick around the visible ones (default off): a node is then empty only
+   * when it and every node of its level that shares a face, an edge or a corner with it are
+   * transparent. Pre-integration classifies a segment by the scalars at both its ends, and an
+   * empty brick has no data: an end in it reads a stand-in value, and the segment's linear
+   * ramp from a visible scalar to that value crosses transfer-function values the data never
+   * takes (a mid-range transfer function put the whole visible band between a dense brick's
+   * values and a stand-in below them, issue 14). With the halo every brick within one brick of
+   * visible data is stored, so a segment shorter than a brick that touches visible data reads
+   * true scalars at both ends, and one that touches none has both ends at the same stand-in
+   * (transparent). Any level: a node's neighbours contain its children's.
+   */
+  void SetVolumeHalo(int volume, bool halo);
+  /**
    * Whether a node's data can be uploaded now, asked (with the node's priority) for the
    * visible children of a node before it is split; a split waits until all are available. A
    * paging renderer answers from its RAM cache and queues the missing ones at that priority,

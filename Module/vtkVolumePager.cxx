@@ -109,6 +109,7 @@ public:
       const int vi = static_cast<int>(v);
       this->Cut.SetVolumeMatrix(vi, volume.IndexToWorld);
       this->Cut.SetVolumeOpacity(vi, volume.Opacity);
+      this->Cut.SetVolumeHalo(vi, volume.Halo);
       if (settings.Feedback)
       {
         const std::vector<double>* demand = &this->Demand[v];

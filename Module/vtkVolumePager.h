@@ -56,6 +56,8 @@ public:
     const vtkVolumeBrickTree* Tree = nullptr;
     double IndexToWorld[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     vtkVolumeCut::OpacityRangeFunction Opacity; ///< highest opacity over a value range
+    /// Store the bricks next to visible ones too (pre-integration, vtkVolumeCut::SetVolumeHalo).
+    bool Halo = false;
     /**
      * Paged: the reader's coarsest level as floats (x fastest) and its dimensions, asked for
      * only while the root page is not held; empty (or no function): read the root here.

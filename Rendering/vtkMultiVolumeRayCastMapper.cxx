@@ -388,6 +388,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
     v.Opacity = [input](double lo, double hi) { return input->MaxOpacity(lo, hi); };
+    // Pre-integrated segments read both ends: no end may fall on an empty brick's stand-in
+    // next to visible data.
+    v.Halo = self->Classification != Classifications::PostClassification;
     if (!e.Pool.empty())
     {
       // The reader's coarsest level is the root page: the pager takes it without a read.

@@ -4,8 +4,8 @@
 // framebuffers) is deleted, in the context that made it, whichever of mapper and window goes
 // first, and nothing grows over many lifetimes. Checked by counting the live names of each
 // kind in the window's context (glIsTexture, glIsBuffer, glIsVertexArray, glIsFramebuffer over
-// the name range) for every mapper and mode: horizons in core and paged (tile atlas, page
-// table, feedback), volumes with the atlas, without it, and paged (feedback), and the hybrid.
+// the name range, StrataGLNames) for every mapper and mode: horizons in core and paged (tile atlas,
+// page table, feedback), volumes with the atlas, without it, and paged (feedback), and the hybrid.
 // - Mapper first: after an empty frame (VTK's own names) the scene is drawn twice, then its
 //   mapper is taken off the prop and dropped while the prop stays in the renderer; the window
 //   must hold exactly its names of before. Nothing but the mapper's resource-free callback can
@@ -18,6 +18,7 @@
 //   error, no crash, nothing reported.
 // Memory: resident size after the sixth round within 24 MB of the one after the third (each
 // round creates and destroys 18 windows and scenes; a leak of one atlas a round would be 8 MB).
+#include "StrataGLNames.h"
 #include "StrataHeightFieldScenes.h" // For MakeHorizon
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -44,7 +45,6 @@
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
 
 #include <cmath>
 #include <cstdio>
@@ -59,39 +59,6 @@ using namespace strata_test;
 
 namespace
 {
-// Live GL names of each kind in the current context. Names are small integers handed out from
-// 1 up; 16384 is far beyond what one window of these scenes makes.
-struct Names
-{
-  int Textures = 0, Buffers = 0, Arrays = 0, Framebuffers = 0;
-  bool operator==(const Names& o) const
-  {
-    return this->Textures == o.Textures && this->Buffers == o.Buffers && this->Arrays == o.Arrays &&
-           this->Framebuffers == o.Framebuffers;
-  }
-  int Total() const { return this->Textures + this->Buffers + this->Arrays + this->Framebuffers; }
-  std::string Text() const
-  {
-    return std::to_string(this->Textures) + " textures, " + std::to_string(this->Buffers) +
-           " buffers, " + std::to_string(this->Arrays) + " vertex arrays, " +
-           std::to_string(this->Framebuffers) + " framebuffers";
-  }
-};
-
-Names Count(vtkRenderWindow* win)
-{
-  win->MakeCurrent();
-  Names n;
-  for (GLuint name = 1; name < 16384; ++name)
-  {
-    n.Textures += glIsTexture(name) ? 1 : 0;
-    n.Buffers += glIsBuffer(name) ? 1 : 0;
-    n.Arrays += glIsVertexArray(name) ? 1 : 0;
-    n.Framebuffers += glIsFramebuffer(name) ? 1 : 0;
-  }
-  return n;
-}
-
 long ResidentKiB()
 {
   std::ifstream status("/proc/self/status");
@@ -280,15 +247,15 @@ void Round(const std::string& name, const Maker& make, CapturingOutputWindow* er
     vtkNew<vtkRenderer> ren;
     auto win = MakeWindow(ren);
     win->Render();
-    const Names before = Count(win);
+    const GLNames before = CountGLNames(win);
     Scene scene = make();
     Frame(ren, win, scene.Prop);
-    const Names drawn = Count(win);
+    const GLNames drawn = CountGLNames(win);
     // The mapper goes, the prop stays in the renderer: only the callback reaches the mapper.
     scene.Attach(nullptr, scene.Prop);
     scene.Mapper = nullptr;
     scene.Keep.clear();
-    const Names after = Count(win);
+    const GLNames after = CountGLNames(win);
     ren->RemoveViewProp(scene.Prop);
     scene = Scene();
     if (report)
@@ -303,15 +270,15 @@ void Round(const std::string& name, const Maker& make, CapturingOutputWindow* er
     auto win1 = MakeWindow(ren1);
     auto win2 = MakeWindow(ren2);
     win1->Render();
-    const Names before = Count(win1);
+    const GLNames before = CountGLNames(win1);
     Scene scene = make();
     Frame(ren1, win1, scene.Prop);
     // The mapper moves to a prop of the second window; the first prop stays where it was.
     scene.Attach(nullptr, scene.Prop);
     vtkSmartPointer<vtkProp> moved = scene.Attach(scene.Mapper, nullptr);
     Frame(ren2, win2, moved);
-    Check(
-      Count(win1) == before, name + ", moved to another window: the first holds none of its names");
+    Check(CountGLNames(win1) == before,
+      name + ", moved to another window: the first holds none of its names");
     ren2->RemoveViewProp(moved);
     ren1->RemoveViewProp(scene.Prop);
     moved = nullptr;

@@ -675,6 +675,49 @@ void PriorityFunction(const vtkVolumeBrickTree& tree,
 
 }
 
+// The halo of pre-integration: one visible spot inside level-0 brick (3, 3, 3); with the
+// halo exactly its 3 x 3 x 3 block of bricks is non-empty, without it the brick alone.
+void Halo(const int dims[3], const vtkVolumeCut::Camera& camera, const double identity[16])
+{
+  std::cout << "Halo\n";
+  std::vector<uint8_t> spot(static_cast<size_t>(N) * N * N, 0);
+  for (int z = 50; z <= 54; ++z)
+    for (int y = 50; y <= 54; ++y)
+      for (int x = 50; x <= 54; ++x)
+        spot[(static_cast<size_t>(z) * N + y) * N + x] = 200;
+  vtkVolumeBrickTree spotTree;
+  spotTree.Build(spot.data(), dims, B);
+  const double tf[6] = { 0, 0, 100, 0, 200, 1 };
+  vtkVolumeCut cut;
+  cut.AddVolume(&spotTree, identity);
+  cut.SetVolumeOpacity(
+    0, [&tf](double lo, double hi) { return vtkVolumeCut::MaxOfPiecewiseLinear(tf, 3, lo, hi); });
+  cut.SetBudget(1000);
+  const int* bricks = spotTree.GetLevelBricks(0);
+  for (bool halo : { false, true })
+  {
+    cut.SetVolumeHalo(0, halo);
+    cut.Update(camera);
+    int visible = 0, expected = 0;
+    for (int k = 0; k < bricks[2]; ++k)
+      for (int j = 0; j < bricks[1]; ++j)
+        for (int i = 0; i < bricks[0]; ++i)
+        {
+          const bool near = std::abs(i - 3) <= 1 && std::abs(j - 3) <= 1 && std::abs(k - 3) <= 1;
+          const bool wanted = halo ? near : (i == 3 && j == 3 && k == 3);
+          const bool shown = !cut.IsEmpty(0, spotTree.GetNodeId(0, i, j, k));
+          visible += shown ? 1 : 0;
+          expected += shown == wanted ? 1 : 0;
+        }
+    std::cout << "  halo " << (halo ? "on" : "off") << ": " << visible
+              << " non-empty level-0 bricks; cut of " << cut.GetCost() << " bricks\n";
+    Check(expected == bricks[0] * bricks[1] * bricks[2] && visible == (halo ? 27 : 1),
+      halo ? "with the halo the spot's brick and its 26 neighbours are kept"
+           : "without it the spot's brick alone");
+    Check(AllCoverOnce(cut), "the cut covers the volume once");
+  }
+}
+
 int TestVolumeCut(int, char*[])
 {
   const int dims[3] = { N, N, N };
@@ -711,6 +754,7 @@ int TestVolumeCut(int, char*[])
       { "IndexTableAndAtlasLookup",
         [&] { IndexTableAndAtlasLookup(tree, finest, camera, identity, far); } },
       { "PriorityFunction", [&] { PriorityFunction(tree, camera, identity); } },
+      { "Halo", [&] { Halo(dims, camera, identity); } },
     },
     [] { return failures; });
 }
