@@ -96,10 +96,20 @@ public:
   /// Reads the header of `path`; false with `error` if it is not a MetaImage this reader knows.
   bool Parse(const std::string& path, std::string& error);
   bool Streamable() const { return !this->Compressed && this->OneFile; }
+  /// Bytes of the samples, or -1 beyond 2^62 (no file is that large, and nothing overflows).
   long long DataBytes() const
   {
-    return static_cast<long long>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2] *
-           this->Channels * this->TypeSize;
+    constexpr long long limit = 1LL << 62;
+    long long bytes = static_cast<long long>(this->Channels) * this->TypeSize;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (bytes > limit / this->Dimensions[a])
+      {
+        return -1;
+      }
+      bytes *= this->Dimensions[a];
+    }
+    return bytes;
   }
 };
 
