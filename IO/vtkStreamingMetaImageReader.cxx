@@ -227,7 +227,7 @@ bool vtkStreamingMetaImageReader::vtkInternals::Parse(const std::string& path, s
       msg << " " << this->Dimensions[a];
     }
     msg << " of " << this->Channels << " x " << this->TypeSize << "-byte values is " << bytes
-        << " bytes, beyond any file (2^62)";
+        << " bytes, more than 2^62 bytes (beyond any file)";
     error = msg.str();
     return false;
   }
