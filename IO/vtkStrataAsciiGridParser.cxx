@@ -978,6 +978,10 @@ AsciiGridFormat DetectAsciiGridFormat(const std::string& path)
     }
     std::vector<std::string_view> tokens;
     Tokenize(t, tokens);
+    if (tokens.empty())
+    {
+      return AsciiGridFormat::Unknown; // separators only (",", ";"): no format starts so
+    }
     if (full && line.data() + line.size() == text.End() && tokens.size() > 1)
     {
       tokens.pop_back(); // a line longer than the head: its last token may be cut

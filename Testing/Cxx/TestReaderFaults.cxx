@@ -11,6 +11,7 @@
 #include "StrataTestPaths.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkAsciiGridReader.h"
 #include "vtkNew.h"
 #include "vtkStreamingMetaImageReader.h"
 
@@ -55,6 +56,18 @@ void MetaImage(const std::string& dir)
     "more than 2^62 bytes",
     "MetaImage DimSize overflow");
 }
+
+void AsciiGrid(const std::string& dir)
+{
+  // A line of separators only: format detection indexed its first token of none (a crash in
+  // g++ builds, UBSan's null reference under the fuzzer).
+  CheckRefused<vtkAsciiGridReader>(
+    dir + "TestReaderFaults_separators.txt", ",", "not a text grid", "text grid of one comma");
+  CheckRefused<vtkAsciiGridReader>(dir + "TestReaderFaults_separators2.txt",
+    "\n ;, ,\n1 2 3\n",
+    "not a text grid",
+    "text grid whose first line is separators");
+}
 }
 
 int TestReaderFaults(int argc, char* argv[])
@@ -64,6 +77,7 @@ int TestReaderFaults(int argc, char* argv[])
   strata_test::RunSubTests(
     {
       { "MetaImage", [&] { MetaImage(dir); } },
+      { "AsciiGrid", [&] { AsciiGrid(dir); } },
     },
     strata_test::Failures);
   if (strata_test::Failures())

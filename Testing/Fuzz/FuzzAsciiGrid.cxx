@@ -13,8 +13,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   vtkNew<vtkAsciiGridReader> reader;
   reader->SetFileName(strata_fuzz::WriteInput(data, size, ".asc").c_str());
   using Format = vtkAsciiGridReader::GridFormat;
-  const Format named[] = { Format::Auto, Format::Auto, Format::IrapClassic, Format::Zmap,
-    Format::EsriAscii, Format::Matrix };
+  const Format named[] = {
+    Format::Auto, Format::Auto, Format::IrapClassic, Format::Zmap, Format::EsriAscii, Format::Matrix
+  };
   reader->SetFormat(named[size % 6]);
   reader->Update();
   return 0;
