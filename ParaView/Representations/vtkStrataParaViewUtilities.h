@@ -33,7 +33,8 @@ void DeclareLocalPiece(vtkPVDataRepresentation* representation,
 /// Asks every input of `inputs` for a pool's coarsest level (other readers ignore the key).
 void RequestCoarsestLevels(vtkInformationVector* inputs);
 
-/// Position, orientation, scale and origin of `from` (ParaView's prop) onto `to` (the rendered one).
+/// Position, orientation, scale and origin of `from` (ParaView's prop) onto `to` (the rendered
+/// one).
 void CopyTransform(vtkProp3D* from, vtkProp3D* to);
 }
 
