@@ -11,7 +11,7 @@
 // - the cut converges at each pose within FrameCap frames and shows level-0 pages;
 // - bytes read over both poses stay under ReadBound times the pool's pages: each page is read
 //   about once; the bound leaves room for pages evicted after a collapse and read again later
-//   (the livelock read 55-85 times the pool in FrameCap frames);
+//   (unfixed, the livelock read 112 and 171 times the pools in 2 x FrameCap frames);
 // - the inconsistent budgets are reported once, and consistent ones are not (and converge).
 #include "StrataSubTests.h"
 #include "StrataTestPaths.h"
