@@ -195,9 +195,11 @@ int vtkPagedPools::PlanHeldPages(int slots, int children)
     return static_cast<int>(capacity - this->RequestLimit);
   const long long least =
     std::min<long long>(this->RequestLimit, std::max<long long>(2 * children, capacity / 4));
-  this->FrameRequests =
-    static_cast<int>(std::max(least, std::min<long long>(this->RequestLimit, capacity - full)));
-  const int held = static_cast<int>(std::max<long long>(1, capacity - this->FrameRequests));
+  // Room for two frames of loads: this frame's and the last one's that the cut has not taken
+  // yet (a split waits for all its children), so that no load evicts another before its use.
+  const long long room = std::max(least, std::min<long long>(this->RequestLimit, capacity - full));
+  this->FrameRequests = static_cast<int>(std::max<long long>(1, room / 2));
+  const int held = static_cast<int>(std::max<long long>(1, capacity - room));
   std::ostringstream msg;
   msg << "The page cache (" << in.Cache.GetBudgetBytes() / 1048576.0 << " MB, " << capacity
       << " pages of " << pageBytes << " bytes) cannot hold a cut filling the atlas (" << slots

@@ -105,9 +105,11 @@ public:
    *   slots + (slots - 1) / (children - 1)
    * pages (its ancestors in a full tree). When the cache holds that and a frame's requests
    * (4 x PagesPerFrame), nothing changes: the bound is the cache's pages less the requests.
-   * Otherwise the budgets are inconsistent and both are clamped: the requests per frame to
-   * what the cache can hold beside that cut (but at least a quarter of the cache and two splits'
-   * children, so loads progress), the held pages to the rest; TakeBudgetWarning() then says so.
+   * Otherwise the budgets are inconsistent and both are clamped: the room for loads to what the
+   * cache can hold beside that cut (but at least a quarter of the cache and two splits'
+   * children, so loads progress), the held pages to the rest, and the requests per frame to
+   * half the room (this frame's loads beside the last one's that the cut has not taken yet, so
+   * that no load evicts another before its use); TakeBudgetWarning() then says so.
    * Call after BeginFrame() (the budget it applies) with the pools open.
    */
   int PlanHeldPages(int slots, int children);
