@@ -1105,6 +1105,8 @@ bool vtkHeightFieldPager::Update(const vtkVolumeCut::Camera& camera,
     in.TableLevels.clear();
   }
   in.Paging.BeginFrame();
+  // The pages the cut holds stay pinned in the cache: leave room there for the loads.
+  in.Cut.SetPageBudget(in.Paging.PlanHeldPages(in.AtlasSlots, 4));
 
   // The tree's index space is (x, y, 0): place it at the middle of the value range, where
   // the screen-space error of a tile is best estimated without its heights.
@@ -1312,6 +1314,11 @@ std::vector<std::string> vtkHeightFieldPager::TakeNewFailures()
 void vtkHeightFieldPager::RetryFailedPages()
 {
   this->Internals->Paging.RetryFailedPages();
+}
+
+std::string vtkHeightFieldPager::TakeBudgetWarning()
+{
+  return this->Internals->Paging.TakeBudgetWarning();
 }
 
 vtkHeightFieldPager::Statistics vtkHeightFieldPager::GetStatistics() const

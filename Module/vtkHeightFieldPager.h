@@ -205,6 +205,8 @@ public:
   std::vector<std::string> TakeNewFailures();
   /// Forgets failed loads so that they are tried again.
   void RetryFailedPages();
+  /// Once per change: how inconsistent budgets were clamped (vtkPagedPools::PlanHeldPages).
+  std::string TakeBudgetWarning();
   Statistics GetStatistics() const;
   /// Waits (tests, benchmarks) until the cache has no queued or running load.
   bool WaitForIdle(double seconds);

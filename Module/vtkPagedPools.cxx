@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 class vtkPagedPools::vtkInternals
 {
@@ -124,6 +126,8 @@ void vtkPagedPools::Close()
     in.Pools.clear();
   }
   this->Stats = Statistics();
+  this->Warning.clear();
+  this->LastWarning.clear();
 }
 
 bool vtkPagedPools::BuildTree(const vtkPagePoolFile& pool, vtkVolumeBrickTree& tree)
@@ -165,12 +169,56 @@ vtkPageCache::Page vtkPagedPools::Acquire(const vtkPageCache::Key& key, double p
   {
     return page;
   }
-  if (this->Stats.MissesThisFrame < this->RequestLimit)
+  if (this->Stats.MissesThisFrame < this->FrameRequests)
   {
     cache.Request(key, priority);
   }
   ++this->Stats.MissesThisFrame;
   return nullptr;
+}
+
+int vtkPagedPools::PlanHeldPages(int slots, int children)
+{
+  vtkInternals& in = *this->Internals;
+  size_t pageBytes = 0;
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    for (const auto& p : in.Pools)
+      pageBytes = std::max<size_t>(pageBytes, p.second.File->GetPageValues() * sizeof(float));
+  }
+  this->FrameRequests = this->RequestLimit;
+  if (pageBytes == 0)
+    return 0;
+  const long long capacity = static_cast<long long>(in.Cache.GetBudgetBytes() / pageBytes);
+  const long long full = slots + (slots - 1 + children - 2) / std::max(1, children - 1);
+  if (capacity >= full + this->RequestLimit)
+    return static_cast<int>(capacity - this->RequestLimit);
+  const long long least =
+    std::min<long long>(this->RequestLimit, std::max<long long>(2 * children, capacity / 4));
+  // Room for two frames of loads: this frame's and the last one's that the cut has not taken
+  // yet (a split waits for all its children), so that no load evicts another before its use.
+  const long long room = std::max(least, std::min<long long>(this->RequestLimit, capacity - full));
+  this->FrameRequests = static_cast<int>(std::max<long long>(1, room / 2));
+  const int held = static_cast<int>(std::max<long long>(1, capacity - room));
+  std::ostringstream msg;
+  msg << "The page cache (" << in.Cache.GetBudgetBytes() / 1048576.0 << " MB, " << capacity
+      << " pages of " << pageBytes << " bytes) cannot hold a cut filling the atlas (" << slots
+      << " pages and up to " << full - slots << " ancestors, all kept in RAM) beside "
+      << this->RequestLimit << " loads a frame: the cut is limited to " << held
+      << " pages held and " << this->FrameRequests
+      << " loads a frame. Raise PageCacheBudget to at least "
+      << std::ceil((full + this->RequestLimit) * static_cast<double>(pageBytes) / 1048576.0)
+      << " MB or lower AtlasBudget.";
+  if (msg.str() != this->LastWarning)
+    this->Warning = this->LastWarning = msg.str();
+  return held;
+}
+
+std::string vtkPagedPools::TakeBudgetWarning()
+{
+  std::string warning;
+  warning.swap(this->Warning);
+  return warning;
 }
 
 void vtkPagedPools::EndFrame()

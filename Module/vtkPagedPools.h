@@ -92,9 +92,30 @@ public:
   ///@{
   /// Budgets: RAM cache in MiB, pages uploaded per frame (requests: 4x), prefetch.
   void SetCacheBudgetMiB(double mib) { this->CacheMiB = mib; }
-  void SetPagesPerFrame(int pages) { this->RequestLimit = 4 * pages; }
+  void SetPagesPerFrame(int pages) { this->RequestLimit = this->FrameRequests = 4 * pages; }
   void SetPrefetch(bool prefetch);
   ///@}
+
+  /**
+   * How many pages the cut may hold pinned in the cache (vtkVolumeCut::SetPageBudget), for an
+   * atlas of `slots` pages in trees of `children` children per node. The cache must hold the
+   * pages of the cut and of their ancestors (vtkCutPages) and, beside them, the pages being
+   * loaded; else every load is dropped for want of room, asked again and read again each frame
+   * while the cut never refines. A cut filling the atlas holds about
+   *   slots + (slots - 1) / (children - 1)
+   * pages (its ancestors in a full tree). When the cache holds that and a frame's requests
+   * (4 x PagesPerFrame), nothing changes: the bound is the cache's pages less the requests.
+   * Otherwise the budgets are inconsistent and both are clamped: the room for loads to what the
+   * cache can hold beside that cut (but at least a quarter of the cache and two splits'
+   * children, so loads progress), the held pages to the rest, and the requests per frame to
+   * half the room (this frame's loads beside the last one's that the cut has not taken yet, so
+   * that no load evicts another before its use); TakeBudgetWarning() then says so.
+   * Call after BeginFrame() (the budget it applies) with the pools open.
+   */
+  int PlanHeldPages(int slots, int children);
+  /// The message of the last PlanHeldPages() that clamped, once per change of the budgets;
+  /// empty otherwise. The mappers print it as a warning.
+  std::string TakeBudgetWarning();
 
   /// Before a cut update: applies the budget, starts the workers, counts misses from 0.
   void BeginFrame();
@@ -129,7 +150,10 @@ private:
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   double CacheMiB = 512.0;
-  int RequestLimit = 256;
+  int RequestLimit = 256;  ///< 4 x PagesPerFrame
+  int FrameRequests = 256; ///< RequestLimit as PlanHeldPages() clamped it
+  std::string Warning;     ///< not taken yet
+  std::string LastWarning; ///< the last one made, so that each is made once
   Statistics Stats;
 };
 

@@ -5,6 +5,7 @@
 #include "vtkVolumeBrickTree.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -97,6 +98,13 @@ public:
       visible += this->Volumes[v].Empty[children[c]] ? 0 : 1;
     }
     return visible;
+  }
+
+  /// Pages a split of n adds to those held (a collapse frees as many): its visible children,
+  /// in a volume whose pages are held (one with an availability function).
+  int HeldChildren(int v, int n) const
+  {
+    return this->Volumes[v].Available ? this->VisibleChildren(v, n) : 0;
   }
 
   // Asks for every visible child (so all missing ones get queued), true if all are there.
@@ -434,11 +442,14 @@ int vtkVolumeCut::Update(const Camera& camera)
   // give back the least important detail first. Collapses upload at most the parent, which is
   // needed now whatever the upload bound says.
   int added = 0;
-  while (cost > this->Budget && !in.Collapses.empty())
+  int held = this->GetHeldPages();
+  const int pageBudget = this->PageBudget > 0 ? this->PageBudget : INT_MAX;
+  while ((cost > this->Budget || held > pageBudget) && !in.Collapses.empty())
   {
     const auto [p, v, n] = *in.Collapses.begin();
     (void)p;
     cost -= in.VisibleChildren(v, n) - 1;
+    held -= in.HeldChildren(v, n);
     in.Collapse(v, n);
     ++added;
   }
@@ -460,32 +471,35 @@ int vtkVolumeCut::Update(const Camera& camera)
       break;
     }
     const int need = cost + children - 1 - this->Budget;
-    int freed = 0;
+    const int needPages = this->PageBudget > 0 ? held + in.HeldChildren(v, n) - pageBudget : 0;
+    int freed = 0, freedPages = 0;
     payers.clear();
-    if (need > 0)
+    if (need > 0 || needPages > 0)
     {
       const int parent = in.Volumes[v].Tree->GetParent(n);
       for (const auto& [cp, cv, cn] : in.Collapses)
       {
-        if (cp >= priority || freed >= need)
+        if (cp >= priority || (freed >= need && freedPages >= needPages))
         {
           break;
         }
         const int gain = in.VisibleChildren(cv, cn) - 1;
-        if ((cv == v && cn == parent) || gain <= 0)
+        const int gainPages = in.HeldChildren(cv, cn);
+        if ((cv == v && cn == parent) || (gain <= 0 && (needPages <= 0 || gainPages <= 0)))
         {
           continue;
         }
         payers.push_back(cv);
         payers.push_back(cn);
         freed += gain;
+        freedPages += gainPages;
       }
     }
     const int moves = static_cast<int>(payers.size()) / 2;
     // Data last: only a split that fits asks for its children's pages, so a paging renderer
     // never loads what the budget would not let it show.
-    if (freed < need || (bound > 0 && added > 0 && added + children + moves > bound) ||
-        !in.ChildrenAvailable(v, n))
+    if (freed < need || freedPages < needPages ||
+        (bound > 0 && added > 0 && added + children + moves > bound) || !in.ChildrenAvailable(v, n))
     {
       in.Splits.erase(in.Splits.find(Entry(priority, v, n)));
       continue;
@@ -496,6 +510,7 @@ int vtkVolumeCut::Update(const Camera& camera)
     }
     in.Split(v, n);
     cost += children - 1 - freed;
+    held += in.HeldChildren(v, n) - freedPages;
     added += children + moves;
   }
   in.Splits.clear();
@@ -546,6 +561,23 @@ int vtkVolumeCut::GetCost() const
     cost += this->GetVolumeCost(v);
   }
   return cost;
+}
+
+int vtkVolumeCut::GetHeldPages() const
+{
+  int held = 0;
+  for (const auto& vol : this->Internals->Volumes)
+  {
+    if (!vol.Available)
+    {
+      continue;
+    }
+    for (size_t n = 0; n < vol.State.size(); ++n)
+    {
+      held += (vol.State[n] == Leaf && !vol.Empty[n]) || vol.State[n] == Inner ? 1 : 0;
+    }
+  }
+  return held;
 }
 
 double vtkVolumeCut::GetPriority(int volume, int node) const

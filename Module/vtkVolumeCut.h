@@ -145,6 +145,19 @@ public:
 
   ///@{
   /**
+   * Pages a paging renderer may hold for the cut (default 0: no bound): the resident cut
+   * nodes and their ancestors, in the volumes with an availability function. A pager keeps
+   * those pages pinned in its RAM cache (vtkCutPages), so they must fit there beside the pages
+   * being loaded, or every new load is dropped for want of room and the cut never refines
+   * (vtkPagedPools::PlanHeldPages). Splits and collapses keep GetHeldPages() within it as they
+   * keep GetCost() within the budget.
+   */
+  void SetPageBudget(int pages) { this->PageBudget = pages; }
+  int GetPageBudget() const { return this->PageBudget; }
+  ///@}
+
+  ///@{
+  /**
    * Nodes whose priority is at most this many pixels are not split. Default 0: spare atlas
    * space is used for detail, which costs uploads but no ray-casting time; about 1 saves
    * uploads of detail smaller than a pixel.
@@ -193,6 +206,8 @@ public:
   int GetCost() const;
   int GetVolumeCost(int volume) const;
   bool IsOverBudget() const { return this->GetCost() > this->Budget; }
+  /// Resident cut nodes and their ancestors in the paged volumes (see SetPageBudget()).
+  int GetHeldPages() const;
   /// Priority of a node at the last Update(): error in pixels (times opacity if weighted).
   double GetPriority(int volume, int node) const;
   ///@}
@@ -252,6 +267,7 @@ private:
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   int Budget = 0;
+  int PageBudget = 0;
   double ErrorThreshold = 0.0;
   bool OpacityWeighting = false;
   int MaxNewBricksPerUpdate = 0;

@@ -380,8 +380,14 @@ int vtkVolumePager::Update(const vtkVolumeCut::Camera& camera,
     in.Pools.SetPagesPerFrame(settings.PagesPerFrame);
     in.Pools.SetPrefetch(settings.Prefetch);
     in.Pools.BeginFrame();
+    // The pages the cut holds stay pinned in the cache: leave room there for the loads.
+    in.Cut.SetPageBudget(in.Pools.PlanHeldPages(in.Atlas.GetNumberOfSlots(), 8));
     if (!in.HoldRoots(error))
       return -1;
+  }
+  else
+  {
+    in.Cut.SetPageBudget(0);
   }
   if (in.FixedCutsChanged)
   {
@@ -516,6 +522,11 @@ vtkVolumePager::Statistics vtkVolumePager::GetStatistics() const
 void vtkVolumePager::RetryFailedPages()
 {
   this->Internals->Pools.RetryFailedPages();
+}
+
+std::string vtkVolumePager::TakeBudgetWarning()
+{
+  return this->Internals->Pools.TakeBudgetWarning();
 }
 
 bool vtkVolumePager::WaitForIdle(double seconds)

@@ -180,6 +180,8 @@ public:
   std::vector<std::string> TakeNewFailures();
   Statistics GetStatistics() const;
   void RetryFailedPages();
+  /// Once per change: how inconsistent budgets were clamped (vtkPagedPools::PlanHeldPages).
+  std::string TakeBudgetWarning();
   bool WaitForIdle(double seconds);
 
 private:

@@ -475,6 +475,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
   }
   for (const std::string& failure : this->Pager.TakeNewFailures())
     vtkErrorWithObjectMacro(self, << failure << "; showing the coarser level.");
+  const std::string clamped = this->Pager.TakeBudgetWarning();
+  if (!clamped.empty())
+    vtkWarningWithObjectMacro(self, << clamped);
   static_cast<vtkVolumePager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
   if (missing > 0)
     vtkWarningWithObjectMacro(

@@ -596,6 +596,11 @@ bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
   {
     vtkErrorWithObjectMacro(self, "Could not load " << failure << "; showing the coarser level.");
   }
+  const std::string clamped = this->Pager.TakeBudgetWarning();
+  if (!clamped.empty())
+  {
+    vtkWarningWithObjectMacro(self, << clamped);
+  }
   static_cast<vtkHeightFieldPager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
   this->Paging.Paged = true;
   this->Paging.AtlasSlots = this->Atlas.GetSlots();

@@ -718,6 +718,49 @@ void Halo(const int dims[3], const vtkVolumeCut::Camera& camera, const double id
   }
 }
 
+// The page budget bounds the pages a pager holds for the cut (resident cut nodes and their
+// ancestors) in the volumes with an availability function only; an in-core volume beside them
+// counts against the slots alone.
+void PageBudget(const vtkVolumeBrickTree& tree,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Page budget\n";
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.AddVolume(&tree, far);
+  cut.SetVolumeAvailability(0, [](int, double) { return true; });
+  cut.SetBudget(400);
+  cut.Update(camera);
+  const int unbounded = cut.GetHeldPages();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> pos(-500, 1500);
+  bool within = true, covered = true, bound = false;
+  for (int step = 0; step < 40; ++step)
+  {
+    vtkVolumeCut::Camera c = camera;
+    c.Position[0] = pos(rng);
+    c.Position[2] = pos(rng) * 0.3 - 200;
+    cut.SetPageBudget(9 + static_cast<int>(rng() % 200));
+    cut.SetMaxNewBricksPerUpdate(step % 2 == 0 ? 0 : 40);
+    cut.Update(c);
+    within = within && cut.GetHeldPages() <= cut.GetPageBudget() && !cut.IsOverBudget();
+    covered = covered && AllCoverOnce(cut);
+    bound = bound || cut.GetHeldPages() < cut.GetVolumeCost(0) + cut.GetVolumeCost(1);
+  }
+  std::cout << "  held pages without a page budget: " << unbounded << "\n";
+  Check(unbounded > 209, "without a page budget the cut holds more pages than any budget below");
+  Check(within, "40 random cameras and page budgets: held pages and cost within their budgets");
+  Check(covered, "every volume covered exactly once after every Update");
+  Check(bound, "the in-core volume's bricks are not counted as held pages");
+  cut.SetPageBudget(0);
+  cut.SetMaxNewBricksPerUpdate(0);
+  cut.Reset();
+  cut.Update(camera);
+  Check(cut.GetHeldPages() == unbounded, "page budget 0 bounds nothing");
+}
+
 int TestVolumeCut(int, char*[])
 {
   const int dims[3] = { N, N, N };
@@ -755,6 +798,7 @@ int TestVolumeCut(int, char*[])
         [&] { IndexTableAndAtlasLookup(tree, finest, camera, identity, far); } },
       { "PriorityFunction", [&] { PriorityFunction(tree, camera, identity); } },
       { "Halo", [&] { Halo(dims, camera, identity); } },
+      { "PageBudget", [&] { PageBudget(tree, camera, identity, far); } },
     },
     [] { return failures; });
 }
