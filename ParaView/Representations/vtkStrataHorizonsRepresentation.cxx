@@ -139,25 +139,15 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
 //------------------------------------------------------------------------------
 bool vtkStrataHorizonsRepresentation::AddToView(vtkView* view)
 {
-  auto* rview = vtkPVRenderView::SafeDownCast(view);
-  if (!rview)
-  {
-    return false;
-  }
-  rview->GetRenderer()->AddActor(this->Actor);
-  return this->Superclass::AddToView(view);
+  return vtkStrataParaViewUtilities::AddProp(view, this->Actor) &&
+         this->Superclass::AddToView(view);
 }
 
 //------------------------------------------------------------------------------
 bool vtkStrataHorizonsRepresentation::RemoveFromView(vtkView* view)
 {
-  auto* rview = vtkPVRenderView::SafeDownCast(view);
-  if (!rview)
-  {
-    return false;
-  }
-  rview->GetRenderer()->RemoveActor(this->Actor);
-  return this->Superclass::RemoveFromView(view);
+  return vtkStrataParaViewUtilities::RemoveProp(view, this->Actor) &&
+         this->Superclass::RemoveFromView(view);
 }
 
 //------------------------------------------------------------------------------

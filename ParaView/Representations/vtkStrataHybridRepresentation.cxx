@@ -121,25 +121,15 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
 //------------------------------------------------------------------------------
 bool vtkStrataHybridRepresentation::AddToView(vtkView* view)
 {
-  auto* rview = vtkPVRenderView::SafeDownCast(view);
-  if (!rview)
-  {
-    return false;
-  }
-  rview->GetRenderer()->AddVolume(this->Member);
-  return this->Superclass::AddToView(view);
+  return vtkStrataParaViewUtilities::AddProp(view, this->Member) &&
+         this->Superclass::AddToView(view);
 }
 
 //------------------------------------------------------------------------------
 bool vtkStrataHybridRepresentation::RemoveFromView(vtkView* view)
 {
-  auto* rview = vtkPVRenderView::SafeDownCast(view);
-  if (!rview)
-  {
-    return false;
-  }
-  rview->GetRenderer()->RemoveVolume(this->Member);
-  return this->Superclass::RemoveFromView(view);
+  return vtkStrataParaViewUtilities::RemoveProp(view, this->Member) &&
+         this->Superclass::RemoveFromView(view);
 }
 
 //------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 #include "vtkPVRenderView.h"
 #include "vtkPagePoolReader.h"
 #include "vtkProp3D.h"
+#include "vtkRenderer.h"
 
 void vtkStrataParaViewUtilities::DeclareLocalPiece(vtkPVDataRepresentation* representation,
   vtkInformation* inInfo,
@@ -41,4 +42,26 @@ void vtkStrataParaViewUtilities::CopyTransform(vtkProp3D* from, vtkProp3D* to)
   to->SetOrientation(from->GetOrientation());
   to->SetScale(from->GetScale());
   to->SetOrigin(from->GetOrigin());
+}
+
+bool vtkStrataParaViewUtilities::AddProp(vtkView* view, vtkProp* prop)
+{
+  auto* rview = vtkPVRenderView::SafeDownCast(view);
+  if (!rview)
+  {
+    return false;
+  }
+  rview->GetRenderer()->AddViewProp(prop);
+  return true;
+}
+
+bool vtkStrataParaViewUtilities::RemoveProp(vtkView* view, vtkProp* prop)
+{
+  auto* rview = vtkPVRenderView::SafeDownCast(view);
+  if (!rview)
+  {
+    return false;
+  }
+  rview->GetRenderer()->RemoveViewProp(prop);
+  return true;
 }

@@ -13,7 +13,9 @@ class vtkInformation;
 class vtkInformationVector;
 class vtkMatrix4x4;
 class vtkPVDataRepresentation;
+class vtkProp;
 class vtkProp3D;
+class vtkView;
 
 namespace vtkStrataParaViewUtilities
 {
@@ -32,6 +34,13 @@ void DeclareLocalPiece(vtkPVDataRepresentation* representation,
 
 /// Asks every input of `inputs` for a pool's coarsest level (other readers ignore the key).
 void RequestCoarsestLevels(vtkInformationVector* inputs);
+
+///@{
+/// Adds (removes) the prop a representation renders to (from) the renderer of `view`; false
+/// when `view` is not a render view.
+bool AddProp(vtkView* view, vtkProp* prop);
+bool RemoveProp(vtkView* view, vtkProp* prop);
+///@}
 
 /// Position, orientation, scale and origin of `from` (ParaView's prop) onto `to` (the rendered
 /// one).
