@@ -53,13 +53,14 @@ struct Horizon
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // A position on the last line (within rounding) still belongs to the grid.
     constexpr double slack = 1e-9;
-    if (!(fi >= -slack && fj >= -slack && fi <= this->Nx - 1 + slack &&
-          fj <= this->Ny - 1 + slack))
+    if (!(fi >= -slack && fj >= -slack && fi <= this->Nx - 1 + slack && fj <= this->Ny - 1 + slack))
     {
       return nan;
     }
-    const int i = std::min(std::max(static_cast<int>(std::floor(fi)), 0), std::max(this->Nx - 2, 0));
-    const int j = std::min(std::max(static_cast<int>(std::floor(fj)), 0), std::max(this->Ny - 2, 0));
+    const int i =
+      std::min(std::max(static_cast<int>(std::floor(fi)), 0), std::max(this->Nx - 2, 0));
+    const int j =
+      std::min(std::max(static_cast<int>(std::floor(fj)), 0), std::max(this->Ny - 2, 0));
     const double u = this->Nx > 1 ? fi - i : 0.0, v = this->Ny > 1 ? fj - j : 0.0;
     double sum = 0.0;
     for (int c = 0; c < 4; ++c)
@@ -245,25 +246,26 @@ bool vtkSyntheticSurveyWriter::Write()
     return fail("sample interval " + std::to_string(this->SampleInterval) +
                 " ms is not a whole number of microseconds in [1, 65535]");
   }
-  if (this->Samples < 1 || this->Samples > 65535 || this->StartTime < 0 ||
-      this->StartTime > 32767)
+  if (this->Samples < 1 || this->Samples > 65535 || this->StartTime < 0 || this->StartTime > 32767)
   {
-    return fail("samples (" + std::to_string(this->Samples) + ") outside [1, 65535] or start time (" +
-                std::to_string(this->StartTime) + " ms) outside [0, 32767]");
+    return fail("samples (" + std::to_string(this->Samples) +
+                ") outside [1, 65535] or start time (" + std::to_string(this->StartTime) +
+                " ms) outside [0, 32767]");
   }
   if (this->Lines[0] < 1 || this->Lines[1] < 1 ||
-      int64_t(this->Lines[0]) * this->Lines[1] > (int64_t(1) << 31) - 1 ||
-      !(this->Bins[0] > 0.0) || !(this->Bins[1] > 0.0))
+      int64_t(this->Lines[0]) * this->Lines[1] > (int64_t(1) << 31) - 1 || !(this->Bins[0] > 0.0) ||
+      !(this->Bins[1] > 0.0))
   {
     return fail("the survey needs at least one inline and crossline and positive bins");
   }
-  const double factor = this->CoordinateScalar < 0 ? -double(this->CoordinateScalar)
-    : this->CoordinateScalar > 0                   ? 1.0 / this->CoordinateScalar
-                                                   : 1.0;
+  const double factor = this->CoordinateScalar < 0   ? -double(this->CoordinateScalar)
+                        : this->CoordinateScalar > 0 ? 1.0 / this->CoordinateScalar
+                                                     : 1.0;
   for (int corner = 0; corner < 4; ++corner)
   {
     double p[2];
-    this->MapPosition((corner & 1) * (this->Lines[0] - 1.0), (corner >> 1) * (this->Lines[1] - 1.0), p);
+    this->MapPosition(
+      (corner & 1) * (this->Lines[0] - 1.0), (corner >> 1) * (this->Lines[1] - 1.0), p);
     if (!(std::abs(p[0] * factor) < 2147483647.0 && std::abs(p[1] * factor) < 2147483647.0))
     {
       return fail("the survey's coordinates do not fit 32-bit integers at coordinate scalar " +
@@ -285,10 +287,10 @@ bool vtkSyntheticSurveyWriter::Write()
   std::fill(head.begin() + 3200, head.end(), '\0');
   PutBigEndian(head, 3216, static_cast<uint32_t>(micro), 2);
   PutBigEndian(head, 3220, static_cast<uint32_t>(this->Samples), 2);
-  PutBigEndian(head, 3224, 5, 2);          // IEEE float
-  PutBigEndian(head, 3254, 1, 2);          // metres
-  PutBigEndian(head, 3500, 0x0100, 2);     // revision 1
-  PutBigEndian(head, 3502, 1, 2);          // fixed-length traces
+  PutBigEndian(head, 3224, 5, 2);      // IEEE float
+  PutBigEndian(head, 3254, 1, 2);      // metres
+  PutBigEndian(head, 3500, 0x0100, 2); // revision 1
+  PutBigEndian(head, 3502, 1, 2);      // fixed-length traces
   out.write(head.data(), head.size());
 
   std::string trace(240 + 4 * static_cast<size_t>(this->Samples), '\0');
@@ -311,8 +313,12 @@ bool vtkSyntheticSurveyWriter::Write()
       PutBigEndian(trace, 70, static_cast<uint32_t>(this->CoordinateScalar), 2);
       for (int byte : { 72, 180 })
       {
-        PutBigEndian(trace, byte, static_cast<uint32_t>(static_cast<int32_t>(std::llround(p[0] * factor))), 4);
-        PutBigEndian(trace, byte + 4, static_cast<uint32_t>(static_cast<int32_t>(std::llround(p[1] * factor))), 4);
+        PutBigEndian(
+          trace, byte, static_cast<uint32_t>(static_cast<int32_t>(std::llround(p[0] * factor))), 4);
+        PutBigEndian(trace,
+          byte + 4,
+          static_cast<uint32_t>(static_cast<int32_t>(std::llround(p[1] * factor))),
+          4);
       }
       PutBigEndian(trace, 88, 1, 2); // length units
       PutBigEndian(trace, 108, static_cast<uint32_t>(this->StartTime), 2);
@@ -326,8 +332,10 @@ bool vtkSyntheticSurveyWriter::Write()
         if (!std::isnan(t))
           crossings.emplace_back(t, h);
       }
-      std::stable_sort(crossings.begin(), crossings.end(),
-        [](const std::pair<double, int>& a, const std::pair<double, int>& b) { return a.first < b.first; });
+      std::stable_sort(crossings.begin(),
+        crossings.end(),
+        [](const std::pair<double, int>& a, const std::pair<double, int>& b)
+        { return a.first < b.first; });
       std::vector<std::pair<double, double>> spikes; // (time, reflection coefficient)
       double above = this->GetImpedance(0);
       for (const auto& c : crossings)

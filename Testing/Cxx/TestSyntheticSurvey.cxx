@@ -31,6 +31,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
+#include "vtkIrapBinaryGridReader.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h"
@@ -94,7 +95,8 @@ vtkSmartPointer<vtkImageData> MakeHorizon(int h, double degrees)
       image->TransformIndexToPhysicalPoint(i, j, 0, p);
       const bool hole = h == 1 && p[0] < HoleEast;
       values->SetValue(j * n + i,
-        hole ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(HorizonTime(h, p[0], p[1])));
+        hole ? std::numeric_limits<float>::quiet_NaN()
+             : static_cast<float>(HorizonTime(h, p[0], p[1])));
     }
   }
   image->GetPointData()->SetScalars(values);
@@ -103,7 +105,8 @@ vtkSmartPointer<vtkImageData> MakeHorizon(int h, double degrees)
 
 const double Impedance[4] = { 4e6, 5e6, 4.5e6, 6e6 };
 
-void Configure(vtkSyntheticSurveyWriter* w, const std::vector<vtkSmartPointer<vtkImageData>>& horizons)
+void Configure(vtkSyntheticSurveyWriter* w,
+  const std::vector<vtkSmartPointer<vtkImageData>>& horizons)
 {
   for (const auto& h : horizons)
     w->AddInputDataObject(0, h);
@@ -148,7 +151,8 @@ std::string Slurp(const std::string& path)
 
 struct Fixture
 {
-  std::vector<vtkSmartPointer<vtkImageData>> Horizons{ MakeHorizon(0, 0.0), MakeHorizon(1, 140.0),
+  std::vector<vtkSmartPointer<vtkImageData>> Horizons{ MakeHorizon(0, 0.0),
+    MakeHorizon(1, 140.0),
     MakeHorizon(2, 0.0) };
   std::string Out;
   std::string Path;
@@ -178,9 +182,9 @@ void Georeference(const Fixture& f)
       worst = std::max(worst, std::hypot(p[0] - expected[0], p[1] - expected[1]));
     }
   }
-  std::cout << "  " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", spacing "
-            << spacing[0] << " " << spacing[1] << " " << spacing[2] << ", rotation "
-            << reader->GetGridRotation() << ", corners off by " << worst << " m\n";
+  std::cout << "  " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", spacing " << spacing[0]
+            << " " << spacing[1] << " " << spacing[2] << ", rotation " << reader->GetGridRotation()
+            << ", corners off by " << worst << " m\n";
   Check(errors->Errors == 0 && errors->Warnings == 0 && reader->GetGeoreferenced() &&
           dims[0] == 12 && dims[1] == 400 && dims[2] == 10 && reader->GetFirstInline() == 1000 &&
           reader->GetFirstCrossline() == 2000,
@@ -335,9 +339,59 @@ void Pool(const Fixture& f, const std::string& converter)
   same(converted, "strata-convert");
 }
 
+/// strata-synth on the four Reek horizons (Irap binary, 20 m grid turned 140 degrees), every
+/// 16th node: the survey is that grid, and strata-convert pages it.
+void Tool(const Fixture& f, const std::string& converter, const std::string& data)
+{
+  const std::string synth = vtksys::SystemTools::GetFilenamePath(converter) + "/strata-synth";
+  if (converter.empty() || !vtksys::SystemTools::FileExists(synth, true))
+  {
+    std::cout << "  strata-synth not built: skipped\n";
+    return;
+  }
+  const std::string path = f.Out + "/reek.sgy";
+  std::string command = "'" + synth + "'";
+  for (const char* h : { "reek_01_topreek_rota.gri",
+         "reek_02_midreek_rota.gri",
+         "reek_03_lowreek_rota.gri",
+         "reek_04_basereek_rota.gri" })
+    command += " '" + data + "/horizons/" + h + "'";
+  command += " --step 16 --seed 3 -o '" + path + "' >/dev/null 2>&1";
+  Check(std::system(command.c_str()) == 0, "strata-synth on the Reek horizons exits 0");
+  vtkNew<vtkIrapBinaryGridReader> top;
+  top->SetFileName((data + "/horizons/reek_01_topreek_rota.gri").c_str());
+  top->Update();
+  vtkNew<vtkSegyVolumeReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* survey = reader->GetOutput();
+  int dims[3], grid[3];
+  survey->GetDimensions(dims);
+  top->GetOutput()->GetDimensions(grid);
+  const double* o = survey->GetOrigin();
+  const double* g = top->GetOutput()->GetOrigin();
+  std::cout << "  reek: " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", rotation "
+            << reader->GetGridRotation() << ", bins " << survey->GetSpacing()[0] << " x "
+            << survey->GetSpacing()[2] << ", origin off the grid's by "
+            << std::hypot(o[0] - g[0], o[1] - g[1]) << " m\n";
+  Check(reader->GetGeoreferenced() && dims[0] == (grid[0] - 1) / 16 + 1 &&
+          dims[2] == (grid[1] - 1) / 16 + 1 && std::abs(reader->GetGridRotation() - 140.0) < 0.01 &&
+          std::abs(survey->GetSpacing()[0] - 320.0) < 0.01 &&
+          std::abs(survey->GetSpacing()[2] - 320.0) < 0.01 &&
+          std::hypot(o[0] - g[0], o[1] - g[1]) < 0.01,
+    "strata-synth: the survey is the horizons' grid, every 16th node, turned 140 degrees");
+  const std::string pool = f.Out + "/reek.spp";
+  Check(std::system(
+          ("'" + converter + "' '" + path + "' '" + pool + "' >/dev/null 2>&1").c_str()) == 0 &&
+          vtksys::SystemTools::FileExists(pool),
+    "strata-convert pages strata-synth's survey");
+}
+
 void Errors(const Fixture& f)
 {
-  auto rejects = [&](vtkSyntheticSurveyWriter* w, const std::string& path, const std::string& expect,
+  auto rejects = [&](vtkSyntheticSurveyWriter* w,
+                   const std::string& path,
+                   const std::string& expect,
                    const std::string& what)
   {
     vtkNew<ErrorCounter> errors;
@@ -388,10 +442,10 @@ int TestSyntheticSurvey(int argc, char* argv[])
     Check(writer->Write(), "the survey is written");
   }
   const char* env = std::getenv("STRATA_CONVERT_TOOL");
-  std::string converter = env ? env
-                              : vtksys::SystemTools::GetFilenamePath(
-                                  vtksys::SystemTools::GetRealPath("/proc/self/exe")) +
-      "/strata-convert";
+  std::string converter =
+    env ? env
+        : vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::GetRealPath("/proc/self/exe")) +
+            "/strata-convert";
   if (!vtksys::SystemTools::FileExists(converter, true))
     converter.clear();
   return strata_test::RunSubTests(
@@ -402,6 +456,7 @@ int TestSyntheticSurvey(int argc, char* argv[])
       { "NoisyPeaks", [&] { Peaks(f.Path, 2.0, "noise 0.002"); } },
       { "Seeds", [&] { Seeds(f); } },
       { "Pool", [&] { Pool(f, converter); } },
+      { "Tool", [&] { Tool(f, converter, paths.Data); } },
       { "Errors", [&] { Errors(f); } },
     },
     strata_test::Failures);
