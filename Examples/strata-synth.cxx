@@ -106,9 +106,8 @@ std::string Options::Parse(int argc, char* argv[])
   {
     const std::string a = argv[i];
     auto need = [&](int n) { return i + n < argc; };
-    auto twoDoubles = [&](double v[2]) {
-      return need(2) && ParseDouble(argv[++i], v[0]) && ParseDouble(argv[++i], v[1]);
-    };
+    auto twoDoubles = [&](double v[2])
+    { return need(2) && ParseDouble(argv[++i], v[0]) && ParseDouble(argv[++i], v[1]); };
     if (a == "-o" && need(1))
       this->Output = argv[++i];
     else if (a == "--origin")
@@ -131,8 +130,8 @@ std::string Options::Parse(int argc, char* argv[])
     }
     else if (a == "--lines")
     {
-      if (!need(2) || !ParseInt(argv[++i], this->Lines[0]) || !ParseInt(argv[++i], this->Lines[1]) ||
-          this->Lines[0] < 1 || this->Lines[1] < 1)
+      if (!need(2) || !ParseInt(argv[++i], this->Lines[0]) ||
+          !ParseInt(argv[++i], this->Lines[1]) || this->Lines[0] < 1 || this->Lines[1] < 1)
         return "--lines needs two positive counts";
       this->Geometry = true;
     }
@@ -285,7 +284,16 @@ int main(int argc, char* argv[])
     return Die("no survey written");
   std::printf("%s: %d inlines x %d crosslines x %d samples (%g ms from %d ms), origin %.2f %.2f, "
               "rotation %g degrees, bins %g x %g\n",
-    o.Output.c_str(), o.Lines[0], o.Lines[1], o.Samples, o.Interval, o.Start, o.Origin[0],
-    o.Origin[1], o.Rotation, o.Bins[0], o.Bins[1]);
+    o.Output.c_str(),
+    o.Lines[0],
+    o.Lines[1],
+    o.Samples,
+    o.Interval,
+    o.Start,
+    o.Origin[0],
+    o.Origin[1],
+    o.Rotation,
+    o.Bins[0],
+    o.Bins[1]);
   return 0;
 }

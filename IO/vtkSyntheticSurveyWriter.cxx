@@ -82,6 +82,50 @@ struct Horizon
   }
 };
 
+/// The horizons on `self`'s port 0, as the traces sample them; an error message or empty.
+std::string CollectHorizons(vtkAlgorithm* self, std::vector<Horizon>& horizons)
+{
+  const int n = self->GetNumberOfInputConnections(0);
+  horizons.assign(n, Horizon());
+  for (int h = 0; h < n; ++h)
+  {
+    self->GetInputAlgorithm(0, h)->Update();
+    auto* image = vtkImageData::SafeDownCast(self->GetInputDataObject(0, h));
+    vtkDataArray* values = image ? image->GetPointData()->GetScalars() : nullptr;
+    if (image && !values && image->GetPointData()->GetNumberOfArrays() > 0)
+    {
+      values = image->GetPointData()->GetArray(0);
+    }
+    int dims[3] = { 0, 0, 0 };
+    if (image)
+    {
+      image->GetDimensions(dims);
+    }
+    if (!values || dims[2] != 1 || dims[0] < 1 || dims[1] < 1)
+    {
+      return "horizon " + std::to_string(h) +
+             " is not a vtkImageData of nx x ny x 1 points with scalars";
+    }
+    Horizon& g = horizons[h];
+    g.Nx = dims[0];
+    g.Ny = dims[1];
+    g.Values = values;
+    g.Origin[0] = image->GetOrigin()[0];
+    g.Origin[1] = image->GetOrigin()[1];
+    const double* d = image->GetDirectionMatrix()->GetData();
+    const double* s = image->GetSpacing();
+    const double m[4] = { d[0] * s[0], d[1] * s[1], d[3] * s[0], d[4] * s[1] };
+    const double det = m[0] * m[3] - m[1] * m[2];
+    if (!(std::abs(det) > 0.0))
+    {
+      return "horizon " + std::to_string(h) + " has a degenerate lateral grid";
+    }
+    const double inverse[4] = { m[3] / det, -m[1] / det, -m[2] / det, m[0] / det };
+    std::copy(inverse, inverse + 4, g.ToIndex);
+  }
+  return std::string();
+}
+
 /// A uniform double in (0, 1) from mt19937_64's exactly specified output.
 double Uniform(std::mt19937_64& g)
 {
@@ -174,6 +218,62 @@ double vtkSyntheticSurveyWriter::Ricker(double t) const
 }
 
 //------------------------------------------------------------------------------
+double vtkSyntheticSurveyWriter::CoordinateFactor() const
+{
+  return this->CoordinateScalar < 0   ? -double(this->CoordinateScalar)
+         : this->CoordinateScalar > 0 ? 1.0 / this->CoordinateScalar
+                                      : 1.0;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkSyntheticSurveyWriter::CheckSettings(int n) const
+{
+  for (int k = 0; k <= n; ++k)
+  {
+    if (!(this->GetImpedance(k) > 0.0) || !std::isfinite(this->GetImpedance(k)))
+    {
+      return "the impedance of layer " + std::to_string(k) + " is not positive";
+    }
+  }
+  if (static_cast<int>(this->Impedances.size()) > n + 1)
+  {
+    return std::to_string(this->Impedances.size()) + " impedances set for " + std::to_string(n) +
+           " horizons (" + std::to_string(n + 1) + " layers)";
+  }
+  const double micro = this->SampleInterval * 1000.0;
+  if (!(micro >= 1.0 && micro <= 65535.0 && micro == std::round(micro)))
+  {
+    return "sample interval " + std::to_string(this->SampleInterval) +
+           " ms is not a whole number of microseconds in [1, 65535]";
+  }
+  if (this->Samples < 1 || this->Samples > 65535 || this->StartTime < 0 || this->StartTime > 32767)
+  {
+    return "samples (" + std::to_string(this->Samples) + ") outside [1, 65535] or start time (" +
+           std::to_string(this->StartTime) + " ms) outside [0, 32767]";
+  }
+  if (this->Lines[0] < 1 || this->Lines[1] < 1 ||
+      int64_t(this->Lines[0]) * this->Lines[1] > (int64_t(1) << 31) - 1 || !(this->Bins[0] > 0.0) ||
+      !(this->Bins[1] > 0.0))
+  {
+    return "the survey needs at least one inline and crossline and positive bins";
+  }
+  const double factor = this->CoordinateFactor();
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    double p[2];
+    this->MapPosition(
+      (corner & 1) * (this->Lines[0] - 1.0), (corner >> 1) * (this->Lines[1] - 1.0), p);
+    if (!(std::abs(p[0] * factor) < 2147483647.0 && std::abs(p[1] * factor) < 2147483647.0))
+    {
+      return "the survey's coordinates do not fit 32-bit integers at coordinate scalar " +
+             std::to_string(this->CoordinateScalar);
+    }
+  }
+
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
 bool vtkSyntheticSurveyWriter::Write()
 {
   const std::string name = this->FileName ? this->FileName : "";
@@ -191,88 +291,18 @@ bool vtkSyntheticSurveyWriter::Write()
   {
     return fail("no horizons (inputs on port 0)");
   }
-  std::vector<Horizon> horizons(n);
-  for (int h = 0; h < n; ++h)
+  std::vector<Horizon> horizons;
+  std::string error = CollectHorizons(this, horizons);
+  if (error.empty())
   {
-    this->GetInputAlgorithm(0, h)->Update();
-    auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, h));
-    vtkDataArray* values = image ? image->GetPointData()->GetScalars() : nullptr;
-    if (image && !values && image->GetPointData()->GetNumberOfArrays() > 0)
-    {
-      values = image->GetPointData()->GetArray(0);
-    }
-    int dims[3] = { 0, 0, 0 };
-    if (image)
-    {
-      image->GetDimensions(dims);
-    }
-    if (!values || dims[2] != 1 || dims[0] < 1 || dims[1] < 1)
-    {
-      return fail("horizon " + std::to_string(h) +
-                  " is not a vtkImageData of nx x ny x 1 points with scalars");
-    }
-    Horizon& g = horizons[h];
-    g.Nx = dims[0];
-    g.Ny = dims[1];
-    g.Values = values;
-    g.Origin[0] = image->GetOrigin()[0];
-    g.Origin[1] = image->GetOrigin()[1];
-    const double* d = image->GetDirectionMatrix()->GetData();
-    const double* s = image->GetSpacing();
-    const double m[4] = { d[0] * s[0], d[1] * s[1], d[3] * s[0], d[4] * s[1] };
-    const double det = m[0] * m[3] - m[1] * m[2];
-    if (!(std::abs(det) > 0.0))
-    {
-      return fail("horizon " + std::to_string(h) + " has a degenerate lateral grid");
-    }
-    const double inverse[4] = { m[3] / det, -m[1] / det, -m[2] / det, m[0] / det };
-    std::copy(inverse, inverse + 4, g.ToIndex);
+    error = this->CheckSettings(n);
   }
-  for (int k = 0; k <= n; ++k)
+  if (!error.empty())
   {
-    if (!(this->GetImpedance(k) > 0.0) || !std::isfinite(this->GetImpedance(k)))
-    {
-      return fail("the impedance of layer " + std::to_string(k) + " is not positive");
-    }
+    return fail(error);
   }
-  if (static_cast<int>(this->Impedances.size()) > n + 1)
-  {
-    return fail(std::to_string(this->Impedances.size()) + " impedances set for " +
-                std::to_string(n) + " horizons (" + std::to_string(n + 1) + " layers)");
-  }
+  const double factor = this->CoordinateFactor();
   const double micro = this->SampleInterval * 1000.0;
-  if (!(micro >= 1.0 && micro <= 65535.0 && micro == std::round(micro)))
-  {
-    return fail("sample interval " + std::to_string(this->SampleInterval) +
-                " ms is not a whole number of microseconds in [1, 65535]");
-  }
-  if (this->Samples < 1 || this->Samples > 65535 || this->StartTime < 0 || this->StartTime > 32767)
-  {
-    return fail("samples (" + std::to_string(this->Samples) +
-                ") outside [1, 65535] or start time (" + std::to_string(this->StartTime) +
-                " ms) outside [0, 32767]");
-  }
-  if (this->Lines[0] < 1 || this->Lines[1] < 1 ||
-      int64_t(this->Lines[0]) * this->Lines[1] > (int64_t(1) << 31) - 1 || !(this->Bins[0] > 0.0) ||
-      !(this->Bins[1] > 0.0))
-  {
-    return fail("the survey needs at least one inline and crossline and positive bins");
-  }
-  const double factor = this->CoordinateScalar < 0   ? -double(this->CoordinateScalar)
-                        : this->CoordinateScalar > 0 ? 1.0 / this->CoordinateScalar
-                                                     : 1.0;
-  for (int corner = 0; corner < 4; ++corner)
-  {
-    double p[2];
-    this->MapPosition(
-      (corner & 1) * (this->Lines[0] - 1.0), (corner >> 1) * (this->Lines[1] - 1.0), p);
-    if (!(std::abs(p[0] * factor) < 2147483647.0 && std::abs(p[1] * factor) < 2147483647.0))
-    {
-      return fail("the survey's coordinates do not fit 32-bit integers at coordinate scalar " +
-                  std::to_string(this->CoordinateScalar));
-    }
-  }
-
   std::ostringstream tmpName;
   tmpName << name << ".tmp-" << ::getpid();
   const std::string tmp = tmpName.str();

@@ -65,6 +65,7 @@
 #include "StrataIOModule.h" // For export macro
 #include "vtkAlgorithm.h"
 
+#include <string> // For std::string
 #include <vector> // For std::vector
 
 class STRATAIO_EXPORT vtkSyntheticSurveyWriter : public vtkAlgorithm
@@ -186,6 +187,11 @@ protected:
   int CoordinateScalar = -100;
 
 private:
+  /// What keeps the settings from a valid SEG-Y survey of `horizons` horizons (empty: none).
+  std::string CheckSettings(int horizons) const;
+  /// Map coordinate -> stored integer: |CoordinateScalar| for a negative scalar, else 1 / it.
+  double CoordinateFactor() const;
+
   vtkSyntheticSurveyWriter(const vtkSyntheticSurveyWriter&) = delete;
   void operator=(const vtkSyntheticSurveyWriter&) = delete;
 };
