@@ -11,8 +11,8 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
 #include "vtkObjectFactory.h"
@@ -58,8 +58,12 @@ void Apply(vtkMatrix4x4* m, const double p[3], double out[3])
 }
 
 /// Clips the parametric segment [t0, t1] of a + t (b - a) to the box [lo, hi] (index space).
-bool ClipToBox(const double a[3], const double b[3], const double lo[3], const double hi[3],
-  double& t0, double& t1)
+bool ClipToBox(const double a[3],
+  const double b[3],
+  const double lo[3],
+  const double hi[3],
+  double& t0,
+  double& t1)
 {
   for (int c = 0; c < 3; ++c)
   {
@@ -82,8 +86,11 @@ bool ClipToBox(const double a[3], const double b[3], const double lo[3], const d
 /// The full-resolution data under the index-space segment a-b of the pooled input `image`
 /// (vtkPagePoolReader output): only the pages the segment's bounding box (+1 point) touches.
 /// `geometry` gets the full-resolution image geometry (origin, spacing, direction).
-vtkSmartPointer<vtkImageData> ReadPooled(vtkImageData* image, vtkMatrix4x4* worldToIndexHint,
-  const double p1[3], const double p2[3], bool lateralOnly)
+vtkSmartPointer<vtkImageData> ReadPooled(vtkImageData* image,
+  vtkMatrix4x4* worldToIndexHint,
+  const double p1[3],
+  const double p2[3],
+  bool lateralOnly)
 {
   const char* pool = vtkPagePoolReader::GetPoolFileName(image);
   vtkNew<vtkPagePoolReader> reader;
@@ -145,12 +152,13 @@ double Sample(vtkImageData* image, vtkDataArray* values, const double x[3], bool
       return std::numeric_limits<double>::quiet_NaN();
     if (nearest)
     {
-      base[c] = std::min(std::max(static_cast<int>(std::floor(x[c] + 0.5)), e[2 * c]), e[2 * c + 1]);
+      base[c] =
+        std::min(std::max(static_cast<int>(std::floor(x[c] + 0.5)), e[2 * c]), e[2 * c + 1]);
       f[c] = 0.0;
       continue;
     }
-    base[c] = std::min(std::max(static_cast<int>(std::floor(x[c])), e[2 * c]),
-      std::max(e[2 * c + 1] - 1, e[2 * c]));
+    base[c] = std::min(
+      std::max(static_cast<int>(std::floor(x[c])), e[2 * c]), std::max(e[2 * c + 1] - 1, e[2 * c]));
     f[c] = e[2 * c + 1] > e[2 * c] ? std::min(std::max(x[c] - base[c], 0.0), 1.0) : 0.0;
   }
   const vtkIdType nx = e[1] - e[0] + 1, ny = e[3] - e[2] + 1;
@@ -400,8 +408,10 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
     else
     {
       v->Data = image;
-      IndexMatrix(image->GetOrigin(), image->GetSpacing(),
-        image->GetDirectionMatrix()->GetData(), indexToMember);
+      IndexMatrix(image->GetOrigin(),
+        image->GetSpacing(),
+        image->GetDirectionMatrix()->GetData(),
+        indexToMember);
     }
     v->Values = v->Data->GetPointData()->GetScalars();
     if (!v->Values && v->Data->GetPointData()->GetNumberOfArrays() > 0)
@@ -423,8 +433,8 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
       lo[c] = e[2 * c];
       hi[c] = e[2 * c + 1];
       const double edge = std::sqrt(std::pow(v->IndexToMapper->GetElement(0, c), 2) +
-        std::pow(v->IndexToMapper->GetElement(1, c), 2) +
-        std::pow(v->IndexToMapper->GetElement(2, c), 2));
+                                    std::pow(v->IndexToMapper->GetElement(1, c), 2) +
+                                    std::pow(v->IndexToMapper->GetElement(2, c), 2));
       if (edge > 0)
         smallest = std::min(smallest, edge);
     }
@@ -503,8 +513,8 @@ void vtkSubsurfacePicker::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StepFraction: " << this->StepFraction << "\n";
   os << indent << "HorizonId: " << this->HorizonId << "\n";
   os << indent << "HorizonValue: " << this->HorizonValue << "\n";
-  os << indent << "HorizonPosition: " << this->HorizonPosition[0] << " "
-     << this->HorizonPosition[1] << " " << this->HorizonPosition[2] << "\n";
+  os << indent << "HorizonPosition: " << this->HorizonPosition[0] << " " << this->HorizonPosition[1]
+     << " " << this->HorizonPosition[2] << "\n";
   os << indent << "HorizonT: " << this->HorizonT << "\n";
   os << indent << "VolumeHit: " << this->VolumeHit << "\n";
   os << indent << "VolumePosition: " << this->VolumePosition[0] << " " << this->VolumePosition[1]

@@ -112,10 +112,10 @@ struct PickResult
       return true;
     };
     return this->Horizon == o.Horizon && this->Picked == o.Picked &&
-      this->VolumeHit == o.VolumeHit &&
-      close({ this->Position, this->Position + 3 }, { o.Position, o.Position + 3 }, 1e-6) &&
-      close(this->Values, o.Values, 0.0) && close(this->Opacity, o.Opacity, 1e-12) &&
-      close(this->Points, o.Points, 1e-6);
+           this->VolumeHit == o.VolumeHit &&
+           close({ this->Position, this->Position + 3 }, { o.Position, o.Position + 3 }, 1e-6) &&
+           close(this->Values, o.Values, 0.0) && close(this->Opacity, o.Opacity, 1e-12) &&
+           close(this->Points, o.Points, 1e-6);
   }
 };
 
@@ -178,8 +178,13 @@ struct Scene
 
 bool CheckHorizons(Scene& s, const std::string& out)
 {
-  auto ref = CompareWithReference(s.Horizons.Win, s.Horizons.Ren, s.Horizons.Actor,
-    s.Horizons.Mapper, s.Horizons.Images, "picker-horizons", out);
+  auto ref = CompareWithReference(s.Horizons.Win,
+    s.Horizons.Ren,
+    s.Horizons.Actor,
+    s.Horizons.Mapper,
+    s.Horizons.Images,
+    "picker-horizons",
+    out);
   s.Horizons.Mapper->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
   vtkNew<vtkSubsurfacePicker> picker;
   long hits = 0, wrongId = 0, gpuAgree = 0, gpuChecked = 0;
@@ -194,7 +199,8 @@ bool CheckHorizons(Scene& s, const std::string& out)
       if (r.Horizon >= 0 && r.Horizon == ref.RefIds[p])
       {
         ++hits;
-        worstDepth = std::max(worstDepth, std::abs(WindowDepth(s.Horizons.Ren, r.Position) - ref.RefDepth[p]));
+        worstDepth =
+          std::max(worstDepth, std::abs(WindowDepth(s.Horizons.Ren, r.Position) - ref.RefDepth[p]));
       }
       if (ref.GpuIds[p] == ref.RefIds[p])
       {
@@ -255,10 +261,11 @@ bool CheckVolume(Scene& s, std::vector<PickResult>& picks)
       }
     }
   }
-  std::cout << "volume: " << hits << " rays reach opacity 0.5, " << misses << " do not; "
-            << samples << " samples within " << worstValue << " of the field, opacity within "
-            << worstAlpha << " of the reference\n";
-  const bool ok = hits > 5 && misses > 5 && samples > 1000 && worstValue < 1e-3 && worstAlpha < 0.01;
+  std::cout << "volume: " << hits << " rays reach opacity 0.5, " << misses << " do not; " << samples
+            << " samples within " << worstValue << " of the field, opacity within " << worstAlpha
+            << " of the reference\n";
+  const bool ok =
+    hits > 5 && misses > 5 && samples > 1000 && worstValue < 1e-3 && worstAlpha < 0.01;
   if (!ok)
     std::cerr << "FAILED: volume picks against the field and vtkMultiVolumeReferenceIntegrator\n";
   return ok;
@@ -288,8 +295,10 @@ bool CheckBoth(Scene& s, std::vector<PickResult>& picks)
       }
       if (h < VTK_DOUBLE_MAX && !r.Points.empty())
       {
-        const double horizon = std::sqrt(vtkMath::Distance2BetweenPoints(p1, picker->GetHorizonPosition()));
-        const double last = std::sqrt(vtkMath::Distance2BetweenPoints(p1, &r.Points[r.Points.size() - 3]));
+        const double horizon =
+          std::sqrt(vtkMath::Distance2BetweenPoints(p1, picker->GetHorizonPosition()));
+        const double last =
+          std::sqrt(vtkMath::Distance2BetweenPoints(p1, &r.Points[r.Points.size() - 3]));
         bad += last > horizon + 1e-9;
         stoppedByHorizon += !r.VolumeHit;
       }
@@ -304,8 +313,10 @@ bool CheckBoth(Scene& s, std::vector<PickResult>& picks)
 }
 
 /// The scene with its horizons and volume read back from page pools.
-bool CheckPaged(Scene& s, const std::vector<PickResult>& volumePicks,
-  const std::vector<PickResult>& bothPicks, const std::string& out)
+bool CheckPaged(Scene& s,
+  const std::vector<PickResult>& volumePicks,
+  const std::vector<PickResult>& bothPicks,
+  const std::string& out)
 {
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   auto pool = [&](vtkImageData* image, const std::string& name)
@@ -322,7 +333,8 @@ bool CheckPaged(Scene& s, const std::vector<PickResult>& volumePicks,
   };
   s.Horizons.Mapper->RemoveAllInputConnections(0);
   for (size_t k = 0; k < s.Horizons.Images.size(); ++k)
-    s.Horizons.Mapper->AddInputConnection(0, pool(s.Horizons.Images[k], "horizon" + std::to_string(k))->GetOutputPort());
+    s.Horizons.Mapper->AddInputConnection(
+      0, pool(s.Horizons.Images[k], "horizon" + std::to_string(k))->GetOutputPort());
   s.VolumeMapper->SetInputConnection(0, pool(s.Volume, "volume")->GetOutputPort());
   s.Horizons.Win->Render();
   vtkNew<vtkSubsurfacePicker> volumeOnly, both;
@@ -334,7 +346,8 @@ bool CheckPaged(Scene& s, const std::vector<PickResult>& volumePicks,
   {
     for (int i = 3; i < W; i += 8, ++n)
     {
-      const PickResult a = Pick(volumeOnly, s.Horizons.Ren, i, j), b = Pick(both, s.Horizons.Ren, i, j);
+      const PickResult a = Pick(volumeOnly, s.Horizons.Ren, i, j),
+                       b = Pick(both, s.Horizons.Ren, i, j);
       differ += !(a == volumePicks[n]);
       differ += !(b == bothPicks[n]);
     }
