@@ -13,9 +13,11 @@
 #include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkHorizonColumnReader.h"
 #include "vtkImageReader2.h"
 #include "vtkImageToPagePoolWriter.h"
+#include "vtkInformation.h"
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
@@ -362,6 +364,23 @@ int main(int argc, char* argv[])
   if (!ok)
   {
     return Die("conversion of \"" + input + "\" failed; no output written");
+  }
+  if (auto* segy = vtkSegyVolumeReader::SafeDownCast(reader))
+  {
+    if (segy->GetGeoreferenced())
+    {
+      const double* s = segy->GetOutputInformation(0)->Get(vtkDataObject::SPACING());
+      std::printf("SEG-Y placed by its trace coordinates: crosslines at %.6g degrees, bins %.6g "
+                  "x %.6g, largest trace residual %.3g\n",
+        segy->GetGridRotation(),
+        s[0],
+        s[2],
+        segy->GetFitResidual());
+    }
+    else
+    {
+      std::printf("SEG-Y placed by its line numbers (world = inline, crossline, time)\n");
+    }
   }
   std::printf("%s: %lld bytes, %lld pages (%s), %.2f s\n",
     output.c_str(),

@@ -572,8 +572,15 @@ std::string vtkSegyVolumeReader::vtkInternals::Place(const TraceHeaders& h,
   LatticeFit fit;
   if (!fit.Fit(i, j, h.XY))
   {
-    return "World placement: the traces lie on a single inline or crossline, so the other axis "
-           "cannot be placed (use LineNumbers placement)";
+    const std::string msg = "the traces lie on a single inline or crossline, so the other axis "
+                            "cannot be placed";
+    if (forced)
+    {
+      return "World placement: " + msg + " (use LineNumbers placement)";
+    }
+    this->Warning = msg + "; placed by line numbers";
+    this->PlaceByLineNumbers(dt);
+    return std::string();
   }
   const double il = std::hypot(fit.Inline[0], fit.Inline[1]);
   const double xl = std::hypot(fit.Crossline[0], fit.Crossline[1]);

@@ -45,9 +45,9 @@
  * direction matrices (set it as a prop's UserMatrix of an image with unit spacing, zero origin
  * and identity direction). Traces off the fitted lattice by more than MaximumFitResidual bins,
  * coordinates that do not change along both axes (wrong byte positions), geographic coordinates
- * (trace header byte 89 = 2, 3, 4), and a single inline or crossline (one axis cannot be
- * placed) are errors under World; Automatic falls back to LineNumbers with a warning for the
- * geographic case and with no message when every X and Y is zero (no georeference at all).
+ * (trace header byte 89 = 2, 3, 4), and a single inline or crossline (a 2-D line: one axis
+ * cannot be placed) are errors under World; Automatic falls back to LineNumbers with a warning
+ * for the last two and with no message when every X and Y is zero (no georeference at all).
  *
  * Placement LineNumbers (the frame of earlier versions): the direction matrix maps index
  * (x, y, z) to world (y, z, x), a proper rotation, so the world frame is the one of

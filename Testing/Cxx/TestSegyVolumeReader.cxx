@@ -492,7 +492,21 @@ void WorldErrors(const std::string& out)
   SegyTestFile line = file;
   line.Inlines = 1;
   Spit(bad, line.Bytes());
-  Rejects(reader, bad, "single inline or crossline", "one inline");
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::World);
+  Rejects(reader, bad, "single inline or crossline", "one inline, World");
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::Automatic);
+  {
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->Modified();
+    reader->Update();
+    Check(errors->Errors == 0 && errors->Warnings == 1 && !reader->GetGeoreferenced() &&
+            errors->First.find("single inline") != std::string::npos &&
+            SameAsGenerated(reader->GetOutput(), line),
+      "one inline (a 2-D line), Automatic: a warning, placed by line numbers");
+    reader->RemoveAllObservers();
+    reader->GetExecutive()->RemoveAllObservers();
+  }
 
   SegyTestFile delayed = file;
   delayed.DelayTrace = 6;

@@ -55,7 +55,7 @@ const double Centre[2] = { 456060.0, 6780130.0 };
 double HorizonTime(int h, double x, double y)
 {
   return (h ? 420.0 : 300.0) + (h ? -0.03 : 0.05) * (x - Centre[0]) +
-    (h ? 0.04 : 0.02) * (y - Centre[1]);
+         (h ? 0.04 : 0.02) * (y - Centre[1]);
 }
 
 /// 50 x 50 points at 8 m, axis-aligned, around the survey.
@@ -71,7 +71,8 @@ vtkSmartPointer<vtkImageData> MakeTimeHorizon(int h)
   for (int j = 0; j < 50; ++j)
     for (int i = 0; i < 50; ++i)
       t->SetValue(j * 50 + i,
-        static_cast<float>(HorizonTime(h, image->GetOrigin()[0] + 8.0 * i, image->GetOrigin()[1] + 8.0 * j)));
+        static_cast<float>(
+          HorizonTime(h, image->GetOrigin()[0] + 8.0 * i, image->GetOrigin()[1] + 8.0 * j)));
   image->GetPointData()->SetScalars(t);
   return image;
 }
