@@ -19,8 +19,12 @@
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkProp3D.h"
+#include "vtkProp3DCollection.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -234,7 +238,33 @@ void vtkSubsurfacePicker::Initialize()
 //------------------------------------------------------------------------------
 int vtkSubsurfacePicker::Pick3DInternal(vtkRenderer* ren, double p1World[4], double p2World[4])
 {
-  const int picked = this->Superclass::Pick3DInternal(ren, p1World, p2World);
+  int picked = this->Superclass::Pick3DInternal(ren, p1World, p2World);
+  // vtkPicker tests a prop's mapper bounds first, which for a vtkMultiVolume are those of its
+  // first input only: its members are cast here, along the whole ray.
+  vtkPropCollection* props = this->PickFromList ? this->GetPickList() : ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* candidate = props->GetNextProp(it))
+  {
+    auto* multi = vtkMultiVolume::SafeDownCast(candidate);
+    auto* mapper = multi ? vtkMultiVolumeRayCastMapper::SafeDownCast(multi->GetMapper()) : nullptr;
+    if (!mapper || !multi->GetPickable() || !multi->GetVisibility())
+      continue;
+    multi->InitPathTraversal();
+    vtkAssemblyPath* path = multi->GetNextPath();
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(multi->GetMatrix(), inverse);
+    double p1[3], p2[3];
+    Apply(inverse, p1World, p1);
+    Apply(inverse, p2World, p2);
+    this->Transform->SetMatrix(multi->GetMatrix()); // MarkPicked maps the point back with it
+    if (path && this->PickVolumes(p1, p2, path, multi, mapper) < VTK_DOUBLE_MAX)
+    {
+      this->Prop3Ds->AddItem(multi);
+      this->PickedPositions->InsertNextPoint(this->VolumePosition);
+      picked = 1;
+    }
+  }
   // A horizon nearer than the volume samples stops the ray there, as in the renderer.
   size_t keep = this->RayT.size();
   while (keep > 0 && this->RayT[keep - 1] > this->HorizonT)
@@ -262,6 +292,8 @@ double vtkSubsurfacePicker::IntersectWithLine(const double p1[3],
 {
   if (vtkStackedHeightFieldMapper::SafeDownCast(mapper))
     return this->PickHorizons(p1, p2, path, prop, mapper);
+  if (vtkMultiVolume::SafeDownCast(prop))
+    return VTK_DOUBLE_MAX; // cast in Pick3DInternal, whatever the first input's bounds
   if (vtkMultiVolumeRayCastMapper::SafeDownCast(mapper))
     return this->PickVolumes(p1, p2, path, prop, mapper);
   return this->Superclass::IntersectWithLine(p1, p2, tol, path, prop, mapper);

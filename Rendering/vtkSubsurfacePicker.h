@@ -22,6 +22,10 @@
  *   renderer, or to the far end) are GetRayPoints() (world), GetRayValues() (one component
  *   per volume input, NaN outside it) and GetRayOpacity() (accumulated after each sample).
  *
+ * A vtkMultiVolume is cast along the whole ray after vtkPicker's own pass (whose bounding-box
+ * test sees only the mapper's first input), its members placed by their own transforms; its
+ * pick events fire before that.
+ *
  * Paged inputs (vtkPagePoolReader outputs, which hold only their coarsest level) are read at
  * full resolution from their pools, only the pages under the ray: the pick is the one of the
  * in-core data, whatever is resident on the GPU.
