@@ -90,16 +90,16 @@ bool ClipToBox(const double a[3],
 /// The full-resolution data under the index-space segment a-b of the pooled input `image`
 /// (vtkPagePoolReader output): only the pages the segment's bounding box (+1 point) touches.
 /// `geometry` gets the full-resolution image geometry (origin, spacing, direction).
-vtkSmartPointer<vtkImageData> ReadPooled(vtkImageData* image,
+vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
+  int layer,
   vtkMatrix4x4* worldToIndexHint,
   const double p1[3],
   const double p2[3],
   bool lateralOnly)
 {
-  const char* pool = vtkPagePoolReader::GetPoolFileName(image);
   vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool);
-  reader->SetLayer(vtkPagePoolReader::GetPoolLayer(image));
+  reader->SetFileName(pool.c_str());
+  reader->SetLayer(layer);
   reader->SetResolution(1.0);
   reader->UpdateInformation();
   vtkInformation* info = reader->GetOutputInformation(0);
@@ -141,6 +141,27 @@ vtkSmartPointer<vtkImageData> ReadPooled(vtkImageData* image,
   auto out = vtkSmartPointer<vtkImageData>::New();
   out->ShallowCopy(reader->GetOutput());
   return out;
+}
+
+/// The pool behind input `port`, `connection` of `mapper` (vtkPagePoolReader's information
+/// keys), or empty for an in-core input. Asks only for the information: updating a paged
+/// input here would read its every page.
+std::string InputPool(vtkAlgorithm* mapper, int port, int connection, int& layer)
+{
+  mapper->GetInputAlgorithm(port, connection)->UpdateInformation();
+  vtkInformation* info = mapper->GetInputInformation(port, connection);
+  const char* pool = info ? info->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
+  layer = info && info->Has(vtkPagePoolReader::POOL_LAYER())
+            ? info->Get(vtkPagePoolReader::POOL_LAYER())
+            : 0;
+  return pool ? std::string(pool) : std::string();
+}
+
+/// The data of an in-core input, brought up to date.
+vtkImageData* InputImage(vtkAlgorithm* mapper, int port, int connection)
+{
+  mapper->GetInputAlgorithm(port, connection)->Update();
+  return vtkImageData::SafeDownCast(mapper->GetInputDataObject(port, connection));
 }
 
 /// Trilinear (or nearest) sample of component 0 at continuous index `x`, in the image's own
@@ -313,20 +334,21 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
   std::vector<vtkSmartPointer<vtkImageData>> images;
   for (int k = 0; k < n; ++k)
   {
-    mapper->GetInputAlgorithm(0, k)->Update();
-    auto* image = vtkImageData::SafeDownCast(mapper->GetInputDataObject(0, k));
-    if (!image)
-      return VTK_DOUBLE_MAX;
-    if (vtkPagePoolReader::GetPoolFileName(image))
+    int layer = 0;
+    const std::string pool = InputPool(mapper, 0, k, layer);
+    if (!pool.empty())
     {
       vtkNew<vtkMatrix4x4> scratch;
-      auto sub = ReadPooled(image, scratch, p1, p2, true);
+      auto sub = ReadPooled(pool, layer, scratch, p1, p2, true);
       if (!sub)
         return VTK_DOUBLE_MAX; // the ray passes beside the grid
       images.emplace_back(sub);
+      continue;
     }
-    else
-      images.emplace_back(image);
+    vtkImageData* image = InputImage(mapper, 0, k);
+    if (!image)
+      return VTK_DOUBLE_MAX;
+    images.emplace_back(image);
   }
   if (images.empty())
     return VTK_DOUBLE_MAX;
@@ -412,9 +434,10 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
     if (mapper->GetNumberOfInputConnections(port) == 0)
       continue;
     vtkVolume* member = multi ? multi->GetVolume(port) : vtkVolume::SafeDownCast(prop);
-    mapper->GetInputAlgorithm(port, 0)->Update();
-    auto* image = vtkImageData::SafeDownCast(mapper->GetInputDataObject(port, 0));
-    if (!member || !image || !member->GetProperty())
+    int layer = 0;
+    const std::string pool = InputPool(mapper, port, 0, layer);
+    vtkImageData* image = pool.empty() ? InputImage(mapper, port, 0) : nullptr;
+    if (!member || (pool.empty() && !image) || !member->GetProperty())
       continue;
     auto v = std::unique_ptr<RayVolume>(new RayVolume);
     // Mapper coordinates (the ray's) -> the member's world -> index.
@@ -424,7 +447,7 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
     if (!multi)
       memberToMapper->Identity();
     vtkNew<vtkMatrix4x4> indexToMember;
-    if (vtkPagePoolReader::GetPoolFileName(image))
+    if (!pool.empty())
     {
       vtkNew<vtkMatrix4x4> mapperToMember;
       vtkMatrix4x4::Invert(memberToMapper, mapperToMember);
@@ -432,7 +455,7 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
       Apply(mapperToMember, p1, q1);
       Apply(mapperToMember, p2, q2);
       vtkNew<vtkMatrix4x4> memberToIndex;
-      v->Data = ReadPooled(image, memberToIndex, q1, q2, false);
+      v->Data = ReadPooled(pool, layer, memberToIndex, q1, q2, false);
       if (!v->Data)
         continue;
       vtkMatrix4x4::Invert(memberToIndex, indexToMember);
