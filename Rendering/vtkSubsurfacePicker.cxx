@@ -16,6 +16,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
 #include "vtkObjectFactory.h"
+#include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkProp3D.h"
@@ -87,15 +88,18 @@ bool ClipToBox(const double a[3],
   return t0 <= t1;
 }
 
-/// The full-resolution data under the index-space segment a-b of the pooled input `image`
-/// (vtkPagePoolReader output): only the pages the segment's bounding box (+1 point) touches.
-/// `geometry` gets the full-resolution image geometry (origin, spacing, direction).
+/// The full-resolution data of `pool` under the segment p1-p2: only the pages its index-space
+/// bounding box (+1 point) touches. `worldToIndexHint` gets the full resolution's world ->
+/// index matrix. A height field (`heightScale` not 0) has the values for its third axis: the
+/// segment is clipped to the value `range` of the stack there, so a ray reads only the tiles
+/// under the part of it that can meet a surface.
 vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
   int layer,
   vtkMatrix4x4* worldToIndexHint,
   const double p1[3],
   const double p2[3],
-  bool lateralOnly)
+  double heightScale = 0.0,
+  const double range[2] = nullptr)
 {
   vtkNew<vtkPagePoolReader> reader;
   reader->SetFileName(pool.c_str());
@@ -109,6 +113,8 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
   info->Get(vtkDataObject::ORIGIN(), o);
   info->Get(vtkDataObject::SPACING(), s);
   info->Get(vtkDataObject::DIRECTION(), d);
+  if (heightScale != 0.0)
+    s[2] = heightScale;
   IndexMatrix(o, s, d, worldToIndexHint);
   worldToIndexHint->Invert();
   double a[3], b[3];
@@ -120,13 +126,17 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
     lo[c] = whole[2 * c];
     hi[c] = whole[2 * c + 1];
   }
+  if (heightScale != 0.0)
+  {
+    if (!(range[0] <= range[1]))
+      return nullptr; // no values at all
+    // A relative margin: the surfaces the GPU sees are the float values.
+    const double margin = 1e-6 * std::max(1.0, std::max(std::abs(range[0]), std::abs(range[1])));
+    lo[2] = range[0] - margin;
+    hi[2] = range[1] + margin;
+  }
   double t0 = 0.0, t1 = 1.0;
   int extent[6];
-  if (lateralOnly)
-  {
-    // Height fields: the ray's footprint on the lateral grid, whatever its height.
-    a[2] = b[2] = 0.0;
-  }
   if (!ClipToBox(a, b, lo, hi, t0, t1))
   {
     return nullptr;
@@ -136,6 +146,11 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
     const double u = a[c] + t0 * (b[c] - a[c]), v = a[c] + t1 * (b[c] - a[c]);
     extent[2 * c] = std::max(whole[2 * c], static_cast<int>(std::floor(std::min(u, v))) - 1);
     extent[2 * c + 1] = std::min(whole[2 * c + 1], static_cast<int>(std::ceil(std::max(u, v))) + 1);
+  }
+  if (heightScale != 0.0)
+  {
+    extent[4] = whole[4];
+    extent[5] = whole[5];
   }
   reader->UpdateExtent(extent);
   auto out = vtkSmartPointer<vtkImageData>::New();
@@ -331,6 +346,21 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
 {
   auto* mapper = vtkStackedHeightFieldMapper::SafeDownCast(m);
   const int n = mapper->GetNumberOfInputConnections(0);
+  // The value range of every paged horizon (their pools' headers): one footprint for all, so
+  // that the layers share a grid.
+  double range[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (int k = 0; k < n; ++k)
+  {
+    int layer = 0;
+    const std::string pool = InputPool(mapper, 0, k, layer);
+    vtkPagePoolFile file;
+    if (!pool.empty() && file.Open(pool) &&
+        file.GetHeader().ValueRange[0] <= file.GetHeader().ValueRange[1])
+    {
+      range[0] = std::min(range[0], file.GetHeader().ValueRange[0]);
+      range[1] = std::max(range[1], file.GetHeader().ValueRange[1]);
+    }
+  }
   std::vector<vtkSmartPointer<vtkImageData>> images;
   for (int k = 0; k < n; ++k)
   {
@@ -339,7 +369,8 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
     if (!pool.empty())
     {
       vtkNew<vtkMatrix4x4> scratch;
-      auto sub = ReadPooled(pool, layer, scratch, p1, p2, true);
+      const double scale = mapper->GetHeightScale();
+      auto sub = scale != 0.0 ? ReadPooled(pool, layer, scratch, p1, p2, scale, range) : nullptr;
       if (!sub)
         return VTK_DOUBLE_MAX; // the ray passes beside the grid
       images.emplace_back(sub);
@@ -455,7 +486,7 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
       Apply(mapperToMember, p1, q1);
       Apply(mapperToMember, p2, q2);
       vtkNew<vtkMatrix4x4> memberToIndex;
-      v->Data = ReadPooled(pool, layer, memberToIndex, q1, q2, false);
+      v->Data = ReadPooled(pool, layer, memberToIndex, q1, q2);
       if (!v->Data)
         continue;
       vtkMatrix4x4::Invert(memberToIndex, indexToMember);
