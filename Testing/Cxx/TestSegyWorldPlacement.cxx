@@ -11,6 +11,8 @@
 //   here from the survey's parameters alone (not from the reader): the two images differ by at
 //   most 2 in any channel (the placements agree to the millimetres the coordinates are rounded
 //   to; an axis swapped, mirrored or turned the wrong way moves the slab by tens of pixels).
+// - and GetGridToWorld() as the vtkVolume's matrix of the samples in index space draws the
+//   same picture (within 2).
 // Both at 30 degrees (inlines counterclockwise from crosslines) and mirrored at 127 degrees.
 #include "StrataMultiVolumeCase.h"
 #include "StrataSegyTestFile.h"
@@ -109,6 +111,28 @@ bool Placement(const SegyTestFile& file, const std::string& name, const std::str
   if (off > 0)
   {
     std::cerr << "FAILED: " << name << ": the survey is not drawn where its coordinates say\n";
+    ok = false;
+  }
+  // GetGridToWorld as the prop's matrix of an image in index space (unit spacing, zero origin,
+  // identity direction): the same picture, for consumers that ignore direction matrices.
+  vtkNew<vtkImageData> indexed;
+  indexed->ShallowCopy(world);
+  indexed->SetOrigin(0, 0, 0);
+  indexed->SetSpacing(1, 1, 1);
+  indexed->SetDirectionMatrix(identity);
+  auto byMatrix = vtkSmartPointer<vtkTransform>::New();
+  byMatrix->SetMatrix(reader->GetGridToWorld());
+  VolumeScene user(out);
+  user.Add(indexed, property, byMatrix);
+  user.UseSingleVolume();
+  user.Ren->GetActiveCamera()->DeepCopy(expected.Ren->GetActiveCamera());
+  const VolumeComparison c = user.Compare(name + "-gridtoworld");
+  const long userOff = PixelsOff(c.Gpu, a.Gpu, 2);
+  std::cout << name << ": GetGridToWorld as the prop's matrix: " << userOff
+            << " pixels off by more than 2\n";
+  if (userOff > 0)
+  {
+    std::cerr << "FAILED: " << name << ": GetGridToWorld does not place the index-space image\n";
     ok = false;
   }
   return ok;
