@@ -136,24 +136,23 @@ struct LatticeFit
   double MaxResidual = 0.0;
   vtkIdType WorstTrace = -1;
 
-  /// False when the traces do not span both axes (one line, or one trace).
-  bool Fit(const std::vector<double>& i,
-    const std::vector<double>& j,
-    const std::vector<double>& xy)
+  /// False when the traces do not span both axes (one line, or one trace). i(t) and j(t) are
+  /// trace t's grid indices (computed, not stored: a survey has millions of traces).
+  template<typename I, typename J>
+  bool Fit(size_t n, I i, J j, const std::vector<double>& xy)
   {
-    const size_t n = i.size();
     double mi = 0, mj = 0, mp[2] = { 0, 0 };
     for (size_t t = 0; t < n; ++t)
     {
-      mi += i[t] / n;
-      mj += j[t] / n;
+      mi += i(t) / n;
+      mj += j(t) / n;
       mp[0] += xy[2 * t] / n;
       mp[1] += xy[2 * t + 1] / n;
     }
     double sii = 0, sjj = 0, sij = 0, sip[2] = { 0, 0 }, sjp[2] = { 0, 0 };
     for (size_t t = 0; t < n; ++t)
     {
-      const double di = i[t] - mi, dj = j[t] - mj;
+      const double di = i(t) - mi, dj = j(t) - mj;
       sii += di * di;
       sjj += dj * dj;
       sij += di * dj;
@@ -178,9 +177,9 @@ struct LatticeFit
     for (size_t t = 0; t < n; ++t)
     {
       const double dx =
-        this->Origin[0] + this->Inline[0] * i[t] + this->Crossline[0] * j[t] - xy[2 * t];
+        this->Origin[0] + this->Inline[0] * i(t) + this->Crossline[0] * j(t) - xy[2 * t];
       const double dy =
-        this->Origin[1] + this->Inline[1] * i[t] + this->Crossline[1] * j[t] - xy[2 * t + 1];
+        this->Origin[1] + this->Inline[1] * i(t) + this->Crossline[1] * j(t) - xy[2 * t + 1];
       const double r = std::hypot(dx, dy);
       if (r > this->MaxResidual)
       {
@@ -562,15 +561,15 @@ std::string vtkSegyVolumeReader::vtkInternals::Place(const TraceHeaders& h,
     this->PlaceByLineNumbers(dt);
     return std::string();
   }
-  std::vector<double> i(this->Traces), j(this->Traces);
-  for (vtkIdType t = 0; t < this->Traces; ++t)
+  auto i = [&](size_t t)
+  { return static_cast<double>((int64_t(h.Inlines[t]) - this->FirstInline) / this->InlineStep); };
+  auto j = [&](size_t t)
   {
-    i[t] = static_cast<double>((int64_t(h.Inlines[t]) - this->FirstInline) / this->InlineStep);
-    j[t] =
-      static_cast<double>((int64_t(h.Crosslines[t]) - this->FirstCrossline) / this->CrosslineStep);
-  }
+    return static_cast<double>(
+      (int64_t(h.Crosslines[t]) - this->FirstCrossline) / this->CrosslineStep);
+  };
   LatticeFit fit;
-  if (!fit.Fit(i, j, h.XY))
+  if (!fit.Fit(static_cast<size_t>(this->Traces), i, j, h.XY))
   {
     const std::string msg = "the traces lie on a single inline or crossline, so the other axis "
                             "cannot be placed";
