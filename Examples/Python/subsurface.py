@@ -7,6 +7,7 @@ transform; then one pick at the window's centre.
 import argparse
 import math
 import pathlib
+import shutil
 import sys
 import tempfile
 
@@ -26,7 +27,8 @@ parser.add_argument("output", nargs="?", default="subsurface.png")
 parser.add_argument("--data", default=str(DATA), help="folder with horizons/reek_*.gri")
 parser.add_argument("--survey", help="the SEG-Y file to write (default: a temporary file)")
 args = parser.parse_args()
-path = args.survey or str(pathlib.Path(tempfile.mkdtemp()) / "reek-synthetic.sgy")
+work = None if args.survey else tempfile.mkdtemp()
+path = args.survey or str(pathlib.Path(work) / "reek-synthetic.sgy")
 
 # The survey: reflections at the four horizons (impedance per layer), a Ricker wavelet, noise.
 survey = strata.vtkSyntheticSurveyWriter()
@@ -108,4 +110,6 @@ writer = vtkPNGWriter()
 writer.SetInputConnection(grab.GetOutputPort())
 writer.SetFileName(args.output)
 writer.Write()
+if work:
+    shutil.rmtree(work)
 print(args.output)
