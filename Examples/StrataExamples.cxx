@@ -493,7 +493,10 @@ int Subsurface(const Arguments& args)
               << picker->GetHorizonId() << ", " << picker->GetRayPoints()->GetNumberOfPoints()
               << " volume samples\n";
   }
-  return Save(window, args) ? 0 : 1;
+  const int result = Save(window, args) ? 0 : 1;
+  if (!args.KeepPools)
+    std::remove(path.c_str());
+  return result;
 }
 }
 
