@@ -218,6 +218,12 @@ public:
 
     void Classify(double s, double& tau, double rgb[3]) const
     {
+      tau = -std::log1p(-this->Lookup(s, rgb)) / this->UnitDistance;
+    }
+
+    /// The (clamped) table opacity and colour at s.
+    double Lookup(double s, double rgb[3]) const
+    {
       int j = 0;
       double f = 0.0;
       if (this->N > 1)
@@ -249,7 +255,13 @@ public:
       {
         std::copy(c, c + 3, rgb);
       }
-      tau = -std::log1p(-alpha) / this->UnitDistance;
+      return alpha;
+    }
+
+    /// s over the table's range, (s - smin) / (smax - smin).
+    double Normalized(double s) const
+    {
+      return this->N > 1 ? (s - this->SMin) * this->Scale / (this->N - 1) : 0.0;
     }
   };
 
@@ -266,6 +278,46 @@ public:
     Table Tf;
     // World-unit bounds along any ray: tau, tau', tau'', E, E', E''.
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+    Blend Mode = Blend::Composite;
+    std::vector<double> Iso;
+    double AverageRange[2] = { -1.0e300, 1.0e300 };
+
+    bool Reduces() const
+    {
+      return this->Mode != Blend::Composite && this->Mode != Blend::IsoSurface;
+    }
+
+    /// The scalar at index position x (trilinear or nearest, clamped at the borders).
+    double Sample(const double x[3]) const
+    {
+      int i0[3], i1[3];
+      double f[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int n = this->Dims[k];
+        const double xc = std::min(std::max(x[k], 0.0), n - 1.0);
+        if (!this->Linear)
+        {
+          i0[k] = i1[k] = std::min(static_cast<int>(std::floor(xc + 0.5)), n - 1);
+          f[k] = 0.0;
+          continue;
+        }
+        i0[k] = std::min(static_cast<int>(std::floor(xc)), std::max(n - 2, 0));
+        i1[k] = std::min(i0[k] + 1, n - 1);
+        f[k] = xc - i0[k];
+      }
+      double v = 0.0;
+      for (int m = 0; m < 8; ++m)
+      {
+        double w = 1.0;
+        for (int k = 0; k < 3; ++k)
+          w *= (m >> k) & 1 ? f[k] : 1.0 - f[k];
+        if (w != 0.0)
+          v += w * this->Value(
+                     (m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2]);
+      }
+      return v;
+    }
 
     double Value(int i, int j, int k) const
     {
@@ -291,8 +343,17 @@ public:
     Poly S;
     double SLo, SHi; ///< range of the cell's corners
   };
+  // Something composited at one place along the ray: a reduced volume's layer, a surface.
+  struct Layer
+  {
+    double T;
+    double C[4]; ///< premultiplied
+    bool operator<(const Layer& o) const { return this->T < o.T; }
+  };
   struct Workspace
   {
+    std::vector<Layer> Layers;
+    std::vector<Layer> Surfaces;
     std::vector<Active> Act;
     std::vector<double> Breaks;
     std::vector<double> Sub;
@@ -315,7 +376,71 @@ public:
     double t1,
     Workspace& ws) const;
   void BuildCover(const Active& a, double ta, double tm, Cover& c) const;
+  Layer Reduce(const Active& a, double dn) const;
+  void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
 };
+
+// A Maximum, Minimum, Average or Additive volume alone over its chord [Te, Tx]: midpoint
+// samples at most one step apart (see the class comment).
+vtkMultiVolumeReferenceIntegrator::vtkInternals::Layer
+vtkMultiVolumeReferenceIntegrator::vtkInternals::Reduce(const Active& a, double dn) const
+{
+  const Vol& v = *a.V;
+  const double hT = this->StepLength() / dn;
+  const int steps = std::max(1, static_cast<int>(std::ceil((a.Tx - a.Te) / hT)));
+  const double dt = (a.Tx - a.Te) / steps;
+  double best = 0.0, bestT = a.Te, sum = 0.0, length = 0.0;
+  for (int k = 0; k < steps; ++k)
+  {
+    const double t = a.Te + (k + 0.5) * dt;
+    const double x[3] = { a.P0[0] + a.DI[0] * t, a.P0[1] + a.DI[1] * t, a.P0[2] + a.DI[2] * t };
+    const double s = v.Sample(x);
+    if (k == 0 || (v.Mode == Blend::Maximum ? s > best : s < best))
+    {
+      best = s;
+      bestT = t;
+    }
+    if (v.Mode == Blend::Average && !(s >= v.AverageRange[0] && s <= v.AverageRange[1]))
+      continue;
+    double rgb[3];
+    sum += v.Tf.Lookup(s, rgb) * v.Tf.Normalized(s) * dt * dn;
+    length += dt * dn;
+  }
+  Layer layer{ a.Te, { 0.0, 0.0, 0.0, 0.0 } };
+  if (v.Mode == Blend::Maximum || v.Mode == Blend::Minimum)
+  {
+    double rgb[3];
+    const double alpha = v.Tf.Lookup(best, rgb);
+    layer = { bestT, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } };
+  }
+  else if (v.Mode == Blend::Additive || length > 0.0)
+  {
+    const double g = std::min(
+      std::max(v.Mode == Blend::Additive ? sum / v.Tf.UnitDistance : sum / length, 0.0), 1.0);
+    layer.C[0] = layer.C[1] = layer.C[2] = g;
+    layer.C[3] = 1.0;
+  }
+  return layer;
+}
+
+// The surfaces of an IsoSurface volume's contours in one piece (u in (0, len)), at u.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::AppendSurfaces(const Cover& c,
+  double len,
+  Workspace& ws) const
+{
+  std::vector<double> roots;
+  for (double value : c.V->Iso)
+  {
+    if (!(c.SHi > c.SLo) || value <= c.SLo || value >= c.SHi)
+      continue;
+    roots.clear();
+    AppendCrossings(c.S, value, len, roots);
+    double rgb[3];
+    const double alpha = c.V->Tf.Lookup(value, rgb);
+    for (double u : roots)
+      ws.Surfaces.push_back({ u, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } });
+  }
+}
 
 void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a,
   double ta,
@@ -391,6 +516,7 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
   // Exact clipping against every box, in the volume's index space.
   ws.Act.clear();
   ws.Breaks.clear();
+  ws.Layers.clear();
   for (const Vol& v : this->Volumes)
   {
     Active a;
@@ -423,6 +549,12 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     {
       continue;
     }
+    if (v.Reduces())
+    {
+      ws.Layers.push_back(this->Reduce(a, dn));
+      ws.Breaks.push_back(ws.Layers.back().T);
+      continue;
+    }
     ws.Act.push_back(a);
     ws.Breaks.push_back(a.Te);
     ws.Breaks.push_back(a.Tx);
@@ -452,12 +584,22 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     }
   }
   std::sort(ws.Breaks.begin(), ws.Breaks.end());
+  std::sort(ws.Layers.begin(), ws.Layers.end());
 
   double T = 1.0;
   double C[3] = { 0.0, 0.0, 0.0 };
+  auto over = [&](const Layer& layer)
+  {
+    for (int ch = 0; ch < 3; ++ch)
+      C[ch] += T * layer.C[ch];
+    T *= 1.0 - layer.C[3];
+  };
+  size_t nextLayer = 0;
   for (size_t b = 0; b + 1 < ws.Breaks.size(); ++b)
   {
     const double ta = ws.Breaks[b], tb = ws.Breaks[b + 1];
+    for (; nextLayer < ws.Layers.size() && ws.Layers[nextLayer].T <= ta; ++nextLayer)
+      over(ws.Layers[nextLayer]);
     if (!(tb > ta))
     {
       continue;
@@ -485,12 +627,17 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     const int steps = std::max(1, static_cast<int>(std::min(std::ceil(ratio), 1e9)));
     const double len = tb - ta;
 
-    // Split at the transfer-function kinks each trilinear scalar crosses.
+    // Split at the transfer-function kinks each trilinear scalar crosses and at the surfaces.
     ws.Sub.clear();
     ws.Sub.push_back(0.0);
+    ws.Surfaces.clear();
     for (const Cover& c : ws.Cov)
     {
-      if (c.SHi > c.SLo)
+      if (c.V->Mode == Blend::IsoSurface)
+      {
+        this->AppendSurfaces(c, len, ws);
+      }
+      else if (c.SHi > c.SLo)
       {
         const std::vector<double>& kinks = c.V->Tf.Kinks;
         for (auto it = std::upper_bound(kinks.begin(), kinks.end(), c.SLo);
@@ -501,6 +648,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         }
       }
     }
+    for (const Layer& surface : ws.Surfaces)
+      ws.Sub.push_back(surface.T);
+    std::sort(ws.Surfaces.begin(), ws.Surfaces.end());
+    size_t nextSurface = 0;
     ws.Sub.push_back(len);
     if (ws.Sub.size() > 2)
     {
@@ -510,6 +661,8 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     for (size_t s = 0; s + 1 < ws.Sub.size(); ++s)
     {
       const double ua = ws.Sub[s], ub = ws.Sub[s + 1];
+      for (; nextSurface < ws.Surfaces.size() && ws.Surfaces[nextSurface].T <= ua; ++nextSurface)
+        over(ws.Surfaces[nextSurface]);
       if (!(ub > ua))
       {
         continue;
@@ -523,6 +676,8 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         double e[3] = { 0.0, 0.0, 0.0 };
         for (const Cover& c : ws.Cov)
         {
+          if (c.V->Mode == Blend::IsoSurface)
+            continue;
           double tau, rgb[3];
           c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
           sigma += tau;
@@ -549,7 +704,11 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         }
       }
     }
+    for (; nextSurface < ws.Surfaces.size(); ++nextSurface)
+      over(ws.Surfaces[nextSurface]);
   }
+  for (; nextLayer < ws.Layers.size(); ++nextLayer)
+    over(ws.Layers[nextLayer]);
   return { C[0], C[1], C[2], 1.0 - T };
 }
 
@@ -830,6 +989,9 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   }
   vtkInternals::BuildTable(in.Classification, v.Tf);
   v.Linear = in.Sampling == Interpolation::Linear;
+  v.Mode = in.BlendMode;
+  v.Iso = in.IsoValues;
+  std::copy(in.AverageRange, in.AverageRange + 2, v.AverageRange);
   if (in.Scalars.empty())
   {
     v.F = std::move(in.FloatScalars);

@@ -3,6 +3,8 @@
 
 #include "vtkVolumeBrickTree.h"
 
+#include "vtkVolumeMapper.h"
+
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -123,6 +125,58 @@ double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
   return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
 }
 
+void vtkMultiVolumeInput::SetBlendMode(int mode, const std::vector<double>& isoValues)
+{
+  std::vector<double> iso = isoValues;
+  std::sort(iso.begin(), iso.end());
+  if (mode == this->BlendMode && iso == this->IsoValues)
+    return;
+  this->BlendMode = mode;
+  this->IsoValues = iso;
+  this->SkipTime = 0; // the skip grid is classified again
+}
+
+double vtkMultiVolumeInput::BrickVisibility(double lo, double hi) const
+{
+  switch (this->BlendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return this->MaxOpacity(-VTK_DOUBLE_MAX, hi);
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return this->MaxOpacity(lo, VTK_DOUBLE_MAX);
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return 1.0;
+    default:
+      return this->MaxOpacity(lo, hi);
+  }
+}
+
+double vtkMultiVolumeInput::CellVisibility(double lo, double hi) const
+{
+  if (this->BlendMode != vtkVolumeMapper::ISOSURFACE_BLEND)
+    return this->BrickVisibility(lo, hi);
+  double visible = 0.0;
+  for (double v : this->IsoValues)
+    if (v >= lo && v <= hi)
+      visible = std::max(visible, this->MaxOpacity(v, v));
+  return visible;
+}
+
+double vtkMultiVolumeInput::GetEmptyScalar() const
+{
+  const double* range = this->Table.GetScalarRange();
+  switch (this->BlendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return range[0];
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return range[1];
+    default:
+      return this->EmptyScalar;
+  }
+}
+
 void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   const std::string& pool,
   const int dims[3],
@@ -158,7 +212,7 @@ void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   }
   if (!build && this->SkipTime == this->Table.GetBuildCount() && this->SkipTexture)
     return;
-  this->Skip.Classify([this](double lo, double hi) { return this->MaxOpacity(lo, hi); });
+  this->Skip.Classify([this](double lo, double hi) { return this->CellVisibility(lo, hi); });
   const int* cd = this->Skip.GetCellDimensions();
   glBindTexture(GL_TEXTURE_3D, this->SkipTexture.Get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -243,7 +297,7 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       float(b.TableBricks[0]), float(b.TableBricks[1]), float(b.TableBricks[2])
     };
     program->SetUniform3f(("uTableDims" + N).c_str(), tableDims);
-    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->EmptyScalar));
+    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->GetEmptyScalar()));
   }
   else
   {
@@ -269,7 +323,10 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       float(property->GetSpecularPower(0)) };
     program->SetUniform4f(("uMaterial" + N).c_str(), material);
   }
-  if (b.Classification == Classifications::PostClassification)
+  if (b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
+    this->BindBlendMode(program, N, property, b);
+  if (b.Classification == Classifications::PostClassification ||
+      b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     vtkTextureObject* transfer = this->Table.GetTexture();
     transfer->Activate();
@@ -293,11 +350,37 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       ("uPreMaxColor" + N).c_str(), static_cast<float>(this->PreIntegration.GetMaximumColor()));
 }
 
+void vtkMultiVolumeInput::BindBlendMode(vtkShaderProgram* program,
+  const std::string& N,
+  vtkVolumeProperty* property,
+  const Binding& b)
+{
+  program->SetUniformf(
+    ("uUnit" + N).c_str(), static_cast<float>(property->GetScalarOpacityUnitDistance(0)));
+  if (b.BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND)
+  {
+    float iso[8] = { 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f };
+    const int count = std::min(static_cast<int>(this->IsoValues.size()), 8);
+    for (int i = 0; i < count; ++i)
+      iso[i] = static_cast<float>(this->IsoValues[i]);
+    program->SetUniform1fv(("uIso" + N).c_str(), 8, iso);
+    program->SetUniformi(("uNumIso" + N).c_str(), count);
+    return;
+  }
+  const double* sr = this->Table.GetScalarRange();
+  const float normalize[2] = { float(sr[0]), float(1.0 / (sr[1] - sr[0])) };
+  program->SetUniform2f(("uNormalize" + N).c_str(), normalize);
+  const float average[2] = { b.AverageRange ? float(b.AverageRange[0]) : -VTK_FLOAT_MAX,
+    b.AverageRange ? float(b.AverageRange[1]) : VTK_FLOAT_MAX };
+  program->SetUniform2f(("uAverageRange" + N).c_str(), average);
+}
+
 void vtkMultiVolumeInput::Unbind(const Binding& b)
 {
   if (this->Data && !b.Atlas)
     this->Data->Deactivate();
-  if (b.Classification == Classifications::PostClassification)
+  if (b.Classification == Classifications::PostClassification ||
+      b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
     this->Table.GetTexture()->Deactivate();
   else
     this->PreTable->Deactivate();

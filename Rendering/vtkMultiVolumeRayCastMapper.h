@@ -34,6 +34,7 @@
 #include "vtkVolumePager.h" // For vtkVolumePager::Statistics
 
 #include <array>  // For std::array
+#include <map>    // For std::map
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
@@ -309,6 +310,35 @@ public:
   vtkGetMacro(TerminationOpacity, double);
   ///@}
 
+  ///@{
+  /**
+   * Blend mode of the volume on input port `port`, one of vtkVolumeMapper::BlendModes
+   * (COMPOSITE, MAXIMUM_INTENSITY, MINIMUM_INTENSITY, AVERAGE_INTENSITY, ADDITIVE,
+   * ISOSURFACE); -1 (the default for every port) uses the mapper's own BlendMode
+   * (SetBlendMode, default COMPOSITE), so a single volume behaves like VTK's mappers.
+   * GetInputBlendMode returns what was set, GetEffectiveBlendMode what is drawn. SLICE is not
+   * supported (drawn as COMPOSITE, with a warning).
+   *
+   * Where volumes of different modes overlap: composite volumes are media that mix (see the
+   * class comment). An ISOSURFACE volume adds no medium: every crossing of one of its
+   * property's isovalues (vtkVolumeProperty::GetIsoSurfaceValues) is a surface of the colour
+   * and opacity its transfer functions give that value (shaded like the volume), composited
+   * where it lies among the media. A MAXIMUM/MINIMUM/AVERAGE/ADDITIVE volume is reduced alone
+   * along the ray over its whole box (the media of the others do not enter it) and the result is
+   * one layer composited among the media at its own depth: at the sample of the maximum
+   * (minimum), with the colour and opacity of that scalar; at the ray's entry into the volume for
+   * AVERAGE and ADDITIVE, opaque grey as in VTK: AVERAGE the mean over the ray of opacity(s)
+   * times s normalised to the transfer functions' range, over the samples inside
+   * AverageIPScalarRange; ADDITIVE the same sum with each sample weighted by its length over
+   * ScalarOpacityUnitDistance (VTK's per-sample sum when the two are equal), both clamped to 1.
+   * A layer lands before the sample step that contains its depth. Reductions need texture
+   * barriers (OpenGL 4.5 or ARB/NV_texture_barrier); they cost one pass per reduced volume.
+   */
+  void SetInputBlendMode(int port, int mode);
+  int GetInputBlendMode(int port) const;
+  int GetEffectiveBlendMode(int port) const;
+  ///@}
+
   /**
    * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; the offsets of
    * the R rays average to the centre. Tests and references use it to integrate the same rays.
@@ -334,6 +364,9 @@ public:
    * a fragment of one unshaded volume must carry no loop over other volumes.
    */
   std::string GetFragmentShaderSource(int numberOfVolumes) const;
+  /// The reduction pass's source for blend mode `blendMode` as the last render generated it
+  /// (empty if no volume of that mode was drawn).
+  std::string GetReductionShaderSource(int blendMode) const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
@@ -371,6 +404,7 @@ protected:
   bool FeedbackOpenCL = true;
   double LevelOfDetailThreshold = 0.0;
   bool HoldCut = false;
+  std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode
 
 private:
   vtkMultiVolumeRayCastMapper(const vtkMultiVolumeRayCastMapper&) = delete;
