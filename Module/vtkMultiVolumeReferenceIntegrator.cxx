@@ -377,6 +377,8 @@ public:
     Workspace& ws) const;
   void BuildCover(const Active& a, double ta, double tm, Cover& c) const;
   Layer Reduce(const Active& a, double dn) const;
+  void Clip(const double o[3], const double d[3], double t0, double t1, double dn, Workspace& ws)
+    const;
   void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
 };
 
@@ -499,21 +501,15 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a
   c.S = LerpPoly(py0, py1, x0[2], ex[2]);
 }
 
-std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
+// Every box the ray crosses in [t0, t1], clipped exactly in the volume's index space: the
+// active volumes with their box faces and cell planes as breaks, and the reduced volumes' layers.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::Clip(const double o[3],
   const double d[3],
   double t0,
   double t1,
+  double dn,
   Workspace& ws) const
 {
-  std::array<double, 4> out = { 0.0, 0.0, 0.0, 0.0 };
-  const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (!(dn > 0.0) || !(t1 > t0) || this->Volumes.empty())
-  {
-    return out;
-  }
-  const double hT = this->StepLength() / dn;
-
-  // Exact clipping against every box, in the volume's index space.
   ws.Act.clear();
   ws.Breaks.clear();
   ws.Layers.clear();
@@ -584,6 +580,23 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     }
   }
   std::sort(ws.Breaks.begin(), ws.Breaks.end());
+}
+
+std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
+  const double d[3],
+  double t0,
+  double t1,
+  Workspace& ws) const
+{
+  std::array<double, 4> out = { 0.0, 0.0, 0.0, 0.0 };
+  const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(dn > 0.0) || !(t1 > t0) || this->Volumes.empty())
+  {
+    return out;
+  }
+  const double hT = this->StepLength() / dn;
+
+  this->Clip(o, d, t0, t1, dn, ws);
   std::sort(ws.Layers.begin(), ws.Layers.end());
 
   double T = 1.0;

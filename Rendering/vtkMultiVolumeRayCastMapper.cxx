@@ -753,8 +753,12 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
   key.Skipping =
     self->EmptySpaceSkipping &&
     !(reduce && frame.Volumes[volumes[0]].Mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
-  key.Feedback = frame.Feedback;
-  key.Footprint = frame.Footprint;
+  // Feedback comes from the volumes a program samples (a layer's bricks report in its pass).
+  bool samples = reduce;
+  for (int v : volumes)
+    samples = samples || !IsReduced(frame.Volumes[v].Mode);
+  key.Feedback = frame.Feedback && samples;
+  key.Footprint = frame.Footprint && samples;
   return key;
 }
 
