@@ -883,7 +883,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   }
   depth->Deactivate();
   this->Geometry.Unbind();
-  ++this->LastFragments;
+  this->LastFragments += reduce < 0 ? 1 : 0;
   return true;
 }
 
