@@ -281,6 +281,22 @@ public:
     Blend Mode = Blend::Composite;
     std::vector<double> Iso;
     double AverageRange[2] = { -1.0e300, 1.0e300 };
+    bool Cropping = false;
+    double CropPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    int CropFlags = 0;
+
+    /// Whether cropping shows the index point x.
+    bool Shown(const double x[3]) const
+    {
+      if (!this->Cropping)
+        return true;
+      int region = 0;
+      const int weight[3] = { 1, 3, 9 };
+      for (int k = 0; k < 3; ++k)
+        region += weight[k] * ((x[k] >= this->CropPlanes[2 * k] ? 1 : 0) +
+                                (x[k] >= this->CropPlanes[2 * k + 1] ? 1 : 0));
+      return ((this->CropFlags >> region) & 1) != 0;
+    }
 
     bool Reduces() const
     {
@@ -392,15 +408,19 @@ vtkMultiVolumeReferenceIntegrator::vtkInternals::Reduce(const Active& a, double 
   const int steps = std::max(1, static_cast<int>(std::ceil((a.Tx - a.Te) / hT)));
   const double dt = (a.Tx - a.Te) / steps;
   double best = 0.0, bestT = a.Te, sum = 0.0, length = 0.0;
+  bool found = false;
   for (int k = 0; k < steps; ++k)
   {
     const double t = a.Te + (k + 0.5) * dt;
     const double x[3] = { a.P0[0] + a.DI[0] * t, a.P0[1] + a.DI[1] * t, a.P0[2] + a.DI[2] * t };
+    if (!v.Shown(x))
+      continue;
     const double s = v.Sample(x);
-    if (k == 0 || (v.Mode == Blend::Maximum ? s > best : s < best))
+    if (!found || (v.Mode == Blend::Maximum ? s > best : s < best))
     {
       best = s;
       bestT = t;
+      found = true;
     }
     if (v.Mode == Blend::Average && !(s >= v.AverageRange[0] && s <= v.AverageRange[1]))
       continue;
@@ -409,13 +429,13 @@ vtkMultiVolumeReferenceIntegrator::vtkInternals::Reduce(const Active& a, double 
     length += dt * dn;
   }
   Layer layer{ a.Te, { 0.0, 0.0, 0.0, 0.0 } };
-  if (v.Mode == Blend::Maximum || v.Mode == Blend::Minimum)
+  if ((v.Mode == Blend::Maximum || v.Mode == Blend::Minimum) && found)
   {
     double rgb[3];
     const double alpha = v.Tf.Lookup(best, rgb);
     layer = { bestT, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } };
   }
-  else if (v.Mode == Blend::Additive || length > 0.0)
+  else if (v.Mode == Blend::Additive || (v.Mode == Blend::Average && length > 0.0))
   {
     const double g = std::min(
       std::max(v.Mode == Blend::Additive ? sum / v.Tf.UnitDistance : sum / length, 0.0), 1.0);
@@ -545,6 +565,13 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::Clip(const double o[3],
     {
       continue;
     }
+    for (int k = 0; v.Cropping && k < 6; ++k)
+    {
+      const int axis = k / 2;
+      const double t = a.DI[axis] != 0.0 ? (v.CropPlanes[k] - a.P0[axis]) / a.DI[axis] : a.Te;
+      if (t > a.Te && t < a.Tx)
+        ws.Breaks.push_back(t);
+    }
     if (v.Reduces())
     {
       ws.Layers.push_back(this->Reduce(a, dn));
@@ -622,7 +649,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     double chord = std::numeric_limits<double>::infinity();
     for (const Active& a : ws.Act)
     {
-      if (a.Te < tm && tm < a.Tx)
+      const double x[3] = {
+        a.P0[0] + a.DI[0] * tm, a.P0[1] + a.DI[1] * tm, a.P0[2] + a.DI[2] * tm
+      };
+      if (a.Te < tm && tm < a.Tx && a.V->Shown(x))
       {
         Cover c;
         this->BuildCover(a, ta, tm, c);
@@ -1003,6 +1033,9 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   vtkInternals::BuildTable(in.Classification, v.Tf);
   v.Linear = in.Sampling == Interpolation::Linear;
   v.Mode = in.BlendMode;
+  v.Cropping = in.Cropping;
+  std::copy(in.CropPlanes, in.CropPlanes + 6, v.CropPlanes);
+  v.CropFlags = in.CropFlags;
   v.Iso = in.IsoValues;
   std::copy(in.AverageRange, in.AverageRange + 2, v.AverageRange);
   if (in.Scalars.empty())

@@ -74,6 +74,10 @@
  * samples made into lengths). Reductions take midpoint samples every StepLength() (the extreme is
  * found to O(s'' h^2 / 8)).
  *
+ * Cropping (Volume::Cropping) hides a volume where its index point lies in a region whose flag is
+ * off: the ray is cut at the crop planes too, and a piece (or a reduction's sample) of the volume
+ * in a hidden region is left out, as if that volume were not there.
+ *
  * Limits: model matrices must be affine; boxes are closed, so a ray lying exactly in a face
  * shared by two volumes sees both (a set of measure zero); NaN scalars classify as the first
  * table entry. Cost: about 50 ns per step and covering volume on one core, steps h apart
@@ -144,6 +148,12 @@ public:
     Blend BlendMode = Blend::Composite;
     std::vector<double> IsoValues;                  ///< IsoSurface: the contour values
     double AverageRange[2] = { -1.0e300, 1.0e300 }; ///< Average: the scalars that count
+    /// Cropping as vtkVolumeMapper's 27 regions: planes (xmin, xmax, ymin, ymax, zmin, zmax) in
+    /// index coordinates; bit x + 3 y + 9 z of CropFlags shows region (x, y, z), 0 below an
+    /// axis's first plane, 1 between, 2 above.
+    bool Cropping = false;
+    double CropPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    int CropFlags = 0x0002000; ///< VTK_CROP_SUBVOLUME
   };
 
   /// Leading-order discretisation error bounds, per RGBA component (see the class comment).

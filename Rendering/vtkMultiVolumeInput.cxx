@@ -325,6 +325,12 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
   }
   if (b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
     this->BindBlendMode(program, N, property, b);
+  if (b.CropLo)
+  {
+    program->SetUniform3f(("uCropLo" + N).c_str(), b.CropLo);
+    program->SetUniform3f(("uCropHi" + N).c_str(), b.CropHi);
+    program->SetUniformi(("uCropFlags" + N).c_str(), b.CropFlags);
+  }
   if (b.Classification == Classifications::PostClassification ||
       b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {

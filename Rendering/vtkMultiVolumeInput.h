@@ -124,6 +124,9 @@ public:
     /// classification (contours and layers are coloured by it).
     int BlendMode = 0;
     const double* AverageRange = nullptr;
+    const float* CropLo = nullptr; ///< cropped: the planes in index coordinates, and the flags
+    const float* CropHi = nullptr;
+    int CropFlags = 0;
   };
   /**
    * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their

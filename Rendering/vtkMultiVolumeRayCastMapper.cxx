@@ -66,6 +66,9 @@ struct FrameVolume
   int Dims[3] = { 0, 0, 0 };
   std::string Pool; ///< the page pool the volume is paged from; Input is then a coarse stand-in
   int Mode = vtkVolumeMapper::COMPOSITE_BLEND; ///< its effective blend mode
+  bool Cropped = false;
+  float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
+  int CropFlags = 0;
 };
 
 bool IsReduced(int mode)
@@ -273,6 +276,15 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
       for (int c = 0; c < 3; ++c)
         imageMatrix->SetElement(r, c, d[3 * r + c] * s[c]);
       imageMatrix->SetElement(r, 3, o[r]);
+    }
+    double planes[6];
+    e.Cropped = self->GetEffectiveCropping(port, planes, e.CropFlags);
+    for (int a = 0; a < 3; ++a)
+    {
+      // Data coordinates (origin + index x spacing) to index coordinates.
+      const double p0 = (planes[2 * a] - o[a]) / s[a], p1 = (planes[2 * a + 1] - o[a]) / s[a];
+      e.CropLo[a] = static_cast<float>(std::min(p0, p1));
+      e.CropHi[a] = static_cast<float>(std::max(p0, p1));
     }
     e.IndexToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(member->GetMatrix(), imageMatrix, e.IndexToWorld);
@@ -742,6 +754,7 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
     const FrameVolume& e = frame.Volumes[v];
     key.Shaded.push_back(frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
     key.Modes.push_back(e.Mode);
+    key.Cropped.push_back(e.Cropped);
   }
   key.Reduce = reduce;
   key.Classification = self->Classification;
@@ -847,6 +860,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     vtkMultiVolumeInput::Binding& b = bindings[i];
     b.Classification = self->Classification;
     b.BlendMode = e.Mode;
+    b.CropLo = e.Cropped ? e.CropLo : nullptr;
+    b.CropHi = e.CropHi;
+    b.CropFlags = e.CropFlags;
     b.AverageRange = self->GetAverageIPScalarRange();
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
@@ -1127,6 +1143,40 @@ void vtkMultiVolumeRayCastMapper::SetInputBlendMode(int port, int mode)
   this->Modified();
 }
 
+void vtkMultiVolumeRayCastMapper::SetInputCropping(int port,
+  bool cropping,
+  const double planes[6],
+  int flags)
+{
+  InputCrop crop;
+  crop.Cropping = cropping;
+  std::copy(planes, planes + 6, crop.Planes);
+  crop.Flags = flags;
+  auto it = this->InputCroppings.find(port);
+  if (it != this->InputCroppings.end() && it->second.Cropping == crop.Cropping &&
+      it->second.Flags == crop.Flags && std::equal(planes, planes + 6, it->second.Planes))
+    return;
+  this->InputCroppings[port] = crop;
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::RemoveInputCropping(int port)
+{
+  if (this->InputCroppings.erase(port))
+    this->Modified();
+}
+
+bool vtkMultiVolumeRayCastMapper::GetEffectiveCropping(int port, double planes[6], int& flags) const
+{
+  auto it = this->InputCroppings.find(port);
+  const bool own = it != this->InputCroppings.end();
+  std::copy(own ? it->second.Planes : this->CroppingRegionPlanes,
+    (own ? it->second.Planes : this->CroppingRegionPlanes) + 6,
+    planes);
+  flags = own ? it->second.Flags : this->CroppingRegionFlags;
+  return own ? it->second.Cropping : this->Cropping != 0;
+}
+
 int vtkMultiVolumeRayCastMapper::GetInputBlendMode(int port) const
 {
   auto it = this->InputBlendModes.find(port);
@@ -1310,5 +1360,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HoldCut: " << this->HoldCut << "\n";
   for (const auto& mode : this->InputBlendModes)
     os << indent << "Blend mode of port " << mode.first << ": " << mode.second << "\n";
+  for (const auto& crop : this->InputCroppings)
+    os << indent << "Cropping of port " << crop.first << ": " << crop.second.Cropping
+       << ", flags 0x" << std::hex << crop.second.Flags << std::dec << "\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

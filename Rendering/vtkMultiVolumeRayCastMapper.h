@@ -339,6 +339,25 @@ public:
   int GetEffectiveBlendMode(int port) const;
   ///@}
 
+  ///@{
+  /**
+   * Cropping per volume, vtkVolumeMapper's 27 regions (all flags: VTK_CROP_SUBVOLUME, FENCE,
+   * CROSS, their inversions, any other bit set), beside the clipping planes. The mapper's own
+   * Cropping, CroppingRegionPlanes and CroppingRegionFlags apply to every volume whose port has
+   * none of its own; SetInputCropping gives port `port` its own (`cropping` false: that volume
+   * uncropped whatever the mapper's), RemoveInputCropping returns it to the mapper's. Planes
+   * (xmin, xmax, ymin, ymax, zmin, zmax) are in the volume's data coordinates, origin + index x
+   * spacing per axis, before its direction matrix and prop transform, as in VTK; a region is
+   * shown when bit x + 3 y + 9 z of the flags is set (x, y, z: 0 below an axis's first plane, 1
+   * between, 2 above). Decided per sample (at the step's midpoint): a cropped-away sample of a
+   * volume adds nothing, the other volumes there still do. GetEffectiveCropping: whether port
+   * `port` is cropped, with its planes and flags.
+   */
+  void SetInputCropping(int port, bool cropping, const double planes[6], int flags);
+  void RemoveInputCropping(int port);
+  bool GetEffectiveCropping(int port, double planes[6], int& flags) const;
+  ///@}
+
   /**
    * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; the offsets of
    * the R rays average to the centre. Tests and references use it to integrate the same rays.
@@ -405,6 +424,13 @@ protected:
   double LevelOfDetailThreshold = 0.0;
   bool HoldCut = false;
   std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode
+  struct InputCrop
+  {
+    bool Cropping = false;
+    double Planes[6] = { 0, 0, 0, 0, 0, 0 };
+    int Flags = 0;
+  };
+  std::map<int, InputCrop> InputCroppings; ///< by port; absent: the mapper's cropping
 
 private:
   vtkMultiVolumeRayCastMapper(const vtkMultiVolumeRayCastMapper&) = delete;

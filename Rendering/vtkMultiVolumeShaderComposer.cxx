@@ -8,6 +8,7 @@
 #include "vtkMultiVolumeBackToFront.h"
 #include "vtkMultiVolumeCompositeFS.h"
 #include "vtkMultiVolumeCompositeVS.h"
+#include "vtkMultiVolumeCrop.h"
 #include "vtkMultiVolumeFeedback.h"
 #include "vtkMultiVolumeFeedbackCheck.h"
 #include "vtkMultiVolumeFragmentFS.h"
@@ -105,6 +106,17 @@ int CountIf(const Key& key, bool (*test)(const Key&, int))
 bool IsLayer(const Key& key, int n)
 {
   return !Sampled(key, n);
+}
+
+bool Cropped(const Key& key, int n)
+{
+  return n < static_cast<int>(key.Cropped.size()) && key.Cropped[n];
+}
+
+/// `code` for volume n, masked by its cropping where it is cropped.
+std::string CropMask(const Key& key, int n, const std::string& point)
+{
+  return Cropped(key, n) ? ForVolume(" * strataCrop@n@(", n) + point + ")" : std::string();
 }
 
 // --- Feedback (paged scenes). Every data fetch of a feedback ray checks the cut level of its
@@ -262,6 +274,10 @@ std::string IsoVolume(const Key& key, int n)
 {
   std::string code = ForVolume(vtkMultiVolumeIso, n);
   Replace(code,
+    "//STRATA::IsoCrop::Impl",
+    Cropped(key, n) ? ForVolume("alpha *= strataCrop@n@(mix(pa, pb, (v - sa) / (sb - sa)));", n)
+                    : "");
+  Replace(code,
     "//STRATA::IsoShade::Impl",
     key.Shaded[n] ? ForVolume("rgb = strataShade@n@(mix(pa, pb, (v - sa) / (sb - sa)), rgb);", n)
                   : "");
@@ -284,6 +300,8 @@ std::string Volumes(const Key& key)
     code += Lookup(key, i, first);
     first = false;
     code += ForVolume(vtkMultiVolumeSample, i);
+    if (Cropped(key, i))
+      code += ForVolume(vtkMultiVolumeCrop, i);
     if (key.Shaded[i])
       code += ForVolume(vtkMultiVolumeShade, i);
     if (key.Reduce)
@@ -332,9 +350,10 @@ std::string Segment(const Key& key)
       std::string v = ForVolume(vtkMultiVolumeSegmentVolume, i);
       Replace(v,
         "//STRATA::Shade::Impl",
-        key.Shaded[i]
-          ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
-          : "");
+        (Cropped(key, i) ? "tf.a = tf.a" + CropMask(key, i, "p") + ";\n  " : std::string()) +
+          (key.Shaded[i]
+              ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
+              : ""));
       volumes += v;
     }
     std::string code = vtkMultiVolumeSegment;
@@ -350,11 +369,11 @@ std::string Segment(const Key& key)
   if (k == 1)
   {
     code += "vec4 strataPair(float sf[1], float sb[1], float len, vec3 mid)\n{\n";
+    code += "  vec4 ca = strataPre0(sf[0], sb[0], len)" + CropMask(key, 0, "mid") + ";\n";
     code +=
       key.Shaded[0]
-        ? "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
-          "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n"
-        : "  return strataPre0(sf[0], sb[0], len);\n}\n";
+        ? "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n"
+        : "  return ca;\n}\n";
     return code;
   }
   std::string volumes;
@@ -362,9 +381,9 @@ std::string Segment(const Key& key)
   {
     if (!Medium(key, i))
       continue;
-    volumes += ForVolume("ca = strataPre@n@(sf[@n@], sb[@n@], len);\n"
-                         "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
-                         "  X += x;\n",
+    volumes += ForVolume(("ca = strataPre@n@(sf[@n@], sb[@n@], len)" + CropMask(key, i, "mid") +
+                           ";\n  x = -log(max(1.0 - ca.a, 1.0e-30));\n  X += x;\n")
+                           .c_str(),
       i);
     volumes +=
       key.Shaded[i]
@@ -545,7 +564,11 @@ std::string Reduce(const Key& key)
   std::string loop = vtkMultiVolumeReduce;
   Replace(loop, "//STRATA::Start::Impl", start);
   Replace(loop, "//STRATA::Skip::Impl", skip);
-  Replace(loop, "//STRATA::Reduce::Impl", ReduceStep(key));
+  Replace(loop,
+    "//STRATA::Reduce::Impl",
+    Cropped(key, 0)
+      ? "if (strataCrop0(o + t * d) > 0.0)\n      {\n      " + ReduceStep(key) + "\n      }"
+      : ReduceStep(key));
   return loop;
 }
 
@@ -659,19 +682,21 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Feedback,
            this->Footprint,
            this->Modes,
-           this->Reduce) < std::tie(o.Volumes,
-                             o.Shaded,
-                             o.Classification,
-                             o.FrontToBack,
-                             o.Barrier,
-                             o.Rays,
-                             o.Coherent,
-                             o.Atlas,
-                             o.Skipping,
-                             o.Feedback,
-                             o.Footprint,
-                             o.Modes,
-                             o.Reduce);
+           this->Reduce,
+           this->Cropped) < std::tie(o.Volumes,
+                              o.Shaded,
+                              o.Classification,
+                              o.FrontToBack,
+                              o.Barrier,
+                              o.Rays,
+                              o.Coherent,
+                              o.Atlas,
+                              o.Skipping,
+                              o.Feedback,
+                              o.Footprint,
+                              o.Modes,
+                              o.Reduce,
+                              o.Cropped);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
@@ -698,6 +723,8 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
   for (size_t i = 0; any && i < this->Modes.size(); ++i)
     s << (i ? " " : ", blend ") << modes[std::min(std::max(this->Modes[i], 0), 6)];
   s << (this->Reduce ? ", reduction pass" : "");
+  for (size_t i = 0; i < this->Cropped.size(); ++i)
+    s << (this->Cropped[i] ? ", cropped " + std::to_string(i) : std::string());
   return s.str();
 }
 

@@ -57,6 +57,8 @@ public:
     /// The reduction pass of volume 0 (MIP, MinIP, average, additive by Modes[0]) into its
     /// layer buffers, instead of the integration of all the fragment's volumes.
     bool Reduce = false;
+    /// Per volume: cropped by vtkVolumeMapper's regions (missing entries: not cropped).
+    std::vector<bool> Cropped;
 
     bool operator<(const FragmentKey& other) const;
     /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".

@@ -19,6 +19,7 @@ vec4 strataIso@n@(vec3 pa, vec3 pb)
     {
       vec4 tf = texture(uTransfer@n@, vec2((v - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z, 0.5));
       float alpha = 1.0 - exp(-tf.a * uUnit@n@);
+      //STRATA::IsoCrop::Impl
       vec3 rgb = tf.rgb;
       //STRATA::IsoShade::Impl
       r += (1.0 - r.a) * vec4(rgb * alpha, alpha);

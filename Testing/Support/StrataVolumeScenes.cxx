@@ -163,6 +163,10 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
     for (int i = 0; iso && i < iso->GetNumberOfContours(); ++i)
       v.IsoValues.push_back(iso->GetValue(i));
     mapper->GetAverageIPScalarRange(v.AverageRange);
+    double planes[6];
+    v.Cropping = mapper->GetEffectiveCropping(port, planes, v.CropFlags);
+    for (int k = 0; k < 6; ++k) // data coordinates to index coordinates
+      v.CropPlanes[k] = (planes[k] - v.Origin[k / 2]) / v.Spacing[k / 2];
   }
   return v;
 }

@@ -42,8 +42,8 @@ vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step);
 
 /// The reference's description of a mapper input: geometry, model matrix of `member`, scalars as
 /// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does; with
-/// `mapper` and `port`, the blend mode it draws that input with (its isovalues from the member's
-/// property, the mapper's AverageIPScalarRange).
+/// `mapper` and `port`, the blend mode and cropping it draws that input with (its isovalues from
+/// the member's property, the mapper's AverageIPScalarRange).
 vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   vtkVolume* member,
   vtkMultiVolumeRayCastMapper* mapper = nullptr,
