@@ -215,6 +215,20 @@ public:
     double Tau[3] = { 0.0, 0.0, 0.0 };
     double Emission[3] = { 0.0, 0.0, 0.0 };
     double ColorMax = 0.0;
+    std::vector<double> Gradient; ///< gradient opacity entries, empty for none
+    double GradientMin = 0.0, GradientScale = 0.0;
+
+    /// The gradient opacity at magnitude g (piecewise linear, clamped).
+    double GradientOpacity(double g) const
+    {
+      const int n = static_cast<int>(this->Gradient.size());
+      if (n < 2)
+        return n == 1 ? this->Gradient[0] : 1.0;
+      const double x =
+        std::min(std::max((g - this->GradientMin) * this->GradientScale, 0.0), n - 1.0);
+      const int j = std::min(static_cast<int>(x), n - 2);
+      return this->Gradient[j] + (x - j) * (this->Gradient[j + 1] - this->Gradient[j]);
+    }
 
     void Classify(double s, double& tau, double rgb[3]) const
     {
@@ -356,6 +370,7 @@ public:
   struct Cover
   {
     const Vol* V;
+    const Active* A;
     Poly S;
     double SLo, SHi; ///< range of the cell's corners
   };
@@ -396,7 +411,39 @@ public:
   void Clip(const double o[3], const double d[3], double t0, double t1, double dn, Workspace& ws)
     const;
   void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
+  double GradientTau(const Cover& c, double t, double s, double rgb[3]) const;
 };
+
+// Extinction of a gradient-opacity volume at ray parameter t (scalar s there): alpha scaled by
+// the function of |grad s|, central differences of the interpolant one voxel apart, to world by
+// the transpose of the world -> index matrix.
+double vtkMultiVolumeReferenceIntegrator::vtkInternals::GradientTau(const Cover& c,
+  double t,
+  double s,
+  double rgb[3]) const
+{
+  const Vol& v = *c.V;
+  const double x[3] = {
+    c.A->P0[0] + c.A->DI[0] * t, c.A->P0[1] + c.A->DI[1] * t, c.A->P0[2] + c.A->DI[2] * t
+  };
+  double gi[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    double xp[3] = { x[0], x[1], x[2] }, xm[3] = { x[0], x[1], x[2] };
+    xp[k] += 1.0;
+    xm[k] -= 1.0;
+    gi[k] = 0.5 * (v.Sample(xp) - v.Sample(xm));
+  }
+  double g2 = 0.0;
+  for (int j = 0; j < 3; ++j)
+  {
+    const double gw = v.Ainv[j] * gi[0] + v.Ainv[3 + j] * gi[1] + v.Ainv[6 + j] * gi[2];
+    g2 += gw * gw;
+  }
+  const double alpha =
+    v.Tf.Lookup(s, rgb) * std::min(std::max(v.Tf.GradientOpacity(std::sqrt(g2)), 0.0), 1.0);
+  return -std::log1p(-std::min(alpha, MaxOpacity)) / v.Tf.UnitDistance;
+}
 
 // A Maximum, Minimum, Average or Additive volume alone over its chord [Te, Tx]: midpoint
 // samples at most one step apart (see the class comment).
@@ -471,6 +518,7 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a
 {
   const Vol& v = *a.V;
   c.V = &v;
+  c.A = &a;
   int i0[3], i1[3];
   double x0[3], ex[3];
   for (int k = 0; k < 3; ++k)
@@ -722,7 +770,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
           if (c.V->Mode == Blend::IsoSurface)
             continue;
           double tau, rgb[3];
-          c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
+          if (c.V->Tf.Gradient.empty())
+            c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
+          else
+            tau = this->GradientTau(c, ta + um, Horner(c.S, um), rgb);
           sigma += tau;
           for (int ch = 0; ch < 3; ++ch)
           {
@@ -1031,6 +1082,11 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
     return -1;
   }
   vtkInternals::BuildTable(in.Classification, v.Tf);
+  v.Tf.Gradient = in.Classification.GradientOpacity;
+  const double* gr = in.Classification.GradientRange;
+  v.Tf.GradientMin = gr[0];
+  v.Tf.GradientScale =
+    v.Tf.Gradient.size() > 1 && gr[1] > gr[0] ? (v.Tf.Gradient.size() - 1) / (gr[1] - gr[0]) : 0.0;
   v.Linear = in.Sampling == Interpolation::Linear;
   v.Mode = in.BlendMode;
   v.Cropping = in.Cropping;

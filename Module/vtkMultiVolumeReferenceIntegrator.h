@@ -74,6 +74,12 @@
  * samples made into lengths). Reductions take midpoint samples every StepLength() (the extreme is
  * found to O(s'' h^2 / 8)).
  *
+ * Gradient opacity (TransferFunction::GradientOpacity) scales a composite volume's opacity by a
+ * function of its gradient magnitude |grad s| (world units), the gradient by central differences
+ * of the interpolated scalar one voxel apart in index space (as the GPU takes it), evaluated at
+ * every step's midpoint; the pieces are not cut at its kinks, so its error is first order where
+ * the magnitude crosses one.
+ *
  * Cropping (Volume::Cropping) hides a volume where its index point lies in a region whose flag is
  * off: the ray is cut at the crop planes too, and a piece (or a reduction's sample) of the volume
  * in a hidden region is left out, as if that volume were not there.
@@ -131,6 +137,10 @@ public:
     std::vector<double> Opacity;    ///< N >= 1 entries, alpha per UnitDistance
     std::vector<double> Color;      ///< 3 N entries (RGB), or empty for white
     double UnitDistance = 1.0;      ///< world length the opacities refer to, > 0
+    /// Gradient opacity: entries evenly over GradientRange of the gradient magnitude (scalar
+    /// per world unit), piecewise linear, clamped; empty for none. It scales alpha.
+    std::vector<double> GradientOpacity;
+    double GradientRange[2] = { 0.0, 1.0 };
   };
 
   struct Volume

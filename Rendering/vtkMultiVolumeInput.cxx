@@ -9,6 +9,7 @@
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
@@ -106,6 +107,32 @@ void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolum
       break;
     }
   }
+}
+
+void vtkMultiVolumeInput::UpdateGradientOpacity(vtkOpenGLRenderWindow* window,
+  vtkVolumeProperty* property)
+{
+  const bool has = property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  const vtkMTimeType time =
+    has ? std::max(property->GetMTime(), property->GetStoredGradientOpacity(0)->GetMTime()) : 0;
+  if (!has || (this->GradientTexture && time > this->GradientTime))
+  {
+    if (this->GradientTexture)
+      this->GradientTexture->ReleaseGraphicsResources(window);
+    this->GradientTexture = nullptr;
+  }
+  if (!has || this->GradientTexture)
+    return;
+  std::vector<float> table;
+  vtkTransferFunctionTable::TabulateGradientOpacity(property, 256, this->GradientRange, table);
+  this->GradientTexture = vtkSmartPointer<vtkTextureObject>::New();
+  this->GradientTexture->SetContext(window);
+  this->GradientTexture->Create2DFromRaw(256, 1, 1, VTK_FLOAT, table.data());
+  this->GradientTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->GradientTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->GradientTexture->SetMinificationFilter(vtkTextureObject::Linear);
+  this->GradientTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->GradientTime = time;
 }
 
 double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
@@ -325,6 +352,17 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
   }
   if (b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
     this->BindBlendMode(program, N, property, b);
+  if (b.GradientOpacity && this->GradientTexture)
+  {
+    this->GradientTexture->Activate();
+    program->SetUniformi(("uGradientOpacity" + N).c_str(), this->GradientTexture->GetTextureUnit());
+    const double* g = this->GradientRange;
+    // Entry i at magnitude g0 + i (g1 - g0) / 255, its texel centre at (i + 0.5) / 256.
+    const float range[3] = { float(g[0]), float(255.0 / (256.0 * (g[1] - g[0]))), 0.5f / 256.f };
+    program->SetUniform3f(("uGradientRange" + N).c_str(), range);
+    program->SetUniformf(
+      ("uUnit" + N).c_str(), static_cast<float>(property->GetScalarOpacityUnitDistance(0)));
+  }
   if (b.CropLo)
   {
     program->SetUniform3f(("uCropLo" + N).c_str(), b.CropLo);
@@ -383,6 +421,8 @@ void vtkMultiVolumeInput::BindBlendMode(vtkShaderProgram* program,
 
 void vtkMultiVolumeInput::Unbind(const Binding& b)
 {
+  if (b.GradientOpacity && this->GradientTexture)
+    this->GradientTexture->Deactivate();
   if (this->Data && !b.Atlas)
     this->Data->Deactivate();
   if (b.Classification == Classifications::PostClassification ||
@@ -403,4 +443,7 @@ void vtkMultiVolumeInput::ReleaseGraphicsResources(vtkWindow* window)
   this->PreTable = nullptr;
   this->PreTableKind = -1;
   this->SkipTexture.Release();
+  if (this->GradientTexture)
+    this->GradientTexture->ReleaseGraphicsResources(window);
+  this->GradientTexture = nullptr;
 }

@@ -71,6 +71,13 @@ public:
 
   /// The transfer table and what follows from it (pre-integration input, empty scalar).
   void UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
+  /**
+   * The gradient opacity table (256 entries, vtkTransferFunctionTable::TabulateGradientOpacity)
+   * and its texture, rebuilt when the function changes; none when the property has none.
+   */
+  void UpdateGradientOpacity(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
+  bool HasGradientOpacity() const { return this->GradientTexture != nullptr; }
+
   /// The largest opacity the interpolated table reaches for scalars in [lo, hi].
   double MaxOpacity(double lo, double hi) const;
 
@@ -127,6 +134,7 @@ public:
     const float* CropLo = nullptr; ///< cropped: the planes in index coordinates, and the flags
     const float* CropHi = nullptr;
     int CropFlags = 0;
+    bool GradientOpacity = false; ///< composite: opacity times the gradient opacity function
   };
   /**
    * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their
@@ -158,7 +166,10 @@ private:
   vtkTransferFunctionTable Table;
   double EmptyScalar = 0.0;
   int BlendMode = 0;
-  std::vector<double> IsoValues; ///< ascending
+  std::vector<double> IsoValues;                     ///< ascending
+  vtkSmartPointer<vtkTextureObject> GradientTexture; ///< R32F gradient opacity table
+  double GradientRange[2] = { 0.0, 1.0 };
+  vtkMTimeType GradientTime = 0;
   vtkPreIntegrationTable PreIntegration;
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table

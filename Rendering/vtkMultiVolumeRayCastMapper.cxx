@@ -370,6 +370,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
       vtkWarningWithObjectMacro(
         self, "Port " << e.Port << " has " << iso.size() << " isovalues; the first 8 are drawn.");
     input.SetBlendMode(e.Mode, iso);
+    input.UpdateGradientOpacity(renWin, e.Property);
   }
   for (const FrameVolume& e : frame.Volumes)
   {
@@ -755,6 +756,9 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
     key.Shaded.push_back(frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
     key.Modes.push_back(e.Mode);
     key.Cropped.push_back(e.Cropped);
+    key.GradientOpacity.push_back(!reduce && e.Mode == vtkVolumeMapper::COMPOSITE_BLEND &&
+                                  self->Classification == Classifications::PostClassification &&
+                                  this->Inputs.at(e.Port).HasGradientOpacity());
   }
   key.Reduce = reduce;
   key.Classification = self->Classification;
@@ -863,6 +867,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.CropLo = e.Cropped ? e.CropLo : nullptr;
     b.CropHi = e.CropHi;
     b.CropFlags = e.CropFlags;
+    b.GradientOpacity = key.GradientOpacity[i];
     b.AverageRange = self->GetAverageIPScalarRange();
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;

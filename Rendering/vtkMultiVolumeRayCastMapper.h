@@ -339,6 +339,14 @@ public:
   int GetEffectiveBlendMode(int port) const;
   ///@}
 
+  /*
+   * Gradient opacity: a volume whose property has a gradient opacity function
+   * (vtkVolumeProperty::SetGradientOpacity, not disabled) and is drawn COMPOSITE with
+   * post-classification has each sample's opacity scaled by that function of the gradient
+   * magnitude (scalar per world unit; central differences one voxel apart in index space, the
+   * trilinear interpolant even for nearest volumes). Pre-integrated classification ignores it.
+   */
+
   ///@{
   /**
    * Cropping per volume, vtkVolumeMapper's 27 regions (all flags: VTK_CROP_SUBVOLUME, FENCE,

@@ -14,6 +14,7 @@
 #include "vtkMultiVolumeFragmentFS.h"
 #include "vtkMultiVolumeFragmentVS.h"
 #include "vtkMultiVolumeFrontToBack.h"
+#include "vtkMultiVolumeGradientOpacity.h"
 #include "vtkMultiVolumeIso.h"
 #include "vtkMultiVolumeLayerDec.h"
 #include "vtkMultiVolumeLayerVolume.h"
@@ -106,6 +107,12 @@ int CountIf(const Key& key, bool (*test)(const Key&, int))
 bool IsLayer(const Key& key, int n)
 {
   return !Sampled(key, n);
+}
+
+bool GradientOpacity(const Key& key, int n)
+{
+  return n < static_cast<int>(key.GradientOpacity.size()) && key.GradientOpacity[n] &&
+         Medium(key, n) && key.Classification == C::PostClassification;
 }
 
 bool Cropped(const Key& key, int n)
@@ -302,6 +309,8 @@ std::string Volumes(const Key& key)
     code += ForVolume(vtkMultiVolumeSample, i);
     if (Cropped(key, i))
       code += ForVolume(vtkMultiVolumeCrop, i);
+    if (GradientOpacity(key, i))
+      code += ForVolume(vtkMultiVolumeGradientOpacity, i);
     if (key.Shaded[i])
       code += ForVolume(vtkMultiVolumeShade, i);
     if (key.Reduce)
@@ -350,7 +359,10 @@ std::string Segment(const Key& key)
       std::string v = ForVolume(vtkMultiVolumeSegmentVolume, i);
       Replace(v,
         "//STRATA::Shade::Impl",
-        (Cropped(key, i) ? "tf.a = tf.a" + CropMask(key, i, "p") + ";\n  " : std::string()) +
+        (GradientOpacity(key, i)
+            ? ForVolume("tf.a = tf.a > 0.0 ? strataGradientTau@n@(p, tf.a) : 0.0;\n  ", i)
+            : std::string()) +
+          (Cropped(key, i) ? "tf.a = tf.a" + CropMask(key, i, "p") + ";\n  " : std::string()) +
           (key.Shaded[i]
               ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
               : ""));
@@ -683,20 +695,22 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Footprint,
            this->Modes,
            this->Reduce,
-           this->Cropped) < std::tie(o.Volumes,
-                              o.Shaded,
-                              o.Classification,
-                              o.FrontToBack,
-                              o.Barrier,
-                              o.Rays,
-                              o.Coherent,
-                              o.Atlas,
-                              o.Skipping,
-                              o.Feedback,
-                              o.Footprint,
-                              o.Modes,
-                              o.Reduce,
-                              o.Cropped);
+           this->Cropped,
+           this->GradientOpacity) < std::tie(o.Volumes,
+                                      o.Shaded,
+                                      o.Classification,
+                                      o.FrontToBack,
+                                      o.Barrier,
+                                      o.Rays,
+                                      o.Coherent,
+                                      o.Atlas,
+                                      o.Skipping,
+                                      o.Feedback,
+                                      o.Footprint,
+                                      o.Modes,
+                                      o.Reduce,
+                                      o.Cropped,
+                                      o.GradientOpacity);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
@@ -725,6 +739,8 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
   s << (this->Reduce ? ", reduction pass" : "");
   for (size_t i = 0; i < this->Cropped.size(); ++i)
     s << (this->Cropped[i] ? ", cropped " + std::to_string(i) : std::string());
+  for (size_t i = 0; i < this->GradientOpacity.size(); ++i)
+    s << (this->GradientOpacity[i] ? ", gradient opacity " + std::to_string(i) : std::string());
   return s.str();
 }
 

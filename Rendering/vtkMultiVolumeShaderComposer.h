@@ -59,6 +59,9 @@ public:
     bool Reduce = false;
     /// Per volume: cropped by vtkVolumeMapper's regions (missing entries: not cropped).
     std::vector<bool> Cropped;
+    /// Per volume: opacity scaled by the gradient opacity function (composite volumes,
+    /// post-classification; missing entries: none).
+    std::vector<bool> GradientOpacity;
 
     bool operator<(const FragmentKey& other) const;
     /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".

@@ -98,15 +98,15 @@ void PerVolume(const TestPaths& paths)
   double planes[6];
   int flags = 0;
   Check(!s.Mapper->GetEffectiveCropping(0, planes, flags) &&
-      s.Mapper->GetEffectiveCropping(1, planes, flags) && flags == VTK_CROP_INVERTED_CROSS,
+          s.Mapper->GetEffectiveCropping(1, planes, flags) && flags == VTK_CROP_INVERTED_CROSS,
     "port 0 uncropped by its own setting, port 1 cropped by its own");
   const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
   s.Camera(pos, foc);
   Check(CheckVolumeComparison(s.Compare("CropPerVolume"), "CropPerVolume", 0.6, 12, 3000),
     "one of two overlapping volumes cropped matches the reference");
   const std::string two = s.Mapper->GetFragmentShaderSource(2);
-  Check(two.find("strataCrop1") != std::string::npos &&
-      two.find("strataCrop0") == std::string::npos,
+  Check(
+    two.find("strataCrop1") != std::string::npos && two.find("strataCrop0") == std::string::npos,
     "only the cropped volume has crop code");
   s.Mapper->RemoveInputCropping(0);
   s.Mapper->RemoveInputCropping(1);
@@ -180,8 +180,7 @@ int TestMultiVolumeCropping(int argc, char* argv[])
           32);
       } },
     { "isosurface subvolume",
-      [&]
-      {
+      [&] {
         Single(
           paths, VTK_CROP_SUBVOLUME, "CropSubVolumeIso", vtkVolumeMapper::ISOSURFACE_BLEND, 12);
       } },

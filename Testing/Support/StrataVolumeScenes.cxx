@@ -155,6 +155,10 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   v.Classification.Opacity.assign(alpha.begin(), alpha.end());
   v.Classification.Color.assign(rgb.begin(), rgb.end());
   v.Classification.UnitDistance = p->GetScalarOpacityUnitDistance(0);
+  std::vector<float> gradient;
+  if (vtkTransferFunctionTable::TabulateGradientOpacity(
+        p, 256, v.Classification.GradientRange, gradient))
+    v.Classification.GradientOpacity.assign(gradient.begin(), gradient.end());
   if (mapper)
   {
     v.BlendMode =
