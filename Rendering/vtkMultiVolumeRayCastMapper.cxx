@@ -1328,6 +1328,17 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
       e.Mode = IsReduced(e.Mode) ? int(vtkVolumeMapper::COMPOSITE_BLEND) : e.Mode;
     frame.AnyReduced = false;
   }
+  for (auto it = in.LayerBuffers.begin(); it != in.LayerBuffers.end();)
+  {
+    // Layers of volumes no longer reduced are freed.
+    const int port = it->first;
+    const bool used = std::any_of(frame.Volumes.begin(),
+      frame.Volumes.end(),
+      [port](const FrameVolume& e) { return e.Port == port && IsReduced(e.Mode); });
+    if (!used)
+      it->second.ReleaseGraphicsResources(renWin);
+    it = used ? std::next(it) : in.LayerBuffers.erase(it);
+  }
   for (const FrameVolume& e : frame.Volumes)
     if (IsReduced(e.Mode))
       in.LayerBuffers[e.Port].Prepare(renWin, frame.Viewport, frame.Rays);

@@ -10,15 +10,20 @@
 // - MIP, MinIP: the GPU's extreme is the best of the lattice's midpoints, the reference's that
 //   of midpoints 16 times denser; its colour follows the extreme's scalar, whose error is about
 //   s'' h^2 / 8 (0.01 of a range of 100 here). Where the extreme sits on a plateau's edge
-//   (a ray grazing a blob) a pixel may pick a scalar a little apart: RMS 0.5, max 4.
+//   (a ray grazing a blob) a pixel may pick a scalar a little apart. Measured RMS 0.29 / 0.41,
+//   max 1.2 / 1.7: RMS 0.5, max 4.
 // - Average, additive: opaque grey; the midpoint rule over the ray, the GPU's lattice steps cut
-//   at the fragment faces against the reference's: the same RMS 0.5 / max 4.
+//   at the fragment faces against the reference's. Measured RMS 0.18 / 0.15, max 0.5: the same
+//   RMS 0.5 / max 4.
 // - Isosurface: a crossing is found between the lattice's step ends and composited before
 //   that step's medium (the reference: exactly where it lies), and a ray that meets a contour
-//   tangentially may see it in one and not the other: RMS 0.6, max 12 (a few edge pixels).
+//   tangentially may see it in one and not the other: measured RMS 0.15, max 11.2 (a few edge
+//   pixels); RMS 0.6, max 16.
 // - Mixed, overlapping: a layer lands before the step holding its depth, the reference at the
-//   depth itself: a step's medium (opacity <= 0.3 per unit, 1/4 voxel: under 8 %) may swap
-//   sides with it at a layer's edge: RMS 0.6, max 8.
+//   depth itself: a step's medium (opacity <= 0.3 per unit, 1/4 voxel: under 8 %, far less on
+//   these blobs) may swap sides with it. Measured RMS 0.16-0.23, max 0.9-1.24 over the six mixed
+//   renderings: RMS 0.4, max 3. Putting a layer at its fragment's entry instead of its depth
+//   measured max 5.8 here: it fails.
 // A wrong reduction (max for min, the average without its normalisation, layers at the wrong
 // side of the composite medium) costs tens of units RMS: every one fails.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
@@ -72,7 +77,7 @@ const ModeCase Modes[] = {
   { vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "Minimum", 0.5, 4, 5000 },
   { vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "Average", 0.5, 4, 10000 },
   { vtkVolumeMapper::ADDITIVE_BLEND, "Additive", 0.5, 4, 10000 },
-  { vtkVolumeMapper::ISOSURFACE_BLEND, "IsoSurface", 0.6, 12, 2500 },
+  { vtkVolumeMapper::ISOSURFACE_BLEND, "IsoSurface", 0.6, 16, 2500 },
 };
 
 /// The transfer functions of MakeVolumeProperty with two contours (where their opacity is 0.09
@@ -134,13 +139,23 @@ void Overlapping(const TestPaths& paths, int mode0, int mode1, const std::string
     "port 0 without a mode of its own takes the mapper's");
   const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
   s.Camera(pos, foc);
-  Check(Compare(s, name, 0.6, 8, 3000), name + " matches the reference");
+  Check(Compare(s, name, 0.4, 3, 3000), name + " matches the reference");
   if (mode1 == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
   {
     // Back to front inserts the layers from behind: the same image.
     s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
-    Check(Compare(s, name + "BackToFront", 0.6, 8, 3000),
+    Check(Compare(s, name + "BackToFront", 0.4, 3, 3000),
       name + " back to front matches the reference");
+    // Pre-integrated media around the layer (the layer's volume still post-classified).
+    s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
+    s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PreIntegrated);
+    Check(Compare(s, name + "PreIntegrated", 0.4, 3, 3000),
+      name + " pre-integrated matches the reference");
+    // Two rays per pixel: a layer buffer per ray; the reference averages the same two rays.
+    s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PostClassification);
+    s.Mapper->SetRaysPerPixel(2);
+    Check(CheckVolumeComparison(s.Compare(name + "TwoRays", 2), name + "TwoRays", 0.4, 3, 3000),
+      name + " with two rays per pixel matches the reference");
   }
 }
 

@@ -82,15 +82,19 @@ void Mixed(const TestPaths& paths)
   s.UseMultiVolume();
   const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
   s.Camera(pos, foc);
-  Check(CheckVolumeComparison(s.Compare("GradientOpacityMixed"), "GradientOpacityMixed", 0.5, 3, 3000),
+  Check(
+    CheckVolumeComparison(s.Compare("GradientOpacityMixed"), "GradientOpacityMixed", 0.5, 3, 3000),
     "volumes with and without gradient opacity in one scene match the reference");
   const std::string two = s.Mapper->GetFragmentShaderSource(2);
   Check(two.find("strataGradientTau0") != std::string::npos &&
-      two.find("strataGradientTau1") == std::string::npos,
+          two.find("strataGradientTau1") == std::string::npos,
     "only the volume with gradient opacity has its code");
   s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
-  Check(CheckVolumeComparison(
-          s.Compare("GradientOpacityMixedBackToFront"), "GradientOpacityMixedBackToFront", 0.5, 3, 3000),
+  Check(CheckVolumeComparison(s.Compare("GradientOpacityMixedBackToFront"),
+          "GradientOpacityMixedBackToFront",
+          0.5,
+          3,
+          3000),
     "the same back to front");
 }
 }
