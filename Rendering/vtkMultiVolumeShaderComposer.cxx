@@ -120,7 +120,7 @@ bool Cropped(const Key& key, int n)
   return n < static_cast<int>(key.Cropped.size()) && key.Cropped[n];
 }
 
-/// `code` for volume n, masked by its cropping where it is cropped.
+/// The factor that masks volume n's contribution at `point` by its cropping ("" if uncropped).
 std::string CropMask(const Key& key, int n, const std::string& point)
 {
   return Cropped(key, n) ? ForVolume(" * strataCrop@n@(", n) + point + ")" : std::string();
