@@ -156,6 +156,18 @@ void Emit(const Row& row)
   std::cout << row.Csv() << std::endl;
 }
 
+/// A case whose data is missing: said on stderr and as a row with the reason.
+int Skipped(const std::string& name, const std::string& why)
+{
+  std::cerr << name << ": skipped: " << why << "\n";
+  Row row;
+  row.Case = name;
+  row.Method = "strata";
+  row.Note = "skipped: " + why;
+  Emit(row);
+  return 0;
+}
+
 /// The 1-minute load average: this machine's 2 cores are shared, and the timings show it.
 std::string LoadNote()
 {
@@ -473,13 +485,7 @@ int Accuracy(const std::string& data, const strata_test::TestPaths& paths)
   auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
   {
-    std::cerr << name << ": skipped: " << why << "\n";
-    Row row;
-    row.Case = name;
-    row.Method = "strata";
-    row.Note = "skipped: " + why;
-    Emit(row);
-    return 0;
+    return Skipped(name, why);
   }
   vtkSmartPointer<vtkRenderWindow> win;
   vtkSmartPointer<vtkRenderer> ren;
@@ -937,13 +943,7 @@ int Blend(const std::string& data, const strata_test::TestPaths& paths)
   auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
   {
-    std::cerr << name << ": skipped: " << why << "\n";
-    Row row;
-    row.Case = name;
-    row.Method = "strata";
-    row.Note = "skipped: " + why;
-    Emit(row);
-    return 0;
+    return Skipped(name, why);
   }
   vtkSmartPointer<vtkRenderWindow> win;
   vtkSmartPointer<vtkRenderer> ren;
