@@ -19,6 +19,8 @@ uniform vec4 uViewport;      // window x, y, width, height of the renderer
 uniform int uNumPlanes;
 uniform vec4 uPlanes[64];    // inside: dot(n, p) + w <= 0, local frame
 uniform float uSampleDistance; // world units between samples
+uniform int uNumRegionPlanes; // 6 with a region (SetRegion), else 0
+uniform vec4 uRegionPlanes[6]; // its faces, the same convention
 uniform sampler2D uSceneDepth;
 
 //STRATA::Volumes::Dec
@@ -60,6 +62,43 @@ vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float t
       return vec4(0.0);
     }
   }
+  // t spans the near-to-far segment [0, 1]; the sample lattice is t = (k + phase) dt.
+  float segment = length(d);
+  float dt = uSampleDistance / segment;
+
+  // The region: the lattice steps that begin inside it, whole. A face it shares with the next
+  // process's box moves to the first lattice point at or after it in both, so the two share
+  // the ray's steps exactly as one process would.
+  if (uNumRegionPlanes > 0)
+  {
+    float rEnter = 0.0;
+    float rExit = 1.0;
+    for (int i = 0; i < uNumRegionPlanes; ++i)
+    {
+      float denom = dot(uRegionPlanes[i].xyz, d);
+      float dist = dot(uRegionPlanes[i].xyz, o) + uRegionPlanes[i].w;
+      if (denom < 0.0)
+      {
+        rEnter = max(rEnter, -dist / denom);
+      }
+      else if (denom > 0.0)
+      {
+        rExit = min(rExit, -dist / denom);
+      }
+      else if (dist > 0.0)
+      {
+        return vec4(0.0);
+      }
+    }
+    if (rEnter > 0.0)
+    {
+      tEnter = max(tEnter, (ceil(rEnter / dt - phase) + phase) * dt);
+    }
+    if (rExit < 1.0)
+    {
+      tExit = min(tExit, (ceil(rExit / dt - phase) + phase) * dt);
+    }
+  }
   // Opaque geometry ends the ray: its depth, unprojected onto this ray.
   float zw = texelFetch(uSceneDepth, ivec2(pixel - uViewport.xy), 0).r;
   if (zw < 1.0)
@@ -74,10 +113,6 @@ vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float t
   inside = true;
   tFirst = tExit;
   tEnter = max(tEnter, tMin);
-
-  // t spans the near-to-far segment [0, 1]; the sample lattice is t = (k + phase) dt.
-  float segment = length(d);
-  float dt = uSampleDistance / segment;
 
   //STRATA::Termination::Impl
 
