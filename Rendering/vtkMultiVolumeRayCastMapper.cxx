@@ -113,6 +113,25 @@ std::vector<float> RootValues(vtkImageData* image, int brickSize, int dims[3])
   return values;
 }
 
+// Whether a BSP fragment (local frame) lies wholly outside a world box.
+bool OutsideRegion(const vtkVolumeBSPTree::Fragment& fragment,
+  const vtkVolumeBSPTree::Vector3& origin,
+  const double region[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
+    for (const auto& v : fragment.Vertices)
+    {
+      lo = std::min(lo, v[a] + origin[a]);
+      hi = std::max(hi, v[a] + origin[a]);
+    }
+    if (hi < region[2 * a] || lo > region[2 * a + 1])
+      return true;
+  }
+  return false;
+}
+
 // The longest level-0 voxel edge over the axes with voxels (vtkVolumeCut's voxel size).
 double LongestVoxelEdge(const FrameVolume& e)
 {
@@ -683,6 +702,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   const int k = static_cast<int>(frag.BoxIndices.size());
   if (k == 0 || this->Geometry.GetVertexCount(f) == 0)
     return true;
+  if (self->UseRegion && OutsideRegion(frag, this->Geometry.GetOrigin(), self->Region))
+    return true; // another process's box
   if (static_cast<int>(frag.Planes.size() + frame.ClipPlanes.size() / 4) > MaxPlanes)
   {
     vtkErrorWithObjectMacro(self,

@@ -315,10 +315,12 @@ public:
   /**
    * The region this mapper draws (default none: the whole scene), a world box, for sort-last
    * parallel rendering in which each process draws one box of a partition of the scene and the
-   * images are blended in box order (ParaView's ordered compositing over MPI ranks). Rays
-   * integrate exactly the lattice steps that begin inside the box, each one whole: a box face
-   * never cuts a step, so the boxes of a partition share every ray's steps out as one process
-   * would (post-classified or pre-integrated, the seams are invisible), and the image is
+   * images are blended in box order (ParaView's ordered compositing over MPI ranks). Rays are
+   * clipped to the box like by the faces of their BSP fragments, on the sample lattice every
+   * process shares (anchored at the near plane): the step across a face is split there, as one
+   * process splits steps at every fragment face, so the boxes of a partition together
+   * integrate what one process would (within a step's split; TestParallel.py measures it), and
+   * opaque geometry cut to the same box ends the rays at the same depths. The image is
    * premultiplied RGBA over what was drawn before (transparent black in IceT). Bricks that the
    * box grown by one sample distance and one voxel of their level misses count as empty: they
    * are neither paged, stored in the atlas nor sampled, so a process pages only its own share.

@@ -17,11 +17,29 @@ run("making the data" "${WITH_XVFB}" "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN
 run("strata-convert" "${CMAKE_COMMAND}" -E env --unset=DISPLAY
   "${CONVERT}" "${WORK}/paged.vti" "${WORK}/paged.spp" --page-size 16)
 # Four ranks on two cores: --oversubscribe; the tests may run as root in containers.
+# Stock ParaView 5.11 under mpirun on these 2-core machines fails now and then at start-up,
+# whatever the scene (seen with a plain Sphere in 2 of 8 runs of 4 ranks): a rank's first
+# XOpenDisplay on the shared Xvfb fails ("bad X server connection"), or rank 0 enters IceT's
+# context creation while the others wait in ParaView's RMI barrier and the run hangs before its
+# first frame. Such a run (that message, or no exit within 120 s: timeout stops mpirun, which
+# stops its ranks) is tried again, up to 4 times; any other failure fails the test at once.
 foreach (ranks IN ITEMS 1 2 4)
-  run("pvbatch with ${ranks} rank(s)" "${CMAKE_COMMAND}" -E env OMPI_ALLOW_RUN_AS_ROOT=1
-    OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-    "${WITH_XVFB}" "${MPIEXEC}" -np ${ranks} --bind-to none "${PVBATCH}" "${SCRIPT}"
-    --plugin "${PLUGIN}" --work "${WORK}" --render)
+  foreach (attempt RANGE 1 4)
+    execute_process(COMMAND "${CMAKE_COMMAND}" -E env OMPI_ALLOW_RUN_AS_ROOT=1
+      OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+      "${WITH_XVFB}" "${TIMEOUT}" --kill-after=10 120
+      "${MPIEXEC}" -np ${ranks} --bind-to none "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --work "${WORK}" --render
+      RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+    message("${output}")
+    if (result EQUAL 0 OR NOT (output MATCHES "bad X server connection" OR
+                               result EQUAL 124))
+      break ()
+    endif ()
+    message("pvbatch with ${ranks} rank(s), attempt ${attempt}: ${result}; trying again")
+  endforeach ()
+  if (NOT result EQUAL 0)
+    message(FATAL_ERROR "pvbatch with ${ranks} rank(s) failed (${result})")
+  endif ()
 endforeach ()
 run("the comparison" "${WITH_XVFB}" "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --work "${WORK}"
-  --compare 2 4 --tolerance "${TOLERANCE}")
+  --compare 2 4)

@@ -3,7 +3,7 @@
 
     pvbatch TestParallel.py --plugin Strata.so --work <folder> --make-data
     mpirun -np N pvbatch TestParallel.py --plugin Strata.so --work <folder> --render
-    pvbatch TestParallel.py --plugin Strata.so --work <folder> --compare 2 4 --tolerance T
+    pvbatch TestParallel.py --plugin Strata.so --work <folder> --compare 2 4
 
 The scene: three overlapping volumes of different resolutions and transfer functions, the
 largest one paged from a brick pool (strata-convert makes it from paged.vti between --make-data
@@ -11,7 +11,7 @@ and --render), and a stack of two opaque horizons crossing all three. With N pro
 rank draws one box of the scene (vtkStrataParaViewUtilities::PartitionBox: the scene is 64 x
 48 x 40, so 2 ranks split x at 32 and 4 ranks also split y at 24) and IceT blends the boxes in
 order. Two views: "face" looks along -x straight at the face x = 32 between the ranks (every
-ray crosses it, and with 4 ranks the face y = 24 is seen edge-on along the middle row), post-
+ray crosses it, and with 4 ranks the face y = 24 is seen edge-on along the middle column), post-
 classified; "oblique" sees both faces at an angle, pre-integrated. --render writes
 parallel_<N>_<view>.png; --compare asserts that the images of N ranks equal those of 1 rank.
 """
@@ -62,7 +62,7 @@ def make_data(work):
     def field(dims, spacing, origin, centres):
         axes = [origin[a] + spacing[a] * numpy.arange(dims[a]) for a in range(3)]
         x, y, z = numpy.meshgrid(*axes, indexing="ij")
-        value = 40.0 * (1.0 + numpy.sin(0.21 * x) * numpy.cos(0.17 * y + 0.1 * z))
+        value = 40.0 * (1.0 + numpy.sin(0.9 * x + 0.3 * z) * numpy.cos(0.7 * y + 0.4 * z))
         for (cx, cy, cz, r, a) in centres:
             value += a * numpy.exp(-((x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2) / (r * r))
         return numpy.clip(value, 0.0, 255.0)
@@ -74,7 +74,8 @@ def make_data(work):
     write_image(os.path.join(work, "coarse.vti"), [24, 24, 24], [1.25, 1.25, 1.25],
                 [28.0, 12.0, 4.0], field([24, 24, 24], [1.25] * 3, [28, 12, 4],
                                          [(40, 26, 16, 7, 210)]))
-    gx, gy = numpy.meshgrid(numpy.arange(65.0), numpy.arange(49.0), indexing="xy")
+    # (The reader's first array axis is x: 65 x 49 points over x in [0, 64], y in [0, 48].)
+    gx, gy = numpy.meshgrid(numpy.arange(65.0), numpy.arange(49.0), indexing="ij")
     numpy.save(os.path.join(work, "top.npy"),
                (30.0 + 4.0 * numpy.sin(0.15 * gx) + 3.0 * numpy.cos(0.2 * gy)).astype("float32"))
     numpy.save(os.path.join(work, "base.npy"),
@@ -107,12 +108,12 @@ def build_scene(work, view):
     coarse = XMLImageDataReader(FileName=[os.path.join(work, "coarse.vti")])
     first = show_volume(paged, view, paged.PointData.keys()[0],
                         [(0, 0.2, 0.3, 0.8), (120, 0.9, 0.6, 0.2), (255, 1.0, 1.0, 0.9)],
-                        [(0, 0.0), (60, 0.0), (150, 0.05), (255, 0.3)])
+                        [(0, 0.0), (60, 0.0), (150, 0.12), (255, 0.5)])
     show_volume(small, view, "density", [(0, 0.1, 0.8, 0.3), (255, 0.9, 1.0, 0.4)],
                 [(0, 0.0), (90, 0.0), (255, 0.25)])
     show_volume(coarse, view, "density", [(0, 0.8, 0.1, 0.6), (255, 1.0, 0.5, 0.9)],
                 [(0, 0.0), (100, 0.0), (255, 0.3)])
-    first.StrataVolumeSampleDistance = 0.5
+    first.StrataVolumeSampleDistance = 1.0
     first.StrataVolumeBrickSize = 16
     first.StrataVolumePagesPerFrame = 256
     first.StrataVolumeAtlasBudget = 64
@@ -141,6 +142,12 @@ def render(args):
     view = setup_view()
     display = build_scene(args.work, view)
     ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
+    # Every rank appends its own figures (MB paged) to stats_<N>.<rank>.
+    stats = os.path.join(args.work, "stats_%d" % ranks)
+    for rank in range(ranks):
+        if os.path.exists("%s.%d" % (stats, rank)):
+            os.remove("%s.%d" % (stats, rank))
+    display.StrataVolumeStatisticsFile = stats
     for name, v in VIEWS.items():
         view.CameraPosition = v["position"]
         view.CameraFocalPoint = v["focal_point"]
@@ -164,6 +171,17 @@ def render(args):
         out = os.path.join(args.work, "parallel_%d_%s.png" % (ranks, name))
         SaveScreenshot(out, view, ImageResolution=SIZE, TransparentBackground=0)
         print("%s: %d ranks -> %s" % (name, ranks, out))
+    Render(view)  # (the statistics lines describe the render before)
+
+
+def paged_megabytes(work, ranks):
+    """Each rank's MB paged from the pool over the whole run (its last statistics line)."""
+    paged = []
+    for rank in range(ranks):
+        with open(os.path.join(work, "stats_%d.%d" % (ranks, rank))) as f:
+            lines = [line.split(",") for line in f.read().split()]
+        paged.append(float(lines[-1][2]))
+    return paged
 
 
 def load(path):
@@ -179,6 +197,22 @@ def load(path):
 
 def compare(args):
     import numpy
+    whole = paged_megabytes(args.work, 1)[0]
+    for n in args.compare:
+        paged = paged_megabytes(args.work, n)
+        print("MB paged: 1 rank %.3f; %d ranks %s (largest %.0f%% of 1 rank's)" % (
+            whole, n, ["%.3f" % p for p in paged], 100.0 * max(paged) / whole))
+        # Each rank pages the bricks its box, grown by a step and a voxel, touches. The pool's
+        # 16^3 bricks (stride 15) make 5 x 4 x 3 at level 0, 3 x 2 x 2 at level 1, then 2 and
+        # 1: with 2 ranks (x = 32) each gets 3 of the 5 columns along x at level 0 (the one
+        # across the face on both sides) and 2 or 3 of 3 at level 1, 47 and 51 of 75 pages
+        # (0.63, 0.68); with 4 ranks (also y = 24) 2 or 3 of the 4 along y as well: at most
+        # 42 of 75 (0.56). Bounds 0.8 and 0.65 leave room for a brick the transfer function
+        # empties (never paged) and fail if a rank paged the whole pool.
+        bound = {2: 0.8, 4: 0.65}.get(n, 1.0)
+        check(max(paged) <= bound * whole and min(paged) > 0.0,
+              "each of %d ranks paged only its share (at most %.2f of 1 rank's MB, none idle)"
+              % (n, bound))
     for name in VIEWS:
         dims1, one = load(os.path.join(args.work, "parallel_1_%s.png" % name))
         covered = numpy.count_nonzero(one.max(axis=1) > 2)
@@ -195,9 +229,19 @@ def compare(args):
             rms = float(numpy.sqrt(numpy.mean(difference.astype("float64") ** 2)))
             print("%s: %d ranks vs 1: max channel difference %d of 255, RMS %.4f, %d pixels "
                   "differ by more than 1" % (name, n, worst, rms, differing))
-            check(worst <= args.tolerance,
-                  "%s: the %d-rank image equals the 1-rank one within %d of 255"
-                  % (name, n, args.tolerance))
+            # IceT blends 8-bit RGBA: each rank's premultiplied colour and opacity are
+            # rounded (0.5 of 255 each) before C = Cf + (1 - Af) Cb, so every blend along a
+            # ray adds up to 1.5, and the two images' own rounding 1 more. A ray crosses at
+            # most 2 boxes with 2 ranks and 3 of the 2 x 2 boxes of 4 ranks: 2.5 and 4. One
+            # more for the step a box face splits in two (one process splits steps at its
+            # BSP faces alike): bounds 4 and 5. Measured: 3 and 3-4, RMS 0.26-0.40. Seams show
+            # far above: with the faces moved to lattice points (a ray running past the face
+            # into a horizon only the next rank draws) the oblique view reached 29.
+            boxes = min(n, 3)
+            bound = int(numpy.ceil(1.0 + 1.5 * (boxes - 1))) + 1
+            check(worst <= bound and rms <= 0.6,
+                  "%s: the %d-rank image equals the 1-rank one within %d of 255 (RMS within "
+                  "0.6)" % (name, n, bound))
 
 
 def main():
@@ -207,7 +251,6 @@ def main():
     parser.add_argument("--make-data", action="store_true")
     parser.add_argument("--render", action="store_true")
     parser.add_argument("--compare", type=int, nargs="*")
-    parser.add_argument("--tolerance", type=int, default=0)
     args = parser.parse_args()
     LoadPlugin(args.plugin, remote=False, ns=globals())
     if args.make_data:
