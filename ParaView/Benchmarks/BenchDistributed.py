@@ -6,8 +6,8 @@ pvbatch under mpirun -np N, each rank drawing its box of the scene (sort-last, I
     mpirun -np N pvbatch BenchDistributed.py --plugin Strata.so --data <pools> --csv <file>
         [--cache MB] [--atlas MB] [--split] [--png <file>]
 
-The same fly-through as BenchPaging flythrough (48 moving frames, then still until rank 0's
-cut has settled, at most 100 more), 256 x 256, sample distance 2, feedback at 1/4, the same
+The same fly-through as BenchPaging flythrough (48 moving frames, then still until every
+rank's cut has settled, at most 100 more), 256 x 256, sample distance 2, feedback at 1/4, the same
 transfer function. Budgets are per rank: --split divides the given page cache and atlas by N
 (the 1-rank memory spread over the ranks), otherwise every rank has them whole. Each rank
 writes its own figures through the representation's StatisticsFile; rank 0 then appends one
@@ -34,6 +34,21 @@ def percentile(values, q):
     if not ordered:
         return float("nan")
     return ordered[min(len(ordered) - 1, int(math.ceil(q * len(ordered))) - 1 if q > 0 else 0)]
+
+
+def all_settled(stats, ranks):
+    """Whether every rank's cut had settled at the render before the last one (its statistics
+    line, written before each render): ParaView's own PagingConverged is rank 0's alone."""
+    for rank in range(ranks):
+        try:
+            with open("%s.%d" % (stats, rank)) as f:
+                lines = f.read().split()
+        except OSError:
+            return False
+        fields = lines[-1].split(",") if lines else []
+        if len(fields) < 6 or fields[5] != "1":  # (a line being written reads short)
+            return False
+    return True
 
 
 def pose(view, s):
@@ -110,11 +125,9 @@ def main():
         t0 = time.perf_counter()
         Render(view)
         frame_ms.append(1000.0 * (time.perf_counter() - t0))
-        if f >= moving:
-            first.UpdatePropertyInformation()
-            if first.GetPropertyValue("StrataVolumePagingConverged") == 1:
-                converged = f - moving + 1
-                break
+        if f >= moving and all_settled(stats, ranks):
+            converged = f - moving + 1
+            break
         if f % 16 == 0:
             print("frame %d: %.0f ms" % (f, frame_ms[-1]))
     Render(view)  # (each statistics line describes the render before it)

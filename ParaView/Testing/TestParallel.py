@@ -4,6 +4,9 @@
     pvbatch TestParallel.py --plugin Strata.so --work <folder> --make-data
     mpirun -np N pvbatch TestParallel.py --plugin Strata.so --work <folder> --render
     pvbatch TestParallel.py --plugin Strata.so --work <folder> --compare 2 4
+    mpirun -np 2 pvserver --server-port=P & pvpython TestParallel.py --plugin Strata.so
+        --work <folder> --render --server localhost:P --label -server
+    pvbatch TestParallel.py --plugin Strata.so --work <folder> --compare 2 --label -server
 
 The scene: three overlapping volumes of different resolutions and transfer functions, the
 largest one paged from a brick pool (strata-convert makes it from paged.vti between --make-data
@@ -138,12 +141,24 @@ def setup_view():
     return view
 
 
+def all_settled(stats, ranks):
+    """Whether every rank's cut had settled at the last render (the last line of its
+    statistics, written before each render, describes the render before)."""
+    for rank in range(ranks):
+        with open("%s.%d" % (stats, rank)) as f:
+            lines = f.read().split()
+        fields = lines[-1].split(",") if lines else []
+        if len(fields) < 6 or fields[5] != "1":  # (a line being written reads short)
+            return False
+    return True
+
+
 def render(args):
     view = setup_view()
     display = build_scene(args.work, view)
     ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
     # Every rank appends its own figures (MB paged) to stats_<N>.<rank>.
-    stats = os.path.join(args.work, "stats_%d" % ranks)
+    stats = os.path.join(args.work, "stats_%d%s" % (ranks, args.label))
     for rank in range(ranks):
         if os.path.exists("%s.%d" % (stats, rank)):
             os.remove("%s.%d" % (stats, rank))
@@ -154,31 +169,30 @@ def render(args):
         view.CameraViewUp = v["view_up"]
         view.CameraViewAngle = 30.0
         display.StrataVolumeClassification = v["classification"]
-        # Rank 0's convergence is the one the client sees; the others get frames to catch up.
-        settled = 0
+        # Until every rank's cut has settled (ParaView's PagingConverged is rank 0's alone).
+        settled = False
         for frame in range(300):
             Render(view)
-            display.UpdatePropertyInformation()
-            settled = settled + 1 if display.GetPropertyValue("StrataVolumePagingConverged") else 0
-            if settled > 8:
+            settled = frame > 0 and all_settled(stats, ranks)
+            if settled:
                 break
             time.sleep(0.02)
-        check(settled > 8, "%s: the paged volume settled (%d ranks, %d renders)"
+        check(settled, "%s: the paged volume settled on every rank (%d ranks, %d renders)"
               % (name, ranks, frame + 1))
         display.UpdatePropertyInformation()
         check(display.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 3,
               "%s: three volumes in one ray cast" % name)
-        out = os.path.join(args.work, "parallel_%d_%s.png" % (ranks, name))
+        out = os.path.join(args.work, "parallel_%d%s_%s.png" % (ranks, args.label, name))
         SaveScreenshot(out, view, ImageResolution=SIZE, TransparentBackground=0)
         print("%s: %d ranks -> %s" % (name, ranks, out))
     Render(view)  # (the statistics lines describe the render before)
 
 
-def paged_megabytes(work, ranks):
+def paged_megabytes(work, ranks, label):
     """Each rank's MB paged from the pool over the whole run (its last statistics line)."""
     paged = []
     for rank in range(ranks):
-        with open(os.path.join(work, "stats_%d.%d" % (ranks, rank))) as f:
+        with open(os.path.join(work, "stats_%d%s.%d" % (ranks, label, rank))) as f:
             lines = [line.split(",") for line in f.read().split()]
         paged.append(float(lines[-1][2]))
     return paged
@@ -197,9 +211,9 @@ def load(path):
 
 def compare(args):
     import numpy
-    whole = paged_megabytes(args.work, 1)[0]
+    whole = paged_megabytes(args.work, 1, "")[0]
     for n in args.compare:
-        paged = paged_megabytes(args.work, n)
+        paged = paged_megabytes(args.work, n, args.label)
         print("MB paged: 1 rank %.3f; %d ranks %s (largest %.0f%% of 1 rank's)" % (
             whole, n, ["%.3f" % p for p in paged], 100.0 * max(paged) / whole))
         # Each rank pages the bricks its box, grown by a step and a voxel, touches. The pool's
@@ -219,7 +233,8 @@ def compare(args):
         check(covered > len(one) // 4, "%s: the scene covers %d of %d pixels (more than a "
               "quarter)" % (name, covered, len(one)))
         for n in args.compare:
-            dims, many = load(os.path.join(args.work, "parallel_%d_%s.png" % (n, name)))
+            dims, many = load(os.path.join(args.work, "parallel_%d%s_%s.png"
+                                           % (n, args.label, name)))
             check(dims == dims1, "%s: %d-rank image size" % (name, n))
             if dims != dims1:
                 continue
@@ -251,7 +266,14 @@ def main():
     parser.add_argument("--make-data", action="store_true")
     parser.add_argument("--render", action="store_true")
     parser.add_argument("--compare", type=int, nargs="*")
+    parser.add_argument("--server", help="host:port of a pvserver to render on (pvpython)")
+    parser.add_argument("--label", default="",
+                        help="added to the image names (parallel_<N><label>_<view>.png)")
     args = parser.parse_args()
+    if args.server:
+        host, port = args.server.rsplit(":", 1)
+        Connect(host, int(port))
+        LoadPlugin(args.plugin, remote=True, ns=globals())
     LoadPlugin(args.plugin, remote=False, ns=globals())
     if args.make_data:
         make_data(args.work)
