@@ -186,6 +186,7 @@ void vtkStrataVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Paged: " << this->GetPaged() << "\n";
   os << indent << "VolumesInScene: " << (this->Scene ? this->Scene->Members.size() : 0) << "\n";
+  os << indent << "StatisticsFile: " << this->StatisticsFile << "\n";
 }
 
 //------------------------------------------------------------------------------
