@@ -39,8 +39,9 @@ std::vector<float> RenderRGBA(strata_test::VolumeScene& s)
 }
 
 // The largest channel difference (of 255) between `whole` and `front` over `back`.
-double Blended(
-  const std::vector<float>& front, const std::vector<float>& back, const std::vector<float>& whole)
+double Blended(const std::vector<float>& front,
+  const std::vector<float>& back,
+  const std::vector<float>& whole)
 {
   double worst = 0.0;
   for (size_t p = 0; p < whole.size(); p += 4)
