@@ -21,6 +21,8 @@
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkIrapBinaryGridReader.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
@@ -30,12 +32,16 @@
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
+#include "vtkSegyVolumeReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkStackedHeightFieldMapper.h"
+#include "vtkSubsurfacePicker.h"
+#include "vtkSyntheticSurveyWriter.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -422,6 +428,76 @@ int PagedVolume(const Arguments& args)
     std::remove(pool.c_str());
   return result;
 }
+
+/// The subsurface scene: a synthetic survey written from the Reek horizons on their own grid
+/// (every 8th node), read back in world coordinates, drawn over the base horizon with no
+/// transform, and one pick at the window's centre.
+int Subsurface(const Arguments& args)
+{
+  vtkNew<vtkSyntheticSurveyWriter> survey;
+  std::vector<vtkSmartPointer<vtkIrapBinaryGridReader>> grids;
+  for (const char* name : ReekNames)
+  {
+    auto reader = vtkSmartPointer<vtkIrapBinaryGridReader>::New();
+    reader->SetFileName((args.Data + "/horizons/" + name + ".gri").c_str());
+    survey->AddInputConnection(reader->GetOutputPort());
+    grids.push_back(reader);
+  }
+  grids[0]->Update();
+  vtkImageData* grid = grids[0]->GetOutput();
+  int dims[3];
+  grid->GetDimensions(dims);
+  vtkMatrix3x3* d = grid->GetDirectionMatrix();
+  survey->SetOrigin(grid->GetOrigin()[0], grid->GetOrigin()[1]);
+  survey->SetRotation(
+    vtkMath::DegreesFromRadians(std::atan2(d->GetElement(1, 0), d->GetElement(0, 0))));
+  survey->SetBins(8 * grid->GetSpacing()[1], 8 * grid->GetSpacing()[0]);
+  survey->SetLines((dims[1] - 1) / 8 + 1, (dims[0] - 1) / 8 + 1);
+  survey->SetSamples(160, 4.0, 1444); // depths in m: 4 m samples over the reservoir
+  survey->SetPeakFrequency(30.0);     // cycles per km for depths
+  const std::string path = args.Work + "/reek-synthetic.sgy";
+  survey->SetFileName(path.c_str());
+  if (!survey->Write())
+    return 1;
+
+  vtkNew<vtkSegyVolumeReader> seismic;
+  seismic->SetFileName(path.c_str()); // placed by its trace coordinates, z = -depth
+  vtkNew<vtkMultiVolumeRayCastMapper> volumeMapper;
+  volumeMapper->SetInputConnection(seismic->GetOutputPort());
+  auto property =
+    VolumeProperty({ { -0.1, 0.15, 0.3, 1.0 }, { 0, 1, 1, 1 }, { 0.1, 1.0, 0.25, 0.1 } },
+      { { -0.1, 0.6 }, { -0.02, 0.0 }, { 0.02, 0.0 }, { 0.1, 0.6 } });
+  property->SetScalarOpacityUnitDistance(20.0);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(volumeMapper);
+  volume->SetProperty(property);
+  volume->SetScale(1, 1, 8);
+  vtkNew<vtkStackedHeightFieldMapper> base;
+  base->AddInputConnection(grids[3]->GetOutputPort());
+  base->SetHeightScale(-1.0); // the same z as the volume
+  base->SetColorMode(vtkStackedHeightFieldMapper::ColorModes::LookupTable);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(base);
+  actor->SetScale(1, 1, 8);
+  auto renderer = Renderer();
+  renderer->AddActor(actor);
+  renderer->AddVolume(volume);
+  View(renderer, -60, 30, 2.0);
+  auto window = Window(renderer, 320, 240);
+  window->Render();
+  vtkNew<vtkSubsurfacePicker> picker;
+  if (picker->Pick(160.5, 120.5, 0.0, renderer))
+  {
+    const double* p = picker->GetPickPosition();
+    std::cerr << "pick at the centre: (" << p[0] << ", " << p[1] << ", " << p[2] << "), horizon "
+              << picker->GetHorizonId() << ", " << picker->GetRayPoints()->GetNumberOfPoints()
+              << " volume samples\n";
+  }
+  const int result = Save(window, args) ? 0 : 1;
+  if (!args.KeepPools)
+    std::remove(path.c_str());
+  return result;
+}
 }
 
 int main(int argc, char* argv[])
@@ -433,13 +509,14 @@ int main(int argc, char* argv[])
     { "hybrid", Hybrid },
     { "paged_volume", PagedVolume },
     { "paged_horizons", PagedHorizons },
+    { "subsurface", Subsurface },
   };
   if (argc < 3 || !scenes.count(argv[1]))
   {
-    std::cerr
-      << "usage: StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|"
-         "paged_horizons> <out.png> [--data <folder>] [--work <folder>] [--camera <view.json>] "
-         "[--keep-pools]\n";
+    std::cerr << "usage: StrataExamples <horizons|horizons_numpy|volumes|hybrid|paged_volume|"
+                 "paged_horizons|subsurface> <out.png> [--data <folder>] [--work <folder>] "
+                 "[--camera <view.json>] "
+                 "[--keep-pools]\n";
     return 2;
   }
   Arguments args;

@@ -13,9 +13,11 @@
 #include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkHorizonColumnReader.h"
 #include "vtkImageReader2.h"
 #include "vtkImageToPagePoolWriter.h"
+#include "vtkInformation.h"
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
@@ -41,13 +43,18 @@ void Usage(std::ostream& os)
      << strata_cli::RawVolumeOptions::Usage
      << "\n"
         "         [--inline-byte N] [--crossline-byte N] [--segy-format CODE]\n"
+        "         [--x-byte N] [--y-byte N] [--scalar-byte N]\n"
+        "         [--placement auto|world|lines] [--vertical-scale S]\n"
         "         [--grid-format irap-ascii|zmap|esri|matrix|columns]\n"
         "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw), .sgy/.segy -> brick pool;\n"
         "        .npy, .gri, Irap classic ASCII, ZMAP+, ESRI ASCII (.asc), columns or a\n"
         "        whitespace matrix (.txt, .dat, .xyz, .csv), and any input one point thick\n"
         "        along z -> tile pool\n"
         "SEG-Y: inline and crossline numbers at trace-header bytes 189 and 193 unless given;\n"
-        "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8)\n"
+        "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8);\n"
+        "       placed by the trace coordinates (CDP X/Y at 181/185, scalar at 71 unless\n"
+        "       given) when they are there, z = vertical scale (default -1) x time or depth;\n"
+        "       --placement lines: world = (inline, crossline, time) as before\n"
         "text grids: told by their content unless --grid-format names one (a matrix of 8\n"
         "       values a line or fewer needs --grid-format matrix)\n";
 }
@@ -177,6 +184,9 @@ int main(int argc, char* argv[])
   int inlineByte = 189;
   int crosslineByte = 193;
   int segyFormat = 0;
+  int xByte = 181, yByte = 185, scalarByte = 71;
+  auto placement = vtkSegyVolumeReader::Placements::Automatic;
+  double verticalScale = -1.0;
   std::string gridFormat;
   for (int i = 1; i < argc; ++i)
   {
@@ -207,9 +217,15 @@ int main(int argc, char* argv[])
       if (!ParseDouble(argv[++i], memoryMB) || !(memoryMB > 0))
         return Die("--memory-limit needs a positive number of MB");
     }
-    else if ((a == "--inline-byte" || a == "--crossline-byte") && need(1))
+    else if ((a == "--inline-byte" || a == "--crossline-byte" || a == "--x-byte" ||
+               a == "--y-byte" || a == "--scalar-byte") &&
+             need(1))
     {
-      int& byte = a == "--inline-byte" ? inlineByte : crosslineByte;
+      int& byte = a == "--inline-byte"      ? inlineByte
+                  : a == "--crossline-byte" ? crosslineByte
+                  : a == "--x-byte"         ? xByte
+                  : a == "--y-byte"         ? yByte
+                                            : scalarByte;
       if (!ParseInt(argv[++i], byte) || byte < 1 || byte > 237)
         return Die(a + " needs a trace-header byte position in [1, 237]");
     }
@@ -218,6 +234,20 @@ int main(int argc, char* argv[])
       gridFormat = argv[++i];
       if (!NewTextGridReader("", gridFormat))
         return Die("--grid-format needs irap-ascii, zmap, esri, matrix or columns");
+    }
+    else if (a == "--placement" && need(1))
+    {
+      const std::string p = argv[++i];
+      if (p != "auto" && p != "world" && p != "lines")
+        return Die("--placement needs auto, world or lines");
+      placement = p == "world"   ? vtkSegyVolumeReader::Placements::World
+                  : p == "lines" ? vtkSegyVolumeReader::Placements::LineNumbers
+                                 : vtkSegyVolumeReader::Placements::Automatic;
+    }
+    else if (a == "--vertical-scale" && need(1))
+    {
+      if (!ParseDouble(argv[++i], verticalScale) || verticalScale == 0.0)
+        return Die("--vertical-scale needs a number other than 0");
     }
     else if (a == "--segy-format" && need(1))
     {
@@ -260,6 +290,11 @@ int main(int argc, char* argv[])
     r->SetInlineByte(inlineByte);
     r->SetCrosslineByte(crosslineByte);
     r->SetSampleFormat(segyFormat);
+    r->SetXByte(xByte);
+    r->SetYByte(yByte);
+    r->SetCoordinateScalarByte(scalarByte);
+    r->SetPlacement(placement);
+    r->SetVerticalScale(verticalScale);
     reader = r;
   }
   else if ((ext == ".mhd" || ext == ".mha") &&
@@ -329,6 +364,23 @@ int main(int argc, char* argv[])
   if (!ok)
   {
     return Die("conversion of \"" + input + "\" failed; no output written");
+  }
+  if (auto* segy = vtkSegyVolumeReader::SafeDownCast(reader))
+  {
+    if (segy->GetGeoreferenced())
+    {
+      const double* s = segy->GetOutputInformation(0)->Get(vtkDataObject::SPACING());
+      std::printf("SEG-Y placed by its trace coordinates: crosslines at %.6g degrees, bins %.6g "
+                  "x %.6g, largest trace residual %.3g\n",
+        segy->GetGridRotation(),
+        s[0],
+        s[2],
+        segy->GetFitResidual());
+    }
+    else
+    {
+      std::printf("SEG-Y placed by its line numbers (world = inline, crossline, time)\n");
+    }
   }
   std::printf("%s: %lld bytes, %lld pages (%s), %.2f s\n",
     output.c_str(),

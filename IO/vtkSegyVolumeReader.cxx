@@ -3,10 +3,15 @@
 #include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -83,17 +88,108 @@ std::string FileState(const std::string& path, long long* size = nullptr)
   return s.str();
 }
 
-/// What a scan depends on: the file, its state (FileState) and the reader's settings.
-std::string ScanKey(const std::string& path,
-  int inlineByte,
-  int crosslineByte,
-  int format,
-  const std::string& state)
+/// The reader's settings a scan depends on.
+struct ScanSettings
 {
-  std::ostringstream key;
-  key << path << '\n' << inlineByte << ' ' << crosslineByte << ' ' << format << '\n' << state;
-  return key.str();
+  int InlineByte = 189;
+  int CrosslineByte = 193;
+  int Format = 0;
+  int XByte = 181;
+  int YByte = 185;
+  int ScalarByte = 71;
+  int Placement = 0; ///< vtkSegyVolumeReader::Placements
+  double VerticalScale = -1.0;
+  double MaximumFitResidual = 0.25;
+
+  /// What a scan depends on: the file, its state (FileState) and these settings.
+  std::string Key(const std::string& path, const std::string& state) const
+  {
+    std::ostringstream key;
+    key.precision(17);
+    key << path << '\n'
+        << this->InlineByte << ' ' << this->CrosslineByte << ' ' << this->Format << ' '
+        << this->XByte << ' ' << this->YByte << ' ' << this->ScalarByte << ' ' << this->Placement
+        << ' ' << this->VerticalScale << ' ' << this->MaximumFitResidual << '\n'
+        << state;
+    return key.str();
+  }
+};
+
+/// Map coordinates of a trace header: the integers at `xByte` and `yByte` times the coordinate
+/// scalar at `scalarByte` (SEG-Y rev 1: negative divides by its magnitude, 0 means 1).
+void TraceCoordinates(const char* header, const ScanSettings& s, double xy[2])
+{
+  const int32_t scalar = HeaderInt(header, s.ScalarByte);
+  const double factor = scalar > 0 ? double(scalar) : scalar < 0 ? 1.0 / -double(scalar) : 1.0;
+  xy[0] = HeaderInt(header, s.XByte) * factor;
+  xy[1] = HeaderInt(header, s.YByte) * factor;
 }
+
+/// The least-squares affine map from (inline index, crossline index) to map (x, y) over the
+/// traces: p = Origin + i * Inline + j * Crossline, and the largest residual. Centred sums keep
+/// UTM-sized coordinates exact to well below a millimetre in double.
+struct LatticeFit
+{
+  double Origin[2] = { 0, 0 };
+  double Inline[2] = { 0, 0 };
+  double Crossline[2] = { 0, 0 };
+  double MaxResidual = 0.0;
+  vtkIdType WorstTrace = -1;
+
+  /// False when the traces do not span both axes (one line, or one trace). i(t) and j(t) are
+  /// trace t's grid indices (computed, not stored: a survey has millions of traces).
+  template<typename I, typename J>
+  bool Fit(size_t n, I i, J j, const std::vector<double>& xy)
+  {
+    double mi = 0, mj = 0, mp[2] = { 0, 0 };
+    for (size_t t = 0; t < n; ++t)
+    {
+      mi += i(t) / n;
+      mj += j(t) / n;
+      mp[0] += xy[2 * t] / n;
+      mp[1] += xy[2 * t + 1] / n;
+    }
+    double sii = 0, sjj = 0, sij = 0, sip[2] = { 0, 0 }, sjp[2] = { 0, 0 };
+    for (size_t t = 0; t < n; ++t)
+    {
+      const double di = i(t) - mi, dj = j(t) - mj;
+      sii += di * di;
+      sjj += dj * dj;
+      sij += di * dj;
+      for (int c = 0; c < 2; ++c)
+      {
+        sip[c] += di * (xy[2 * t + c] - mp[c]);
+        sjp[c] += dj * (xy[2 * t + c] - mp[c]);
+      }
+    }
+    const double det = sii * sjj - sij * sij;
+    // Integer indices: det is an integer, 0 exactly when all traces lie on one line of the grid.
+    if (!(det > 0.5))
+    {
+      return false;
+    }
+    for (int c = 0; c < 2; ++c)
+    {
+      this->Inline[c] = (sjj * sip[c] - sij * sjp[c]) / det;
+      this->Crossline[c] = (sii * sjp[c] - sij * sip[c]) / det;
+      this->Origin[c] = mp[c] - this->Inline[c] * mi - this->Crossline[c] * mj;
+    }
+    for (size_t t = 0; t < n; ++t)
+    {
+      const double dx =
+        this->Origin[0] + this->Inline[0] * i(t) + this->Crossline[0] * j(t) - xy[2 * t];
+      const double dy =
+        this->Origin[1] + this->Inline[1] * i(t) + this->Crossline[1] * j(t) - xy[2 * t + 1];
+      const double r = std::hypot(dx, dy);
+      if (r > this->MaxResidual)
+      {
+        this->MaxResidual = r;
+        this->WorstTrace = static_cast<vtkIdType>(t);
+      }
+    }
+    return true;
+  }
+};
 
 /// The grid of a set of line numbers: first, step (gcd of the differences) and count.
 struct LineAxis
@@ -171,29 +267,58 @@ public:
   int FirstInline = 0, InlineStep = 1, FirstCrossline = 0, CrosslineStep = 1;
   double Spacing[3] = { 1, 1, 1 };
   double Origin[3] = { 0, 0, 0 };
-  /// Index (x, y, z) = (crossline, sample, inline) -> world (inline, crossline, time).
-  static constexpr double Direction[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
+  /// Row-major; LineNumbers: index (x, y, z) = (crossline, sample, inline) -> world (inline,
+  /// crossline, time).
+  double Direction[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
+  bool Georeferenced = false;
+  double FitResidual = 0.0;
+  double GridRotation = 0.0;
   std::string Warning;
+  vtkNew<vtkMatrix4x4> GridToWorld;
 
-  std::string Scan(const std::string& path, int inlineByte, int crosslineByte, int format);
+  std::string Scan(const std::string& path, const ScanSettings& settings);
   void SetGeometry(vtkImageData* image) const
   {
     image->SetSpacing(this->Spacing);
     image->SetOrigin(this->Origin);
-    image->SetDirectionMatrix(Direction);
+    image->SetDirectionMatrix(this->Direction);
+    vtkNew<vtkDoubleArray> matrix;
+    matrix->SetName("GridToWorld");
+    matrix->SetNumberOfComponents(16);
+    matrix->InsertNextTuple(this->GridToWorld->GetData());
+    image->GetFieldData()->AddArray(matrix);
   }
+
+private:
+  /// Per trace, from the header pass: line numbers, map coordinates and the coordinate unit.
+  struct TraceHeaders
+  {
+    std::vector<int32_t> Inlines, Crosslines;
+    std::vector<double> XY;
+    int CoordinateUnits = 0;
+    bool AnyCoordinate = false;
+  };
+  std::string ReadTraceHeaders(segy_file* fp, const ScanSettings& s, TraceHeaders& h);
+  std::string BuildIndex(const TraceHeaders& h, const ScanSettings& s);
+  std::string Place(const TraceHeaders& h, const ScanSettings& s, double dt);
+  void PlaceByLineNumbers(double dt);
+  void UpdateGridToWorld();
+
+  double Delay = 0.0;
 };
 
 //------------------------------------------------------------------------------
 std::string vtkSegyVolumeReader::vtkInternals::Scan(const std::string& path,
-  int inlineByte,
-  int crosslineByte,
-  int formatOverride)
+  const ScanSettings& settings)
 {
+  const int inlineByte = settings.InlineByte;
+  const int crosslineByte = settings.CrosslineByte;
+  const int formatOverride = settings.Format;
   this->Key.clear();
   this->Index.clear();
   this->Warning.clear();
-  for (int byte : { inlineByte, crosslineByte })
+  for (int byte :
+    { inlineByte, crosslineByte, settings.XByte, settings.YByte, settings.ScalarByte })
   {
     if (byte < 1 || byte > SEGY_TRACE_HEADER_SIZE - 3)
     {
@@ -203,6 +328,15 @@ std::string vtkSegyVolumeReader::vtkInternals::Scan(const std::string& path,
   if (inlineByte == crosslineByte)
   {
     return "InlineByte and CrosslineByte are both " + std::to_string(inlineByte);
+  }
+  if (settings.XByte == settings.YByte)
+  {
+    return "XByte and YByte are both " + std::to_string(settings.XByte);
+  }
+  if (!(settings.VerticalScale != 0.0) || !std::isfinite(settings.VerticalScale))
+  {
+    return "VerticalScale is " + std::to_string(settings.VerticalScale) +
+           "; it must be finite and not 0";
   }
   long long size = 0;
   this->State = FileState(path, &size);
@@ -260,27 +394,88 @@ std::string vtkSegyVolumeReader::vtkInternals::Scan(const std::string& path,
   }
   this->Traces = static_cast<vtkIdType>(body / stride);
 
-  // One pass over the trace headers for the line numbers. Their sample counts are not checked:
-  // writers leave them stale (f3.sgy says 462 in every trace of 75 samples), and segyio too
-  // trusts the binary header; traces of other lengths show in the file size above.
-  std::vector<int32_t> inlines(this->Traces), crosslines(this->Traces);
-  double delay = 0.0;
+  TraceHeaders h;
+  std::string error = this->ReadTraceHeaders(fp.get(), settings, h);
+  if (error.empty())
+  {
+    error = this->BuildIndex(h, settings);
+  }
+  if (!error.empty())
+  {
+    this->Index.clear();
+    return error;
+  }
+  float dt = 0.0f;
+  if (segy_sample_interval(fp.get(), 0.0f, &dt) != SEGY_OK || !(dt > 0.0f))
+  {
+    this->Warning = "no sample interval in the binary or first trace header; 1 ms assumed";
+    dt = 1000.0f;
+  }
+  error = this->Place(h, settings, dt / 1000.0);
+  if (!error.empty())
+  {
+    this->Index.clear();
+    return error;
+  }
+  const vtkIdType missing = static_cast<vtkIdType>(this->Index.size()) - this->Traces;
+  if (missing > 0)
+  {
+    std::ostringstream msg;
+    msg << (this->Warning.empty() ? "" : "; ") << missing << " of the " << this->Index.size()
+        << " grid positions have no trace; they read as NaN";
+    this->Warning += msg.str();
+  }
+  this->Key = settings.Key(path, this->State);
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+// One pass over the trace headers. Their sample counts are not checked: writers leave them
+// stale (f3.sgy says 462 in every trace of 75 samples), and segyio too trusts the binary header;
+// traces of other lengths show in the file size.
+std::string vtkSegyVolumeReader::vtkInternals::ReadTraceHeaders(segy_file* fp,
+  const ScanSettings& s,
+  TraceHeaders& h)
+{
+  std::vector<char> header(SEGY_TRACE_HEADER_SIZE);
+  h.Inlines.resize(this->Traces);
+  h.Crosslines.resize(this->Traces);
+  h.XY.resize(2 * static_cast<size_t>(this->Traces));
   for (int t = 0; t < this->Traces; ++t)
   {
-    if (segy_traceheader(fp.get(), t, header.data(), this->Trace0, this->TraceBytes) != SEGY_OK)
+    if (segy_traceheader(fp, t, header.data(), this->Trace0, this->TraceBytes) != SEGY_OK)
     {
       return "cannot read the header of trace " + std::to_string(t);
     }
-    inlines[t] = HeaderInt(header.data(), inlineByte);
-    crosslines[t] = HeaderInt(header.data(), crosslineByte);
+    h.Inlines[t] = HeaderInt(header.data(), s.InlineByte);
+    h.Crosslines[t] = HeaderInt(header.data(), s.CrosslineByte);
+    TraceCoordinates(header.data(), s, &h.XY[2 * static_cast<size_t>(t)]);
+    h.AnyCoordinate = h.AnyCoordinate || h.XY[2 * t] != 0.0 || h.XY[2 * t + 1] != 0.0;
+    const double delay = HeaderInt(header.data(), SEGY_TR_DELAY_REC_TIME);
     if (t == 0)
     {
-      delay = HeaderInt(header.data(), SEGY_TR_DELAY_REC_TIME);
+      this->Delay = delay;
+      h.CoordinateUnits = HeaderInt(header.data(), SEGY_TR_COORD_UNITS);
+    }
+    else if (delay != this->Delay)
+    {
+      std::ostringstream msg;
+      msg << "trace " << t << " starts at " << delay << " ms (delay recording time, bytes "
+          << "109-110) and trace 0 at " << this->Delay << " ms: traces that start at different "
+          << "times are not supported";
+      return msg.str();
     }
   }
+  return std::string();
+}
 
-  const LineAxis il(inlines);
-  const LineAxis xl(crosslines);
+//------------------------------------------------------------------------------
+// The grid of the line numbers and the (inline, crossline) -> trace index.
+std::string vtkSegyVolumeReader::vtkInternals::BuildIndex(const TraceHeaders& h,
+  const ScanSettings& s)
+{
+  const LineAxis il(h.Inlines);
+  const LineAxis xl(h.Crosslines);
   if (il.Count > MaxLines || xl.Count > MaxLines ||
       il.Count * xl.Count > MaxPositionsPerTrace * this->Traces)
   {
@@ -288,7 +483,7 @@ std::string vtkSegyVolumeReader::vtkInternals::Scan(const std::string& path,
     msg << "inline numbers " << il.First << " + " << il.Step << " k (" << il.Count
         << " lines) and crossline numbers " << xl.First << " + " << xl.Step << " k (" << xl.Count
         << " lines) make a grid far too large for " << this->Traces << " traces: are InlineByte ("
-        << inlineByte << ") and CrosslineByte (" << crosslineByte << ") right?";
+        << s.InlineByte << ") and CrosslineByte (" << s.CrosslineByte << ") right?";
     return msg.str();
   }
   this->Inlines = static_cast<int>(il.Count);
@@ -296,38 +491,167 @@ std::string vtkSegyVolumeReader::vtkInternals::Scan(const std::string& path,
   this->Index.assign(static_cast<size_t>(il.Count * xl.Count), -1);
   for (int t = 0; t < this->Traces; ++t)
   {
-    int32_t& slot = this->Index[il.IndexOf(inlines[t]) * xl.Count + xl.IndexOf(crosslines[t])];
+    int32_t& slot = this->Index[il.IndexOf(h.Inlines[t]) * xl.Count + xl.IndexOf(h.Crosslines[t])];
     if (slot >= 0)
     {
       std::ostringstream msg;
-      msg << "traces " << slot << " and " << t << " are both at inline " << inlines[t]
-          << ", crossline " << crosslines[t] << " (pre-stack gathers are not supported; are "
-          << "InlineByte (" << inlineByte << ") and CrosslineByte (" << crosslineByte
+      msg << "traces " << slot << " and " << t << " are both at inline " << h.Inlines[t]
+          << ", crossline " << h.Crosslines[t] << " (pre-stack gathers are not supported; are "
+          << "InlineByte (" << s.InlineByte << ") and CrosslineByte (" << s.CrosslineByte
           << ") right?)";
-      this->Index.clear();
       return msg.str();
     }
     slot = t;
-  }
-
-  float dt = 0.0f;
-  if (segy_sample_interval(fp.get(), 0.0f, &dt) != SEGY_OK || !(dt > 0.0f))
-  {
-    this->Warning = "no sample interval in the binary or first trace header; 1 ms assumed";
-    dt = 1000.0f;
   }
   this->FirstInline = il.First;
   this->InlineStep = il.Step;
   this->FirstCrossline = xl.First;
   this->CrosslineStep = xl.Step;
-  this->Spacing[0] = xl.Step;
-  this->Spacing[1] = dt / 1000.0;
-  this->Spacing[2] = il.Step;
-  this->Origin[0] = il.First;
-  this->Origin[1] = xl.First;
-  this->Origin[2] = delay;
-  this->Key = ScanKey(path, inlineByte, crosslineByte, formatOverride, this->State);
   return std::string();
+}
+
+//------------------------------------------------------------------------------
+void vtkSegyVolumeReader::vtkInternals::PlaceByLineNumbers(double dt)
+{
+  this->Georeferenced = false;
+  this->FitResidual = 0.0;
+  this->GridRotation = 0.0;
+  const double direction[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
+  std::copy(direction, direction + 9, this->Direction);
+  this->Spacing[0] = this->CrosslineStep;
+  this->Spacing[1] = dt;
+  this->Spacing[2] = this->InlineStep;
+  this->Origin[0] = this->FirstInline;
+  this->Origin[1] = this->FirstCrossline;
+  this->Origin[2] = this->Delay;
+  this->UpdateGridToWorld();
+}
+
+//------------------------------------------------------------------------------
+// World placement: the affine lattice fitted to the trace coordinates (LatticeFit), checked.
+std::string vtkSegyVolumeReader::vtkInternals::Place(const TraceHeaders& h,
+  const ScanSettings& s,
+  double dt)
+{
+  const auto placement = static_cast<vtkSegyVolumeReader::Placements>(s.Placement);
+  const bool forced = placement == vtkSegyVolumeReader::Placements::World;
+  if (placement == vtkSegyVolumeReader::Placements::LineNumbers || (!forced && !h.AnyCoordinate))
+  {
+    this->PlaceByLineNumbers(dt);
+    return std::string();
+  }
+  std::ostringstream where;
+  where << " (XByte " << s.XByte << ", YByte " << s.YByte << ", CoordinateScalarByte "
+        << s.ScalarByte << ")";
+  if (!h.AnyCoordinate)
+  {
+    return "World placement: every trace has X = Y = 0" + where.str() +
+           "; the file carries no coordinates there";
+  }
+  if (h.CoordinateUnits >= 2 && h.CoordinateUnits <= 4)
+  {
+    const std::string msg = "the trace coordinates are geographic (coordinate units " +
+                            std::to_string(h.CoordinateUnits) + " at byte 89), not map " +
+                            "coordinates";
+    if (forced)
+    {
+      return "World placement: " + msg;
+    }
+    this->Warning = msg + "; placed by line numbers";
+    this->PlaceByLineNumbers(dt);
+    return std::string();
+  }
+  auto i = [&](size_t t)
+  { return static_cast<double>((int64_t(h.Inlines[t]) - this->FirstInline) / this->InlineStep); };
+  auto j = [&](size_t t)
+  {
+    return static_cast<double>(
+      (int64_t(h.Crosslines[t]) - this->FirstCrossline) / this->CrosslineStep);
+  };
+  LatticeFit fit;
+  if (!fit.Fit(static_cast<size_t>(this->Traces), i, j, h.XY))
+  {
+    const std::string msg = "the traces lie on a single inline or crossline, so the other axis "
+                            "cannot be placed";
+    if (forced)
+    {
+      return "World placement: " + msg + " (use LineNumbers placement)";
+    }
+    this->Warning = msg + "; placed by line numbers";
+    this->PlaceByLineNumbers(dt);
+    return std::string();
+  }
+  const double il = std::hypot(fit.Inline[0], fit.Inline[1]);
+  const double xl = std::hypot(fit.Crossline[0], fit.Crossline[1]);
+  const double cross = fit.Crossline[0] * fit.Inline[1] - fit.Crossline[1] * fit.Inline[0];
+  // |sin| of the angle between the axes: bins squashed below 1/10 of a square are misread
+  // headers (a coordinate that does not change along one axis).
+  const double sine = il > 0 && xl > 0 ? std::abs(cross) / (il * xl) : 0.0;
+  if (!(sine > 0.1))
+  {
+    std::ostringstream msg;
+    msg << "World placement: the coordinates" << where.str() << " move " << il << " per inline and "
+        << xl << " per crossline, nearly along one line: are the "
+        << "coordinate byte positions right?";
+    return msg.str();
+  }
+  const double bin = std::min(il, xl);
+  if (fit.MaxResidual > s.MaximumFitResidual * bin)
+  {
+    const vtkIdType t = fit.WorstTrace;
+    std::ostringstream msg;
+    msg.precision(12);
+    msg << "World placement: trace " << t << " (inline " << h.Inlines[t] << ", crossline "
+        << h.Crosslines[t] << ") at (" << h.XY[2 * t] << ", " << h.XY[2 * t + 1] << ") is "
+        << fit.MaxResidual << " from its place on the lattice fitted to all traces, more than "
+        << s.MaximumFitResidual << " bins of " << bin << where.str()
+        << ": the traces are not on a regular grid";
+    return msg.str();
+  }
+  if (sine < 1.0 - 1.5e-4) // about 1 degree from a right angle
+  {
+    std::ostringstream msg;
+    msg << (this->Warning.empty() ? "" : "; ") << "the bins are not rectangular (their sides are "
+        << std::asin(std::min(sine, 1.0)) * 180.0 / vtkMath::Pi()
+        << " degrees apart); placed as fitted, sheared";
+    this->Warning += msg.str();
+  }
+  const double down = s.VerticalScale < 0 ? -1.0 : 1.0;
+  const double direction[9] = { fit.Crossline[0] / xl,
+    0,
+    fit.Inline[0] / il, //
+    fit.Crossline[1] / xl,
+    0,
+    fit.Inline[1] / il, //
+    0,
+    down,
+    0 };
+  std::copy(direction, direction + 9, this->Direction);
+  this->Spacing[0] = xl;
+  this->Spacing[1] = std::abs(s.VerticalScale) * dt;
+  this->Spacing[2] = il;
+  this->Origin[0] = fit.Origin[0];
+  this->Origin[1] = fit.Origin[1];
+  this->Origin[2] = s.VerticalScale * this->Delay;
+  this->Georeferenced = true;
+  this->FitResidual = fit.MaxResidual;
+  this->GridRotation = std::atan2(fit.Crossline[1], fit.Crossline[0]) * 180.0 / vtkMath::Pi();
+  this->UpdateGridToWorld();
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+void vtkSegyVolumeReader::vtkInternals::UpdateGridToWorld()
+{
+  this->GridToWorld->Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->GridToWorld->SetElement(r, c, this->Direction[3 * r + c] * this->Spacing[c]);
+    }
+    this->GridToWorld->SetElement(r, 3, this->Origin[r]);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -354,6 +678,15 @@ void vtkSegyVolumeReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InlineByte: " << this->InlineByte << "\n";
   os << indent << "CrosslineByte: " << this->CrosslineByte << "\n";
   os << indent << "SampleFormat: " << this->SampleFormat << "\n";
+  os << indent << "XByte: " << this->XByte << "\n";
+  os << indent << "YByte: " << this->YByte << "\n";
+  os << indent << "CoordinateScalarByte: " << this->CoordinateScalarByte << "\n";
+  os << indent << "Placement: " << static_cast<int>(this->Placement) << "\n";
+  os << indent << "VerticalScale: " << this->VerticalScale << "\n";
+  os << indent << "MaximumFitResidual: " << this->MaximumFitResidual << "\n";
+  os << indent << "Georeferenced: " << this->Georeferenced << "\n";
+  os << indent << "FitResidual: " << this->FitResidual << "\n";
+  os << indent << "GridRotation: " << this->GridRotation << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
   os << indent << "NumberOfMissingTraces: " << this->NumberOfMissingTraces << "\n";
   os << indent << "FormatCode: " << this->FormatCode << "\n";
@@ -362,6 +695,22 @@ void vtkSegyVolumeReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FirstCrossline: " << this->FirstCrossline << "\n";
   os << indent << "CrosslineStep: " << this->CrosslineStep << "\n";
   os << indent << "NumberOfTracesRead: " << this->NumberOfTracesRead << "\n";
+}
+
+//------------------------------------------------------------------------------
+void vtkSegyVolumeReader::SetPlacement(Placements placement)
+{
+  if (this->Placement != placement)
+  {
+    this->Placement = placement;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkMatrix4x4* vtkSegyVolumeReader::GetGridToWorld()
+{
+  return this->Internals->GridToWorld;
 }
 
 //------------------------------------------------------------------------------
@@ -374,20 +723,30 @@ int vtkSegyVolumeReader::RequestInformation(vtkInformation*,
   this->NumberOfMissingTraces = 0;
   this->FormatCode = 0;
   this->FirstInline = this->InlineStep = this->FirstCrossline = this->CrosslineStep = 0;
+  this->Georeferenced = false;
+  this->FitResidual = this->GridRotation = 0.0;
   const std::string name = this->FileName ? this->FileName : "";
   vtkInternals& in = *this->Internals;
+  ScanSettings settings;
+  settings.InlineByte = this->InlineByte;
+  settings.CrosslineByte = this->CrosslineByte;
+  settings.Format = this->SampleFormat;
+  settings.XByte = this->XByte;
+  settings.YByte = this->YByte;
+  settings.ScalarByte = this->CoordinateScalarByte;
+  settings.Placement = static_cast<int>(this->Placement);
+  settings.VerticalScale = this->VerticalScale;
+  settings.MaximumFitResidual = this->MaximumFitResidual;
   // Scanning every trace header is the expensive part: done again only for another file, other
   // settings, or a file that changed.
-  if (in.Key.empty() ||
-      in.Key !=
-        ScanKey(name, this->InlineByte, this->CrosslineByte, this->SampleFormat, FileState(name)))
+  if (in.Key.empty() || in.Key != settings.Key(name, FileState(name)))
   {
     const std::string error =
-      name.empty() ? std::string("no file name set")
-                   : in.Scan(name, this->InlineByte, this->CrosslineByte, this->SampleFormat);
+      name.empty() ? std::string("no file name set") : in.Scan(name, settings);
     if (!error.empty())
     {
       in.Key.clear();
+      in.GridToWorld->Identity();
       ClearOutput(outInfo);
       vtkErrorMacro("Cannot read SEG-Y file \"" << name << "\": " << error);
       return 0;
@@ -397,6 +756,9 @@ int vtkSegyVolumeReader::RequestInformation(vtkInformation*,
       vtkWarningMacro("SEG-Y file \"" << name << "\": " << in.Warning);
     }
   }
+  this->Georeferenced = in.Georeferenced;
+  this->FitResidual = in.FitResidual;
+  this->GridRotation = in.GridRotation;
   this->NumberOfTraces = in.Traces;
   this->NumberOfMissingTraces = static_cast<vtkIdType>(in.Index.size()) - in.Traces;
   this->FormatCode = in.Format;
@@ -409,7 +771,7 @@ int vtkSegyVolumeReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   outInfo->Set(vtkDataObject::SPACING(), in.Spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), in.Origin, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), vtkInternals::Direction, 9);
+  outInfo->Set(vtkDataObject::DIRECTION(), in.Direction, 9);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   return 1;

@@ -215,8 +215,28 @@ public:
     double Tau[3] = { 0.0, 0.0, 0.0 };
     double Emission[3] = { 0.0, 0.0, 0.0 };
     double ColorMax = 0.0;
+    std::vector<double> Gradient; ///< gradient opacity entries, empty for none
+    double GradientMin = 0.0, GradientScale = 0.0;
+
+    /// The gradient opacity at magnitude g (piecewise linear, clamped).
+    double GradientOpacity(double g) const
+    {
+      const int n = static_cast<int>(this->Gradient.size());
+      if (n < 2)
+        return n == 1 ? this->Gradient[0] : 1.0;
+      const double x =
+        std::min(std::max((g - this->GradientMin) * this->GradientScale, 0.0), n - 1.0);
+      const int j = std::min(static_cast<int>(x), n - 2);
+      return this->Gradient[j] + (x - j) * (this->Gradient[j + 1] - this->Gradient[j]);
+    }
 
     void Classify(double s, double& tau, double rgb[3]) const
+    {
+      tau = -std::log1p(-this->Lookup(s, rgb)) / this->UnitDistance;
+    }
+
+    /// The (clamped) table opacity and colour at s.
+    double Lookup(double s, double rgb[3]) const
     {
       int j = 0;
       double f = 0.0;
@@ -249,7 +269,13 @@ public:
       {
         std::copy(c, c + 3, rgb);
       }
-      tau = -std::log1p(-alpha) / this->UnitDistance;
+      return alpha;
+    }
+
+    /// s over the table's range, (s - smin) / (smax - smin).
+    double Normalized(double s) const
+    {
+      return this->N > 1 ? (s - this->SMin) * this->Scale / (this->N - 1) : 0.0;
     }
   };
 
@@ -266,6 +292,62 @@ public:
     Table Tf;
     // World-unit bounds along any ray: tau, tau', tau'', E, E', E''.
     double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+    Blend Mode = Blend::Composite;
+    std::vector<double> Iso;
+    double AverageRange[2] = { -1.0e300, 1.0e300 };
+    bool Cropping = false;
+    double CropPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    int CropFlags = 0;
+
+    /// Whether cropping shows the index point x.
+    bool Shown(const double x[3]) const
+    {
+      if (!this->Cropping)
+        return true;
+      int region = 0;
+      const int weight[3] = { 1, 3, 9 };
+      for (int k = 0; k < 3; ++k)
+        region += weight[k] * ((x[k] >= this->CropPlanes[2 * k] ? 1 : 0) +
+                                (x[k] >= this->CropPlanes[2 * k + 1] ? 1 : 0));
+      return ((this->CropFlags >> region) & 1) != 0;
+    }
+
+    bool Reduces() const
+    {
+      return this->Mode != Blend::Composite && this->Mode != Blend::IsoSurface;
+    }
+
+    /// The scalar at index position x (trilinear or nearest, clamped at the borders).
+    double Sample(const double x[3]) const
+    {
+      int i0[3], i1[3];
+      double f[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int n = this->Dims[k];
+        const double xc = std::min(std::max(x[k], 0.0), n - 1.0);
+        if (!this->Linear)
+        {
+          i0[k] = i1[k] = std::min(static_cast<int>(std::floor(xc + 0.5)), n - 1);
+          f[k] = 0.0;
+          continue;
+        }
+        i0[k] = std::min(static_cast<int>(std::floor(xc)), std::max(n - 2, 0));
+        i1[k] = std::min(i0[k] + 1, n - 1);
+        f[k] = xc - i0[k];
+      }
+      double v = 0.0;
+      for (int m = 0; m < 8; ++m)
+      {
+        double w = 1.0;
+        for (int k = 0; k < 3; ++k)
+          w *= (m >> k) & 1 ? f[k] : 1.0 - f[k];
+        if (w != 0.0)
+          v += w * this->Value(
+                     (m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2]);
+      }
+      return v;
+    }
 
     double Value(int i, int j, int k) const
     {
@@ -288,11 +370,21 @@ public:
   struct Cover
   {
     const Vol* V;
+    const Active* A;
     Poly S;
     double SLo, SHi; ///< range of the cell's corners
   };
+  // Something composited at one place along the ray: a reduced volume's layer, a surface.
+  struct Layer
+  {
+    double T;
+    double C[4]; ///< premultiplied
+    bool operator<(const Layer& o) const { return this->T < o.T; }
+  };
   struct Workspace
   {
+    std::vector<Layer> Layers;
+    std::vector<Layer> Surfaces;
     std::vector<Active> Act;
     std::vector<double> Breaks;
     std::vector<double> Sub;
@@ -315,7 +407,109 @@ public:
     double t1,
     Workspace& ws) const;
   void BuildCover(const Active& a, double ta, double tm, Cover& c) const;
+  Layer Reduce(const Active& a, double dn) const;
+  void Clip(const double o[3], const double d[3], double t0, double t1, double dn, Workspace& ws)
+    const;
+  void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
+  double GradientTau(const Cover& c, double t, double s, double rgb[3]) const;
 };
+
+// Extinction of a gradient-opacity volume at ray parameter t (scalar s there): alpha scaled by
+// the function of |grad s|, central differences of the interpolant one voxel apart, to world by
+// the transpose of the world -> index matrix.
+double vtkMultiVolumeReferenceIntegrator::vtkInternals::GradientTau(const Cover& c,
+  double t,
+  double s,
+  double rgb[3]) const
+{
+  const Vol& v = *c.V;
+  const double x[3] = {
+    c.A->P0[0] + c.A->DI[0] * t, c.A->P0[1] + c.A->DI[1] * t, c.A->P0[2] + c.A->DI[2] * t
+  };
+  double gi[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    double xp[3] = { x[0], x[1], x[2] }, xm[3] = { x[0], x[1], x[2] };
+    xp[k] += 1.0;
+    xm[k] -= 1.0;
+    gi[k] = 0.5 * (v.Sample(xp) - v.Sample(xm));
+  }
+  double g2 = 0.0;
+  for (int j = 0; j < 3; ++j)
+  {
+    const double gw = v.Ainv[j] * gi[0] + v.Ainv[3 + j] * gi[1] + v.Ainv[6 + j] * gi[2];
+    g2 += gw * gw;
+  }
+  const double alpha =
+    v.Tf.Lookup(s, rgb) * std::min(std::max(v.Tf.GradientOpacity(std::sqrt(g2)), 0.0), 1.0);
+  return -std::log1p(-std::min(alpha, MaxOpacity)) / v.Tf.UnitDistance;
+}
+
+// A Maximum, Minimum, Average or Additive volume alone over its chord [Te, Tx]: midpoint
+// samples at most one step apart (see the class comment).
+vtkMultiVolumeReferenceIntegrator::vtkInternals::Layer
+vtkMultiVolumeReferenceIntegrator::vtkInternals::Reduce(const Active& a, double dn) const
+{
+  const Vol& v = *a.V;
+  const double hT = this->StepLength() / dn;
+  const int steps = std::max(1, static_cast<int>(std::ceil((a.Tx - a.Te) / hT)));
+  const double dt = (a.Tx - a.Te) / steps;
+  double best = 0.0, bestT = a.Te, sum = 0.0, length = 0.0;
+  bool found = false;
+  for (int k = 0; k < steps; ++k)
+  {
+    const double t = a.Te + (k + 0.5) * dt;
+    const double x[3] = { a.P0[0] + a.DI[0] * t, a.P0[1] + a.DI[1] * t, a.P0[2] + a.DI[2] * t };
+    if (!v.Shown(x))
+      continue;
+    const double s = v.Sample(x);
+    if (!found || (v.Mode == Blend::Maximum ? s > best : s < best))
+    {
+      best = s;
+      bestT = t;
+      found = true;
+    }
+    if (v.Mode == Blend::Average && !(s >= v.AverageRange[0] && s <= v.AverageRange[1]))
+      continue;
+    double rgb[3];
+    sum += v.Tf.Lookup(s, rgb) * v.Tf.Normalized(s) * dt * dn;
+    length += dt * dn;
+  }
+  Layer layer{ a.Te, { 0.0, 0.0, 0.0, 0.0 } };
+  if ((v.Mode == Blend::Maximum || v.Mode == Blend::Minimum) && found)
+  {
+    double rgb[3];
+    const double alpha = v.Tf.Lookup(best, rgb);
+    layer = { bestT, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } };
+  }
+  else if (v.Mode == Blend::Additive || (v.Mode == Blend::Average && length > 0.0))
+  {
+    const double g = std::min(
+      std::max(v.Mode == Blend::Additive ? sum / v.Tf.UnitDistance : sum / length, 0.0), 1.0);
+    layer.C[0] = layer.C[1] = layer.C[2] = g;
+    layer.C[3] = 1.0;
+  }
+  return layer;
+}
+
+// The surfaces of an IsoSurface volume's contours in one piece (u in (0, len)), at u.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::AppendSurfaces(const Cover& c,
+  double len,
+  Workspace& ws) const
+{
+  std::vector<double> roots;
+  for (double value : c.V->Iso)
+  {
+    if (!(c.SHi > c.SLo) || value <= c.SLo || value >= c.SHi)
+      continue;
+    roots.clear();
+    AppendCrossings(c.S, value, len, roots);
+    double rgb[3];
+    const double alpha = c.V->Tf.Lookup(value, rgb);
+    for (double u : roots)
+      ws.Surfaces.push_back({ u, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } });
+  }
+}
 
 void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a,
   double ta,
@@ -324,6 +518,7 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a
 {
   const Vol& v = *a.V;
   c.V = &v;
+  c.A = &a;
   int i0[3], i1[3];
   double x0[3], ex[3];
   for (int k = 0; k < 3; ++k)
@@ -374,23 +569,18 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a
   c.S = LerpPoly(py0, py1, x0[2], ex[2]);
 }
 
-std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
+// Every box the ray crosses in [t0, t1], clipped exactly in the volume's index space: the
+// active volumes with their box faces and cell planes as breaks, and the reduced volumes' layers.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::Clip(const double o[3],
   const double d[3],
   double t0,
   double t1,
+  double dn,
   Workspace& ws) const
 {
-  std::array<double, 4> out = { 0.0, 0.0, 0.0, 0.0 };
-  const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (!(dn > 0.0) || !(t1 > t0) || this->Volumes.empty())
-  {
-    return out;
-  }
-  const double hT = this->StepLength() / dn;
-
-  // Exact clipping against every box, in the volume's index space.
   ws.Act.clear();
   ws.Breaks.clear();
+  ws.Layers.clear();
   for (const Vol& v : this->Volumes)
   {
     Active a;
@@ -423,6 +613,19 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     {
       continue;
     }
+    for (int k = 0; v.Cropping && k < 6; ++k)
+    {
+      const int axis = k / 2;
+      const double t = a.DI[axis] != 0.0 ? (v.CropPlanes[k] - a.P0[axis]) / a.DI[axis] : a.Te;
+      if (t > a.Te && t < a.Tx)
+        ws.Breaks.push_back(t);
+    }
+    if (v.Reduces())
+    {
+      ws.Layers.push_back(this->Reduce(a, dn));
+      ws.Breaks.push_back(ws.Layers.back().T);
+      continue;
+    }
     ws.Act.push_back(a);
     ws.Breaks.push_back(a.Te);
     ws.Breaks.push_back(a.Tx);
@@ -452,12 +655,39 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     }
   }
   std::sort(ws.Breaks.begin(), ws.Breaks.end());
+}
+
+std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
+  const double d[3],
+  double t0,
+  double t1,
+  Workspace& ws) const
+{
+  std::array<double, 4> out = { 0.0, 0.0, 0.0, 0.0 };
+  const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(dn > 0.0) || !(t1 > t0) || this->Volumes.empty())
+  {
+    return out;
+  }
+  const double hT = this->StepLength() / dn;
+
+  this->Clip(o, d, t0, t1, dn, ws);
+  std::sort(ws.Layers.begin(), ws.Layers.end());
 
   double T = 1.0;
   double C[3] = { 0.0, 0.0, 0.0 };
+  auto over = [&](const Layer& layer)
+  {
+    for (int ch = 0; ch < 3; ++ch)
+      C[ch] += T * layer.C[ch];
+    T *= 1.0 - layer.C[3];
+  };
+  size_t nextLayer = 0;
   for (size_t b = 0; b + 1 < ws.Breaks.size(); ++b)
   {
     const double ta = ws.Breaks[b], tb = ws.Breaks[b + 1];
+    for (; nextLayer < ws.Layers.size() && ws.Layers[nextLayer].T <= ta; ++nextLayer)
+      over(ws.Layers[nextLayer]);
     if (!(tb > ta))
     {
       continue;
@@ -467,7 +697,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     double chord = std::numeric_limits<double>::infinity();
     for (const Active& a : ws.Act)
     {
-      if (a.Te < tm && tm < a.Tx)
+      const double x[3] = {
+        a.P0[0] + a.DI[0] * tm, a.P0[1] + a.DI[1] * tm, a.P0[2] + a.DI[2] * tm
+      };
+      if (a.Te < tm && tm < a.Tx && a.V->Shown(x))
       {
         Cover c;
         this->BuildCover(a, ta, tm, c);
@@ -485,12 +718,17 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     const int steps = std::max(1, static_cast<int>(std::min(std::ceil(ratio), 1e9)));
     const double len = tb - ta;
 
-    // Split at the transfer-function kinks each trilinear scalar crosses.
+    // Split at the transfer-function kinks each trilinear scalar crosses and at the surfaces.
     ws.Sub.clear();
     ws.Sub.push_back(0.0);
+    ws.Surfaces.clear();
     for (const Cover& c : ws.Cov)
     {
-      if (c.SHi > c.SLo)
+      if (c.V->Mode == Blend::IsoSurface)
+      {
+        this->AppendSurfaces(c, len, ws);
+      }
+      else if (c.SHi > c.SLo)
       {
         const std::vector<double>& kinks = c.V->Tf.Kinks;
         for (auto it = std::upper_bound(kinks.begin(), kinks.end(), c.SLo);
@@ -501,6 +739,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         }
       }
     }
+    for (const Layer& surface : ws.Surfaces)
+      ws.Sub.push_back(surface.T);
+    std::sort(ws.Surfaces.begin(), ws.Surfaces.end());
+    size_t nextSurface = 0;
     ws.Sub.push_back(len);
     if (ws.Sub.size() > 2)
     {
@@ -510,6 +752,8 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
     for (size_t s = 0; s + 1 < ws.Sub.size(); ++s)
     {
       const double ua = ws.Sub[s], ub = ws.Sub[s + 1];
+      for (; nextSurface < ws.Surfaces.size() && ws.Surfaces[nextSurface].T <= ua; ++nextSurface)
+        over(ws.Surfaces[nextSurface]);
       if (!(ub > ua))
       {
         continue;
@@ -523,8 +767,13 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         double e[3] = { 0.0, 0.0, 0.0 };
         for (const Cover& c : ws.Cov)
         {
+          if (c.V->Mode == Blend::IsoSurface)
+            continue;
           double tau, rgb[3];
-          c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
+          if (c.V->Tf.Gradient.empty())
+            c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
+          else
+            tau = this->GradientTau(c, ta + um, Horner(c.S, um), rgb);
           sigma += tau;
           for (int ch = 0; ch < 3; ++ch)
           {
@@ -549,7 +798,11 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         }
       }
     }
+    for (; nextSurface < ws.Surfaces.size(); ++nextSurface)
+      over(ws.Surfaces[nextSurface]);
   }
+  for (; nextLayer < ws.Layers.size(); ++nextLayer)
+    over(ws.Layers[nextLayer]);
   return { C[0], C[1], C[2], 1.0 - T };
 }
 
@@ -829,7 +1082,18 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
     return -1;
   }
   vtkInternals::BuildTable(in.Classification, v.Tf);
+  v.Tf.Gradient = in.Classification.GradientOpacity;
+  const double* gr = in.Classification.GradientRange;
+  v.Tf.GradientMin = gr[0];
+  v.Tf.GradientScale =
+    v.Tf.Gradient.size() > 1 && gr[1] > gr[0] ? (v.Tf.Gradient.size() - 1) / (gr[1] - gr[0]) : 0.0;
   v.Linear = in.Sampling == Interpolation::Linear;
+  v.Mode = in.BlendMode;
+  v.Cropping = in.Cropping;
+  std::copy(in.CropPlanes, in.CropPlanes + 6, v.CropPlanes);
+  v.CropFlags = in.CropFlags;
+  v.Iso = in.IsoValues;
+  std::copy(in.AverageRange, in.AverageRange + 2, v.AverageRange);
   if (in.Scalars.empty())
   {
     v.F = std::move(in.FloatScalars);

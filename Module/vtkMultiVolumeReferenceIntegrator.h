@@ -61,6 +61,29 @@
  * every volume, largest transfer-function slopes), so it is conservative. Rays stop once
  * T < TerminationTransmittance, which adds at most cmax times that.
  *
+ * Blend modes (Volume::Blend, numbered as vtkVolumeMapper::BlendModes). Composite volumes are the
+ * media above. An IsoSurface volume adds no medium: each crossing of one of its IsoValues by its
+ * (trilinear) scalar along the ray is a surface of colour c(v) and opacity alpha(v) (not scaled
+ * by length), composited where it lies, between the media in front and behind. Maximum,
+ * Minimum, Average and Additive volumes are each reduced alone over their whole chord and give
+ * one layer, composited into the media at its depth: Maximum and Minimum at the scalar's largest
+ * (smallest) value along the chord, colour c(s) alpha(s) and opacity alpha(s) there; Average and
+ * Additive at the chord's entry, opaque grey g: Average g = int alpha(s) u dl / int dl over the
+ * parts with s in AverageRange, Additive g = int alpha(s) u dl / UnitDistance, both clamped to
+ * [0, 1], with u = (s - smin) / (smax - smin) over the table's range (VTK's definitions with
+ * samples made into lengths). Reductions take midpoint samples every StepLength() (the extreme is
+ * found to O(s'' h^2 / 8)).
+ *
+ * Gradient opacity (TransferFunction::GradientOpacity) scales a composite volume's opacity by a
+ * function of its gradient magnitude |grad s| (world units), the gradient by central differences
+ * of the interpolated scalar one voxel apart in index space (as the GPU takes it), evaluated at
+ * every step's midpoint; the pieces are not cut at its kinks, so its error is first order where
+ * the magnitude crosses one.
+ *
+ * Cropping (Volume::Cropping) hides a volume where its index point lies in a region whose flag is
+ * off: the ray is cut at the crop planes too, and a piece (or a reduction's sample) of the volume
+ * in a hidden region is left out, as if that volume were not there.
+ *
  * Limits: model matrices must be affine; boxes are closed, so a ray lying exactly in a face
  * shared by two volumes sees both (a set of measure zero); NaN scalars classify as the first
  * table entry. Cost: about 50 ns per step and covering volume on one core, steps h apart
@@ -97,12 +120,27 @@ public:
     WorldDistance ///< world distance from the ray's near-plane point
   };
 
+  /// As vtkVolumeMapper::BlendModes (Module/ links no VTK rendering): see the class comment.
+  enum class Blend
+  {
+    Composite = 0,
+    Maximum = 1,
+    Minimum = 2,
+    Average = 3,
+    Additive = 4,
+    IsoSurface = 5
+  };
+
   struct TransferFunction
   {
     double Range[2] = { 0.0, 1.0 }; ///< [smin, smax] of the table; smin < smax unless N == 1
     std::vector<double> Opacity;    ///< N >= 1 entries, alpha per UnitDistance
     std::vector<double> Color;      ///< 3 N entries (RGB), or empty for white
     double UnitDistance = 1.0;      ///< world length the opacities refer to, > 0
+    /// Gradient opacity: entries evenly over GradientRange of the gradient magnitude (scalar
+    /// per world unit), piecewise linear, clamped; empty for none. It scales alpha.
+    std::vector<double> GradientOpacity;
+    double GradientRange[2] = { 0.0, 1.0 };
   };
 
   struct Volume
@@ -117,6 +155,15 @@ public:
     std::vector<float> FloatScalars;
     Interpolation Sampling = Interpolation::Linear;
     TransferFunction Classification;
+    Blend BlendMode = Blend::Composite;
+    std::vector<double> IsoValues;                  ///< IsoSurface: the contour values
+    double AverageRange[2] = { -1.0e300, 1.0e300 }; ///< Average: the scalars that count
+    /// Cropping as vtkVolumeMapper's 27 regions: planes (xmin, xmax, ymin, ymax, zmin, zmax) in
+    /// index coordinates; bit x + 3 y + 9 z of CropFlags shows region (x, y, z), 0 below an
+    /// axis's first plane, 1 between, 2 above.
+    bool Cropping = false;
+    double CropPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    int CropFlags = 0x0002000; ///< VTK_CROP_SUBVOLUME
   };
 
   /// Leading-order discretisation error bounds, per RGBA component (see the class comment).

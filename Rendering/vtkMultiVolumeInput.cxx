@@ -3,10 +3,13 @@
 
 #include "vtkVolumeBrickTree.h"
 
+#include "vtkVolumeMapper.h"
+
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
@@ -106,6 +109,32 @@ void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolum
   }
 }
 
+void vtkMultiVolumeInput::UpdateGradientOpacity(vtkOpenGLRenderWindow* window,
+  vtkVolumeProperty* property)
+{
+  const bool has = property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  const vtkMTimeType time =
+    has ? std::max(property->GetMTime(), property->GetStoredGradientOpacity(0)->GetMTime()) : 0;
+  if (!has || (this->GradientTexture && time > this->GradientTime))
+  {
+    if (this->GradientTexture)
+      this->GradientTexture->ReleaseGraphicsResources(window);
+    this->GradientTexture = nullptr;
+  }
+  if (!has || this->GradientTexture)
+    return;
+  std::vector<float> table;
+  vtkTransferFunctionTable::TabulateGradientOpacity(property, 256, this->GradientRange, table);
+  this->GradientTexture = vtkSmartPointer<vtkTextureObject>::New();
+  this->GradientTexture->SetContext(window);
+  this->GradientTexture->Create2DFromRaw(256, 1, 1, VTK_FLOAT, table.data());
+  this->GradientTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->GradientTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->GradientTexture->SetMinificationFilter(vtkTextureObject::Linear);
+  this->GradientTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->GradientTime = time;
+}
+
 double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
 {
   // The entries whose interpolation intervals meet [lo, hi] (clamped at the ends, as the
@@ -121,6 +150,58 @@ double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
   const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
   const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
   return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
+}
+
+void vtkMultiVolumeInput::SetBlendMode(int mode, const std::vector<double>& isoValues)
+{
+  std::vector<double> iso = isoValues;
+  std::sort(iso.begin(), iso.end());
+  if (mode == this->BlendMode && iso == this->IsoValues)
+    return;
+  this->BlendMode = mode;
+  this->IsoValues = iso;
+  this->SkipTime = 0; // the skip grid is classified again
+}
+
+double vtkMultiVolumeInput::BrickVisibility(double lo, double hi) const
+{
+  switch (this->BlendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return this->MaxOpacity(-VTK_DOUBLE_MAX, hi);
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return this->MaxOpacity(lo, VTK_DOUBLE_MAX);
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return 1.0;
+    default:
+      return this->MaxOpacity(lo, hi);
+  }
+}
+
+double vtkMultiVolumeInput::CellVisibility(double lo, double hi) const
+{
+  if (this->BlendMode != vtkVolumeMapper::ISOSURFACE_BLEND)
+    return this->BrickVisibility(lo, hi);
+  double visible = 0.0;
+  for (double v : this->IsoValues)
+    if (v >= lo && v <= hi)
+      visible = std::max(visible, this->MaxOpacity(v, v));
+  return visible;
+}
+
+double vtkMultiVolumeInput::GetEmptyScalar() const
+{
+  const double* range = this->Table.GetScalarRange();
+  switch (this->BlendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return range[0];
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return range[1];
+    default:
+      return this->EmptyScalar;
+  }
 }
 
 void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
@@ -158,7 +239,7 @@ void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   }
   if (!build && this->SkipTime == this->Table.GetBuildCount() && this->SkipTexture)
     return;
-  this->Skip.Classify([this](double lo, double hi) { return this->MaxOpacity(lo, hi); });
+  this->Skip.Classify([this](double lo, double hi) { return this->CellVisibility(lo, hi); });
   const int* cd = this->Skip.GetCellDimensions();
   glBindTexture(GL_TEXTURE_3D, this->SkipTexture.Get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -243,7 +324,7 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       float(b.TableBricks[0]), float(b.TableBricks[1]), float(b.TableBricks[2])
     };
     program->SetUniform3f(("uTableDims" + N).c_str(), tableDims);
-    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->EmptyScalar));
+    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->GetEmptyScalar()));
   }
   else
   {
@@ -269,7 +350,27 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       float(property->GetSpecularPower(0)) };
     program->SetUniform4f(("uMaterial" + N).c_str(), material);
   }
-  if (b.Classification == Classifications::PostClassification)
+  if (b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
+    this->BindBlendMode(program, N, property, b);
+  if (b.GradientOpacity && this->GradientTexture)
+  {
+    this->GradientTexture->Activate();
+    program->SetUniformi(("uGradientOpacity" + N).c_str(), this->GradientTexture->GetTextureUnit());
+    const double* g = this->GradientRange;
+    // Entry i at magnitude g0 + i (g1 - g0) / 255, its texel centre at (i + 0.5) / 256.
+    const float range[3] = { float(g[0]), float(255.0 / (256.0 * (g[1] - g[0]))), 0.5f / 256.f };
+    program->SetUniform3f(("uGradientRange" + N).c_str(), range);
+    program->SetUniformf(
+      ("uUnit" + N).c_str(), static_cast<float>(property->GetScalarOpacityUnitDistance(0)));
+  }
+  if (b.CropLo)
+  {
+    program->SetUniform3f(("uCropLo" + N).c_str(), b.CropLo);
+    program->SetUniform3f(("uCropHi" + N).c_str(), b.CropHi);
+    program->SetUniformi(("uCropFlags" + N).c_str(), b.CropFlags);
+  }
+  if (b.Classification == Classifications::PostClassification ||
+      b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     vtkTextureObject* transfer = this->Table.GetTexture();
     transfer->Activate();
@@ -293,11 +394,39 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       ("uPreMaxColor" + N).c_str(), static_cast<float>(this->PreIntegration.GetMaximumColor()));
 }
 
+void vtkMultiVolumeInput::BindBlendMode(vtkShaderProgram* program,
+  const std::string& N,
+  vtkVolumeProperty* property,
+  const Binding& b)
+{
+  program->SetUniformf(
+    ("uUnit" + N).c_str(), static_cast<float>(property->GetScalarOpacityUnitDistance(0)));
+  if (b.BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND)
+  {
+    float iso[8] = { 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f };
+    const int count = std::min(static_cast<int>(this->IsoValues.size()), 8);
+    for (int i = 0; i < count; ++i)
+      iso[i] = static_cast<float>(this->IsoValues[i]);
+    program->SetUniform1fv(("uIso" + N).c_str(), 8, iso);
+    program->SetUniformi(("uNumIso" + N).c_str(), count);
+    return;
+  }
+  const double* sr = this->Table.GetScalarRange();
+  const float normalize[2] = { float(sr[0]), float(1.0 / (sr[1] - sr[0])) };
+  program->SetUniform2f(("uNormalize" + N).c_str(), normalize);
+  const float average[2] = { b.AverageRange ? float(b.AverageRange[0]) : -VTK_FLOAT_MAX,
+    b.AverageRange ? float(b.AverageRange[1]) : VTK_FLOAT_MAX };
+  program->SetUniform2f(("uAverageRange" + N).c_str(), average);
+}
+
 void vtkMultiVolumeInput::Unbind(const Binding& b)
 {
+  if (b.GradientOpacity && this->GradientTexture)
+    this->GradientTexture->Deactivate();
   if (this->Data && !b.Atlas)
     this->Data->Deactivate();
-  if (b.Classification == Classifications::PostClassification)
+  if (b.Classification == Classifications::PostClassification ||
+      b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
     this->Table.GetTexture()->Deactivate();
   else
     this->PreTable->Deactivate();
@@ -314,4 +443,7 @@ void vtkMultiVolumeInput::ReleaseGraphicsResources(vtkWindow* window)
   this->PreTable = nullptr;
   this->PreTableKind = -1;
   this->SkipTexture.Release();
+  if (this->GradientTexture)
+    this->GradientTexture->ReleaseGraphicsResources(window);
+  this->GradientTexture = nullptr;
 }

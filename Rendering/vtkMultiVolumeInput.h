@@ -71,10 +71,32 @@ public:
 
   /// The transfer table and what follows from it (pre-integration input, empty scalar).
   void UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
+  /**
+   * The gradient opacity table (256 entries, vtkTransferFunctionTable::TabulateGradientOpacity)
+   * and its texture, rebuilt when the function changes; none when the property has none.
+   */
+  void UpdateGradientOpacity(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
+  bool HasGradientOpacity() const { return this->GradientTexture != nullptr; }
+
   /// The largest opacity the interpolated table reaches for scalars in [lo, hi].
   double MaxOpacity(double lo, double hi) const;
-  /// A scalar the transfer function makes transparent (what empty bricks read).
-  double GetEmptyScalar() const { return this->EmptyScalar; }
+
+  /**
+   * The volume's blend mode (vtkVolumeMapper::BlendModes) and, for ISOSURFACE, its isovalues:
+   * they decide which data may be left out. Composite and additive: data of zero opacity; MIP
+   * (MinIP): data whose opacity is zero down to (up to) the table's end, read as that end, so
+   * that a left-out brick can neither raise the maximum nor lower the minimum into visible
+   * values; average: nothing (every sample counts); isosurface: skip cells whose range holds no
+   * visible isovalue, and no brick (a stand-in next to data would make false contours).
+   */
+  void SetBlendMode(int mode, const std::vector<double>& isoValues);
+  int GetBlendMode() const { return this->BlendMode; }
+  /// What a brick of scalars in [lo, hi] may show under the blend mode (0: leave it out).
+  double BrickVisibility(double lo, double hi) const;
+  /// The same for a skip-grid cell (only samples are skipped there, none replaced).
+  double CellVisibility(double lo, double hi) const;
+  /// The scalar left-out bricks read under the blend mode (see SetBlendMode).
+  double GetEmptyScalar() const;
 
   /**
    * The skip grid: cell ranges from the scalars (`cellSize` voxels) or, for a paged volume,
@@ -104,6 +126,15 @@ public:
     double SampleDistance = 1.0;
     const float* LocalToIndex = nullptr; ///< column-major
     const int* Dims = nullptr;
+    /// Not composite: the unit distance, isovalues (ISOSURFACE) or the normalisation and
+    /// AverageRange (reductions) are set too; the transfer table is bound whatever the
+    /// classification (contours and layers are coloured by it).
+    int BlendMode = 0;
+    const double* AverageRange = nullptr;
+    const float* CropLo = nullptr; ///< cropped: the planes in index coordinates, and the flags
+    const float* CropHi = nullptr;
+    int CropFlags = 0;
+    bool GradientOpacity = false; ///< composite: opacity times the gradient opacity function
   };
   /**
    * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their
@@ -122,6 +153,11 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  void BindBlendMode(vtkShaderProgram* program,
+    const std::string& n,
+    vtkVolumeProperty* property,
+    const Binding& binding);
+
   std::vector<float> Scalars; ///< the input as float; the brick tree borrows it
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
@@ -129,6 +165,11 @@ private:
   vtkSmartPointer<vtkTextureObject> Data; ///< plain texture (no atlas)
   vtkTransferFunctionTable Table;
   double EmptyScalar = 0.0;
+  int BlendMode = 0;
+  std::vector<double> IsoValues;                     ///< ascending
+  vtkSmartPointer<vtkTextureObject> GradientTexture; ///< R32F gradient opacity table
+  double GradientRange[2] = { 0.0, 1.0 };
+  vtkMTimeType GradientTime = 0;
   vtkPreIntegrationTable PreIntegration;
   vtkSmartPointer<vtkTextureObject> PreTable;
   unsigned long PreTableCount = 0; ///< build count of the uploaded table

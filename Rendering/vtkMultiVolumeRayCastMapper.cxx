@@ -17,6 +17,7 @@
 #include "vtkVolumePager.h"
 
 #include "vtkCamera.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -64,7 +65,19 @@ struct FrameVolume
   float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
   int Dims[3] = { 0, 0, 0 };
   std::string Pool; ///< the page pool the volume is paged from; Input is then a coarse stand-in
+  int Mode = vtkVolumeMapper::COMPOSITE_BLEND; ///< its effective blend mode
+  bool Cropped = false;
+  float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
+  int CropFlags = 0;
 };
+
+bool IsReduced(int mode)
+{
+  return mode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::ADDITIVE_BLEND;
+}
 
 // What one frame draws and how, gathered once and read by every step.
 struct Frame
@@ -86,6 +99,7 @@ struct Frame
   int Rays = 1;
   bool FrontToBack = true;
   bool Barrier = false;
+  bool AnyReduced = false; ///< some volume is drawn as a layer by its own reduction pass
   bool Lit = false;
   std::vector<float> LightDirections, LightColors;
   // Feedback uniforms: threshold x pixel size = x + y * distance, the eye, and per volume
@@ -164,8 +178,10 @@ public:
   vtkBrickAtlasTexture Atlas;
   vtkFeedbackBuffer Feedback{ true };
   vtkVolumeIntegrationBuffers Buffers;
+  std::map<int, vtkVolumeIntegrationBuffers> LayerBuffers; ///< by port: reduced volumes' layers
   vtkMultiVolumeShaderComposer Composer;
   std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
+  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
   int LastFragments = 0;
   int ResidentBricks = 0;
   int Max3DTexture = 0;   ///< the GPU's, asked once
@@ -191,10 +207,23 @@ public:
   void UpdatePreIntegration(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void PrepareFeedback(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void DrawFragments(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  bool DrawFragment(Self* self, vtkOpenGLRenderWindow* renWin, int f, Frame& frame);
+  void DrawReductions(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    const std::vector<int>& order,
+    Frame& frame);
+  vtkMultiVolumeShaderComposer::FragmentKey MakeKey(Self* self,
+    const std::vector<int>& volumes,
+    bool reduce,
+    const Frame& frame) const;
+  bool DrawFragment(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    int f,
+    Frame& frame,
+    int reduce = -1);
   void SetFragmentUniforms(Self* self,
     vtkShaderProgram* program,
     int f,
+    const std::vector<int>& volumes,
     const vtkMultiVolumeShaderComposer::FragmentKey& key,
     const Frame& frame);
   void Composite(vtkOpenGLRenderWindow* renWin, const Frame& frame);
@@ -221,6 +250,15 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     e.Port = port;
     e.Input = image;
     e.Property = member->GetProperty();
+    e.Mode = self->GetEffectiveBlendMode(port);
+    if (e.Mode == vtkVolumeMapper::SLICE_BLEND || e.Mode < 0 ||
+        e.Mode > vtkVolumeMapper::SLICE_BLEND)
+    {
+      vtkWarningWithObjectMacro(
+        self, "Blend mode " << e.Mode << " of port " << port << " is not supported: composite.");
+      e.Mode = vtkVolumeMapper::COMPOSITE_BLEND;
+    }
+    frame.AnyReduced = frame.AnyReduced || IsReduced(e.Mode);
     image->GetDimensions(e.Dims);
     const double* o = image->GetOrigin();
     const double* s = image->GetSpacing();
@@ -262,6 +300,15 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
       for (int c = 0; c < 3; ++c)
         imageMatrix->SetElement(r, c, d[3 * r + c] * s[c]);
       imageMatrix->SetElement(r, 3, o[r]);
+    }
+    double planes[6];
+    e.Cropped = self->GetEffectiveCropping(port, planes, e.CropFlags);
+    for (int a = 0; a < 3; ++a)
+    {
+      // Data coordinates (origin + index x spacing) to index coordinates.
+      const double p0 = (planes[2 * a] - o[a]) / s[a], p1 = (planes[2 * a + 1] - o[a]) / s[a];
+      e.CropLo[a] = static_cast<float>(std::min(p0, p1));
+      e.CropHi[a] = static_cast<float>(std::max(p0, p1));
     }
     e.IndexToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(member->GetMatrix(), imageMatrix, e.IndexToWorld);
@@ -337,6 +384,17 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (!frame.Atlas)
       input.UpdatePlainTexture(renWin, e.Dims);
     input.UpdateTransfer(renWin, e.Property);
+    std::vector<double> iso;
+    vtkContourValues* contours = e.Property->GetIsoSurfaceValues();
+    for (int i = 0; e.Mode == vtkVolumeMapper::ISOSURFACE_BLEND && contours &&
+                    i < contours->GetNumberOfContours();
+         ++i)
+      iso.push_back(contours->GetValue(i));
+    if (iso.size() > 8)
+      vtkWarningWithObjectMacro(
+        self, "Port " << e.Port << " has " << iso.size() << " isovalues; the first 8 are drawn.");
+    input.SetBlendMode(e.Mode, iso);
+    input.UpdateGradientOpacity(renWin, e.Property);
   }
   for (const FrameVolume& e : frame.Volumes)
   {
@@ -419,7 +477,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree() : nullptr;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
-    v.Opacity = [input](double lo, double hi) { return input->MaxOpacity(lo, hi); };
+    v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
     // Pre-integrated segments read both ends: no end may fall on an empty brick's stand-in
     // next to visible data.
     v.Halo = self->Classification != Classifications::PostClassification;
@@ -671,9 +729,18 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   else
     this->Geometry.GetTree().SortBackToFront(eyeV, parallel, dirV, order);
   this->LastKeys.clear();
+  this->LastReduceKeys.clear();
   this->LastFragments = 0;
   if (frame.Feedback)
     this->PrepareFeedback(self, ren, renWin, frame);
+  if (frame.AnyReduced)
+  {
+    this->Buffers.Unbind(renWin);
+    this->DrawReductions(self, renWin, order, frame);
+    this->Buffers.Bind(renWin, frame.Rays);
+    state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
+    state->vtkglEnable(GL_BLEND);
+  }
   for (int f : order)
   {
     if (!this->DrawFragment(self, renWin, f, frame))
@@ -691,15 +758,87 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   }
 }
 
+// --- Reductions: each MIP, MinIP, average or additive volume alone, fragment by fragment
+// into its layer buffers (one per ray, cleared to "not met"), each fragment reading what the
+// ones before left under a texture barrier; the integration then reads them as layers.
+void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
+  vtkOpenGLRenderWindow* renWin,
+  const std::vector<int>& order,
+  Frame& frame)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  state->vtkglDisable(GL_BLEND);
+  for (size_t v = 0; v < frame.Volumes.size(); ++v)
+  {
+    if (!IsReduced(frame.Volumes[v].Mode))
+      continue;
+    vtkVolumeIntegrationBuffers& layer = this->LayerBuffers[frame.Volumes[v].Port];
+    layer.Bind(renWin, frame.Rays);
+    state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
+    state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+    for (int f : order)
+    {
+      const auto& boxes = this->Geometry.GetTree().GetFragment(f).BoxIndices;
+      if (std::find(boxes.begin(), boxes.end(), static_cast<int>(v)) != boxes.end() &&
+          !this->DrawFragment(self, renWin, f, frame, static_cast<int>(v)))
+        break;
+    }
+    layer.Unbind(renWin);
+  }
+}
+
+// The program's features for `volumes` (frame indices) of a fragment, or for the reduction
+// pass of volumes[0].
+vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkInternals::MakeKey(
+  Self* self,
+  const std::vector<int>& volumes,
+  bool reduce,
+  const Frame& frame) const
+{
+  vtkMultiVolumeShaderComposer::FragmentKey key;
+  key.Volumes = static_cast<int>(volumes.size());
+  for (int v : volumes)
+  {
+    const FrameVolume& e = frame.Volumes[v];
+    key.Shaded.push_back(frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
+    key.Modes.push_back(e.Mode);
+    key.Cropped.push_back(e.Cropped);
+    key.GradientOpacity.push_back(!reduce && e.Mode == vtkVolumeMapper::COMPOSITE_BLEND &&
+                                  self->Classification == Classifications::PostClassification &&
+                                  this->Inputs.at(e.Port).HasGradientOpacity());
+  }
+  key.Reduce = reduce;
+  key.Classification = self->Classification;
+  key.FrontToBack = reduce || frame.FrontToBack;
+  key.Barrier = !reduce && frame.Barrier;
+  key.Rays = frame.Rays;
+  key.Coherent = self->RayCoherence && frame.Rays > 1 && !frame.AnyReduced;
+  key.Atlas = frame.Atlas;
+  key.Skipping =
+    self->EmptySpaceSkipping &&
+    !(reduce && frame.Volumes[volumes[0]].Mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
+  // Feedback comes from the volumes a program samples (a layer's bricks report in its pass).
+  bool samples = reduce;
+  for (int v : volumes)
+    samples = samples || !IsReduced(frame.Volumes[v].Mode);
+  key.Feedback = frame.Feedback && samples;
+  key.Footprint = frame.Footprint && samples;
+  return key;
+}
+
 // One fragment: its program (the composer's, by the fragment's features), its uniforms and
-// textures, the draw, and the barriers the next fragment needs. False: stop drawing.
+// textures, the draw, and the barriers the next fragment needs; with `reduce` >= 0 the
+// reduction pass of that volume. False: stop drawing.
 bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   vtkOpenGLRenderWindow* renWin,
   int f,
-  Frame& frame)
+  Frame& frame,
+  int reduce)
 {
   const auto& frag = this->Geometry.GetTree().GetFragment(f);
-  const int k = static_cast<int>(frag.BoxIndices.size());
+  const std::vector<int> volumes = reduce >= 0 ? std::vector<int>{ reduce } : frag.BoxIndices;
+  const int k = static_cast<int>(volumes.size());
   if (k == 0 || this->Geometry.GetVertexCount(f) == 0)
     return true;
   if (self->UseRegion && OutsideRegion(frag, this->Geometry.GetOrigin(), self->Region))
@@ -712,19 +851,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
                             << MaxPlanes << " in all are supported.");
     return true;
   }
-  vtkMultiVolumeShaderComposer::FragmentKey key;
-  key.Volumes = k;
-  for (int i = 0; i < k; ++i)
-    key.Shaded.push_back(frame.Lit && frame.Volumes[frag.BoxIndices[i]].Property->GetShade(0) != 0);
-  key.Classification = self->Classification;
-  key.FrontToBack = frame.FrontToBack;
-  key.Barrier = frame.Barrier;
-  key.Rays = frame.Rays;
-  key.Coherent = self->RayCoherence && frame.Rays > 1;
-  key.Atlas = frame.Atlas;
-  key.Skipping = self->EmptySpaceSkipping;
-  key.Feedback = frame.Feedback;
-  key.Footprint = frame.Footprint;
+  const vtkMultiVolumeShaderComposer::FragmentKey key =
+    this->MakeKey(self, volumes, reduce >= 0, frame);
   vtkShaderProgram* program = this->Composer.ReadyFragmentProgram(renWin, key);
   if (!program)
   {
@@ -732,17 +860,37 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
       self, "The multi-volume shader for " << k << " volumes did not compile or link.");
     return false;
   }
-  this->LastKeys[k] = key;
+  if (reduce >= 0)
+    this->LastReduceKeys[frame.Volumes[reduce].Mode] = key;
+  else
+    this->LastKeys[k] = key;
   this->Geometry.Bind(program);
-  this->SetFragmentUniforms(self, program, f, key, frame);
+  this->SetFragmentUniforms(self, program, f, volumes, key, frame);
   vtkTextureObject* depth = this->Buffers.GetSceneDepth();
   depth->Activate();
   program->SetUniformi("uSceneDepth", depth->GetTextureUnit());
-  for (int r = 0; frame.Barrier && r < frame.Rays; ++r)
+  // Read back: this pass's own buffers (early termination, or a reduction's state so far),
+  // and the layers of the reduced volumes of the fragment.
+  std::vector<vtkTextureObject*> readBack;
+  for (int r = 0; (key.Barrier || key.Reduce) && r < frame.Rays; ++r)
   {
-    this->Buffers.GetAccumulation(r)->Activate();
-    program->SetUniformi(("uAccumulation" + std::to_string(r)).c_str(),
-      this->Buffers.GetAccumulation(r)->GetTextureUnit());
+    vtkVolumeIntegrationBuffers& target =
+      key.Reduce ? this->LayerBuffers[frame.Volumes[reduce].Port] : this->Buffers;
+    readBack.push_back(target.GetAccumulation(r));
+    readBack.back()->Activate();
+    program->SetUniformi(
+      ("uAccumulation" + std::to_string(r)).c_str(), readBack.back()->GetTextureUnit());
+  }
+  for (int i = 0; !key.Reduce && i < k; ++i)
+  {
+    const FrameVolume& e = frame.Volumes[volumes[i]];
+    for (int r = 0; IsReduced(e.Mode) && r < frame.Rays; ++r)
+    {
+      readBack.push_back(this->LayerBuffers[e.Port].GetAccumulation(r));
+      readBack.back()->Activate();
+      program->SetUniformi(("uLayer" + std::to_string(i) + "_" + std::to_string(r)).c_str(),
+        readBack.back()->GetTextureUnit());
+    }
   }
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   std::vector<int> rawUnits;
@@ -761,10 +909,16 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   std::vector<vtkMultiVolumeInput::Binding> bindings(k);
   for (int i = 0; i < k; ++i)
   {
-    const int v = frag.BoxIndices[i];
+    const int v = volumes[i];
     const FrameVolume& e = frame.Volumes[v];
     vtkMultiVolumeInput::Binding& b = bindings[i];
     b.Classification = self->Classification;
+    b.BlendMode = e.Mode;
+    b.CropLo = e.Cropped ? e.CropLo : nullptr;
+    b.CropHi = e.CropHi;
+    b.CropFlags = e.CropFlags;
+    b.GradientOpacity = key.GradientOpacity[i];
+    b.AverageRange = self->GetAverageIPScalarRange();
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
     b.TableBricks = frame.Atlas ? this->Pager.GetTree(v)->GetLevelBricks(0) : nullptr;
@@ -781,7 +935,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     // The next fragment's comparison must see this one's reports.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
-  if (frame.Barrier)
+  if (key.Barrier || key.Reduce)
   {
     if (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier)
       glTextureBarrier();
@@ -789,9 +943,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
       glTextureBarrierNV();
   }
   for (int i = 0; i < k; ++i)
-    this->Inputs[frame.Volumes[frag.BoxIndices[i]].Port].Unbind(bindings[i]);
-  for (int r = 0; frame.Barrier && r < frame.Rays; ++r)
-    this->Buffers.GetAccumulation(r)->Deactivate();
+    this->Inputs[frame.Volumes[volumes[i]].Port].Unbind(bindings[i]);
+  for (vtkTextureObject* texture : readBack)
+    texture->Deactivate();
   for (int unit : rawUnits)
   {
     renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
@@ -800,7 +954,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   }
   depth->Deactivate();
   this->Geometry.Unbind();
-  ++this->LastFragments;
+  this->LastFragments += reduce < 0 ? 1 : 0;
   return true;
 }
 
@@ -809,6 +963,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
 void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
   vtkShaderProgram* program,
   int f,
+  const std::vector<int>& volumes,
   const vtkMultiVolumeShaderComposer::FragmentKey& key,
   const Frame& frame)
 {
@@ -827,7 +982,6 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
   // them also along edges that are not perpendicular to the direction from the centre.
   program->SetUniformf("uDilate", frame.Rays > 1 ? 1.5f : 0.0f);
   program->SetUniformf("uSampleDistance", static_cast<float>(frame.SampleDistance));
-  const auto& frag = this->Geometry.GetTree().GetFragment(f);
   if (frame.Feedback)
   {
     program->SetUniformi("uFeedback", 0);
@@ -837,7 +991,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
     program->SetUniform2f("uFeedbackFootprint", frame.FeedbackFootprint);
     for (int i = 0; i < key.Volumes; ++i)
     {
-      const int v = frag.BoxIndices[i];
+      const int v = volumes[i];
       const std::string n = std::to_string(i);
       program->SetUniformi(("uFeedbackSet" + n).c_str(), v);
       program->SetUniform1iv(
@@ -1060,6 +1214,73 @@ int vtkMultiVolumeRayCastMapper::GetNumberOfShaderCompilations() const
   return this->Internals->Composer.GetNumberOfCompilations();
 }
 
+void vtkMultiVolumeRayCastMapper::SetInputBlendMode(int port, int mode)
+{
+  auto it = this->InputBlendModes.find(port);
+  if (mode < 0 ? it == this->InputBlendModes.end()
+               : it != this->InputBlendModes.end() && it->second == mode)
+    return;
+  if (mode < 0)
+    this->InputBlendModes.erase(it);
+  else
+    this->InputBlendModes[port] = mode;
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::SetInputCropping(int port,
+  bool cropping,
+  const double planes[6],
+  int flags)
+{
+  InputCrop crop;
+  crop.Cropping = cropping;
+  std::copy(planes, planes + 6, crop.Planes);
+  crop.Flags = flags;
+  auto it = this->InputCroppings.find(port);
+  if (it != this->InputCroppings.end() && it->second.Cropping == crop.Cropping &&
+      it->second.Flags == crop.Flags && std::equal(planes, planes + 6, it->second.Planes))
+    return;
+  this->InputCroppings[port] = crop;
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::RemoveInputCropping(int port)
+{
+  if (this->InputCroppings.erase(port))
+    this->Modified();
+}
+
+bool vtkMultiVolumeRayCastMapper::GetEffectiveCropping(int port, double planes[6], int& flags) const
+{
+  auto it = this->InputCroppings.find(port);
+  const bool own = it != this->InputCroppings.end();
+  std::copy(own ? it->second.Planes : this->CroppingRegionPlanes,
+    (own ? it->second.Planes : this->CroppingRegionPlanes) + 6,
+    planes);
+  flags = own ? it->second.Flags : this->CroppingRegionFlags;
+  return own ? it->second.Cropping : this->Cropping != 0;
+}
+
+int vtkMultiVolumeRayCastMapper::GetInputBlendMode(int port) const
+{
+  auto it = this->InputBlendModes.find(port);
+  return it == this->InputBlendModes.end() ? -1 : it->second;
+}
+
+int vtkMultiVolumeRayCastMapper::GetEffectiveBlendMode(int port) const
+{
+  const int mode = this->GetInputBlendMode(port);
+  return mode < 0 ? this->BlendMode : mode;
+}
+
+std::string vtkMultiVolumeRayCastMapper::GetReductionShaderSource(int blendMode) const
+{
+  auto it = this->Internals->LastReduceKeys.find(blendMode);
+  return it == this->Internals->LastReduceKeys.end()
+           ? std::string()
+           : this->Internals->Composer.GetFragmentSource(it->second);
+}
+
 std::string vtkMultiVolumeRayCastMapper::GetFragmentShaderSource(int numberOfVolumes) const
 {
   auto it = this->Internals->LastKeys.find(numberOfVolumes);
@@ -1084,6 +1305,9 @@ void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Atlas.ReleaseGraphicsResources();
   in.Feedback.ReleaseGraphicsResources();
   in.Buffers.ReleaseGraphicsResources(window);
+  for (auto& layer : in.LayerBuffers)
+    layer.second.ReleaseGraphicsResources(window);
+  in.LayerBuffers.clear();
   in.Composer.ReleaseGraphicsResources();
   in.HeldValid = false;
   this->Superclass::ReleaseGraphicsResources(window);
@@ -1179,8 +1403,31 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   frame.FrontToBack = this->CompositeOrder == CompositeOrders::FrontToBack;
   // Early termination across fragments reads the integration buffer's own pixel while drawing
   // into it: defined under a texture barrier (each pixel is read and written once per fragment).
-  frame.Barrier =
-    frame.FrontToBack && (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier);
+  // Reductions read their layer buffers the same way.
+  const bool barriers = GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier;
+  frame.Barrier = frame.FrontToBack && barriers;
+  if (frame.AnyReduced && !barriers)
+  {
+    vtkErrorMacro("MIP, MinIP, average and additive blending need texture barriers (OpenGL "
+                  "4.5, ARB or NV_texture_barrier): those volumes are drawn composite.");
+    for (FrameVolume& e : frame.Volumes)
+      e.Mode = IsReduced(e.Mode) ? int(vtkVolumeMapper::COMPOSITE_BLEND) : e.Mode;
+    frame.AnyReduced = false;
+  }
+  for (auto it = in.LayerBuffers.begin(); it != in.LayerBuffers.end();)
+  {
+    // Layers of volumes no longer reduced are freed.
+    const int port = it->first;
+    const bool used = std::any_of(frame.Volumes.begin(),
+      frame.Volumes.end(),
+      [port](const FrameVolume& e) { return e.Port == port && IsReduced(e.Mode); });
+    if (!used)
+      it->second.ReleaseGraphicsResources(renWin);
+    it = used ? std::next(it) : in.LayerBuffers.erase(it);
+  }
+  for (const FrameVolume& e : frame.Volumes)
+    if (IsReduced(e.Mode))
+      in.LayerBuffers[e.Port].Prepare(renWin, frame.Viewport, frame.Rays);
   in.UpdatePreIntegration(this, renWin, frame);
   vtkStrataRenderUtilities::GetLights(ren, frame.LightDirections, frame.LightColors);
   frame.Lit = ren->GetLights()->GetNumberOfItems() > 0;
@@ -1220,5 +1467,10 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
        << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
   else
     os << "(none)\n";
+  for (const auto& mode : this->InputBlendModes)
+    os << indent << "Blend mode of port " << mode.first << ": " << mode.second << "\n";
+  for (const auto& crop : this->InputCroppings)
+    os << indent << "Cropping of port " << crop.first << ": " << crop.second.Cropping
+       << ", flags 0x" << std::hex << crop.second.Flags << std::dec << "\n";
   os << indent << "Fragments (last frame): " << this->Internals->LastFragments << "\n";
 }

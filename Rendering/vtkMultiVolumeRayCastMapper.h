@@ -34,6 +34,7 @@
 #include "vtkVolumePager.h" // For vtkVolumePager::Statistics
 
 #include <array>  // For std::array
+#include <map>    // For std::map
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
@@ -332,6 +333,62 @@ public:
   bool GetRegion(double bounds[6]) const;
   ///@}
 
+  ///@{
+  /**
+   * Blend mode of the volume on input port `port`, one of vtkVolumeMapper::BlendModes
+   * (COMPOSITE, MAXIMUM_INTENSITY, MINIMUM_INTENSITY, AVERAGE_INTENSITY, ADDITIVE,
+   * ISOSURFACE); -1 (the default for every port) uses the mapper's own BlendMode
+   * (SetBlendMode, default COMPOSITE), so a single volume behaves like VTK's mappers.
+   * GetInputBlendMode returns what was set, GetEffectiveBlendMode what is drawn. SLICE is not
+   * supported (drawn as COMPOSITE, with a warning).
+   *
+   * Where volumes of different modes overlap: composite volumes are media that mix (see the
+   * class comment). An ISOSURFACE volume adds no medium: every crossing of one of its
+   * property's isovalues (vtkVolumeProperty::GetIsoSurfaceValues) is a surface of the colour
+   * and opacity its transfer functions give that value (shaded like the volume), composited
+   * where it lies among the media. A MAXIMUM/MINIMUM/AVERAGE/ADDITIVE volume is reduced alone
+   * along the ray over its whole box (the media of the others do not enter it) and the result is
+   * one layer composited among the media at its own depth: at the sample of the maximum
+   * (minimum), with the colour and opacity of that scalar; at the ray's entry into the volume for
+   * AVERAGE and ADDITIVE, opaque grey as in VTK: AVERAGE the mean over the ray of opacity(s)
+   * times s normalised to the transfer functions' range, over the samples inside
+   * AverageIPScalarRange; ADDITIVE the same sum with each sample weighted by its length over
+   * ScalarOpacityUnitDistance (VTK's per-sample sum when the two are equal), both clamped to 1.
+   * A layer lands before the sample step that contains its depth. Reductions need texture
+   * barriers (OpenGL 4.5 or ARB/NV_texture_barrier); they cost one pass per reduced volume.
+   */
+  void SetInputBlendMode(int port, int mode);
+  int GetInputBlendMode(int port) const;
+  int GetEffectiveBlendMode(int port) const;
+  ///@}
+
+  /*
+   * Gradient opacity: a volume whose property has a gradient opacity function
+   * (vtkVolumeProperty::SetGradientOpacity, not disabled) and is drawn COMPOSITE with
+   * post-classification has each sample's opacity scaled by that function of the gradient
+   * magnitude (scalar per world unit; central differences one voxel apart in index space, the
+   * trilinear interpolant even for nearest volumes). Pre-integrated classification ignores it.
+   */
+
+  ///@{
+  /**
+   * Cropping per volume, vtkVolumeMapper's 27 regions (all flags: VTK_CROP_SUBVOLUME, FENCE,
+   * CROSS, their inversions, any other bit set), beside the clipping planes. The mapper's own
+   * Cropping, CroppingRegionPlanes and CroppingRegionFlags apply to every volume whose port has
+   * none of its own; SetInputCropping gives port `port` its own (`cropping` false: that volume
+   * uncropped whatever the mapper's), RemoveInputCropping returns it to the mapper's. Planes
+   * (xmin, xmax, ymin, ymax, zmin, zmax) are in the volume's data coordinates, origin + index x
+   * spacing per axis, before its direction matrix and prop transform, as in VTK; a region is
+   * shown when bit x + 3 y + 9 z of the flags is set (x, y, z: 0 below an axis's first plane, 1
+   * between, 2 above). Decided per sample (at the step's midpoint): a cropped-away sample of a
+   * volume adds nothing, the other volumes there still do. GetEffectiveCropping: whether port
+   * `port` is cropped, with its planes and flags.
+   */
+  void SetInputCropping(int port, bool cropping, const double planes[6], int flags);
+  void RemoveInputCropping(int port);
+  bool GetEffectiveCropping(int port, double planes[6], int& flags) const;
+  ///@}
+
   /**
    * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; the offsets of
    * the R rays average to the centre. Tests and references use it to integrate the same rays.
@@ -369,6 +426,9 @@ public:
    * a fragment of one unshaded volume must carry no loop over other volumes.
    */
   std::string GetFragmentShaderSource(int numberOfVolumes) const;
+  /// The reduction pass's source for blend mode `blendMode` as the last render generated it
+  /// (empty if no volume of that mode was drawn).
+  std::string GetReductionShaderSource(int blendMode) const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void GPURender(vtkRenderer* ren, vtkVolume* vol) override;
@@ -409,6 +469,14 @@ protected:
   bool UseRegion = false;
   double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
   bool MeasureRenderTime = false;
+  std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode
+  struct InputCrop
+  {
+    bool Cropping = false;
+    double Planes[6] = { 0, 0, 0, 0, 0, 0 };
+    int Flags = 0;
+  };
+  std::map<int, InputCrop> InputCroppings; ///< by port; absent: the mapper's cropping
 
 private:
   vtkMultiVolumeRayCastMapper(const vtkMultiVolumeRayCastMapper&) = delete;

@@ -8,15 +8,22 @@
 #include "vtkMultiVolumeBackToFront.h"
 #include "vtkMultiVolumeCompositeFS.h"
 #include "vtkMultiVolumeCompositeVS.h"
+#include "vtkMultiVolumeCrop.h"
 #include "vtkMultiVolumeFeedback.h"
 #include "vtkMultiVolumeFeedbackCheck.h"
 #include "vtkMultiVolumeFragmentFS.h"
 #include "vtkMultiVolumeFragmentVS.h"
 #include "vtkMultiVolumeFrontToBack.h"
+#include "vtkMultiVolumeGradientOpacity.h"
+#include "vtkMultiVolumeIso.h"
+#include "vtkMultiVolumeLayerDec.h"
+#include "vtkMultiVolumeLayerVolume.h"
 #include "vtkMultiVolumePair.h"
 #include "vtkMultiVolumePlainLookup.h"
 #include "vtkMultiVolumePreIntegrated.h"
 #include "vtkMultiVolumePreIntegratedApproximate.h"
+#include "vtkMultiVolumeReduce.h"
+#include "vtkMultiVolumeReduceDec.h"
 #include "vtkMultiVolumeSample.h"
 #include "vtkMultiVolumeSegment.h"
 #include "vtkMultiVolumeSegmentVolume.h"
@@ -25,6 +32,9 @@
 #include "vtkMultiVolumeSkipUniforms.h"
 #include "vtkMultiVolumeSkipVolume.h"
 
+#include "vtkVolumeMapper.h"
+
+#include <algorithm>
 #include <sstream>
 #include <tuple>
 
@@ -53,6 +63,67 @@ bool AnyShaded(const Key& key)
     if (s)
       return true;
   return false;
+}
+
+// --- Blend modes. Composite volumes are the media; an isosurface volume is sampled for its
+// contours; the others are reduced by a pass of their own and read here as layers.
+int Mode(const Key& key, int n)
+{
+  return n < static_cast<int>(key.Modes.size()) ? key.Modes[n] : vtkVolumeMapper::COMPOSITE_BLEND;
+}
+
+bool IsReduced(int mode)
+{
+  return mode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
+         mode == vtkVolumeMapper::ADDITIVE_BLEND;
+}
+
+/// Whether the program samples volume n (a reduction pass samples its one volume).
+bool Sampled(const Key& key, int n)
+{
+  return key.Reduce || !IsReduced(Mode(key, n));
+}
+
+bool Medium(const Key& key, int n)
+{
+  return !key.Reduce && Mode(key, n) == vtkVolumeMapper::COMPOSITE_BLEND;
+}
+
+bool IsIso(const Key& key, int n)
+{
+  return !key.Reduce && Mode(key, n) == vtkVolumeMapper::ISOSURFACE_BLEND;
+}
+
+int CountIf(const Key& key, bool (*test)(const Key&, int))
+{
+  int count = 0;
+  for (int i = 0; i < key.Volumes; ++i)
+    count += test(key, i) ? 1 : 0;
+  return count;
+}
+
+bool IsLayer(const Key& key, int n)
+{
+  return !Sampled(key, n);
+}
+
+bool GradientOpacity(const Key& key, int n)
+{
+  return n < static_cast<int>(key.GradientOpacity.size()) && key.GradientOpacity[n] &&
+         Medium(key, n) && key.Classification == C::PostClassification;
+}
+
+bool Cropped(const Key& key, int n)
+{
+  return n < static_cast<int>(key.Cropped.size()) && key.Cropped[n];
+}
+
+/// The factor that masks volume n's contribution at `point` by its cropping ("" if uncropped).
+std::string CropMask(const Key& key, int n, const std::string& point)
+{
+  return Cropped(key, n) ? ForVolume(" * strataCrop@n@(", n) + point + ")" : std::string();
 }
 
 // --- Feedback (paged scenes). Every data fetch of a feedback ray checks the cut level of its
@@ -114,6 +185,8 @@ std::string FeedbackPacking(const Key& key)
       << "  int g = 3 * gLack.w;\n";
   for (int i = 0; i < key.Volumes; ++i)
   {
+    if (!Sampled(key, i))
+      continue;
     dec << ForVolume(
       "  if (gLackVolume == @n@)\n  {\n    return strataPackPage(uint(uFeedbackSet@n@), "
       "uint(gLack.w), uint((w.z * uLevelBricks@n@[g + 1] + w.y) * "
@@ -125,12 +198,12 @@ std::string FeedbackPacking(const Key& key)
 }
 
 // --- The data: the lookup (atlas or plain texture), the sample at a point, shading.
-std::string Lookup(const Key& key, int n)
+std::string Lookup(const Key& key, int n, bool first)
 {
   if (!key.Atlas)
     return ForVolume(vtkMultiVolumePlainLookup, n);
   std::string code;
-  if (n == 0)
+  if (first)
   {
     code += vtkBrickAtlasTexture::GetShaderDeclarations();
     if (key.Feedback)
@@ -170,21 +243,93 @@ std::string SkipUniforms(const Key& key)
 {
   std::string code;
   for (int i = 0; key.Skipping && i < key.Volumes; ++i)
-    code += ForVolume(vtkMultiVolumeSkipUniforms, i);
+    if (Sampled(key, i))
+      code += ForVolume(vtkMultiVolumeSkipUniforms, i);
   return code;
 }
 
-/// Volumes::Dec: the scene's lights, then per volume its lookup, sample, shading and table.
+// A reduced volume read as a layer: its table, one sampler per ray, and its state to colour.
+std::string LayerVolume(const Key& key, int n)
+{
+  std::string samplers;
+  for (int r = 0; r < key.Rays; ++r)
+    samplers += "uniform sampler2D uLayer@n@_" + std::to_string(r) + ";\n";
+  std::string color;
+  switch (Mode(key, n))
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      color = "vec4 tf = texture(uTransfer@n@, vec2((st.x - uTableRange@n@.x) * uTableRange@n@.y + "
+              "uTableRange@n@.z, 0.5));\n  float alpha = 1.0 - exp(-tf.a * uUnit@n@);\n"
+              "  color = vec4(tf.rgb * alpha, alpha);\n  return st.w > 0.0 ? st.z : 3.0e38;";
+      break;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      color = "float g = st.y > 0.0 ? clamp(st.x / st.y, 0.0, 1.0) : 0.0;\n"
+              "  color = vec4(vec3(g), 1.0);\n  return st.y > 0.0 ? st.z : 3.0e38;";
+      break;
+    default: // additive
+      color = "float g = clamp(st.x, 0.0, 1.0);\n"
+              "  color = vec4(vec3(g), 1.0);\n  return st.w > 0.0 ? st.z : 3.0e38;";
+  }
+  std::string code = vtkMultiVolumeLayerVolume;
+  Replace(code, "//STRATA::LayerSamplers::Dec", samplers);
+  Replace(code, "//STRATA::LayerColor::Impl", color);
+  return ForVolume(code.c_str(), n);
+}
+
+std::string IsoVolume(const Key& key, int n)
+{
+  std::string code = ForVolume(vtkMultiVolumeIso, n);
+  Replace(code,
+    "//STRATA::IsoCrop::Impl",
+    Cropped(key, n) ? ForVolume("alpha *= strataCrop@n@(mix(pa, pb, (v - sa) / (sb - sa)));", n)
+                    : "");
+  Replace(code,
+    "//STRATA::IsoShade::Impl",
+    key.Shaded[n] ? ForVolume("rgb = strataShade@n@(mix(pa, pb, (v - sa) / (sb - sa)), rgb);", n)
+                  : "");
+  return code;
+}
+
+/// Volumes::Dec: the scene's lights, then per volume its lookup, sample, shading and table (or
+/// its contours, or its layer).
 std::string Volumes(const Key& key)
 {
   std::string code = Lights(key);
+  bool first = true;
   for (int i = 0; i < key.Volumes; ++i)
   {
-    code += Lookup(key, i);
+    if (!Sampled(key, i))
+    {
+      code += LayerVolume(key, i);
+      continue;
+    }
+    code += Lookup(key, i, first);
+    first = false;
     code += ForVolume(vtkMultiVolumeSample, i);
+    if (Cropped(key, i))
+      code += ForVolume(vtkMultiVolumeCrop, i);
+    if (GradientOpacity(key, i))
+      code += ForVolume(vtkMultiVolumeGradientOpacity, i);
     if (key.Shaded[i])
       code += ForVolume(vtkMultiVolumeShade, i);
-    code += Classification(key, i);
+    if (key.Reduce)
+    {
+      code += vtkMultiVolumeReduceDec;
+      for (int r = 0; r < key.Rays; ++r)
+        code += "uniform sampler2D uAccumulation" + std::to_string(r) + ";\n";
+    }
+    else if (IsIso(key, i))
+      code += IsoVolume(key, i);
+    else
+      code += Classification(key, i);
+  }
+  const int layers = CountIf(key, IsLayer);
+  if (layers > 0)
+  {
+    std::string dec = vtkMultiVolumeLayerDec;
+    Replace(dec, "@L@", std::to_string(layers));
+    code += dec;
   }
   code += SkipUniforms(key);
   if (key.Feedback)
@@ -194,20 +339,33 @@ std::string Volumes(const Key& key)
 
 // --- The segment of one lattice step: the mixed media of all volumes at its midpoint (post)
 // or between the scalars at both ends (pre-integrated).
+bool PreIntegrated(const Key& key)
+{
+  return key.Classification != C::PostClassification && CountIf(key, Medium) > 0;
+}
+
 std::string Segment(const Key& key)
 {
   const int k = key.Volumes;
-  if (key.Classification == C::PostClassification)
+  if (key.Reduce || CountIf(key, Medium) == 0)
+    return std::string();
+  if (!PreIntegrated(key))
   {
     std::string volumes;
     for (int i = 0; i < k; ++i)
     {
+      if (!Medium(key, i))
+        continue;
       std::string v = ForVolume(vtkMultiVolumeSegmentVolume, i);
       Replace(v,
         "//STRATA::Shade::Impl",
-        key.Shaded[i]
-          ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
-          : "");
+        (GradientOpacity(key, i)
+            ? ForVolume("tf.a = tf.a > 0.0 ? strataGradientTau@n@(p, tf.a) : 0.0;\n  ", i)
+            : std::string()) +
+          (Cropped(key, i) ? "tf.a = tf.a" + CropMask(key, i, "p") + ";\n  " : std::string()) +
+          (key.Shaded[i]
+              ? ForVolume("if (tf.a > 0.0)\n  {\n    tf.rgb = strataShade@n@(p, tf.rgb);\n  }", i)
+              : ""));
       volumes += v;
     }
     std::string code = vtkMultiVolumeSegment;
@@ -217,24 +375,27 @@ std::string Segment(const Key& key)
   const std::string K = std::to_string(k);
   std::string code = "void strataSampleAll(vec3 p, out float s[" + K + "])\n{\n";
   for (int i = 0; i < k; ++i)
-    code += ForVolume("  s[@n@] = strataScalar@n@(p);\n", i);
+    if (Medium(key, i))
+      code += ForVolume("  s[@n@] = strataScalar@n@(p);\n", i);
   code += "}\n";
   if (k == 1)
   {
     code += "vec4 strataPair(float sf[1], float sb[1], float len, vec3 mid)\n{\n";
+    code += "  vec4 ca = strataPre0(sf[0], sb[0], len)" + CropMask(key, 0, "mid") + ";\n";
     code +=
       key.Shaded[0]
-        ? "  vec4 ca = strataPre0(sf[0], sb[0], len);\n"
-          "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n"
-        : "  return strataPre0(sf[0], sb[0], len);\n}\n";
+        ? "  return ca.a > 0.0 ? vec4(strataShade0(mid, ca.rgb / ca.a) * ca.a, ca.a) : ca;\n}\n"
+        : "  return ca;\n}\n";
     return code;
   }
   std::string volumes;
   for (int i = 0; i < k; ++i)
   {
-    volumes += ForVolume("ca = strataPre@n@(sf[@n@], sb[@n@], len);\n"
-                         "  x = -log(max(1.0 - ca.a, 1.0e-30));\n"
-                         "  X += x;\n",
+    if (!Medium(key, i))
+      continue;
+    volumes += ForVolume(("ca = strataPre@n@(sf[@n@], sb[@n@], len)" + CropMask(key, i, "mid") +
+                           ";\n  x = -log(max(1.0 - ca.a, 1.0e-30));\n  X += x;\n")
+                           .c_str(),
       i);
     volumes +=
       key.Shaded[i]
@@ -254,7 +415,8 @@ std::string Skipping(const Key& key)
     return std::string();
   std::string volumes;
   for (int i = 0; i < key.Volumes; ++i)
-    volumes += ForVolume(vtkMultiVolumeSkipVolume, i);
+    if (Sampled(key, i))
+      volumes += ForVolume(vtkMultiVolumeSkipVolume, i);
   std::string code = vtkMultiVolumeSkip;
   Replace(code, "//STRATA::SkipVolumes::Impl", volumes);
   return code;
@@ -263,7 +425,7 @@ std::string Skipping(const Key& key)
 // --- Termination (front to back): the fragment's share of the termination opacity.
 void Termination(const Key& key, std::string& fs)
 {
-  if (!key.FrontToBack)
+  if (!key.FrontToBack || key.Reduce)
   {
     Replace(fs, "//STRATA::Termination::Dec", "");
     Replace(fs, "//STRATA::Termination::Impl", "");
@@ -282,6 +444,37 @@ void Termination(const Key& key, std::string& fs)
 
 // --- Rays: the first (the coherence leader, the feedback ray), then the others at their
 // sub-pixel offsets and lattice phases; then the fragment's feedback report.
+// Before ray r: a reduction pass reads the ray's state so far, an integration pass the
+// layers of its reduced volumes.
+std::string RayPrologue(const Key& key, int r)
+{
+  const std::string R = std::to_string(r);
+  if (key.Reduce)
+    return "  gState = texelFetch(uAccumulation" + R + ", ivec2(gl_FragCoord.xy), 0);\n";
+  std::string code;
+  for (int i = 0, j = 0; i < key.Volumes; ++i)
+  {
+    if (!IsLayer(key, i))
+      continue;
+    const std::string J = std::to_string(j++);
+    code += ForVolume(("  gLayerT[" + J + "] = strataLayer@n@(texelFetch(uLayer@n@_" + R +
+                        ", ivec2(gl_FragCoord.xy), 0), gLayerC[" + J + "]);\n")
+                        .c_str(),
+      i);
+  }
+  return code;
+}
+
+// A reduction pass keeps the state of a ray that misses the fragment.
+std::string RayStore(const Key& key, int r, const std::string& call)
+{
+  const std::string R = std::to_string(r);
+  if (!key.Reduce)
+    return "  gl_FragData[" + R + "] = " + call + ";\n";
+  return "  {\n    vec4 state = " + call + ";\n    gl_FragData[" + R +
+         "] = " + (r == 0 ? "inside0" : "inside") + " ? state : gState;\n  }\n";
+}
+
 std::string Rays(const Key& key)
 {
   const int rays = key.Rays;
@@ -302,8 +495,11 @@ std::string Rays(const Key& key)
       if (key.Feedback)
         code << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, "
                 "ivec2(uFeedbackScale / 2)));\n";
-      code << "  gl_FragData[0] = strataCastRay(" << (rays > 1 ? pixel.str() : "gl_FragCoord.xy")
-           << ", 0.0, " << prior << ", 0.0, tFirst0, inside0);\n";
+      code << RayPrologue(key, 0)
+           << RayStore(key,
+                0,
+                "strataCastRay(" + (rays > 1 ? pixel.str() : std::string("gl_FragCoord.xy")) +
+                  ", 0.0, " + prior + ", 0.0, tFirst0, inside0)");
       if (key.Feedback)
         code << "  gFeedbackRay = false;\n";
       if (rays > 1)
@@ -316,8 +512,11 @@ std::string Rays(const Key& key)
     std::ostringstream phase;
     phase.precision(9);
     phase << double(r) / rays;
-    code << "  gl_FragData[" << r << "] = strataCastRay(" << pixel.str() << ", " << phase.str()
-         << ", " << prior << ", " << (key.Coherent ? "tStart" : "0.0") << ", tFirst, inside);\n";
+    code << RayPrologue(key, r)
+         << RayStore(key,
+              r,
+              "strataCastRay(" + pixel.str() + ", " + phase.str() + ", " + prior + ", " +
+                (key.Coherent ? "tStart" : "0.0") + ", tFirst, inside)");
   }
   if (key.Feedback)
   {
@@ -336,10 +535,94 @@ std::string Rays(const Key& key)
 
 // --- Compositing: the loop over lattice steps in the key's order, with exactly the skipping,
 // feedback and classification code it uses.
+std::string ReduceStep(const Key& key)
+{
+  switch (Mode(key, 0))
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "if (state.w == 0.0 || s > state.x)\n      {\n        state = vec4(s, 0.0, t, 1.0);\n"
+             "      }";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "if (state.w == 0.0 || s < state.x)\n      {\n        state = vec4(s, 0.0, t, 1.0);\n"
+             "      }";
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return "if (s >= uAverageRange0.x && s <= uAverageRange0.y)\n      {\n"
+             "        float len = (b - a) * segment;\n"
+             "        state.x += strataOpacity0(s) * (s - uNormalize0.x) * uNormalize0.y * len;\n"
+             "        state.y += len;\n      }";
+    default: // additive
+      return "state.x += strataOpacity0(s) * (s - uNormalize0.x) * uNormalize0.y * (b - a) * "
+             "segment / uUnit0;";
+  }
+}
+
+// --- A reduction pass: volume 0 alone, every step, the state carried across fragments. The
+// depth of an average or additive layer is the midpoint of the ray's first step in the volume
+// (strictly inside the fragment, so the integration pass finds it in the same fragment).
+std::string Reduce(const Key& key)
+{
+  const int mode = Mode(key, 0);
+  std::string start;
+  if (mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND || mode == vtkVolumeMapper::ADDITIVE_BLEND)
+    start += "float tIn = 0.5 * (max((kk + phase) * dt, tEnter) + min((kk + 1.0 + phase) * dt, "
+             "tExit));\n  state.z = state.w > 0.0 ? min(state.z, tIn) : tIn;\n  state.w = 1.0;\n  ";
+  std::string skip;
+  if (key.Skipping)
+  {
+    start += "bool probe = true;\n";
+    skip = "float skip = probe ? strataEmptyUntil(o, d, a, 1.0) : a;\n    if (skip > b)\n    {\n"
+           "      kk = max(kk + 1.0, floor(skip / dt - phase));\n      continue;\n    }";
+  }
+  std::string loop = vtkMultiVolumeReduce;
+  Replace(loop, "//STRATA::Start::Impl", start);
+  Replace(loop, "//STRATA::Skip::Impl", skip);
+  Replace(loop,
+    "//STRATA::Reduce::Impl",
+    Cropped(key, 0)
+      ? "if (strataCrop0(o + t * d) > 0.0)\n      {\n      " + ReduceStep(key) + "\n      }"
+      : ReduceStep(key));
+  return loop;
+}
+
+// Layers that lie in this fragment stay pending; the others are marked done.
+std::string LayerStart(const Key& key)
+{
+  const int layers = CountIf(key, IsLayer);
+  if (layers == 0)
+    return std::string();
+  return "for (int j = 0; j < " + std::to_string(layers) +
+         "; ++j)\n  {\n    if (gLayerT[j] < tEnter || gLayerT[j] >= tExit)\n    {\n"
+         "      gLayerT[j] = " +
+         (key.FrontToBack ? "3.0e38" : "-3.0e38") + ";\n    }\n  }\n  ";
+}
+
+// The contour surfaces of the isosurface volumes in a step, in front of its medium.
+std::string IsoStep(const Key& key)
+{
+  std::string code;
+  for (int i = key.Volumes - 1; i >= 0; --i)
+  {
+    if (IsIso(key, i))
+      code += ForVolume("\n      {\n        vec4 surface = strataIso@n@(o + a * d, o + b * d);\n"
+                        "        c = surface + (1.0 - surface.a) * c;\n      }",
+        i);
+  }
+  return code;
+}
+
 std::string Composite(const Key& key)
 {
+  if (key.Reduce)
+    return Reduce(key);
   const bool ftb = key.FrontToBack;
-  const bool pre = key.Classification != C::PostClassification;
+  const bool layers = CountIf(key, IsLayer) > 0;
+  const std::string layersBefore =
+    ftb ? "strataLayersBefore(b, acc);" : "strataLayersBehind(b, acc);";
+  const std::string layersAfter =
+    ftb ? "strataLayersBefore(3.0e38, acc);" : "strataLayersBehind(-1.0e38, acc);";
+  if (CountIf(key, Sampled) == 0)
+    return LayerStart(key) + layersAfter; // nothing to sample: the layers alone
+  const bool pre = PreIntegrated(key);
   const std::string K = std::to_string(key.Volumes);
   const char* end = ftb ? "tEnter" : "tExit";
   std::string start;
@@ -374,7 +657,9 @@ std::string Composite(const Key& key)
     step +=
       "gFootprint = uFeedbackFootprint.x + uFeedbackFootprint.y * distance(o + 0.5 * (a + b) * "
       "d, uFeedbackEye);\n      ";
-  if (pre)
+  if (CountIf(key, Medium) == 0)
+    step += "vec4 c = vec4(0.0);";
+  else if (pre)
     step += ftb ? "strataSampleAll(o + b * d, sB);\n"
                   "      vec4 c = strataPair(sA, sB, (b - a) * segment, o + 0.5 * (a + b) * d);\n"
                   "      sA = sB;"
@@ -383,12 +668,15 @@ std::string Composite(const Key& key)
                   "      sB = sA;";
   else
     step += "vec4 c = strataSegment(o + 0.5 * (a + b) * d, (b - a) * segment);";
+  step += IsoStep(key);
   std::string loop = ftb ? vtkMultiVolumeFrontToBack : vtkMultiVolumeBackToFront;
+  Replace(loop, "//STRATA::Layers::Impl", layers ? layersBefore : "");
+  Replace(loop, "//STRATA::LayersAfter::Impl", layers ? layersAfter : "");
   Replace(loop, "//STRATA::Start::Impl", start);
   Replace(loop, "//STRATA::Skip::Impl", skip);
   Replace(loop, "//STRATA::Step::Impl", step);
   Replace(loop, "//STRATA::Probe::Impl", key.Skipping ? "probe = c.a <= 0.0;" : "");
-  return (AnyShaded(key) ? "gViewDirection = -normalize(d);\n  " : "") + loop;
+  return (AnyShaded(key) ? "gViewDirection = -normalize(d);\n  " : "") + LayerStart(key) + loop;
 }
 }
 
@@ -404,17 +692,25 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Atlas,
            this->Skipping,
            this->Feedback,
-           this->Footprint) < std::tie(o.Volumes,
-                                o.Shaded,
-                                o.Classification,
-                                o.FrontToBack,
-                                o.Barrier,
-                                o.Rays,
-                                o.Coherent,
-                                o.Atlas,
-                                o.Skipping,
-                                o.Feedback,
-                                o.Footprint);
+           this->Footprint,
+           this->Modes,
+           this->Reduce,
+           this->Cropped,
+           this->GradientOpacity) < std::tie(o.Volumes,
+                                      o.Shaded,
+                                      o.Classification,
+                                      o.FrontToBack,
+                                      o.Barrier,
+                                      o.Rays,
+                                      o.Coherent,
+                                      o.Atlas,
+                                      o.Skipping,
+                                      o.Feedback,
+                                      o.Footprint,
+                                      o.Modes,
+                                      o.Reduce,
+                                      o.Cropped,
+                                      o.GradientOpacity);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
@@ -432,6 +728,19 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
     << (this->Rays == 1 ? " ray" : " rays") << (this->Coherent ? " coherent" : "")
     << (this->Atlas ? ", atlas" : ", plain textures") << (this->Skipping ? ", skipping" : "")
     << (this->Feedback ? (this->Footprint ? ", footprint feedback" : ", feedback") : "");
+  static const char* modes[] = {
+    "composite", "maximum", "minimum", "average", "additive", "isosurface", "slice"
+  };
+  bool any = false;
+  for (int m : this->Modes)
+    any = any || m != vtkVolumeMapper::COMPOSITE_BLEND;
+  for (size_t i = 0; any && i < this->Modes.size(); ++i)
+    s << (i ? " " : ", blend ") << modes[std::min(std::max(this->Modes[i], 0), 6)];
+  s << (this->Reduce ? ", reduction pass" : "");
+  for (size_t i = 0; i < this->Cropped.size(); ++i)
+    s << (this->Cropped[i] ? ", cropped " + std::to_string(i) : std::string());
+  for (size_t i = 0; i < this->GradientOpacity.size(); ++i)
+    s << (this->GradientOpacity[i] ? ", gradient opacity " + std::to_string(i) : std::string());
   return s.str();
 }
 

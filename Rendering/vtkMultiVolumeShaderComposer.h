@@ -5,11 +5,13 @@
  *          BSP fragment uses, programs cached by those features.
  *
  * A fragment's program depends on FragmentKey alone: how many volumes cover it, which of them
- * are shaded, the classification, the compositing order, rays per pixel and coherence, brick
- * atlas, empty-space skipping and level-of-detail feedback. The fragment template
- * (vtkMultiVolumeFragmentFS.glsl) is a skeleton of tags; each feature has one builder below
- * that fills its tags from .glsl snippets (per volume, `@n@` standing for the volume's place in
- * the fragment), so a feature the scene does not use leaves no code behind. The lookup that
+ * are shaded, their blend modes (composite volumes are media; isosurface volumes add their
+ * contour surfaces; MIP, MinIP, average and additive volumes are read as layers that their own
+ * reduction pass, a program of its own, wrote), the classification, the compositing order, rays per
+ * pixel and coherence, brick atlas, empty-space skipping and level-of-detail feedback. The fragment
+ * template (vtkMultiVolumeFragmentFS.glsl) is a skeleton of tags; each feature has one builder
+ * below that fills its tags from .glsl snippets (per volume, `@n@` standing for the volume's place
+ * in the fragment), so a feature the scene does not use leaves no code behind. The lookup that
  * knows where voxels live is the brick atlas's (vtkBrickAtlasTexture) or a plain texture's.
  *
  * Programs are kept by key (vtkStrataShaderCache): a frame that draws the same fragments as
@@ -50,6 +52,16 @@ public:
     bool Skipping = true;   ///< empty-space skipping
     bool Feedback = false;  ///< level-of-detail feedback (paged scenes, with the atlas)
     bool Footprint = false; ///< feedback asks for the level of the pixel footprint
+    /// Per volume: its vtkVolumeMapper blend mode (missing entries: COMPOSITE).
+    std::vector<int> Modes;
+    /// The reduction pass of volume 0 (MIP, MinIP, average, additive by Modes[0]) into its
+    /// layer buffers, instead of the integration of all the fragment's volumes.
+    bool Reduce = false;
+    /// Per volume: cropped by vtkVolumeMapper's regions (missing entries: not cropped).
+    std::vector<bool> Cropped;
+    /// Per volume: opacity scaled by the gradient opacity function (composite volumes,
+    /// post-classification; missing entries: none).
+    std::vector<bool> GradientOpacity;
 
     bool operator<(const FragmentKey& other) const;
     /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".

@@ -26,6 +26,22 @@ vtkMTimeType vtkTransferFunctionTable::GetMTime(vtkVolumeProperty* property)
   return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
 }
 
+bool vtkTransferFunctionTable::TabulateGradientOpacity(vtkVolumeProperty* property,
+  int size,
+  double range[2],
+  std::vector<float>& opacity)
+{
+  if (!property->HasGradientOpacity(0) || property->GetDisableGradientOpacity(0))
+    return false;
+  vtkPiecewiseFunction* go = property->GetStoredGradientOpacity(0);
+  go->GetRange(range);
+  if (!(range[1] > range[0]))
+    range[1] = range[0] + 1.0;
+  opacity.resize(size);
+  go->GetTable(range[0], range[1], size, opacity.data());
+  return true;
+}
+
 void vtkTransferFunctionTable::Tabulate(vtkVolumeProperty* property,
   int size,
   double range[2],

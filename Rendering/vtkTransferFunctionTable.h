@@ -57,6 +57,16 @@ public:
     std::vector<float>& rgbTau,
     std::vector<float>& opacity);
 
+  /**
+   * The gradient opacity function of `property` (component 0), `size` entries evenly over its
+   * range (widened to one unit when empty; clamped outside, as the texture is read). False, and
+   * nothing filled, when the property has none (HasGradientOpacity) or it is disabled.
+   */
+  static bool TabulateGradientOpacity(vtkVolumeProperty* property,
+    int size,
+    double range[2],
+    std::vector<float>& opacity);
+
   /// When `property`'s transfer functions last changed (those of its colour kind only: VTK's
   /// getters of the other kind would create, and switch to, a default).
   static vtkMTimeType GetMTime(vtkVolumeProperty* property);

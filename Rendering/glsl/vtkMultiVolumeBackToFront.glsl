@@ -10,6 +10,7 @@
     {
       break;
     }
+    //STRATA::Layers::Impl
     //STRATA::Skip::Impl
     if (b > a)
     {
@@ -23,3 +24,4 @@
     }
     kb -= 1.0;
   }
+  //STRATA::LayersAfter::Impl

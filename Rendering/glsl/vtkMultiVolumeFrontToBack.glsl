@@ -10,6 +10,7 @@
     {
       break;
     }
+    //STRATA::Layers::Impl
     //STRATA::Skip::Impl
     if (b > a)
     {
@@ -27,3 +28,4 @@
     }
     kk += 1.0;
   }
+  //STRATA::LayersAfter::Impl

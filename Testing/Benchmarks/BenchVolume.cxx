@@ -9,6 +9,8 @@
 //   BenchVolume header                      -> the CSV header line
 //   BenchVolume accuracy <data>             -> the settings grid at 256 x 256, each image
 //                                              against the reference
+//   BenchVolume blend <data>                -> every blend mode at two sample distances, each
+//                                              against the reference of that mode
 //   BenchVolume frame <single|sparse> <data> [<method>=<MB>,...]
 //                                           -> strata, strata-no-atlas and VTK at 512 x 512,
 //                                              timed interleaved; peak RSS from `memory`
@@ -41,6 +43,7 @@
 #include "vtkCamera.h"
 #include "vtkChartXY.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
@@ -91,7 +94,7 @@ const double ReferenceStep = 1.0 / 16.0;
 
 const char* const Header = "case,method,ms_per_frame,rms_error,classification,order,rays,coherence,"
                            "sample_distance,volumes,rms_error_same_rays,width,height,fragments,"
-                           "peak_rss_mb,note";
+                           "peak_rss_mb,blend_mode,note";
 
 /// One CSV row; NaN or negative fields are written empty.
 struct Row
@@ -105,6 +108,7 @@ struct Row
   double RmsSameRays = NaN;
   int Width = -1, Height = -1, Fragments = -1;
   double PeakRss = NaN;
+  std::string BlendMode; ///< empty: composite (every row but the blend-mode grid's)
   std::string Note;
 
   std::string Csv() const
@@ -139,6 +143,7 @@ struct Row
     integer(this->Height);
     integer(this->Fragments);
     num(this->PeakRss, 0);
+    s << this->BlendMode << ',';
     std::string note = this->Note;
     std::replace(note.begin(), note.end(), ',', ';'); // one field, unquoted
     s << note;
@@ -295,9 +300,11 @@ void SnapRuns(std::vector<double>& table, size_t stride, size_t offset)
 }
 
 /// ToReferenceVolume with its tables' runs made exact (SnapRuns).
-vtkMultiVolumeReferenceIntegrator::Volume ReferenceVolume(vtkImageData* image, vtkVolume* member)
+vtkMultiVolumeReferenceIntegrator::Volume ReferenceVolume(vtkImageData* image,
+  vtkVolume* member,
+  vtkMultiVolumeRayCastMapper* mapper = nullptr)
 {
-  auto v = strata_test::ToReferenceVolume(image, member);
+  auto v = strata_test::ToReferenceVolume(image, member, mapper, 0);
   SnapRuns(v.Classification.Opacity, 1, 0);
   for (size_t c = 0; c < 3 && !v.Classification.Color.empty(); ++c)
     SnapRuns(v.Classification.Color, 3, c);
@@ -311,14 +318,15 @@ Reference ComputeReference(vtkRenderer* ren,
   const std::vector<std::pair<vtkImageData*, vtkVolume*>>& volumes,
   double stepFraction,
   bool snap = true,
-  const double offset[2] = nullptr)
+  const double offset[2] = nullptr,
+  vtkMultiVolumeRayCastMapper* blendOf = nullptr)
 {
   const auto t0 = Clock::now();
   vtkMultiVolumeReferenceIntegrator integrator;
   integrator.SetStepFraction(stepFraction);
   for (const auto& v : volumes)
   {
-    if (integrator.AddVolume(snap ? ReferenceVolume(v.first, v.second)
+    if (integrator.AddVolume(snap ? ReferenceVolume(v.first, v.second, blendOf)
                                   : strata_test::ToReferenceVolume(v.first, v.second)) < 0)
     {
       std::cerr << "reference rejected a volume: " << integrator.GetLastError() << "\n";
@@ -918,6 +926,87 @@ int Bsp(int n, const std::string& layout)
   return 0;
 }
 
+/// The blend-mode knob on one data set at 256 x 256: every mode of vtkVolumeMapper::BlendModes
+/// (contours at 40 % and 70 % of the transfer functions' range) at two sample distances, each
+/// image against the reference of that mode.
+int Blend(const std::string& data, const strata_test::TestPaths& paths)
+{
+  const int size = 256;
+  const std::string name = "blend-" + data;
+  std::string why;
+  auto image = strata_test::LoadRealVolume(data, paths, why);
+  if (!image)
+  {
+    std::cerr << name << ": skipped: " << why << "\n";
+    Row row;
+    row.Case = name;
+    row.Method = "strata";
+    row.Note = "skipped: " + why;
+    Emit(row);
+    return 0;
+  }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, size, size);
+  ren->SetBackground(Grey, Grey, Grey);
+  auto property = strata_test::MakeRealVolumeProperty(data);
+  double range[2];
+  property->GetScalarOpacity()->GetRange(range);
+  property->GetIsoSurfaceValues()->SetValue(0, range[0] + 0.4 * (range[1] - range[0]));
+  property->GetIsoSurfaceValues()->SetValue(1, range[0] + 0.7 * (range[1] - range[0]));
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetInputData(image);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  ren->AddVolume(volume);
+  const std::vector<std::pair<vtkImageData*, vtkVolume*>> list = { { image, volume } };
+  double dir[3], up[3];
+  strata_test::RealVolumeView(data, dir, up);
+  strata_test::FrameVolumes(ren, list, dir, up, 0.75);
+  const std::pair<int, const char*> modes[] = { { vtkVolumeMapper::COMPOSITE_BLEND, "composite" },
+    { vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, "maximum" },
+    { vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "minimum" },
+    { vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "average" },
+    { vtkVolumeMapper::ADDITIVE_BLEND, "additive" },
+    { vtkVolumeMapper::ISOSURFACE_BLEND, "isosurface" } };
+  const int frames = TimedFrames(3);
+  const auto t0 = Clock::now();
+  for (const auto& m : modes)
+  {
+    mapper->SetBlendMode(m.first);
+    const Reference ref =
+      ComputeReference(ren, size, size, list, ReferenceStep, true, nullptr, mapper);
+    for (double d : { 1.0, 0.5 })
+    {
+      mapper->SetSampleDistance(d);
+      Row row;
+      row.Case = name;
+      row.Method = "strata";
+      WarmUp(win, mapper, 1);
+      row.Ms = MedianMs(win, frames);
+      const auto gpu = strata_test::ReadRGB(win);
+      double maxError = 0.0;
+      row.Rms = Rms(gpu, ref, &maxError);
+      row.Classification = "post";
+      row.Order = "front-to-back";
+      row.Rays = 1;
+      row.SampleDistance = d;
+      row.Volumes = 1;
+      row.Width = row.Height = size;
+      row.Fragments = mapper->GetNumberOfFragments();
+      row.BlendMode = m.second;
+      row.Note = "max error " + std::to_string(maxError) + LoadNote();
+      Emit(row);
+      std::cerr << "  " << m.second << " d " << d << ": " << row.Ms << " ms, RMS " << row.Rms
+                << ", max " << maxError << " (reference " << ref.Seconds << " s; " << Seconds(t0)
+                << " s)\n";
+      MaybeWriteImages(name + "-" + m.second + "-d" + std::to_string(d), gpu, &ref, size, size);
+    }
+  }
+  return 0;
+}
+
 /// Reference convergence: step 1/`coarse` against 1/`fine` of a voxel at the accuracy
 /// benchmark's camera.
 int Converge(const std::string& data,
@@ -1074,6 +1163,45 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
         points->SetMarkerSize(9);
       }
     }
+  // The blend-mode knob: one series per data set and mode (crosses), both sample distances.
+  const char* blendModes[6] = {
+    "composite", "maximum", "minimum", "average", "additive", "isosurface"
+  };
+  const unsigned char blendColours[6][3] = { { 0, 0, 0 },
+    { 230, 159, 0 },
+    { 86, 180, 233 },
+    { 240, 228, 66 },
+    { 0, 114, 178 },
+    { 213, 94, 0 } };
+  for (const auto& r0 : rows)
+  {
+    const std::string c = Get(r0, "case");
+    if (c.rfind("blend-", 0) != 0 || Get(r0, "blend_mode") != "composite" ||
+        Get(r0, "sample_distance") != "1.000")
+      continue;
+    for (int m = 0; m < 6; ++m)
+    {
+      std::vector<std::pair<double, double>> pts;
+      for (const auto& r : rows)
+      {
+        const double ms = Number(r, "ms_per_frame"), rms = Number(r, "rms_error");
+        if (Get(r, "case") == c && Get(r, "blend_mode") == blendModes[m] && ms > 0 && rms > 0)
+        {
+          pts.emplace_back(ms, rms);
+          range[0] = std::min(range[0], ms);
+          range[1] = std::max(range[1], ms);
+          range[2] = std::min(range[2], rms);
+          range[3] = std::max(range[3], rms);
+        }
+      }
+      if (auto* points = vtkPlotPoints::SafeDownCast(
+            chart.Add(vtkChart::POINTS, c.substr(6) + ", " + blendModes[m], pts, blendColours[m])))
+      {
+        points->SetMarkerStyle(vtkPlotPoints::CROSS);
+        points->SetMarkerSize(9);
+      }
+    }
+  }
   if (range[1] > 0.0)
   {
     // Margins so that no point sits on the frame, and room above the points for the legend.
@@ -1154,6 +1282,29 @@ int Report(const std::string& csv, const std::string& png)
       }
       std::printf("\n");
     }
+  }
+
+  // 1b. The blend-mode knob: each mode against the reference of that mode.
+  for (const auto& c : cases)
+  {
+    if (c.rfind("blend-", 0) != 0)
+      continue;
+    std::printf("\n%s: blend modes, ms per frame and RMS error against the reference of the "
+                "mode (8-bit units)\n%-11s %5s %9s %9s  %s\n",
+      c.c_str(),
+      "mode",
+      "d",
+      "ms",
+      "rms",
+      "note");
+    for (const auto& r : rows)
+      if (Get(r, "case") == c)
+        std::printf("%-11s %5s %9s %9s  %s\n",
+          Get(r, "blend_mode").c_str(),
+          Get(r, "sample_distance").c_str(),
+          Get(r, "ms_per_frame").c_str(),
+          Get(r, "rms_error").c_str(),
+          Get(r, "note").c_str());
   }
 
   // 2. Strata against VTK: time ratio against its target.
@@ -1266,6 +1417,8 @@ int main(int argc, char* argv[])
   }
   if (mode == "accuracy" && argc > 2)
     return Accuracy(argv[2], paths);
+  if (mode == "blend" && argc > 2)
+    return Blend(argv[2], paths);
   if (mode == "frame" && argc > 3)
     return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "", paths);
   if (mode == "memory" && argc > 4)
@@ -1279,9 +1432,10 @@ int main(int argc, char* argv[])
       argv[2], argc > 3 ? std::atof(argv[3]) : 16.0, argc > 4 ? std::atof(argv[4]) : 32.0, paths);
   if (mode == "report" && argc > 3)
     return Report(argv[2], argv[3]);
-  std::cerr << "usage: BenchVolume header | accuracy <data> | frame <single|sparse> <data> "
-               "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
-               "multi <2-4> | bsp <n> [ring|grid] | converge "
-               "<data> [1/h 1/h'] | report <csv> <png>\n";
+  std::cerr
+    << "usage: BenchVolume header | accuracy <data> | blend <data> | frame <single|sparse> <data> "
+       "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
+       "multi <2-4> | bsp <n> [ring|grid] | converge "
+       "<data> [1/h 1/h'] | report <csv> <png>\n";
   return 2;
 }

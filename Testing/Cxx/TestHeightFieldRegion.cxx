@@ -47,8 +47,9 @@ struct Difference
   long Off = 0;     ///< pixels off by more than 1 of 255
 };
 
-Difference Blend(
-  const std::vector<float>& front, const std::vector<float>& back, const std::vector<float>& whole)
+Difference Blend(const std::vector<float>& front,
+  const std::vector<float>& back,
+  const std::vector<float>& whole)
 {
   Difference d;
   for (size_t p = 0; p < whole.size(); p += 4)
@@ -100,11 +101,9 @@ int TestHeightFieldRegion(int, char*[])
     coveredWest += w[p] > 0.5f ? 1 : 0;
     coveredEast += e[p] > 0.5f ? 1 : 0;
   }
-  std::cout << "covered pixels: whole " << covered << ", west box " << coveredWest
-            << ", east box " << coveredEast << "; the " << (westInFront ? "west" : "east")
-            << " box is in front\n";
-  Check(coveredWest > 1000 && coveredEast > 1000 && coveredWest < covered &&
-      coveredEast < covered,
+  std::cout << "covered pixels: whole " << covered << ", west box " << coveredWest << ", east box "
+            << coveredEast << "; the " << (westInFront ? "west" : "east") << " box is in front\n";
+  Check(coveredWest > 1000 && coveredEast > 1000 && coveredWest < covered && coveredEast < covered,
     "both boxes draw part of the stack");
   const Difference right = westInFront ? Blend(w, e, whole) : Blend(e, w, whole);
   const Difference wrong = westInFront ? Blend(e, w, whole) : Blend(w, e, whole);

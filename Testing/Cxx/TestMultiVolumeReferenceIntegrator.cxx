@@ -1010,6 +1010,83 @@ void StartAndStop(const Mat4& cam)
   std::printf("    max alpha of the clipped rays %.4f\n", maxA);
 }
 
+// (i) Blend modes on the ramp s = x / 10 over x in [0, 10] (11 points, spacing 1), opacity
+// 0.2 + 0.3 s per unit, colour (s, 0, 1 - s), one ray along x: closed forms. Reductions take
+// midpoint samples h = 1/16 apart, so the extreme's scalar is off by at most the ramp's slope
+// times h / 2 (0.0031): tolerance 0.1 h on RGBA. Averages of a quadratic by the midpoint rule:
+// off by h^2 / 12 times its curvature, under 1e-4. Contours of a ramp are found exactly.
+void BlendModes()
+{
+  std::printf("(i) blend modes\n");
+  using B = Integrator::Blend;
+  Volume ramp =
+    MakeVolume(11, 3, 3, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, [](int i, int, int) { return 0.1 * i; });
+  ramp.Classification.Opacity = { 0.2, 0.5 };
+  ramp.Classification.Color = { 0.0, 0.0, 1.0, 1.0, 0.0, 0.0 };
+  auto layer = [](double s) { // colour and opacity of scalar s, premultiplied
+    const double a = 0.2 + 0.3 * s;
+    return RGBA{ s * a, 0.0, (1.0 - s) * a, a };
+  };
+  auto over = [](const RGBA& front, const RGBA& back)
+  {
+    RGBA r;
+    for (int k = 0; k < 4; ++k)
+      r[k] = front[k] + (1.0 - front[3]) * back[k];
+    return r;
+  };
+  const double h = 1.0 / 16.0;
+  const double o[3] = { -2.0, 1.0, 1.0 }, d[3] = { 1.0, 0.0, 0.0 };
+  const double ob[3] = { 12.0, 1.0, 1.0 }, db[3] = { -1.0, 0.0, 0.0 };
+  auto ray = [&](const std::vector<Volume>& volumes, bool backwards)
+  {
+    Integrator integ;
+    for (const Volume& v : volumes)
+      Add(integ, v);
+    return integ.IntegrateRay(backwards ? ob : o, backwards ? db : d, 0.0, 14.0);
+  };
+  Volume v = ramp;
+  v.BlendMode = B::Maximum;
+  Check("(i) maximum: the colour of s = 1", MaxDiff(ray({ v }, false), layer(1.0)), 0.1 * h);
+  v.BlendMode = B::Minimum;
+  Check("(i) minimum: the colour of s = 0", MaxDiff(ray({ v }, false), layer(0.0)), 0.1 * h);
+  // mean of alpha(s) s = 0.2 s + 0.3 s^2 over s in [0, 1]: 0.2; over [0.5, 1]: 0.325.
+  v.BlendMode = B::Average;
+  Check("(i) average: grey 0.2", MaxDiff(ray({ v }, false), RGBA{ 0.2, 0.2, 0.2, 1.0 }), 1e-4);
+  v.AverageRange[0] = 0.5;
+  Check("(i) average over [0.5, 1]: grey 0.325",
+    MaxDiff(ray({ v }, false), RGBA{ 0.325, 0.325, 0.325, 1.0 }),
+    1e-4);
+  // the integral over the 10 units, 2, per unit distance 20: 0.1.
+  v = ramp;
+  v.BlendMode = B::Additive;
+  v.Classification.UnitDistance = 20.0;
+  Check("(i) additive: grey 0.1", MaxDiff(ray({ v }, false), RGBA{ 0.1, 0.1, 0.1, 1.0 }), 1e-4);
+  v.Classification.UnitDistance = 1.0;
+  Check("(i) additive clamped to 1", MaxDiff(ray({ v }, false), RGBA{ 1.0, 1.0, 1.0, 1.0 }), 1e-12);
+  // Contours at s = 0.3 and 0.7 (x = 3 and 7): two surfaces, nearest first either way.
+  v = ramp;
+  v.BlendMode = B::IsoSurface;
+  v.IsoValues = { 0.7, 0.3 };
+  Check("(i) isosurfaces along +x", MaxDiff(ray({ v }, false), over(layer(0.3), layer(0.7))), 1e-9);
+  Check("(i) isosurfaces along -x", MaxDiff(ray({ v }, true), over(layer(0.7), layer(0.3))), 1e-9);
+  // Among a composite medium: a constant box over x in [4, 6] (tau 0.5, grey 0.5) lies between
+  // the contours, and in front of the maximum's layer (at x = 10) along +x, behind it along -x.
+  Volume box = MakeVolume(3, 3, 3, 1.0, 1.0, 1.0, 4.0, 0.0, 0.0, [](int, int, int) { return 0.0; });
+  box.Classification = ConstantTF(1.0 - std::exp(-0.5), 0.5, 0.5, 0.5, 1.0);
+  const double a = 1.0 - std::exp(-1.0); // 2 units at tau 0.5
+  const RGBA medium = { 0.5 * a, 0.5 * a, 0.5 * a, a };
+  Check("(i) contours around a composite medium",
+    MaxDiff(ray({ v, box }, false), over(layer(0.3), over(medium, layer(0.7)))),
+    1e-9);
+  v = ramp;
+  v.BlendMode = B::Maximum;
+  Check("(i) maximum's layer behind the medium along +x",
+    MaxDiff(ray({ v, box }, false), over(medium, layer(1.0))),
+    0.1 * h);
+  Check("(i) maximum's layer in front of the medium along -x",
+    MaxDiff(ray({ v, box }, true), over(layer(1.0), medium)),
+    0.1 * h);
+}
 }
 
 int TestMultiVolumeReferenceIntegrator(int, char*[])
@@ -1032,6 +1109,7 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       { "ThinVolume", [&] { ThinVolume(exactTol); } },
       { "Convergence", [&] { Convergence(W, H, cam, base); } },
       { "StartAndStop", [&] { StartAndStop(cam); } },
+      { "BlendModes", [&] { BlendModes(); } },
     },
     [] { return Failures; });
 

@@ -21,8 +21,10 @@
 
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSegyVolumeReader.h"
@@ -139,6 +141,7 @@ void F3(const strata_test::TestPaths& paths)
   vtkNew<ErrorCounter> errors;
   errors->Watch(reader);
   reader->SetFileName(path.c_str());
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::LineNumbers);
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   int dims[3];
@@ -192,6 +195,7 @@ void F3(const strata_test::TestPaths& paths)
   // A sub-extent: inlines 5-7 (116-118), crosslines 2-9, samples 10-40.
   vtkNew<vtkSegyVolumeReader> sub;
   sub->SetFileName(path.c_str());
+  sub->SetPlacement(vtkSegyVolumeReader::Placements::LineNumbers);
   sub->UpdateInformation();
   const int extent[6] = { 2, 9, 10, 40, 5, 7 };
   sub->UpdateExtent(extent);
@@ -205,6 +209,309 @@ void F3(const strata_test::TestPaths& paths)
   std::cout << "  sub-extent read " << sub->GetNumberOfTracesRead() << " traces\n";
   Check(same && sub->GetNumberOfTracesRead() == 3 * 8,
     "f3: a sub-extent has its values and reads only its 24 traces");
+}
+
+/// f3.sgy placed by its CDP coordinates (bytes 181, 185, scalar -10 at 71: 0.1 m).
+void F3World(const strata_test::TestPaths& paths)
+{
+  std::cout << "f3.sgy in world coordinates\n";
+  const std::string path = paths.Data + "/seismic/f3.sgy";
+  const std::string bytes = Slurp(path);
+  vtkNew<vtkSegyVolumeReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  const double* spacing = image->GetSpacing();
+  std::cout.precision(12);
+  std::cout << "  spacing " << spacing[0] << " " << spacing[1] << " " << spacing[2] << ", rotation "
+            << reader->GetGridRotation() << ", residual " << reader->GetFitResidual() << " m\n";
+  Check(errors->Errors == 0 && errors->Warnings == 0 && reader->GetGeoreferenced(),
+    "f3: placed by its coordinates by default, no errors or warnings");
+  // Each trace's own coordinates (the file's bytes) against the place the reader gives its
+  // grid position: within the fit residual the reader reports, which is below the 0.1 m the
+  // coordinates are rounded to, times a few.
+  double worst = 0.0;
+  for (int t = 0; t < 414; ++t)
+  {
+    const size_t header = 3600 + static_cast<size_t>(t) * 390;
+    const int il = BigEndian(bytes, header + 188, 4);
+    const int xl = BigEndian(bytes, header + 192, 4);
+    const double x = BigEndian(bytes, header + 180, 4) / 10.0;
+    const double y = BigEndian(bytes, header + 184, 4) / 10.0;
+    double p[3];
+    image->TransformIndexToPhysicalPoint(xl - 875, 0, il - 111, p);
+    worst = std::max(worst, std::hypot(p[0] - x, p[1] - y));
+  }
+  std::cout << "  largest trace-to-grid distance " << worst << " m\n";
+  Check(std::abs(worst - reader->GetFitResidual()) < 1e-6 && worst < 0.2,
+    "f3: every trace within the reported residual (< 0.2 m) of its grid position");
+  Check(spacing[1] == 4.0 && image->GetOrigin()[2] == -4.0 &&
+          image->GetDirectionMatrix()->GetElement(2, 1) == -1.0,
+    "f3: samples go down, 4 ms apart, from z = -4 (the 4 ms delay)");
+}
+
+/// Bounds of the fit's errors from the coordinates' rounding (each component off by at most
+/// r = 0.5 / |scalar|): a least-squares estimate is a fixed linear combination of the
+/// coordinates, so its error is at most r sqrt(2) times the sum of its weights' magnitudes.
+/// Corner: the hat-matrix row, 1/n + d_c' S^-1 d_t; per-bin vectors: the rows of S^-1 D'.
+struct RoundingBounds
+{
+  double Corner = 0.0, Inline = 0.0, Crossline = 0.0;
+
+  explicit RoundingBounds(const SegyTestFile& file)
+  {
+    std::vector<std::pair<double, double>> d;
+    for (const auto& t : file.Order())
+      d.emplace_back(t.first, t.second);
+    const double n = static_cast<double>(d.size());
+    double mi = 0, mj = 0;
+    for (const auto& t : d)
+    {
+      mi += t.first / n;
+      mj += t.second / n;
+    }
+    double sii = 0, sjj = 0, sij = 0;
+    for (auto& t : d)
+    {
+      t.first -= mi;
+      t.second -= mj;
+      sii += t.first * t.first;
+      sjj += t.second * t.second;
+      sij += t.first * t.second;
+    }
+    const double det = sii * sjj - sij * sij;
+    const double r = 0.5 / std::abs(file.CoordinateScalar) * std::sqrt(2.0);
+    for (const auto& t : d)
+    {
+      this->Inline += r * std::abs(sjj * t.first - sij * t.second) / det;
+      this->Crossline += r * std::abs(sii * t.second - sij * t.first) / det;
+    }
+    for (int i : { 0, file.Inlines - 1 })
+    {
+      for (int x : { 0, file.Crosslines - 1 })
+      {
+        const double ci = i - mi, cx = x - mj;
+        double sum = 0.0;
+        for (const auto& t : d)
+        {
+          sum += std::abs(
+            1.0 / n +
+            (ci * (sjj * t.first - sij * t.second) + cx * (sii * t.second - sij * t.first)) / det);
+        }
+        this->Corner = std::max(this->Corner, r * sum);
+      }
+    }
+  }
+};
+
+/// The generated survey's checks: geometry, corner traces, samples.
+void CheckPlacement(vtkSegyVolumeReader* reader,
+  const SegyTestFile& file,
+  double scale,
+  const std::string& name)
+{
+  vtkImageData* image = reader->GetOutput();
+  const double* spacing = image->GetSpacing();
+  std::cout << "  " << name << ": spacing " << spacing[0] << " " << spacing[1] << " " << spacing[2]
+            << ", rotation " << reader->GetGridRotation() << ", residual "
+            << reader->GetFitResidual() << "\n";
+  Check(reader->GetGeoreferenced() && SameAsGenerated(image, file),
+    name + ": georeferenced, every sample in its place");
+  const RoundingBounds bounds(file);
+  double worst = 0.0, worstZ = 0.0;
+  for (int i : { 0, file.Inlines - 1 })
+  {
+    for (int x : { 0, file.Crosslines - 1 })
+    {
+      double expected[2];
+      file.MapPosition(i, x, expected);
+      double p[3], q[4];
+      const int s = file.Samples - 1;
+      image->TransformIndexToPhysicalPoint(x, s, i, p);
+      const double index[4] = { double(x), double(s), double(i), 1.0 };
+      reader->GetGridToWorld()->MultiplyPoint(index, q);
+      const double z = scale * (file.DelayMilliseconds + s * file.IntervalMicroseconds / 1000.0);
+      worst = std::max({ worst,
+        std::hypot(p[0] - expected[0], p[1] - expected[1]),
+        std::hypot(q[0] - expected[0], q[1] - expected[1]) });
+      worstZ = std::max({ worstZ, std::abs(p[2] - z), std::abs(q[2] - z) });
+    }
+  }
+  std::cout << "  " << name << ": corners off by " << worst << " m (bound " << bounds.Corner << ", "
+            << worst / file.OriginY << " relative), z by " << worstZ << "\n";
+  Check(worst <= bounds.Corner && worst / file.OriginY < 1e-6 && worstZ < 1e-9,
+    name + ": the four corner traces at their map positions and depths");
+  double rotation = file.RotationDegrees;
+  while (rotation > 180.0)
+    rotation -= 360.0;
+  const double det = image->GetDirectionMatrix()->Determinant();
+  const double angleBound = bounds.Crossline / file.CrosslineBin * 180.0 / 3.14159265358979;
+  std::cout << "  " << name << ": bounds " << bounds.Crossline << " m, " << bounds.Inline << " m, "
+            << angleBound << " degrees\n";
+  Check(std::abs(reader->GetGridRotation() - rotation) <= angleBound &&
+          std::abs(spacing[0] - file.CrosslineBin) <= bounds.Crossline &&
+          std::abs(spacing[2] - file.InlineBin) <= bounds.Inline &&
+          spacing[1] == std::abs(scale) * file.IntervalMicroseconds / 1000.0 &&
+          std::abs(std::abs(det) - 1.0) < 1e-4 && (det > 0) == (file.Mirrored == (scale > 0)),
+    name + ": rotation, bin sizes, sample spacing and handedness");
+  auto* field = image->GetFieldData()->GetArray("GridToWorld");
+  bool same = field && field->GetNumberOfComponents() == 16 && field->GetNumberOfTuples() == 1;
+  for (int e = 0; same && e < 16; ++e)
+  {
+    same = field->GetComponent(0, e) == reader->GetGridToWorld()->GetData()[e];
+  }
+  Check(same, name + ": field data GridToWorld equals GetGridToWorld()");
+}
+
+void World(const std::string& out)
+{
+  std::cout << "generated surveys in rotated UTM coordinates\n";
+  {
+    // 456000 E, 6780000 N, 30 degrees, 12.5 m crossline and 25 m inline bins, scalar -100,
+    // shuffled, one trace missing.
+    SegyTestFile file;
+    file.Format = 5;
+    file.Georeferenced = true;
+    file.Seed = 11;
+    file.Missing = { { 1, 3 } };
+    const std::string path = out + "/utm.sgy";
+    Spit(path, file.Bytes());
+    vtkNew<vtkSegyVolumeReader> reader;
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    std::cout << "  warning: " << errors->First << "\n";
+    Check(errors->Errors == 0 && errors->Warnings == 1 &&
+            errors->First.find("1 of the 20 grid positions have no trace") != std::string::npos,
+      "utm: the missing trace is a warning");
+    CheckPlacement(reader, file, -1.0, "utm");
+    reader->SetVerticalScale(-10.0);
+    reader->Update();
+    CheckPlacement(reader, file, -10.0, "utm, VerticalScale -10");
+  }
+  {
+    // Mirrored (inlines clockwise from crosslines), 127 degrees, source X/Y, scalar -10, a
+    // second grid step.
+    SegyTestFile file;
+    file.Format = 3;
+    file.Georeferenced = true;
+    file.Mirrored = true;
+    file.RotationDegrees = 127.0;
+    file.InlineBin = 30.0;
+    file.CrosslineBin = 20.0;
+    file.CoordinateScalar = -10;
+    file.XByte = 73;
+    file.YByte = 77;
+    file.CrosslineStep = 3;
+    const std::string path = out + "/mirrored.sgy";
+    Spit(path, file.Bytes());
+    vtkNew<vtkSegyVolumeReader> reader;
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->SetFileName(path.c_str());
+    reader->SetXByte(73);
+    reader->SetYByte(77);
+    reader->Update();
+    Check(errors->Errors == 0 && errors->Warnings == 0, "mirrored: no errors or warnings");
+    CheckPlacement(reader, file, -1.0, "mirrored");
+  }
+}
+
+void WorldErrors(const std::string& out)
+{
+  std::cout << "world placement errors\n";
+  SegyTestFile file;
+  file.Georeferenced = true;
+  const std::string bad = out + "/bad-world.sgy";
+  vtkNew<vtkSegyVolumeReader> reader;
+
+  SegyTestFile off = file;
+  off.OffLattice = { 2, 1 };
+  Spit(bad, off.Bytes());
+  Rejects(reader, bad, "not on a regular grid", "a trace a bin off its place");
+  reader->SetMaximumFitResidual(2.0);
+  reader->SetFileName(bad.c_str());
+  reader->Update();
+  // The moved trace keeps (1 - leverage) of its 12.5 m: leverage 1/20 + 0.5^2/25 + 1^2/40 =
+  // 0.085 at inline index 2, crossline index 1 of the 4 x 5 grid; +-0.01 for the cm rounding.
+  std::cout << "  residual " << reader->GetFitResidual() << " m\n";
+  Check(reader->GetGeoreferenced() && std::abs(reader->GetFitResidual() - 12.5 * 0.915) < 0.01,
+    "a looser MaximumFitResidual accepts it, with the residual reported (11.44 m)");
+  reader->SetMaximumFitResidual(0.25);
+
+  Spit(bad, file.Bytes());
+  reader->SetYByte(201); // zeros: X alone changes, along both axes
+  Rejects(reader, bad, "nearly along one line", "Y read from an empty field");
+  reader->SetYByte(181);
+  Rejects(reader, bad, "XByte and YByte are both 181", "X byte = Y byte");
+  reader->SetYByte(185);
+  reader->SetXByte(238);
+  Rejects(reader, bad, "outside [1, 237]", "X byte 238");
+  reader->SetXByte(181);
+  reader->SetVerticalScale(0.0);
+  Rejects(reader, bad, "VerticalScale is 0", "VerticalScale 0");
+  reader->SetVerticalScale(-1.0);
+
+  // No coordinates: Automatic places by line numbers, World refuses.
+  SegyTestFile plain;
+  Spit(bad, plain.Bytes());
+  {
+    vtkNew<vtkSegyVolumeReader> automatic;
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(automatic);
+    automatic->SetFileName(bad.c_str());
+    automatic->Update();
+    Check(errors->Errors == 0 && errors->Warnings == 0 && !automatic->GetGeoreferenced() &&
+            automatic->GetOutput()->GetOrigin()[0] == 10 &&
+            SameAsGenerated(automatic->GetOutput(), plain),
+      "no coordinates: Automatic places by line numbers, silently");
+  }
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::World);
+  Rejects(reader, bad, "every trace has X = Y = 0", "no coordinates, World");
+
+  SegyTestFile geographic = file;
+  geographic.CoordinateUnits = 2;
+  Spit(bad, geographic.Bytes());
+  Rejects(reader, bad, "geographic", "seconds of arc, World");
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::Automatic);
+  {
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->Modified();
+    reader->Update();
+    Check(errors->Errors == 0 && errors->Warnings == 1 && !reader->GetGeoreferenced() &&
+            errors->First.find("geographic") != std::string::npos,
+      "seconds of arc, Automatic: a warning, placed by line numbers");
+    reader->RemoveAllObservers();
+    reader->GetExecutive()->RemoveAllObservers();
+  }
+
+  SegyTestFile line = file;
+  line.Inlines = 1;
+  Spit(bad, line.Bytes());
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::World);
+  Rejects(reader, bad, "single inline or crossline", "one inline, World");
+  reader->SetPlacement(vtkSegyVolumeReader::Placements::Automatic);
+  {
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(reader);
+    reader->Modified();
+    reader->Update();
+    Check(errors->Errors == 0 && errors->Warnings == 1 && !reader->GetGeoreferenced() &&
+            errors->First.find("single inline") != std::string::npos &&
+            SameAsGenerated(reader->GetOutput(), line),
+      "one inline (a 2-D line), Automatic: a warning, placed by line numbers");
+    reader->RemoveAllObservers();
+    reader->GetExecutive()->RemoveAllObservers();
+  }
+
+  SegyTestFile delayed = file;
+  delayed.DelayTrace = 6;
+  Spit(bad, delayed.Bytes());
+  Rejects(reader, bad, "start at different times", "a trace of another delay");
 }
 
 void GeneratedFiles(const std::string& out)
@@ -339,7 +646,10 @@ int TestSegyVolumeReader(int argc, char* argv[])
   return strata_test::RunSubTests(
     {
       { "F3", [&] { F3(paths); } },
+      { "F3World", [&] { F3World(paths); } },
       { "GeneratedFiles", [&] { GeneratedFiles(out); } },
+      { "World", [&] { World(out); } },
+      { "WorldErrors", [&] { WorldErrors(out); } },
       { "Errors", [&] { Errors(out); } },
     },
     strata_test::Failures);

@@ -106,7 +106,10 @@ def ibm(v):
     return sign | ((e + 64) << 24) | int(a * 16777216)
 
 
-def segy(fmt, inlines, xlines, samples, missing=(), shuffle=False, il_byte=189, xl_byte=193):
+def segy(fmt, inlines, xlines, samples, missing=(), shuffle=False, il_byte=189, xl_byte=193,
+         coords=None):
+    """coords: (azimuth in degrees, scalar, mirrored, off-lattice (i, x) or None): CDP X/Y at 181
+    and 185 of a 12.5 m x 25 m lattice from 456000 E, 6780000 N, with the scalar at 71."""
     text = b"C 1 STRATA FUZZ SEED".ljust(3200, b" ")
     binary = bytearray(400)
     struct.pack_into(">H", binary, 16, 4000)
@@ -123,6 +126,16 @@ def segy(fmt, inlines, xlines, samples, missing=(), shuffle=False, il_byte=189, 
         struct.pack_into(">H", h, 116, 4000)
         struct.pack_into(">i", h, il_byte - 1, 10 + 2 * i)
         struct.pack_into(">i", h, xl_byte - 1, 100 + x)
+        if coords:
+            azimuth, scalar, mirrored, off = coords
+            a = math.radians(azimuth)
+            side = -1 if mirrored else 1
+            xb = x + (1 if (i, x) == off else 0)
+            px = 456000 + xb * 12.5 * math.cos(a) - i * 25 * side * math.sin(a)
+            py = 6780000 + xb * 12.5 * math.sin(a) + i * 25 * side * math.cos(a)
+            f = -scalar if scalar < 0 else 1 / scalar
+            struct.pack_into(">h", h, 70, scalar)
+            struct.pack_into(">ii", h, 180, round(px * f), round(py * f))
         body = b""
         for s in range(samples):
             v = (i - 1) * 12 + (x - 1) * 3 - s
@@ -142,6 +155,9 @@ def seeds_segy():
     put("segy", "int16_2x2x5.sgy", segy(3, 2, 2, 5))
     put("segy", "int8_bytes9_21.sgy", segy(8, 2, 3, 2, il_byte=9, xl_byte=21))
     put("segy", "int32_one_trace.sgy", segy(2, 1, 1, 6))
+    put("segy", "ieee_utm_rotated.sgy", segy(5, 3, 4, 3, coords=(30, -100, False, None)))
+    put("segy", "int16_utm_mirrored_offgrid.sgy",
+        segy(3, 3, 3, 2, missing=((0, 2),), coords=(127, -10, True, (1, 1))))
 
 
 def mha(dims, etype, data, extra=""):

@@ -108,7 +108,7 @@ VolumeComparison VolumeScene::Compare(const std::string& name, int raysPerPixel)
   for (size_t i = 0; i < this->Images.size(); ++i)
     list.emplace_back(this->Images[i], this->Volumes[i]);
   return CompareVolumesWithReference(
-    this->Win, this->Ren, list, name, this->ImageDirectory, 1.0 / 16.0, raysPerPixel);
+    this->Win, this->Ren, list, name, this->ImageDirectory, 1.0 / 16.0, raysPerPixel, this->Mapper);
 }
 
 vtkSmartPointer<vtkImageData> Blob(int nx,

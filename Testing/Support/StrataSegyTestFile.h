@@ -65,7 +65,53 @@ struct SegyTestFile
   int DelayMilliseconds = 100;
   std::vector<std::pair<int, int>> Missing; ///< (inline index, crossline index) left out
   unsigned Seed = 0;                        ///< 0: inline-sorted order, else a shuffle
-  int LongTrace = -1; ///< position in the file of a trace given 2 extra samples (-1: none)
+  int LongTrace = -1;  ///< position in the file of a trace given 2 extra samples (-1: none)
+  int DelayTrace = -1; ///< position in the file of a trace given another delay (-1: none)
+
+  /// Map coordinates (written when Georeferenced): grid index (0, 0) at (OriginX, OriginY);
+  /// crossline index x moves CrosslineBin along the azimuth RotationDegrees (counterclockwise
+  /// from +x), inline index i moves InlineBin 90 degrees counterclockwise from there, or
+  /// clockwise when Mirrored. Written as integers at XByte and YByte with CoordinateScalar at
+  /// byte ScalarByte (negative: the integers are the coordinates times its magnitude).
+  bool Georeferenced = false;
+  double OriginX = 456000.0, OriginY = 6780000.0, RotationDegrees = 30.0;
+  double InlineBin = 25.0, CrosslineBin = 12.5;
+  bool Mirrored = false;
+  int CoordinateScalar = -100;
+  int XByte = 181, YByte = 185, ScalarByte = 71;
+  int CoordinateUnits = 1;
+  std::pair<int, int> OffLattice{ -1, -1 }; ///< a trace written one crossline bin off its place
+
+  /// The exact map position of grid index (i, x).
+  void MapPosition(double i, double x, double p[2]) const
+  {
+    const double a = this->RotationDegrees * 3.14159265358979323846 / 180.0;
+    const double ux[2] = { std::cos(a), std::sin(a) };
+    const double side = this->Mirrored ? -1.0 : 1.0;
+    const double ui[2] = { -side * ux[1], side * ux[0] };
+    for (int c = 0; c < 2; ++c)
+    {
+      p[c] = (c ? this->OriginY : this->OriginX) + i * this->InlineBin * ui[c] +
+             x * this->CrosslineBin * ux[c];
+    }
+  }
+
+  /// Writes the coordinates of grid index (i, x) into trace header `t`.
+  void PutCoordinates(std::string& t, int i, int x) const
+  {
+    double p[2];
+    this->MapPosition(i, x + (std::make_pair(i, x) == this->OffLattice ? 1.0 : 0.0), p);
+    const double factor = this->CoordinateScalar < 0   ? -double(this->CoordinateScalar)
+                          : this->CoordinateScalar > 0 ? 1.0 / this->CoordinateScalar
+                                                       : 1.0;
+    PutBigEndian(t, this->ScalarByte - 1, static_cast<uint32_t>(this->CoordinateScalar), 2);
+    PutBigEndian(t, 88, static_cast<uint32_t>(this->CoordinateUnits), 2);
+    for (int c = 0; c < 2; ++c)
+    {
+      const auto v = static_cast<int32_t>(std::llround(p[c] * factor));
+      PutBigEndian(t, (c ? this->YByte : this->XByte) - 1, static_cast<uint32_t>(v), 4);
+    }
+  }
 
   /// The value of sample s of the trace at grid indices (i, x): exactly representable in
   /// `format`, of both signs, distinct per trace, in range for int8 on grids up to 4 x 5 x 6.
@@ -122,9 +168,13 @@ struct SegyTestFile
     int position = 0;
     for (const auto& trace : this->Order())
     {
-      const int samples = this->Samples + (position++ == this->LongTrace ? 2 : 0);
+      const int here = position++;
+      const int samples = this->Samples + (here == this->LongTrace ? 2 : 0);
       std::string t(240 + static_cast<size_t>(samples) * size, '\0');
-      PutBigEndian(t, 108, static_cast<uint32_t>(this->DelayMilliseconds), 2);
+      PutBigEndian(t,
+        108,
+        static_cast<uint32_t>(this->DelayMilliseconds + (here == this->DelayTrace ? 4 : 0)),
+        2);
       PutBigEndian(t, 114, static_cast<uint32_t>(this->Samples), 2);
       PutBigEndian(t, 116, static_cast<uint32_t>(this->IntervalMicroseconds), 2);
       PutBigEndian(t,
@@ -135,6 +185,10 @@ struct SegyTestFile
         this->CrosslineByte - 1,
         static_cast<uint32_t>(this->FirstCrossline + trace.second * this->CrosslineStep),
         4);
+      if (this->Georeferenced)
+      {
+        this->PutCoordinates(t, trace.first, trace.second);
+      }
       for (int s = 0; s < samples; ++s)
       {
         const double v = Value(this->Format, trace.first, trace.second, s);

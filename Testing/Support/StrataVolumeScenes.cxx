@@ -5,6 +5,7 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -123,7 +124,10 @@ vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step)
   return points;
 }
 
-vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image, vtkVolume* member)
+vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
+  vtkVolume* member,
+  vtkMultiVolumeRayCastMapper* mapper,
+  int port)
 {
   vtkMultiVolumeReferenceIntegrator::Volume v;
   image->GetDimensions(v.Dimensions);
@@ -151,6 +155,23 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   v.Classification.Opacity.assign(alpha.begin(), alpha.end());
   v.Classification.Color.assign(rgb.begin(), rgb.end());
   v.Classification.UnitDistance = p->GetScalarOpacityUnitDistance(0);
+  std::vector<float> gradient;
+  if (vtkTransferFunctionTable::TabulateGradientOpacity(
+        p, 256, v.Classification.GradientRange, gradient))
+    v.Classification.GradientOpacity.assign(gradient.begin(), gradient.end());
+  if (mapper)
+  {
+    v.BlendMode =
+      static_cast<vtkMultiVolumeReferenceIntegrator::Blend>(mapper->GetEffectiveBlendMode(port));
+    vtkContourValues* iso = p->GetIsoSurfaceValues();
+    for (int i = 0; iso && i < iso->GetNumberOfContours(); ++i)
+      v.IsoValues.push_back(iso->GetValue(i));
+    mapper->GetAverageIPScalarRange(v.AverageRange);
+    double planes[6];
+    v.Cropping = mapper->GetEffectiveCropping(port, planes, v.CropFlags);
+    for (int k = 0; k < 6; ++k) // data coordinates to index coordinates
+      v.CropPlanes[k] = (planes[k] - v.Origin[k / 2]) / v.Spacing[k / 2];
+  }
   return v;
 }
 
@@ -160,7 +181,8 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   const std::string& name,
   const std::string& imageDirectory,
   double stepFraction,
-  int raysPerPixel)
+  int raysPerPixel,
+  vtkMultiVolumeRayCastMapper* mapper)
 {
   // Over mid grey, so that opacity errors show as well as colour errors.
   VolumeComparison r;
@@ -173,9 +195,10 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   const int w = win->GetSize()[0], h = win->GetSize()[1];
   vtkMultiVolumeReferenceIntegrator ref;
   ref.SetStepFraction(stepFraction);
-  for (const auto& v : volumes)
+  for (size_t i = 0; i < volumes.size(); ++i)
   {
-    if (ref.AddVolume(ToReferenceVolume(v.first, v.second)) < 0)
+    const auto& v = volumes[i];
+    if (ref.AddVolume(ToReferenceVolume(v.first, v.second, mapper, static_cast<int>(i))) < 0)
     {
       std::cerr << name << ": reference rejected a volume: " << ref.GetLastError() << "\n";
     }

@@ -14,6 +14,7 @@
 
 class vtkImageData;
 class vtkMatrix4x4;
+class vtkMultiVolumeRayCastMapper;
 class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -40,8 +41,13 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDi
 vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step);
 
 /// The reference's description of a mapper input: geometry, model matrix of `member`, scalars as
-/// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does.
-vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image, vtkVolume* member);
+/// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does; with
+/// `mapper` and `port`, the blend mode and cropping it draws that input with (its isovalues from
+/// the member's property, the mapper's AverageIPScalarRange).
+vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
+  vtkVolume* member,
+  vtkMultiVolumeRayCastMapper* mapper = nullptr,
+  int port = 0);
 
 struct VolumeComparison
 {
@@ -79,7 +85,8 @@ long PixelsOff(const std::vector<unsigned char>& image,
 
 /// Renders `win` over mid grey and compares its RGB with the reference composite of the
 /// given inputs and their vtkVolumes, at the reference's step fraction `stepFraction`; with
-/// several rays per pixel the reference averages the same sub-pixel rays as the mapper. Writes
+/// several rays per pixel the reference averages the same sub-pixel rays as the mapper; with
+/// `mapper`, input i of the list is the mapper's port i and takes its blend mode. Writes
 /// both images as <imageDirectory>/<name>-gpu.png and -ref.png.
 VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   vtkRenderer* ren,
@@ -87,7 +94,8 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   const std::string& name,
   const std::string& imageDirectory,
   double stepFraction = 1.0 / 16.0,
-  int raysPerPixel = 1);
+  int raysPerPixel = 1,
+  vtkMultiVolumeRayCastMapper* mapper = nullptr);
 
 /// The demo's multi-volume scene: the Bucky ball (real CT-like density, 32^3 uint8 read from
 /// `dataDir`/volumes/bucky.raw), an analytic 48 x 40 x 36 volume turned 25 degrees about (1, 1, 0)
