@@ -51,7 +51,44 @@ public:
   Entry Key(int v, int n) const { return Entry(this->Volumes[v].Priority[n], v, n); }
 
   // Empty by its own subtree range and, with a halo, by those of its level's 26 neighbours.
-  void Classify(int v)
+  void Classify(int v, const vtkVolumeCut::Camera& camera)
+  {
+    this->ClassifyOpacity(v);
+    if (camera.UseRegion)
+      this->ClassifyRegion(v, camera);
+  }
+
+  // Nodes outside the camera's region are empty for this renderer.
+  void ClassifyRegion(int v, const vtkVolumeCut::Camera& camera)
+  {
+    Volume& vol = this->Volumes[v];
+    for (int n = 0; n < vol.Tree->GetNumberOfNodes(); ++n)
+    {
+      double b[6];
+      vol.Tree->GetNodeBounds(n, b);
+      const double margin =
+        camera.RegionMargin + vol.VoxelSize * static_cast<double>(1 << vol.Tree->GetNode(n).Level);
+      double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+      for (int c = 0; c < 8; ++c)
+      {
+        const double p[3] = { b[c & 1], b[2 + ((c >> 1) & 1)], b[4 + ((c >> 2) & 1)] };
+        for (int r = 0; r < 3; ++r)
+        {
+          const double* m = vol.Matrix + 4 * r;
+          const double w = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
+          lo[r] = std::min(lo[r], w);
+          hi[r] = std::max(hi[r], w);
+        }
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        if (hi[r] < camera.Region[2 * r] - margin || lo[r] > camera.Region[2 * r + 1] + margin)
+          vol.Empty[n] = 1;
+      }
+    }
+  }
+
+  void ClassifyOpacity(int v)
   {
     Volume& vol = this->Volumes[v];
     const vtkVolumeBrickTree& tree = *vol.Tree;
@@ -394,7 +431,7 @@ int vtkVolumeCut::Update(const Camera& camera)
   for (int v = 0; v < this->GetNumberOfVolumes(); ++v)
   {
     vtkInternals::Volume& vol = in.Volumes[v];
-    in.Classify(v);
+    in.Classify(v, camera);
     for (int n = 0; n < vol.Tree->GetNumberOfNodes(); ++n)
     {
       double opacity = 1.0;

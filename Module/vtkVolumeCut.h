@@ -63,6 +63,14 @@ public:
     /// vtkCamera::GetFrustumPlanes writes them: a x + b y + c z + d >= 0 inside.
     bool UseFrustum = false;
     double FrustumPlanes[24] = {};
+    /// A renderer that draws only one box of the scene (sort-last parallel rendering, one box
+    /// per process): nodes whose world box misses Region grown by RegionMargin plus one voxel
+    /// of the node's level count as empty, so they are neither split, stored nor paged; the
+    /// caller's rays never sample there (the margin covers the step past the box's exit face
+    /// and gradient taps).
+    bool UseRegion = false;
+    double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    double RegionMargin = 0.0;
   };
   /// The perspective scale of a viewport `heightPixels` tall with a vertical view angle.
   static double PixelsPerRadian(int heightPixels, double viewAngleDegrees);

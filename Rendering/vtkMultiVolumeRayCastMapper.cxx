@@ -91,7 +91,8 @@ struct Frame
   bool Hold = false;
   int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
   vtkNew<vtkMatrix4x4> ToWorld, LocalToClip, ClipToLocal;
-  std::vector<float> ClipPlanes; ///< inside: dot(n, p) + w <= 0, local frame
+  std::vector<float> ClipPlanes;   ///< inside: dot(n, p) + w <= 0, local frame
+  std::vector<float> RegionPlanes; ///< the region's six faces (SetRegion), same convention
   ViewKey View{};
   bool Moved = false;
   double SampleDistance = 1.0;
@@ -124,6 +125,25 @@ std::vector<float> RootValues(vtkImageData* image, int brickSize, int dims[3])
   for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
     values[i] = static_cast<float>(scalars->GetComponent(i, 0));
   return values;
+}
+
+// Whether a BSP fragment (local frame) lies wholly outside a world box.
+bool OutsideRegion(const vtkVolumeBSPTree::Fragment& fragment,
+  const vtkVolumeBSPTree::Vector3& origin,
+  const double region[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
+    for (const auto& v : fragment.Vertices)
+    {
+      lo = std::min(lo, v[a] + origin[a]);
+      hi = std::max(hi, v[a] + origin[a]);
+    }
+    if (hi < region[2 * a] || lo > region[2 * a + 1])
+      return true;
+  }
+  return false;
 }
 
 // The longest level-0 voxel edge over the axes with voxels (vtkVolumeCut's voxel size).
@@ -169,6 +189,10 @@ public:
   bool FeedbackUnsupportedWarned = false;
   ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
   ViewKey LastView{};     ///< the view of the last frame
+  /// What decides which bricks are empty besides the transfer functions: the halo
+  /// (pre-integration) and the region. When it changes the cut starts again from the roots:
+  /// a brick that turns non-empty under a node already split has no page yet.
+  std::array<double, 8> CutKey{};
   PagingStatistics Paging;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
@@ -415,6 +439,14 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetUpView(Self* self,
     }
     frame.ClipPlanes.push_back(static_cast<float>(w));
   }
+  for (int a = 0; self->UseRegion && a < 6; ++a)
+  {
+    // Face a: x_(a/2) >= Region[a] for even a, <= for odd a.
+    const double sign = (a % 2) ? 1.0 : -1.0;
+    for (int c = 0; c < 3; ++c)
+      frame.RegionPlanes.push_back(c == a / 2 ? static_cast<float>(sign) : 0.f);
+    frame.RegionPlanes.push_back(static_cast<float>(-sign * (self->Region[a] - origin[a / 2])));
+  }
   std::copy(worldToClip->GetData(), worldToClip->GetData() + 16, frame.View.begin());
   frame.View[16] = vp[2];
   frame.View[17] = vp[3];
@@ -458,6 +490,17 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     }
     volumes.push_back(v);
   }
+  const std::array<double, 8> cutKey = { volumes.empty() || !volumes[0].Halo ? 0.0 : 1.0,
+    self->UseRegion ? 1.0 : 0.0,
+    self->Region[0],
+    self->Region[1],
+    self->Region[2],
+    self->Region[3],
+    self->Region[4],
+    self->Region[5] };
+  if (cutKey != this->CutKey)
+    this->Pager.InvalidateCut();
+  this->CutKey = cutKey;
   if (!this->Atlas.IsAllocated())
     this->Pager.InvalidateCut();
   if (this->Max3DTexture == 0)
@@ -524,8 +567,13 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
   settings.ErrorThreshold = self->LevelOfDetailThreshold;
   std::vector<vtkVolumeCut::Upload> uploads;
   std::string error;
-  const int missing = this->Pager.Update(
-    vtkStrataRenderUtilities::GetCutCamera(ren), settings, feedbackCurrent, uploads, error);
+  vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
+  cutCamera.UseRegion = self->UseRegion;
+  std::copy(self->Region, self->Region + 6, cutCamera.Region);
+  // One step past the exit face (the voxel of each node's level covers gradient taps and an
+  // automatic step, half a voxel).
+  cutCamera.RegionMargin = self->AutoAdjustSampleDistances ? 0.0 : self->SampleDistance;
+  const int missing = this->Pager.Update(cutCamera, settings, feedbackCurrent, uploads, error);
   if (missing < 0)
   {
     vtkErrorWithObjectMacro(self, << error);
@@ -793,6 +841,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   const int k = static_cast<int>(volumes.size());
   if (k == 0 || this->Geometry.GetVertexCount(f) == 0)
     return true;
+  if (self->UseRegion && OutsideRegion(frag, this->Geometry.GetOrigin(), self->Region))
+    return true; // another process's box
   if (static_cast<int>(frag.Planes.size() + frame.ClipPlanes.size() / 4) > MaxPlanes)
   {
     vtkErrorWithObjectMacro(self,
@@ -968,6 +1018,10 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
   program->SetUniform4fv("uPlanes",
     static_cast<int>(planes.size() / 4),
     reinterpret_cast<const float(*)[4]>(planes.data()));
+  program->SetUniformi("uNumRegionPlanes", static_cast<int>(frame.RegionPlanes.size() / 4));
+  if (!frame.RegionPlanes.empty())
+    program->SetUniform4fv(
+      "uRegionPlanes", 6, reinterpret_cast<const float(*)[4]>(frame.RegionPlanes.data()));
   if (frame.FrontToBack)
     program->SetUniformf("uTerminationOpacity", static_cast<float>(self->TerminationOpacity));
 }
@@ -1009,6 +1063,31 @@ vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper()
 {
   // GL names die in their own context: the callback makes it current if the window lives.
   this->Internals->ResourceCallback.Release();
+}
+
+void vtkMultiVolumeRayCastMapper::SetRegion(const double bounds[6])
+{
+  if (this->UseRegion && std::equal(bounds, bounds + 6, this->Region))
+    return;
+  this->UseRegion = true;
+  std::copy(bounds, bounds + 6, this->Region);
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::RemoveRegion()
+{
+  if (this->UseRegion)
+  {
+    this->UseRegion = false;
+    this->Modified();
+  }
+}
+
+bool vtkMultiVolumeRayCastMapper::GetRegion(double bounds[6]) const
+{
+  if (this->UseRegion)
+    std::copy(this->Region, this->Region + 6, bounds);
+  return this->UseRegion;
 }
 
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
@@ -1245,7 +1324,14 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->GetInputAlgorithm(port, 0)->UpdateInformation();
     vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
   }
+  const auto start = std::chrono::steady_clock::now();
   this->Superclass::Render(ren, vol);
+  if (this->MeasureRenderTime)
+  {
+    glFinish();
+    this->Internals->Paging.RenderMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 }
 
 vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(vtkInformation* request,
@@ -1374,6 +1460,13 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";
   os << indent << "LevelOfDetailThreshold: " << this->LevelOfDetailThreshold << " pixels\n";
   os << indent << "HoldCut: " << this->HoldCut << "\n";
+  os << indent << "MeasureRenderTime: " << this->MeasureRenderTime << "\n";
+  os << indent << "Region: ";
+  if (this->UseRegion)
+    os << this->Region[0] << " " << this->Region[1] << " " << this->Region[2] << " "
+       << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
+  else
+    os << "(none)\n";
   for (const auto& mode : this->InputBlendModes)
     os << indent << "Blend mode of port " << mode.first << ": " << mode.second << "\n";
   for (const auto& crop : this->InputCroppings)

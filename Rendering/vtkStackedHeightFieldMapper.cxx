@@ -760,6 +760,42 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   return program;
 }
 
+namespace
+{
+// The region's faces in grid space (inside: dot(n, g) + w <= 0): world plane (n, w) through
+// grid -> world g -> A g + b is (A^T n, n . b + w), composed in double.
+void SetRegionUniforms(vtkStackedHeightFieldMapper* self,
+  vtkMatrix4x4* gridToWorld,
+  vtkShaderProgram* program)
+{
+  double region[6];
+  if (!self->GetRegion(region))
+  {
+    program->SetUniformi("uNumRegionPlanes", 0);
+    return;
+  }
+  float planes[24];
+  for (int a = 0; a < 6; ++a)
+  {
+    const double sign = (a % 2) ? 1.0 : -1.0; // x >= lo or x <= hi
+    double n[3] = { 0.0, 0.0, 0.0 };
+    n[a / 2] = sign;
+    double w = -sign * region[a];
+    for (int c = 0; c < 3; ++c)
+    {
+      double g = 0.0;
+      for (int r = 0; r < 3; ++r)
+        g += gridToWorld->GetElement(r, c) * n[r];
+      planes[4 * a + c] = static_cast<float>(g);
+      w += n[c] * gridToWorld->GetElement(c, 3);
+    }
+    planes[4 * a + 3] = static_cast<float>(w);
+  }
+  program->SetUniformi("uNumRegionPlanes", 6);
+  program->SetUniform4fv("uRegionPlanes", 6, reinterpret_cast<const float(*)[4]>(planes));
+}
+}
+
 // --- Matrices, composed in double so UTM-scale coordinates lose nothing: the GPU only sees
 // grid space (cells and heights) and clip space; then the grid, the search and the tree.
 bool vtkStackedHeightFieldMapper::vtkInternals::SetUniforms(Self* self,
@@ -787,6 +823,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::SetUniforms(Self* self,
   program->SetUniform4f("uViewport", viewport);
   const float gridMax[2] = { float(this->NX - 1), float(this->NY - 1) };
   program->SetUniform2f("uGridMax", gridMax);
+  SetRegionUniforms(self, modelGrid, program);
   const bool range = this->ZRange[0] <= this->ZRange[1];
   const double zr[2] = { range ? this->ZRange[0] : 0.0, range ? this->ZRange[1] : 0.0 };
   const float zRange[2] = { float(zr[0]), float(zr[1]) };
@@ -1014,9 +1051,40 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
 }
 
+void vtkStackedHeightFieldMapper::SetRegion(const double bounds[6])
+{
+  if (this->UseRegion && std::equal(bounds, bounds + 6, this->Region))
+    return;
+  this->UseRegion = true;
+  std::copy(bounds, bounds + 6, this->Region);
+  this->Modified();
+}
+
+void vtkStackedHeightFieldMapper::RemoveRegion()
+{
+  if (this->UseRegion)
+  {
+    this->UseRegion = false;
+    this->Modified();
+  }
+}
+
+bool vtkStackedHeightFieldMapper::GetRegion(double bounds[6]) const
+{
+  if (this->UseRegion)
+    std::copy(this->Region, this->Region + 6, bounds);
+  return this->UseRegion;
+}
+
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Region: ";
+  if (this->UseRegion)
+    os << this->Region[0] << " " << this->Region[1] << " " << this->Region[2] << " "
+       << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
+  else
+    os << "(none)\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "LinearSearchStep: " << this->LinearSearchStep << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";

@@ -292,6 +292,20 @@ public:
   int GetNumberOfShaderCompilations() const;
   ///@}
 
+  ///@{
+  /**
+   * The region this mapper draws (default none: the whole stack), a world box, for sort-last
+   * parallel rendering in which each process draws one box of a partition of the scene and the
+   * images are blended in box order (ParaView's ordered compositing over MPI ranks). Each ray
+   * looks for its first hit inside the box only, so the opaque surfaces are cut to it exactly
+   * and the boxes of a partition together draw what one process would.
+   */
+  void SetRegion(const double bounds[6]);
+  void RemoveRegion();
+  /// False when no region is set.
+  bool GetRegion(double bounds[6]) const;
+  ///@}
+
   /**
    * The 4x4 matrix (row-major) from grid space (x, y in cells, z = scalar) to world space,
    * before the actor's matrix; valid after the inputs were read (a render or GetBounds).
@@ -323,6 +337,8 @@ private:
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
 
+  bool UseRegion = false;
+  double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
   int TileSize = 64;
   double LinearSearchStep = 0.5;
   double HeightScale = 1.0;

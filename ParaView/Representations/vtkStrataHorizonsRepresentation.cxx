@@ -60,8 +60,10 @@ int vtkStrataHorizonsRepresentation::RequestUpdateExtent(vtkInformation* request
   {
     return 0;
   }
-  // A pooled horizon shown directly (no Stack Horizons between) gives its coarsest level.
+  // A pooled horizon shown directly (no Stack Horizons between) gives its coarsest level, all of
+  // it on every process (each draws its box of the scene).
   vtkStrataParaViewUtilities::RequestCoarsestLevels(inputVector[0]);
+  vtkStrataParaViewUtilities::RequestWholeData(inputVector[0]);
   return 1;
 }
 
@@ -128,10 +130,25 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
     this->Actor->GetMatrix(matrix);
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds, matrix);
+    // The whole scene's box cut into one per process (ordered compositing).
+    double world[6];
+    vtkMath::UninitializeBounds(world);
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
+    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
     vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
+  }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    // In parallel: this process's box of the scene (all volumes and horizons of the view).
+    double box[6];
+    if (vtkStrataParaViewUtilities::GetProcessBox(this->GetView(), box))
+      this->Mapper->SetRegion(box);
+    else
+      this->Mapper->RemoveRegion();
   }
   return 1;
 }
@@ -146,6 +163,7 @@ bool vtkStrataHorizonsRepresentation::AddToView(vtkView* view)
 //------------------------------------------------------------------------------
 bool vtkStrataHorizonsRepresentation::RemoveFromView(vtkView* view)
 {
+  vtkStrataParaViewUtilities::ForgetSceneBounds(this);
   return vtkStrataParaViewUtilities::RemoveProp(view, this->Actor) &&
          this->Superclass::RemoveFromView(view);
 }
@@ -155,6 +173,8 @@ void vtkStrataHorizonsRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
   this->Actor->SetVisibility(visible);
+  if (!visible)
+    vtkStrataParaViewUtilities::ForgetSceneBounds(this);
 }
 
 //------------------------------------------------------------------------------

@@ -7,6 +7,8 @@
 #include "vtkInformationDoubleKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkObjectFactory.h"
@@ -19,7 +21,10 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <sys/resource.h> // For getrusage (peak RSS in the statistics)
+
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <vector>
 
@@ -129,6 +134,12 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
   }
   if (n > 0)
     this->Apply(shown[0]->Options);
+  // In parallel: this process's box of the scene (all volumes and horizons of the view).
+  double box[6];
+  if (n > 0 && vtkStrataParaViewUtilities::GetProcessBox(shown[0]->GetView(), box))
+    this->Mapper->SetRegion(box);
+  else
+    this->Mapper->RemoveRegion();
 }
 
 //------------------------------------------------------------------------------
@@ -175,6 +186,7 @@ void vtkStrataVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Paged: " << this->GetPaged() << "\n";
   os << indent << "VolumesInScene: " << (this->Scene ? this->Scene->Members.size() : 0) << "\n";
+  os << indent << "StatisticsFile: " << this->StatisticsFile << "\n";
 }
 
 //------------------------------------------------------------------------------
@@ -194,8 +206,10 @@ int vtkStrataVolumeRepresentation::RequestUpdateExtent(vtkInformation* request,
   {
     return 0;
   }
-  // A pool gives its coarsest level (the mapper pages the rest).
+  // A pool gives its coarsest level (the mapper pages the rest), all of it on every process
+  // (each draws its box of the scene).
   vtkStrataParaViewUtilities::RequestCoarsestLevels(inputVector[0]);
+  vtkStrataParaViewUtilities::RequestWholeData(inputVector[0]);
   return 1;
 }
 
@@ -239,8 +253,15 @@ int vtkStrataVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   {
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
-    vtkPVRenderView::SetOrderedCompositingConfiguration(
-      inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION);
+    // The whole scene's box cut into one per process (ordered compositing).
+    // (In the frame of the prop: ParaView's Position, Orientation and Scale move the volume.)
+    vtkNew<vtkMatrix4x4> matrix;
+    this->Actor->GetMatrix(matrix);
+    double world[6];
+    vtkMath::UninitializeBounds(world);
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
+    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -249,6 +270,9 @@ int vtkStrataVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   else if (request == vtkPVView::REQUEST_RENDER() && this->Scene)
   {
     this->Scene->Sync();
+    const auto shown = this->Scene->Visible();
+    if (!shown.empty() && shown[0] == this)
+      this->WriteStatistics();
   }
   return 1;
 }
@@ -279,6 +303,7 @@ bool vtkStrataVolumeRepresentation::RemoveFromView(vtkView* view)
   }
   auto& members = this->Scene->Members;
   members.erase(std::remove(members.begin(), members.end(), this), members.end());
+  vtkStrataParaViewUtilities::ForgetSceneBounds(this);
   this->Member->SetMapper(nullptr);
   if (members.empty())
   {
@@ -297,6 +322,8 @@ bool vtkStrataVolumeRepresentation::RemoveFromView(vtkView* view)
 void vtkStrataVolumeRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
+  if (!visible)
+    vtkStrataParaViewUtilities::ForgetSceneBounds(this);
   if (this->Scene)
     this->Scene->Sync();
 }
@@ -323,6 +350,40 @@ int vtkStrataVolumeRepresentation::GetNumberOfVolumesInScene()
 int vtkStrataVolumeRepresentation::GetPaged()
 {
   return *this->Producer->GetPoolFileName() ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::SetStatisticsFile(const char* name)
+{
+  const std::string value = name ? name : "";
+  if (value != this->StatisticsFile)
+  {
+    this->StatisticsFile = value;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::WriteStatistics()
+{
+  vtkMultiVolumeRayCastMapper* mapper = this->Scene->Mapper;
+  mapper->SetMeasureRenderTime(!this->StatisticsFile.empty());
+  if (this->StatisticsFile.empty())
+    return;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int rank = controller ? controller->GetLocalProcessId() : 0;
+  std::ofstream out(this->StatisticsFile + "." + std::to_string(rank), std::ios::app);
+  if (!out)
+  {
+    vtkErrorMacro("Cannot append to " << this->StatisticsFile << "." << rank);
+    return;
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto st = mapper->GetPagingStatistics();
+  out << rank << "," << st.RenderMilliseconds << "," << st.BytesRead / 1048576.0 << ","
+      << usage.ru_maxrss / 1024.0 << "," << mapper->GetNumberOfResidentBricks() << ","
+      << (st.Converged ? 1 : 0) << "\n";
 }
 
 //------------------------------------------------------------------------------

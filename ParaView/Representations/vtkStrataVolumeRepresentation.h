@@ -26,6 +26,8 @@
 #include "vtkSmartPointer.h"      // For vtkSmartPointer
 #include "vtkVolumeRepresentation.h"
 
+#include <string> // For std::string
+
 class vtkMultiVolumeRayCastMapper;
 class vtkStrataPooledProducer;
 class vtkVolume;
@@ -96,6 +98,19 @@ public:
   int GetPaged();
   ///@}
 
+  ///@{
+  /**
+   * Benchmarks (default empty: off): when set on the view's first visible Strata Volume, every
+   * process appends to `<StatisticsFile>.<rank>` one CSV line per render, before it, about the
+   * render before: rank, ray-cast milliseconds (the mapper's MeasureRenderTime: GPU finished),
+   * MB paged from the pools so far, peak RSS in MB, resident bricks, settled (0/1). In
+   * parallel that is the only way to see every rank's figures (ParaView's information
+   * properties come from rank 0).
+   */
+  void SetStatisticsFile(const char* name);
+  const char* GetStatisticsFile() const { return this->StatisticsFile.c_str(); }
+  ///@}
+
   /// The mapper of this representation's view (null before it is added to one).
   vtkMultiVolumeRayCastMapper* GetMapper();
   /// The volume this representation contributes to the scene.
@@ -124,12 +139,14 @@ private:
   void operator=(const vtkStrataVolumeRepresentation&) = delete;
 
   void SettingsChanged();
+  void WriteStatistics();
 
   Settings Options;
   vtkNew<vtkVolume> Member;
   vtkNew<vtkStrataPooledProducer> Producer;
   vtkSmartPointer<vtkDataObject> Cache;
   bool HasData = false;
+  std::string StatisticsFile;
   vtkScene* Scene = nullptr; // shared with the view's other Strata volumes; owned by them all
 };
 

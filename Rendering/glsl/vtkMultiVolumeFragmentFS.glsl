@@ -19,6 +19,8 @@ uniform vec4 uViewport;      // window x, y, width, height of the renderer
 uniform int uNumPlanes;
 uniform vec4 uPlanes[64];    // inside: dot(n, p) + w <= 0, local frame
 uniform float uSampleDistance; // world units between samples
+uniform int uNumRegionPlanes; // 6 with a region (SetRegion), else 0
+uniform vec4 uRegionPlanes[6]; // its faces, the same convention
 uniform sampler2D uSceneDepth;
 
 //STRATA::Volumes::Dec
@@ -47,6 +49,29 @@ vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float t
   {
     float denom = dot(uPlanes[i].xyz, d);
     float dist = dot(uPlanes[i].xyz, o) + uPlanes[i].w;
+    if (denom < 0.0)
+    {
+      tEnter = max(tEnter, -dist / denom);
+    }
+    else if (denom > 0.0)
+    {
+      tExit = min(tExit, -dist / denom);
+    }
+    else if (dist > 0.0)
+    {
+      return vec4(0.0);
+    }
+  }
+  // The region (a parallel process's box): clipped like by the fragment's own faces, on the
+  // same lattice, anchored at the near plane in every process. The step across a face shared
+  // with the next process's box is split there, as one process splits steps at every fragment
+  // face; opaque geometry, cut to the same box, ends the rays at the same depths. (Moving the
+  // faces to lattice points instead would let a ray run past the face into an opaque surface
+  // that only the other process draws: 29 of 255 in TestParallel.py's oblique view.)
+  for (int i = 0; i < uNumRegionPlanes; ++i)
+  {
+    float denom = dot(uRegionPlanes[i].xyz, d);
+    float dist = dot(uRegionPlanes[i].xyz, o) + uRegionPlanes[i].w;
     if (denom < 0.0)
     {
       tEnter = max(tEnter, -dist / denom);

@@ -15,6 +15,8 @@ uniform vec2 uZRange;      // lowest and highest valid height of the stack
 uniform float uZEps;       // slack of the height slabs, covers float rounding of the bilinear
 uniform float uStep;       // linear-search step, in cells along the ground
 uniform float uTieEps;     // ray-parameter tolerance under which two hits are a tie
+uniform int uNumRegionPlanes;  // 6 with a region (SetRegion), else 0
+uniform vec4 uRegionPlanes[6]; // its faces in grid space, inside: dot(n, g) + w <= 0
 uniform int uTileSize;
 uniform int uNumLevels;
 uniform int uLevelOffset[16];
@@ -185,6 +187,24 @@ void main()
       tExit = min(tExit, max(s0, s1));
     }
     else if (o[a] < lo[a] || o[a] > hi[a])
+    {
+      discard;
+    }
+  }
+  // The region: hits inside it only (the next process's box draws the rest).
+  for (int i = 0; i < uNumRegionPlanes; ++i)
+  {
+    float denom = dot(uRegionPlanes[i].xyz, d);
+    float dist = dot(uRegionPlanes[i].xyz, o) + uRegionPlanes[i].w;
+    if (denom < 0.0)
+    {
+      tEnter = max(tEnter, -dist / denom);
+    }
+    else if (denom > 0.0)
+    {
+      tExit = min(tExit, -dist / denom);
+    }
+    else if (dist > 0.0)
     {
       discard;
     }

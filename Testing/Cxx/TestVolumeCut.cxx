@@ -761,6 +761,62 @@ void PageBudget(const vtkVolumeBrickTree& tree,
   Check(cut.GetHeldPages() == unbounded, "page budget 0 bounds nothing");
 }
 
+// A renderer drawing one box of the scene (sort-last parallel rendering): nodes the box, grown
+// by the margin and one voxel of their level, misses are empty, so the cut holds only the
+// box's share. 121^3 voxels in bricks of 16 (stride 15): 8 columns of level-0 bricks along x,
+// column i over x in [15 i, 15 i + 15].
+void Region(const vtkVolumeBrickTree& tree,
+  const vtkVolumeCut::Camera& camera,
+  const double identity[16],
+  const double far[16])
+{
+  std::cout << "Region\n";
+  auto levelZeroInside = [&](const vtkVolumeCut& cut, int v, double hiX)
+  {
+    int count = 0;
+    bool within = true;
+    for (int n : cut.GetCutNodes(v))
+    {
+      if (cut.IsEmpty(v, n))
+        continue; // (outside nodes stay in the cut as empty stand-ins, at any level)
+      double b[6];
+      tree.GetNodeBounds(n, b);
+      within = within && tree.GetNode(n).Level == 0 && b[0] <= hiX;
+      ++count;
+    }
+    return within ? count : -1;
+  };
+  vtkVolumeCut::Camera boxed = camera;
+  boxed.UseRegion = true;
+  const double region[6] = { -1e3, 60.0, -1e3, 1e3, -1e3, 1e3 };
+  std::copy(region, region + 6, boxed.Region);
+  vtkVolumeCut cut;
+  cut.AddVolume(&tree, identity);
+  cut.SetBudget(512);
+  cut.Update(boxed);
+  // Columns 0-4 (column 4 starts at 60, within one voxel); 5 of 8 columns of 64 bricks.
+  Check(cut.GetCost() == 5 * 64 && levelZeroInside(cut, 0, 61.0) == 5 * 64,
+    "region x <= 60: the cut is the 320 level-0 bricks of the 5 columns it touches (cost " +
+      std::to_string(cut.GetCost()) + ")");
+  boxed.RegionMargin = 20.0;
+  cut.Update(boxed);
+  Check(cut.GetCost() == 6 * 64, "a margin of 20 adds column 5 (x from 75 <= 81): 384 bricks");
+  boxed.Region[0] = 1000.0 + 62.0; // the far volume (moved by 1000 along x) from x = 62 on
+  boxed.Region[1] = 1e4;
+  boxed.RegionMargin = 0.0;
+  vtkVolumeCut two;
+  two.AddVolume(&tree, identity);
+  two.AddVolume(&tree, far);
+  two.SetBudget(1024);
+  two.Update(boxed);
+  Check(two.GetVolumeCost(0) == 0 && two.GetVolumeCost(1) == 4 * 64,
+    "a region over the far volume's x >= 62 only: nothing of the near one, its columns 4-7 (3 "
+    "ends at 60, more than a voxel away; cost " +
+      std::to_string(two.GetVolumeCost(0)) + " and " + std::to_string(two.GetVolumeCost(1)) + ")");
+  cut.Update(camera);
+  Check(cut.GetCost() == 512, "without the region: all 512 level-0 bricks again");
+}
+
 int TestVolumeCut(int, char*[])
 {
   const int dims[3] = { N, N, N };
@@ -799,6 +855,7 @@ int TestVolumeCut(int, char*[])
       { "PriorityFunction", [&] { PriorityFunction(tree, camera, identity); } },
       { "Halo", [&] { Halo(dims, camera, identity); } },
       { "PageBudget", [&] { PageBudget(tree, camera, identity, far); } },
+      { "Region", [&] { Region(tree, camera, identity, far); } },
     },
     [] { return failures; });
 }
