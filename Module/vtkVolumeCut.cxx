@@ -54,7 +54,7 @@ public:
   void Classify(int v, const vtkVolumeCut::Camera& camera)
   {
     this->ClassifyOpacity(v);
-    if (camera.UseRegion)
+    if (camera.Region.IsSet())
       this->ClassifyRegion(v, camera);
   }
 

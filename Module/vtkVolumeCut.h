@@ -34,6 +34,7 @@
 #define vtkVolumeCut_h
 
 #include "StrataCoreModule.h" // For export macro
+#include "vtkStrataRegion.h"  // For vtkStrataRegion
 
 #include <cstdint>    // For uint16_t
 #include <functional> // For std::function
@@ -68,8 +69,7 @@ public:
     /// of the node's level count as empty, so they are neither split, stored nor paged; the
     /// caller's rays never sample there (the margin covers the step past the box's exit face
     /// and gradient taps).
-    bool UseRegion = false;
-    double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+    vtkStrataRegion Region;
     double RegionMargin = 0.0;
   };
   /// The perspective scale of a viewport `heightPixels` tall with a vertical view angle.

@@ -130,7 +130,7 @@ std::vector<float> RootValues(vtkImageData* image, int brickSize, int dims[3])
 // Whether a BSP fragment (local frame) lies wholly outside a world box.
 bool OutsideRegion(const vtkVolumeBSPTree::Fragment& fragment,
   const vtkVolumeBSPTree::Vector3& origin,
-  const double region[6])
+  const vtkStrataRegion& region)
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -192,7 +192,8 @@ public:
   /// What decides which bricks are empty besides the transfer functions: the halo
   /// (pre-integration) and the region. When it changes the cut starts again from the roots:
   /// a brick that turns non-empty under a node already split has no page yet.
-  std::array<double, 8> CutKey{};
+  bool CutHalo = false;
+  vtkStrataRegion CutRegion;
   PagingStatistics Paging;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
@@ -439,7 +440,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetUpView(Self* self,
     }
     frame.ClipPlanes.push_back(static_cast<float>(w));
   }
-  for (int a = 0; self->UseRegion && a < 6; ++a)
+  for (int a = 0; self->Region.IsSet() && a < 6; ++a)
   {
     // Face a: x_(a/2) >= Region[a] for even a, <= for odd a.
     const double sign = (a % 2) ? 1.0 : -1.0;
@@ -490,17 +491,11 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     }
     volumes.push_back(v);
   }
-  const std::array<double, 8> cutKey = { volumes.empty() || !volumes[0].Halo ? 0.0 : 1.0,
-    self->UseRegion ? 1.0 : 0.0,
-    self->Region[0],
-    self->Region[1],
-    self->Region[2],
-    self->Region[3],
-    self->Region[4],
-    self->Region[5] };
-  if (cutKey != this->CutKey)
+  const bool halo = !volumes.empty() && volumes[0].Halo;
+  if (halo != this->CutHalo || self->Region != this->CutRegion)
     this->Pager.InvalidateCut();
-  this->CutKey = cutKey;
+  this->CutHalo = halo;
+  this->CutRegion = self->Region;
   if (!this->Atlas.IsAllocated())
     this->Pager.InvalidateCut();
   if (this->Max3DTexture == 0)
@@ -568,8 +563,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
   std::vector<vtkVolumeCut::Upload> uploads;
   std::string error;
   vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
-  cutCamera.UseRegion = self->UseRegion;
-  std::copy(self->Region, self->Region + 6, cutCamera.Region);
+  cutCamera.Region = self->Region;
   // One step past the exit face (the voxel of each node's level covers gradient taps and an
   // automatic step, half a voxel).
   cutCamera.RegionMargin = self->AutoAdjustSampleDistances ? 0.0 : self->SampleDistance;
@@ -841,7 +835,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   const int k = static_cast<int>(volumes.size());
   if (k == 0 || this->Geometry.GetVertexCount(f) == 0)
     return true;
-  if (self->UseRegion && OutsideRegion(frag, this->Geometry.GetOrigin(), self->Region))
+  if (self->Region.IsSet() && OutsideRegion(frag, this->Geometry.GetOrigin(), self->Region))
     return true; // another process's box
   if (static_cast<int>(frag.Planes.size() + frame.ClipPlanes.size() / 4) > MaxPlanes)
   {
@@ -1067,27 +1061,19 @@ vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper()
 
 void vtkMultiVolumeRayCastMapper::SetRegion(const double bounds[6])
 {
-  if (this->UseRegion && std::equal(bounds, bounds + 6, this->Region))
-    return;
-  this->UseRegion = true;
-  std::copy(bounds, bounds + 6, this->Region);
-  this->Modified();
+  if (this->Region.Set(bounds))
+    this->Modified();
 }
 
 void vtkMultiVolumeRayCastMapper::RemoveRegion()
 {
-  if (this->UseRegion)
-  {
-    this->UseRegion = false;
+  if (this->Region.Remove())
     this->Modified();
-  }
 }
 
 bool vtkMultiVolumeRayCastMapper::GetRegion(double bounds[6]) const
 {
-  if (this->UseRegion)
-    std::copy(this->Region, this->Region + 6, bounds);
-  return this->UseRegion;
+  return this->Region.Get(bounds);
 }
 
 void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[2])
@@ -1462,11 +1448,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HoldCut: " << this->HoldCut << "\n";
   os << indent << "MeasureRenderTime: " << this->MeasureRenderTime << "\n";
   os << indent << "Region: ";
-  if (this->UseRegion)
-    os << this->Region[0] << " " << this->Region[1] << " " << this->Region[2] << " "
-       << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
-  else
-    os << "(none)\n";
+  this->Region.Print(os);
+  os << "\n";
   for (const auto& mode : this->InputBlendModes)
     os << indent << "Blend mode of port " << mode.first << ": " << mode.second << "\n";
   for (const auto& crop : this->InputCroppings)

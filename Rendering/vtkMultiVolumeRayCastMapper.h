@@ -31,7 +31,8 @@
 
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkGPUVolumeRayCastMapper.h"
-#include "vtkVolumePager.h" // For vtkVolumePager::Statistics
+#include "vtkStrataRegion.h" // For vtkStrataRegion
+#include "vtkVolumePager.h"  // For vtkVolumePager::Statistics
 
 #include <array>  // For std::array
 #include <map>    // For std::map
@@ -466,8 +467,7 @@ protected:
   bool FeedbackOpenCL = true;
   double LevelOfDetailThreshold = 0.0;
   bool HoldCut = false;
-  bool UseRegion = false;
-  double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  vtkStrataRegion Region;
   bool MeasureRenderTime = false;
   std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode
   struct InputCrop

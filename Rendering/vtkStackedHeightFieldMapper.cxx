@@ -1053,38 +1053,27 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
 
 void vtkStackedHeightFieldMapper::SetRegion(const double bounds[6])
 {
-  if (this->UseRegion && std::equal(bounds, bounds + 6, this->Region))
-    return;
-  this->UseRegion = true;
-  std::copy(bounds, bounds + 6, this->Region);
-  this->Modified();
+  if (this->Region.Set(bounds))
+    this->Modified();
 }
 
 void vtkStackedHeightFieldMapper::RemoveRegion()
 {
-  if (this->UseRegion)
-  {
-    this->UseRegion = false;
+  if (this->Region.Remove())
     this->Modified();
-  }
 }
 
 bool vtkStackedHeightFieldMapper::GetRegion(double bounds[6]) const
 {
-  if (this->UseRegion)
-    std::copy(this->Region, this->Region + 6, bounds);
-  return this->UseRegion;
+  return this->Region.Get(bounds);
 }
 
 void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Region: ";
-  if (this->UseRegion)
-    os << this->Region[0] << " " << this->Region[1] << " " << this->Region[2] << " "
-       << this->Region[3] << " " << this->Region[4] << " " << this->Region[5] << "\n";
-  else
-    os << "(none)\n";
+  this->Region.Print(os);
+  os << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "LinearSearchStep: " << this->LinearSearchStep << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";

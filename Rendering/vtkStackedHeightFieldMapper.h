@@ -48,6 +48,7 @@
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkHeightFieldPager.h"   // For vtkHeightFieldPager::Statistics
 #include "vtkMapper.h"
+#include "vtkStrataRegion.h" // For vtkStrataRegion
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -337,8 +338,7 @@ private:
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
 
-  bool UseRegion = false;
-  double Region[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  vtkStrataRegion Region;
   int TileSize = 64;
   double LinearSearchStep = 0.5;
   double HeightScale = 1.0;

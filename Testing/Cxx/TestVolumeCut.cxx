@@ -787,9 +787,8 @@ void Region(const vtkVolumeBrickTree& tree,
     return within ? count : -1;
   };
   vtkVolumeCut::Camera boxed = camera;
-  boxed.UseRegion = true;
   const double region[6] = { -1e3, 60.0, -1e3, 1e3, -1e3, 1e3 };
-  std::copy(region, region + 6, boxed.Region);
+  boxed.Region.Set(region);
   vtkVolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.SetBudget(512);
@@ -801,8 +800,9 @@ void Region(const vtkVolumeBrickTree& tree,
   boxed.RegionMargin = 20.0;
   cut.Update(boxed);
   Check(cut.GetCost() == 6 * 64, "a margin of 20 adds column 5 (x from 75 <= 81): 384 bricks");
-  boxed.Region[0] = 1000.0 + 62.0; // the far volume (moved by 1000 along x) from x = 62 on
-  boxed.Region[1] = 1e4;
+  // The far volume (moved by 1000 along x) from x = 62 on.
+  const double farBox[6] = { 1000.0 + 62.0, 1e4, -1e3, 1e3, -1e3, 1e3 };
+  boxed.Region.Set(farBox);
   boxed.RegionMargin = 0.0;
   vtkVolumeCut two;
   two.AddVolume(&tree, identity);
