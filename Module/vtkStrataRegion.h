@@ -48,7 +48,7 @@ public:
   bool operator==(const vtkStrataRegion& o) const
   {
     return this->Active == o.Active &&
-      (!this->Active || std::equal(this->Bounds, this->Bounds + 6, o.Bounds));
+           (!this->Active || std::equal(this->Bounds, this->Bounds + 6, o.Bounds));
   }
   bool operator!=(const vtkStrataRegion& o) const { return !(*this == o); }
   /// The six bounds, or "(none)".

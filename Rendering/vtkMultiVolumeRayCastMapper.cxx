@@ -831,7 +831,12 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   int reduce)
 {
   const auto& frag = this->Geometry.GetTree().GetFragment(f);
-  const std::vector<int> volumes = reduce >= 0 ? std::vector<int>{ reduce } : frag.BoxIndices;
+  // The reduction pass of one volume draws that volume alone; the composite pass the
+  // fragment's own (referenced, not copied: this runs per fragment and pass).
+  std::vector<int> reduced;
+  if (reduce >= 0)
+    reduced.push_back(reduce);
+  const std::vector<int>& volumes = reduce >= 0 ? reduced : frag.BoxIndices;
   const int k = static_cast<int>(volumes.size());
   if (k == 0 || this->Geometry.GetVertexCount(f) == 0)
     return true;

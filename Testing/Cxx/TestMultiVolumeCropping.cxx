@@ -219,13 +219,7 @@ int TestMultiVolumeCropping(int argc, char* argv[])
     { "per volume", [&] { PerVolume(paths); } },
     { "paged", [&] { Paged(paths); } },
     { "against VTK", [&] { AgainstVtk(paths); } },
-    { "no VTK errors or warnings",
-      [output]
-      {
-        Check(output->Errors == 0 && output->Warnings == 0,
-          "VTK printed " + std::to_string(output->Errors) + " errors and " +
-            std::to_string(output->Warnings) + " warnings");
-      } },
+    { "no VTK errors or warnings", [output] { CheckNoVtkMessages(output); } },
   };
   return RunSubTests(parts, Failures);
 }

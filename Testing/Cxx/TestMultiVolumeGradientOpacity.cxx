@@ -106,13 +106,7 @@ int TestMultiVolumeGradientOpacity(int argc, char* argv[])
   std::vector<SubTest> parts = {
     { "one volume", [&] { Single(paths); } },
     { "with and without in one scene", [&] { Mixed(paths); } },
-    { "no VTK errors or warnings",
-      [output]
-      {
-        Check(output->Errors == 0 && output->Warnings == 0,
-          "VTK printed " + std::to_string(output->Errors) + " errors and " +
-            std::to_string(output->Warnings) + " warnings");
-      } },
+    { "no VTK errors or warnings", [output] { CheckNoVtkMessages(output); } },
   };
   return RunSubTests(parts, Failures);
 }

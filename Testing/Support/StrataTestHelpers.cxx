@@ -66,6 +66,13 @@ int Failures()
   return FailureCount;
 }
 
+void CheckNoVtkMessages(const CapturingOutputWindow* output)
+{
+  Check(output->Errors == 0 && output->Warnings == 0,
+    "VTK printed " + std::to_string(output->Errors) + " errors and " +
+      std::to_string(output->Warnings) + " warnings");
+}
+
 bool CopyFile(const std::string& from, const std::string& to, double fraction)
 {
   std::ifstream in(from, std::ios::binary);

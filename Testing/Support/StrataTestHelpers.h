@@ -35,6 +35,8 @@ public:
 /// Records a failed check (printed at once); Failures() counts them for the test's exit code.
 void Check(bool ok, const std::string& what);
 int Failures();
+/// Checks that VTK printed no error and no warning into `output` (saying how many it did).
+void CheckNoVtkMessages(const CapturingOutputWindow* output);
 
 /// Copies a file; with `fraction` < 1 only its first fraction of bytes (a truncated file).
 bool CopyFile(const std::string& from, const std::string& to, double fraction = 1.0);
