@@ -298,6 +298,65 @@ public:
     bool Cropping = false;
     double CropPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
     int CropFlags = 0;
+    Components Comp = Components::One;
+    int NC = 1;               ///< components per point
+    std::vector<Table> Extra; ///< Independent: the tables of components 1, 2, ...
+    double Weights[4] = { 1.0, 1.0, 1.0, 1.0 };
+    double ColorLo[3] = { 0.0, 0.0, 0.0 }, ColorScale[3] = { 1.0, 1.0, 1.0 }; ///< RGBA
+
+    /// The table whose kinks component c's scalar crosses (null: its use has none).
+    const Table* KinkTable(int c) const
+    {
+      switch (this->Comp)
+      {
+        case Components::Independent:
+          return c == 0 ? &this->Tf : &this->Extra[c - 1];
+        case Components::RGBA:
+          return c == 3 ? &this->Tf : nullptr;
+        default: // one scalar; colour and opacity both read Tf
+          return &this->Tf;
+      }
+    }
+
+    /// Extinction and colour of the medium at the components' values s (the class comment).
+    void Classify(const double s[4], double& tau, double rgb[3]) const
+    {
+      switch (this->Comp)
+      {
+        case Components::One:
+          this->Tf.Classify(s[0], tau, rgb);
+          return;
+        case Components::ColorOpacity:
+        case Components::RGBA:
+        {
+          double unused[3];
+          const int opacity = this->Comp == Components::RGBA ? 3 : 1;
+          tau = -std::log1p(-this->Tf.Lookup(s[opacity], unused)) / this->Tf.UnitDistance;
+          if (this->Comp == Components::ColorOpacity)
+            this->Tf.Lookup(s[0], rgb);
+          for (int k = 0; this->Comp == Components::RGBA && k < 3; ++k)
+            rgb[k] = std::min(std::max((s[k] - this->ColorLo[k]) * this->ColorScale[k], 0.0), 1.0);
+          return;
+        }
+        case Components::Independent:
+          break;
+      }
+      // sigma = sum_(w > 0) tau_i^2 / sum w_i tau_i, emission sum w_i c_i tau_i.
+      double weighted = 0.0, squares = 0.0, e[3] = { 0.0, 0.0, 0.0 };
+      for (int i = 0; i < this->NC; ++i)
+      {
+        double t, c[3];
+        (i == 0 ? this->Tf : this->Extra[i - 1]).Classify(s[i], t, c);
+        const double w = this->Weights[i];
+        weighted += w * t;
+        squares += w > 0.0 ? t * t : 0.0;
+        for (int ch = 0; ch < 3; ++ch)
+          e[ch] += w * c[ch] * t;
+      }
+      tau = weighted > 0.0 ? squares / weighted : 0.0;
+      for (int ch = 0; ch < 3; ++ch)
+        rgb[ch] = tau > 0.0 ? e[ch] / tau : 0.0;
+    }
 
     /// Whether cropping shows the index point x.
     bool Shown(const double x[3]) const
@@ -317,8 +376,8 @@ public:
       return this->Mode != Blend::Composite && this->Mode != Blend::IsoSurface;
     }
 
-    /// The scalar at index position x (trilinear or nearest, clamped at the borders).
-    double Sample(const double x[3]) const
+    /// Component c at index position x (trilinear or nearest, clamped at the borders).
+    double Sample(const double x[3], int c = 0) const
     {
       int i0[3], i1[3];
       double f[3];
@@ -344,16 +403,18 @@ public:
           w *= (m >> k) & 1 ? f[k] : 1.0 - f[k];
         if (w != 0.0)
           v += w * this->Value(
-                     (m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2]);
+                     (m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2], c);
       }
       return v;
     }
 
-    double Value(int i, int j, int k) const
+    double Value(int i, int j, int k, int c = 0) const
     {
       const size_t idx =
-        static_cast<size_t>(i) +
-        this->Dims[0] * (static_cast<size_t>(j) + this->Dims[1] * static_cast<size_t>(k));
+        (static_cast<size_t>(i) +
+          this->Dims[0] * (static_cast<size_t>(j) + this->Dims[1] * static_cast<size_t>(k))) *
+          this->NC +
+        c;
       return this->F.empty() ? this->D[idx] : static_cast<double>(this->F[idx]);
     }
   };
@@ -366,13 +427,13 @@ public:
     double P0[3], DI[3]; ///< index position at t = 0 and per unit t
     double Chord;        ///< longest chord of one cell along the ray, in t
   };
-  // A volume covering the current piece, with its scalar along the piece.
+  // A volume covering the current piece, with its scalars (per component) along the piece.
   struct Cover
   {
     const Vol* V;
     const Active* A;
-    Poly S;
-    double SLo, SHi; ///< range of the cell's corners
+    Poly S[4];
+    double SLo[4], SHi[4]; ///< range of the cell's corners
   };
   // Something composited at one place along the ray: a reduced volume's layer, a surface.
   struct Layer
@@ -411,6 +472,7 @@ public:
   void Clip(const double o[3], const double d[3], double t0, double t1, double dn, Workspace& ws)
     const;
   void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
+  void AppendKinks(const Cover& c, int comp, double len, Workspace& ws) const;
   double GradientTau(const Cover& c, double t, double s, double rgb[3]) const;
 };
 
@@ -500,15 +562,31 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::AppendSurfaces(const Cover
   std::vector<double> roots;
   for (double value : c.V->Iso)
   {
-    if (!(c.SHi > c.SLo) || value <= c.SLo || value >= c.SHi)
+    if (!(c.SHi[0] > c.SLo[0]) || value <= c.SLo[0] || value >= c.SHi[0])
       continue;
     roots.clear();
-    AppendCrossings(c.S, value, len, roots);
+    AppendCrossings(c.S[0], value, len, roots);
     double rgb[3];
     const double alpha = c.V->Tf.Lookup(value, rgb);
     for (double u : roots)
       ws.Surfaces.push_back({ u, { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha } });
   }
+}
+
+// Where component comp's (trilinear) scalar crosses a kink of the function it goes through.
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::AppendKinks(const Cover& c,
+  int comp,
+  double len,
+  Workspace& ws) const
+{
+  const Table* table = c.V->KinkTable(comp);
+  if (!table || !(c.SHi[comp] > c.SLo[comp]))
+    return;
+  const std::vector<double>& kinks = table->Kinks;
+  for (auto it = std::upper_bound(kinks.begin(), kinks.end(), c.SLo[comp]);
+       it != kinks.end() && *it < c.SHi[comp];
+       ++it)
+    AppendCrossings(c.S[comp], *it, len, ws.Sub);
 }
 
 void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a,
@@ -543,30 +621,34 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::BuildCover(const Active& a
       x0[k] = ex[k] = 0.0;
     }
   }
-  if (!v.Linear)
+  for (int comp = 0; comp < v.NC; ++comp)
   {
-    const double s = v.Value(i0[0], i0[1], i0[2]);
-    c.S = { s, 0.0, 0.0, 0.0 };
-    c.SLo = c.SHi = s;
-    return;
+    if (!v.Linear)
+    {
+      const double s = v.Value(i0[0], i0[1], i0[2], comp);
+      c.S[comp] = { s, 0.0, 0.0, 0.0 };
+      c.SLo[comp] = c.SHi[comp] = s;
+      continue;
+    }
+    double corner[8];
+    for (int m = 0; m < 8; ++m)
+    {
+      corner[m] =
+        v.Value((m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2], comp);
+    }
+    c.SLo[comp] = *std::min_element(corner, corner + 8);
+    c.SHi[comp] = *std::max_element(corner, corner + 8);
+    // Trilinear along the ray: lerp in x (degree 1), then y (2), then z (3).
+    Poly px[4];
+    for (int m = 0; m < 4; ++m)
+    {
+      const double a0 = corner[2 * m], a1 = corner[2 * m + 1];
+      px[m] = { a0 + (a1 - a0) * x0[0], (a1 - a0) * ex[0], 0.0, 0.0 };
+    }
+    const Poly py0 = LerpPoly(px[0], px[1], x0[1], ex[1]);
+    const Poly py1 = LerpPoly(px[2], px[3], x0[1], ex[1]);
+    c.S[comp] = LerpPoly(py0, py1, x0[2], ex[2]);
   }
-  double corner[8];
-  for (int m = 0; m < 8; ++m)
-  {
-    corner[m] = v.Value((m & 1) ? i1[0] : i0[0], (m & 2) ? i1[1] : i0[1], (m & 4) ? i1[2] : i0[2]);
-  }
-  c.SLo = *std::min_element(corner, corner + 8);
-  c.SHi = *std::max_element(corner, corner + 8);
-  // Trilinear along the ray: lerp in x (degree 1), then y (2), then z (3).
-  Poly px[4];
-  for (int m = 0; m < 4; ++m)
-  {
-    const double a0 = corner[2 * m], a1 = corner[2 * m + 1];
-    px[m] = { a0 + (a1 - a0) * x0[0], (a1 - a0) * ex[0], 0.0, 0.0 };
-  }
-  const Poly py0 = LerpPoly(px[0], px[1], x0[1], ex[1]);
-  const Poly py1 = LerpPoly(px[2], px[3], x0[1], ex[1]);
-  c.S = LerpPoly(py0, py1, x0[2], ex[2]);
 }
 
 // Every box the ray crosses in [t0, t1], clipped exactly in the volume's index space: the
@@ -728,15 +810,10 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
       {
         this->AppendSurfaces(c, len, ws);
       }
-      else if (c.SHi > c.SLo)
+      else
       {
-        const std::vector<double>& kinks = c.V->Tf.Kinks;
-        for (auto it = std::upper_bound(kinks.begin(), kinks.end(), c.SLo);
-             it != kinks.end() && *it < c.SHi;
-             ++it)
-        {
-          AppendCrossings(c.S, *it, len, ws.Sub);
-        }
+        for (int comp = 0; comp < c.V->NC; ++comp)
+          this->AppendKinks(c, comp, len, ws);
       }
     }
     for (const Layer& surface : ws.Surfaces)
@@ -769,11 +846,13 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
         {
           if (c.V->Mode == Blend::IsoSurface)
             continue;
-          double tau, rgb[3];
+          double tau, rgb[3], s[4];
+          for (int comp = 0; comp < c.V->NC; ++comp)
+            s[comp] = Horner(c.S[comp], um);
           if (c.V->Tf.Gradient.empty())
-            c.V->Tf.Classify(Horner(c.S, um), tau, rgb);
+            c.V->Classify(s, tau, rgb);
           else
-            tau = this->GradientTau(c, ta + um, Horner(c.S, um), rgb);
+            tau = this->GradientTau(c, ta + um, s[0], rgb);
           sigma += tau;
           for (int ch = 0; ch < 3; ++ch)
           {
@@ -813,8 +892,63 @@ vtkMultiVolumeReferenceIntegrator::vtkMultiVolumeReferenceIntegrator()
 
 vtkMultiVolumeReferenceIntegrator::~vtkMultiVolumeReferenceIntegrator() = default;
 
+// A transfer function the integrator can tabulate: null when it is, else why not.
+static const char* ValidateFunction(const vtkMultiVolumeReferenceIntegrator::TransferFunction& tf)
+{
+  const int n = static_cast<int>(tf.Opacity.size());
+  if (n < 1 || (!tf.Color.empty() && tf.Color.size() != 3 * tf.Opacity.size()))
+  {
+    return "transfer function needs N >= 1 opacities and 3 N colours (or none)";
+  }
+  if (n > 1 && !(tf.Range[1] > tf.Range[0]))
+  {
+    return "transfer function range must be increasing";
+  }
+  if (!(tf.UnitDistance > 0.0) || !std::isfinite(tf.UnitDistance))
+  {
+    return "unit distance must be positive";
+  }
+  return nullptr;
+}
+
+// The components agree with their mode: the count, a function per independent component,
+// weights in [0, 1], an RGBA colour range, composite blending and no gradient opacity.
+static const char* ValidateComponents(const vtkMultiVolumeReferenceIntegrator::Volume& in)
+{
+  using Components = vtkMultiVolumeReferenceIntegrator::Components;
+  const int nc = in.NumberOfComponents;
+  const Components mode = in.ComponentMode;
+  if ((mode == Components::One && nc != 1) || (mode == Components::ColorOpacity && nc != 2) ||
+      (mode == Components::RGBA && nc != 4) ||
+      (mode == Components::Independent && (nc < 2 || nc > 4)))
+  {
+    return "number of components does not fit the component mode";
+  }
+  if (nc > 1 && (in.BlendMode != vtkMultiVolumeReferenceIntegrator::Blend::Composite ||
+                  !in.Classification.GradientOpacity.empty()))
+  {
+    return "components need composite blending without gradient opacity";
+  }
+  if (mode == Components::Independent)
+  {
+    if (in.ComponentClassifications.size() != static_cast<size_t>(nc - 1))
+      return "independent components need a function for each component after the first";
+    for (const auto& tf : in.ComponentClassifications)
+      if (const char* error = ValidateFunction(tf))
+        return error;
+    for (int i = 0; i < nc; ++i)
+      if (!(in.ComponentWeights[i] >= 0.0 && in.ComponentWeights[i] <= 1.0))
+        return "component weights must lie in [0, 1]";
+  }
+  for (int k = 0; mode == Components::RGBA && k < 3; ++k)
+    if (!(in.ColorRange[k][1] > in.ColorRange[k][0]))
+      return "RGBA colour ranges must be increasing";
+  return nullptr;
+}
+
 // What a volume must be for the integrator: dimensions, spacing, one scalar array of the
-// right size, an affine model matrix, a transfer function; null when it is, else why not.
+// right size, an affine model matrix, transfer functions and components that fit; null when it
+// is, else why not.
 static const char* ValidateVolume(const vtkMultiVolumeReferenceIntegrator::Volume& in)
 {
   size_t count = 1;
@@ -834,7 +968,12 @@ static const char* ValidateVolume(const vtkMultiVolumeReferenceIntegrator::Volum
   {
     return "fill exactly one of Scalars and FloatScalars";
   }
-  if ((in.Scalars.empty() ? in.FloatScalars.size() : in.Scalars.size()) != count)
+  if (const char* error = ValidateComponents(in))
+  {
+    return error;
+  }
+  if ((in.Scalars.empty() ? in.FloatScalars.size() : in.Scalars.size()) !=
+      count * static_cast<size_t>(in.NumberOfComponents))
   {
     return "number of scalars does not match the dimensions";
   }
@@ -843,22 +982,7 @@ static const char* ValidateVolume(const vtkMultiVolumeReferenceIntegrator::Volum
   {
     return "model matrix must be affine (last row 0 0 0 1)";
   }
-  const auto& tf = in.Classification;
-  const int n = static_cast<int>(tf.Opacity.size());
-  if (n < 1 || (!tf.Color.empty() && tf.Color.size() != 3 * tf.Opacity.size()))
-  {
-    return "transfer function needs N >= 1 opacities and 3 N colours (or none)";
-  }
-  if (n > 1 && !(tf.Range[1] > tf.Range[0]))
-  {
-    return "transfer function range must be increasing";
-  }
-  if (!(tf.UnitDistance > 0.0) || !std::isfinite(tf.UnitDistance))
-  {
-    return "unit distance must be positive";
-  }
-
-  return nullptr;
+  return ValidateFunction(in.Classification);
 }
 
 // Geometry: index -> world is M3 Direction diag(spacing) idx + M3 Origin + m_t, kept as
@@ -1088,6 +1212,19 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   v.Tf.GradientScale =
     v.Tf.Gradient.size() > 1 && gr[1] > gr[0] ? (v.Tf.Gradient.size() - 1) / (gr[1] - gr[0]) : 0.0;
   v.Linear = in.Sampling == Interpolation::Linear;
+  v.Comp = in.ComponentMode;
+  v.NC = in.NumberOfComponents;
+  for (const TransferFunction& tf : in.ComponentClassifications)
+  {
+    v.Extra.emplace_back();
+    vtkInternals::BuildTable(tf, v.Extra.back());
+  }
+  std::copy(in.ComponentWeights, in.ComponentWeights + 4, v.Weights);
+  for (int k = 0; k < 3; ++k)
+  {
+    v.ColorLo[k] = in.ColorRange[k][0];
+    v.ColorScale[k] = 1.0 / (in.ColorRange[k][1] - in.ColorRange[k][0]);
+  }
   v.Mode = in.BlendMode;
   v.Cropping = in.Cropping;
   std::copy(in.CropPlanes, in.CropPlanes + 6, v.CropPlanes);

@@ -80,6 +80,20 @@
  * every step's midpoint; the pieces are not cut at its kinks, so its error is first order where
  * the magnitude crosses one.
  *
+ * Components (Volume::ComponentMode, vtkVolumeProperty's rules; composite volumes only). Each of
+ * a volume's NumberOfComponents is interpolated on its own. Independent (2-4 components):
+ * component i has its own function (Classification for i = 0, ComponentClassifications[i - 1]
+ * after, each with its own UnitDistance) giving tau_i and c_i, and weight w_i in [0, 1]; they
+ * make one medium of extinction sigma = sum_(w_i > 0) tau_i^2 / sum w_i tau_i and emission
+ * sum w_i c_i tau_i. That is vtkGPUVolumeRayCastMapper's per-sample rule (opacity
+ * sum a_i^2 / sum w_i a_i, colour sum w_i c_i a_i for step opacities a_i) in the limit of short
+ * steps, so it does not depend on the sample distance. ColorOpacity (2 components): colour
+ * c(s_0), opacity alpha(s_1), both from Classification. RGBA (4 components): colour
+ * (s_k - ColorRange[k][0]) / (ColorRange[k][1] - ColorRange[k][0]), clamped to [0, 1], for
+ * k = 0, 1, 2 (VTK 9.1 normalises each component over its data range), opacity alpha(s_3).
+ * Pieces are cut at the kinks of every component's function. GetErrorBound() counts component
+ * 0 alone (its bound is not derived for the mixing rules).
+ *
  * Cropping (Volume::Cropping) hides a volume where its index point lies in a region whose flag is
  * off: the ray is cut at the crop planes too, and a piece (or a reduction's sample) of the volume
  * in a hidden region is left out, as if that volume were not there.
@@ -143,6 +157,15 @@ public:
     double GradientRange[2] = { 0.0, 1.0 };
   };
 
+  /// How a volume's point components are classified (see the class comment).
+  enum class Components
+  {
+    One,          ///< one scalar through Classification
+    Independent,  ///< 2-4 components, each through its own function and weight
+    ColorOpacity, ///< 2: colour of the first, opacity of the second
+    RGBA          ///< 4: the first three the colour, opacity of the fourth
+  };
+
   struct Volume
   {
     int Dimensions[3] = { 1, 1, 1 };
@@ -150,9 +173,17 @@ public:
     double Spacing[3] = { 1.0, 1.0, 1.0 };
     double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };                         ///< row-major
     double ModelMatrix[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }; ///< row-major
-    /// Point scalars, x fastest: fill exactly one of the two (float is what the GPU sees).
+    /// Point scalars, x fastest, NumberOfComponents per point (interleaved): fill exactly one
+    /// of the two (float is what the GPU sees).
     std::vector<double> Scalars;
     std::vector<float> FloatScalars;
+    int NumberOfComponents = 1; ///< 1 to 4, as ComponentMode requires
+    Components ComponentMode = Components::One;
+    /// Independent: the functions of components 1, 2, ... (component 0's is Classification).
+    std::vector<TransferFunction> ComponentClassifications;
+    double ComponentWeights[4] = { 1.0, 1.0, 1.0, 1.0 }; ///< Independent, each in [0, 1]
+    /// RGBA: the scalars that map to colour 0 and 1, per colour component.
+    double ColorRange[3][2] = { { 0.0, 1.0 }, { 0.0, 1.0 }, { 0.0, 1.0 } };
     Interpolation Sampling = Interpolation::Linear;
     TransferFunction Classification;
     Blend BlendMode = Blend::Composite;

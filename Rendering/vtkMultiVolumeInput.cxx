@@ -24,6 +24,68 @@ namespace
 constexpr int TableSize = vtkTransferFunctionTable::TableSize;
 }
 
+bool vtkMultiVolumeInput::GetComponentMode(vtkDataArray* scalars,
+  vtkVolumeProperty* property,
+  Components& mode,
+  std::string& error)
+{
+  const int nc = scalars ? scalars->GetNumberOfComponents() : 1;
+  const bool independent = property->GetIndependentComponents() != 0;
+  mode = Components::One;
+  if (nc > 4)
+    error = std::to_string(nc) + " components (at most 4)";
+  else if (nc == 3 && !independent)
+    error = "3 dependent components (2: colour and opacity, 4: RGBA)";
+  else if (nc > 1)
+    mode = independent
+             ? static_cast<Components>(static_cast<int>(Components::Independent2) + nc - 2)
+             : (nc == 2 ? Components::ColorOpacity : Components::RGBA);
+  return error.empty();
+}
+
+bool vtkMultiVolumeInput::DrawsComponentsAsAsked(vtkVolumeProperty* property,
+  int blendMode,
+  Classifications classification)
+{
+  return blendMode == vtkVolumeMapper::COMPOSITE_BLEND && !property->GetShade(0) &&
+         (!property->HasGradientOpacity(0) || property->GetDisableGradientOpacity(0)) &&
+         classification == Classifications::PostClassification;
+}
+
+bool vtkMultiVolumeInput::CollectComponents(vtkMultiVolumeRayCastMapper* mapper,
+  int port,
+  vtkImageData* image,
+  vtkVolumeProperty* property,
+  int& blendMode,
+  Components& mode,
+  bool& warned)
+{
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image,
+    mapper->GetScalarMode(),
+    mapper->GetArrayAccessMode(),
+    mapper->GetArrayId(),
+    mapper->GetArrayName(),
+    cellFlag);
+  std::string error;
+  if (!GetComponentMode(scalars, property, mode, error))
+  {
+    vtkErrorWithObjectMacro(mapper, "The volume on port " << port << " has " << error << ".");
+    return false;
+  }
+  if (mode == Components::One)
+    return true;
+  if (!warned && !DrawsComponentsAsAsked(property, blendMode, mapper->GetClassification()))
+  {
+    vtkWarningWithObjectMacro(mapper,
+      "The volume on port " << port << " has several components: drawn composite, "
+                            << "post-classified, without shading or gradient opacity.");
+    warned = true;
+  }
+  blendMode = vtkVolumeMapper::COMPOSITE_BLEND;
+  return true;
+}
+
 vtkMultiVolumeInput::vtkMultiVolumeInput() = default;
 vtkMultiVolumeInput::~vtkMultiVolumeInput() = default;
 
@@ -42,6 +104,26 @@ bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
   this->Scalars.resize(n);
   for (vtkIdType i = 0; i < n; ++i)
     this->Scalars[i] = static_cast<float>(scalars->GetComponent(i, 0));
+  this->NumberOfComponents = std::min(std::max(scalars->GetNumberOfComponents(), 1), 4);
+  const int nc = this->NumberOfComponents;
+  this->ComponentScalars.clear();
+  this->ComponentScalars.resize(nc > 1 ? size_t(n) * nc : 0);
+  for (int c = 0; c < nc; ++c)
+  {
+    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
+    for (vtkIdType i = 0; nc > 1 && i < n; ++i)
+    {
+      const float v = static_cast<float>(scalars->GetComponent(i, c));
+      this->ComponentScalars[size_t(i) * nc + c] = v;
+      if (std::isfinite(v))
+      {
+        lo = std::min(lo, double(v));
+        hi = std::max(hi, double(v));
+      }
+    }
+    this->ComponentRanges[c][0] = lo <= hi ? lo : 0.0;
+    this->ComponentRanges[c][1] = lo <= hi ? hi : 1.0;
+  }
   this->DataTime = image->GetMTime();
   this->DataInput = image;
   this->Tree.reset();
@@ -73,7 +155,13 @@ void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window, cons
     return;
   this->Data = vtkSmartPointer<vtkTextureObject>::New();
   this->Data->SetContext(window);
-  this->Data->Create3DFromRaw(dims[0], dims[1], dims[2], 1, VTK_FLOAT, this->Scalars.data());
+  const int nc = this->NumberOfComponents;
+  this->Data->Create3DFromRaw(dims[0],
+    dims[1],
+    dims[2],
+    nc,
+    VTK_FLOAT,
+    nc > 1 ? this->ComponentScalars.data() : this->Scalars.data());
   this->Data->SetWrapS(vtkTextureObject::ClampToEdge);
   this->Data->SetWrapT(vtkTextureObject::ClampToEdge);
   this->Data->SetWrapR(vtkTextureObject::ClampToEdge);
@@ -107,6 +195,17 @@ void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolum
       break;
     }
   }
+}
+
+void vtkMultiVolumeInput::UpdateComponentTables(vtkOpenGLRenderWindow* window,
+  vtkVolumeProperty* property,
+  Components mode)
+{
+  const bool independent = mode == Components::Independent2 || mode == Components::Independent3 ||
+                           mode == Components::Independent4;
+  const int count = independent ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode) : 1;
+  for (int c = 1; c < count; ++c)
+    this->ComponentTables[c - 1].Update(window, property, c);
 }
 
 void vtkMultiVolumeInput::UpdateGradientOpacity(vtkOpenGLRenderWindow* window,
@@ -352,6 +451,8 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
   }
   if (b.BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
     this->BindBlendMode(program, N, property, b);
+  if (b.ComponentMode != Components::One)
+    this->BindComponents(program, N, property, b);
   if (b.GradientOpacity && this->GradientTexture)
   {
     this->GradientTexture->Activate();
@@ -419,8 +520,54 @@ void vtkMultiVolumeInput::BindBlendMode(vtkShaderProgram* program,
   program->SetUniform2f(("uAverageRange" + N).c_str(), average);
 }
 
+// Several components: the weights and the tables of components 1, 2, ... (independent), or the
+// colour ranges (RGBA); component 0's table is bound as every volume's.
+void vtkMultiVolumeInput::BindComponents(vtkShaderProgram* program,
+  const std::string& N,
+  vtkVolumeProperty* property,
+  const Binding& b)
+{
+  if (b.ComponentMode == Components::RGBA)
+  {
+    float lo[3], scale[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double* r = this->ComponentRanges[c];
+      lo[c] = static_cast<float>(r[0]);
+      scale[c] = static_cast<float>(r[1] > r[0] ? 1.0 / (r[1] - r[0]) : 1.0e6);
+    }
+    program->SetUniform3f(("uColorLo" + N).c_str(), lo);
+    program->SetUniform3f(("uColorScale" + N).c_str(), scale);
+    return;
+  }
+  if (b.ComponentMode == Components::ColorOpacity)
+    return;
+  const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(b.ComponentMode);
+  float weights[4] = { 0.f, 0.f, 0.f, 0.f };
+  for (int c = 0; c < count; ++c)
+    weights[c] = static_cast<float>(property->GetComponentWeight(c));
+  program->SetUniform4f(("uWeights" + N).c_str(), weights);
+  for (int c = 1; c < count; ++c)
+  {
+    vtkTextureObject* transfer = this->ComponentTables[c - 1].GetTexture();
+    transfer->Activate();
+    const std::string C = N + "_" + std::to_string(c);
+    program->SetUniformi(("uTransfer" + C).c_str(), transfer->GetTextureUnit());
+    const double* r = this->ComponentTables[c - 1].GetTableRange();
+    const float range[3] = { float(r[0]), float(r[1]), float(r[2]) };
+    program->SetUniform3f(("uTableRange" + C).c_str(), range);
+  }
+}
+
 void vtkMultiVolumeInput::Unbind(const Binding& b)
 {
+  const int count = b.ComponentMode == Components::Independent2 ||
+                        b.ComponentMode == Components::Independent3 ||
+                        b.ComponentMode == Components::Independent4
+                      ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(b.ComponentMode)
+                      : 1;
+  for (int c = 1; c < count; ++c)
+    this->ComponentTables[c - 1].GetTexture()->Deactivate();
   if (b.GradientOpacity && this->GradientTexture)
     this->GradientTexture->Deactivate();
   if (this->Data && !b.Atlas)
@@ -438,6 +585,8 @@ void vtkMultiVolumeInput::ReleaseGraphicsResources(vtkWindow* window)
     this->Data->ReleaseGraphicsResources(window);
   this->Data = nullptr;
   this->Table.ReleaseGraphicsResources(window);
+  for (vtkTransferFunctionTable& table : this->ComponentTables)
+    table.ReleaseGraphicsResources(window);
   if (this->PreTable)
     this->PreTable->ReleaseGraphicsResources(window);
   this->PreTable = nullptr;

@@ -18,13 +18,14 @@
 #ifndef vtkMultiVolumeInput_h
 #define vtkMultiVolumeInput_h
 
-#include "StrataRenderingModule.h"       // For export macro
-#include "vtkMultiVolumeRayCastMapper.h" // For Classifications
-#include "vtkPreIntegrationTable.h"      // For vtkPreIntegrationTable
-#include "vtkSmartPointer.h"             // For vtkSmartPointer
-#include "vtkStrataGLObject.h"           // For vtkStrataGLObject
-#include "vtkTransferFunctionTable.h"    // For vtkTransferFunctionTable
-#include "vtkVolumeSkipGrid.h"           // For vtkVolumeSkipGrid
+#include "StrataRenderingModule.h"        // For export macro
+#include "vtkMultiVolumeRayCastMapper.h"  // For Classifications
+#include "vtkMultiVolumeShaderComposer.h" // For Components
+#include "vtkPreIntegrationTable.h"       // For vtkPreIntegrationTable
+#include "vtkSmartPointer.h"              // For vtkSmartPointer
+#include "vtkStrataGLObject.h"            // For vtkStrataGLObject
+#include "vtkTransferFunctionTable.h"     // For vtkTransferFunctionTable
+#include "vtkVolumeSkipGrid.h"            // For vtkVolumeSkipGrid
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -43,6 +44,37 @@ class STRATARENDERING_EXPORT vtkMultiVolumeInput
 {
 public:
   using Classifications = vtkMultiVolumeRayCastMapper::Classifications;
+  using Components = vtkMultiVolumeShaderComposer::Components;
+
+  /**
+   * The components of `scalars` under `property`'s IndependentComponents, as vtkVolumeProperty
+   * defines them: 1 to 4 independent, 2 or 4 dependent. False, with `error` saying what they
+   * are, for others.
+   */
+  static bool GetComponentMode(vtkDataArray* scalars,
+    vtkVolumeProperty* property,
+    Components& mode,
+    std::string& error);
+  /**
+   * Whether a volume of several components is drawn as asked: they make a composite medium,
+   * post-classified, without shading or gradient opacity.
+   */
+  static bool DrawsComponentsAsAsked(vtkVolumeProperty* property,
+    int blendMode,
+    Classifications classification);
+  /**
+   * The components of port `port`'s `image` (the array `mapper`'s GetScalars picks):
+   * GetComponentMode, false with an error of `mapper` for what the property does not define; a
+   * volume of several components is composite (`blendMode` set), and what it cannot draw as
+   * asked is warned of once (`warned`).
+   */
+  static bool CollectComponents(vtkMultiVolumeRayCastMapper* mapper,
+    int port,
+    vtkImageData* image,
+    vtkVolumeProperty* property,
+    int& blendMode,
+    Components& mode,
+    bool& warned);
 
   vtkMultiVolumeInput();
   ~vtkMultiVolumeInput();
@@ -51,10 +83,22 @@ public:
 
   /**
    * Copies `scalars` (component 0, one per point of `image`) as float when `image` is another
-   * one or changed since; the brick tree and plain texture then follow. Returns whether it
-   * copied.
+   * one or changed since; the brick tree and plain texture then follow. Of several components
+   * (at most 4) all are kept, interleaved, with their finite ranges. Returns whether it copied.
    */
   bool UpdateScalars(vtkImageData* image, vtkDataArray* scalars, vtkWindow* window);
+  /// The components UpdateScalars kept (1 for one scalar).
+  int GetNumberOfComponents() const { return this->NumberOfComponents; }
+  /// The finite range of component c of the kept scalars.
+  const double* GetComponentRange(int c) const { return this->ComponentRanges[c]; }
+
+  /**
+   * The transfer tables of components 1, 2, ... of independent components (component 0's is
+   * UpdateTransfer's), each from the property's functions and unit distance of that component.
+   */
+  void UpdateComponentTables(vtkOpenGLRenderWindow* window,
+    vtkVolumeProperty* property,
+    Components mode);
   /// Whether the scalars are kept for `image` as it is now.
   bool HasScalarsOf(vtkImageData* image) const;
 
@@ -66,7 +110,8 @@ public:
   /// The in-core tree, null if none (paged volumes use vtkVolumePager's).
   const vtkVolumeBrickTree* GetTree() const { return this->Tree.get(); }
 
-  /// The whole volume as one R32F 3-D texture (no atlas), made once per scalars.
+  /// The whole volume as one 3-D texture (no atlas), R32F or a float channel per component,
+  /// made once per scalars.
   void UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3]);
 
   /// The transfer table and what follows from it (pre-integration input, empty scalar).
@@ -135,6 +180,7 @@ public:
     const float* CropHi = nullptr;
     int CropFlags = 0;
     bool GradientOpacity = false; ///< composite: opacity times the gradient opacity function
+    Components ComponentMode = Components::One; ///< several: read from the plain texture
   };
   /**
    * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their
@@ -157,8 +203,16 @@ private:
     const std::string& n,
     vtkVolumeProperty* property,
     const Binding& binding);
+  void BindComponents(vtkShaderProgram* program,
+    const std::string& n,
+    vtkVolumeProperty* property,
+    const Binding& binding);
 
   std::vector<float> Scalars; ///< the input as float; the brick tree borrows it
+  int NumberOfComponents = 1;
+  std::vector<float> ComponentScalars; ///< several components: all, interleaved
+  double ComponentRanges[4][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 }, { 0, 1 } };
+  vtkTransferFunctionTable ComponentTables[3]; ///< independent components 1, 2, 3
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
   std::unique_ptr<vtkVolumeBrickTree> Tree;

@@ -56,6 +56,8 @@ constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
 using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
 
 // One volume of the current frame.
+using Components = vtkMultiVolumeShaderComposer::Components;
+
 struct FrameVolume
 {
   int Port = 0;
@@ -69,6 +71,8 @@ struct FrameVolume
   bool Cropped = false;
   float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
   int CropFlags = 0;
+  /// Several components: a composite medium from a plain texture (vtkMultiVolumeInput).
+  Components ComponentMode = Components::One;
 };
 
 bool IsReduced(int mode)
@@ -187,6 +191,7 @@ public:
   int Max3DTexture = 0;   ///< the GPU's, asked once
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
+  bool ComponentLimitsWarned = false;
   ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
   ViewKey LastView{};     ///< the view of the last frame
   /// What decides which bricks are empty besides the transfer functions: the halo
@@ -259,6 +264,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
         self, "Blend mode " << e.Mode << " of port " << port << " is not supported: composite.");
       e.Mode = vtkVolumeMapper::COMPOSITE_BLEND;
     }
+    if (!vtkMultiVolumeInput::CollectComponents(
+          self, port, image, e.Property, e.Mode, e.ComponentMode, this->ComponentLimitsWarned))
+      continue;
     frame.AnyReduced = frame.AnyReduced || IsReduced(e.Mode);
     image->GetDimensions(e.Dims);
     const double* o = image->GetOrigin();
@@ -317,7 +325,18 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
   }
   if (!frame.AnyPooled)
     frame.BrickSize = self->BrickSize;
-  frame.Atlas = self->UseBrickAtlas || frame.AnyPooled;
+  // Volumes of several components are read from plain textures: the atlas holds one scalar.
+  const bool anyComponents = std::any_of(frame.Volumes.begin(),
+    frame.Volumes.end(),
+    [](const FrameVolume& e) { return e.ComponentMode != Components::One; });
+  if (anyComponents && frame.AnyPooled)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Volumes of several components are drawn in core: neither paged "
+      "nor beside paged volumes (pools and atlas hold one).");
+    return false;
+  }
+  frame.Atlas = (self->UseBrickAtlas && !anyComponents) || frame.AnyPooled;
   return !frame.Volumes.empty();
 }
 
@@ -385,6 +404,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (!frame.Atlas)
       input.UpdatePlainTexture(renWin, e.Dims);
     input.UpdateTransfer(renWin, e.Property);
+    input.UpdateComponentTables(renWin, e.Property, e.ComponentMode);
     std::vector<double> iso;
     vtkContourValues* contours = e.Property->GetIsoSurfaceValues();
     for (int i = 0; e.Mode == vtkVolumeMapper::ISOSURFACE_BLEND && contours &&
@@ -399,7 +419,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
   }
   for (const FrameVolume& e : frame.Volumes)
   {
-    if (self->EmptySpaceSkipping)
+    if (self->EmptySpaceSkipping && e.ComponentMode == Components::One)
       this->Inputs[e.Port].UpdateSkipGrid(
         this->Pager.GetPoolTree(e.Port), e.Pool, e.Dims, self->SkipCellSize);
   }
@@ -792,25 +812,33 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
 {
   vtkMultiVolumeShaderComposer::FragmentKey key;
   key.Volumes = static_cast<int>(volumes.size());
+  bool components = false;
   for (int v : volumes)
   {
     const FrameVolume& e = frame.Volumes[v];
-    key.Shaded.push_back(frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
+    const bool one = e.ComponentMode == Components::One;
+    components = components || !one;
+    key.Shaded.push_back(one && frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
     key.Modes.push_back(e.Mode);
     key.Cropped.push_back(e.Cropped);
-    key.GradientOpacity.push_back(!reduce && e.Mode == vtkVolumeMapper::COMPOSITE_BLEND &&
+    key.GradientOpacity.push_back(one && !reduce && e.Mode == vtkVolumeMapper::COMPOSITE_BLEND &&
                                   self->Classification == Classifications::PostClassification &&
                                   this->Inputs.at(e.Port).HasGradientOpacity());
+    key.ComponentModes.push_back(e.ComponentMode);
   }
+  if (!components)
+    key.ComponentModes.clear(); // one key for scenes of one-component volumes
   key.Reduce = reduce;
-  key.Classification = self->Classification;
+  // A fragment with a volume of several components is post-classified and not skipped (its
+  // components have no tables or skip grid of their own for that).
+  key.Classification = components ? Classifications::PostClassification : self->Classification;
   key.FrontToBack = reduce || frame.FrontToBack;
   key.Barrier = !reduce && frame.Barrier;
   key.Rays = frame.Rays;
   key.Coherent = self->RayCoherence && frame.Rays > 1 && !frame.AnyReduced;
   key.Atlas = frame.Atlas;
   key.Skipping =
-    self->EmptySpaceSkipping &&
+    self->EmptySpaceSkipping && !components &&
     !(reduce && frame.Volumes[volumes[0]].Mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
   // Feedback comes from the volumes a program samples (a layer's bricks report in its pass).
   bool samples = reduce;
@@ -911,7 +939,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     const int v = volumes[i];
     const FrameVolume& e = frame.Volumes[v];
     vtkMultiVolumeInput::Binding& b = bindings[i];
-    b.Classification = self->Classification;
+    b.Classification = key.Classification;
     b.BlendMode = e.Mode;
     b.CropLo = e.Cropped ? e.CropLo : nullptr;
     b.CropHi = e.CropHi;
@@ -921,7 +949,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
     b.TableBricks = frame.Atlas ? this->Pager.GetTree(v)->GetLevelBricks(0) : nullptr;
-    b.Skipping = self->EmptySpaceSkipping;
+    b.Skipping = key.Skipping;
+    b.ComponentMode = e.ComponentMode;
     b.Shaded = key.Shaded[i];
     b.SampleDistance = frame.SampleDistance;
     b.LocalToIndex = e.LocalToIndex;

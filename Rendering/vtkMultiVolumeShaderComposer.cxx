@@ -6,6 +6,11 @@
 #include "vtkStrataShaderCache.h"
 
 #include "vtkMultiVolumeBackToFront.h"
+#include "vtkMultiVolumeComponentsColorOpacity.h"
+#include "vtkMultiVolumeComponentsIndependent.h"
+#include "vtkMultiVolumeComponentsIndependentTable.h"
+#include "vtkMultiVolumeComponentsLookup.h"
+#include "vtkMultiVolumeComponentsRGBA.h"
 #include "vtkMultiVolumeCompositeFS.h"
 #include "vtkMultiVolumeCompositeVS.h"
 #include "vtkMultiVolumeCrop.h"
@@ -26,6 +31,7 @@
 #include "vtkMultiVolumeReduceDec.h"
 #include "vtkMultiVolumeSample.h"
 #include "vtkMultiVolumeSegment.h"
+#include "vtkMultiVolumeSegmentComponents.h"
 #include "vtkMultiVolumeSegmentVolume.h"
 #include "vtkMultiVolumeShade.h"
 #include "vtkMultiVolumeSkip.h"
@@ -120,6 +126,57 @@ bool Cropped(const Key& key, int n)
   return n < static_cast<int>(key.Cropped.size()) && key.Cropped[n];
 }
 
+// --- Components: a volume of several reads them from its own texture and classifies them into
+// one medium (strataMedium@n@: colour and extinction) by its component mode.
+using Comps = vtkMultiVolumeShaderComposer::Components;
+
+Comps ComponentMode(const Key& key, int n)
+{
+  return n < static_cast<int>(key.ComponentModes.size()) ? key.ComponentModes[n] : Comps::One;
+}
+
+bool HasComponents(const Key& key, int n)
+{
+  return ComponentMode(key, n) != Comps::One;
+}
+
+/// Independent components: a table per component (component 0's is the volume's uTransfer@n@).
+std::string IndependentMedium(int n, int count)
+{
+  std::string dec, impl;
+  for (int i = 0; i < count; ++i)
+  {
+    const std::string c = i == 0 ? std::string() : "_" + std::to_string(i);
+    dec += "uniform sampler2D uTransfer@n@" + c + ";\nuniform vec3 uTableRange@n@" + c + ";\n";
+    std::string table = vtkMultiVolumeComponentsIndependentTable;
+    Replace(table, "@c@", c);
+    Replace(table, "@i@", std::to_string(i));
+    impl += table;
+  }
+  std::string code = vtkMultiVolumeComponentsIndependent;
+  Replace(code, "//STRATA::ComponentTables::Dec", dec);
+  Replace(code, "//STRATA::ComponentTables::Impl", impl);
+  return ForVolume(code.c_str(), n);
+}
+
+/// Volumes::Dec of a volume of several components: its lookup, cropping and medium.
+std::string ComponentVolume(const Key& key, int n)
+{
+  std::string code = ForVolume(vtkMultiVolumeComponentsLookup, n);
+  if (Cropped(key, n))
+    code += ForVolume(vtkMultiVolumeCrop, n);
+  const Comps mode = ComponentMode(key, n);
+  switch (mode)
+  {
+    case Comps::ColorOpacity:
+      return code + ForVolume(vtkMultiVolumeComponentsColorOpacity, n);
+    case Comps::RGBA:
+      return code + ForVolume(vtkMultiVolumeComponentsRGBA, n);
+    default:
+      return code + IndependentMedium(n, vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode));
+  }
+}
+
 /// The factor that masks volume n's contribution at `point` by its cropping ("" if uncropped).
 std::string CropMask(const Key& key, int n, const std::string& point)
 {
@@ -185,7 +242,7 @@ std::string FeedbackPacking(const Key& key)
       << "  int g = 3 * gLack.w;\n";
   for (int i = 0; i < key.Volumes; ++i)
   {
-    if (!Sampled(key, i))
+    if (!Sampled(key, i) || HasComponents(key, i))
       continue;
     dec << ForVolume(
       "  if (gLackVolume == @n@)\n  {\n    return strataPackPage(uint(uFeedbackSet@n@), "
@@ -304,6 +361,11 @@ std::string Volumes(const Key& key)
       code += LayerVolume(key, i);
       continue;
     }
+    if (HasComponents(key, i))
+    {
+      code += ComponentVolume(key, i);
+      continue;
+    }
     code += Lookup(key, i, first);
     first = false;
     code += ForVolume(vtkMultiVolumeSample, i);
@@ -356,7 +418,8 @@ std::string Segment(const Key& key)
     {
       if (!Medium(key, i))
         continue;
-      std::string v = ForVolume(vtkMultiVolumeSegmentVolume, i);
+      std::string v = ForVolume(
+        HasComponents(key, i) ? vtkMultiVolumeSegmentComponents : vtkMultiVolumeSegmentVolume, i);
       Replace(v,
         "//STRATA::Shade::Impl",
         (GradientOpacity(key, i)
@@ -696,21 +759,23 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Modes,
            this->Reduce,
            this->Cropped,
-           this->GradientOpacity) < std::tie(o.Volumes,
-                                      o.Shaded,
-                                      o.Classification,
-                                      o.FrontToBack,
-                                      o.Barrier,
-                                      o.Rays,
-                                      o.Coherent,
-                                      o.Atlas,
-                                      o.Skipping,
-                                      o.Feedback,
-                                      o.Footprint,
-                                      o.Modes,
-                                      o.Reduce,
-                                      o.Cropped,
-                                      o.GradientOpacity);
+           this->GradientOpacity,
+           this->ComponentModes) < std::tie(o.Volumes,
+                                     o.Shaded,
+                                     o.Classification,
+                                     o.FrontToBack,
+                                     o.Barrier,
+                                     o.Rays,
+                                     o.Coherent,
+                                     o.Atlas,
+                                     o.Skipping,
+                                     o.Feedback,
+                                     o.Footprint,
+                                     o.Modes,
+                                     o.Reduce,
+                                     o.Cropped,
+                                     o.GradientOpacity,
+                                     o.ComponentModes);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
@@ -741,7 +806,34 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
     s << (this->Cropped[i] ? ", cropped " + std::to_string(i) : std::string());
   for (size_t i = 0; i < this->GradientOpacity.size(); ++i)
     s << (this->GradientOpacity[i] ? ", gradient opacity " + std::to_string(i) : std::string());
+  static const char* components[] = { "one component",
+    "2 independent components",
+    "3 independent components",
+    "4 independent components",
+    "colour and opacity components",
+    "RGBA components" };
+  for (size_t i = 0; i < this->ComponentModes.size(); ++i)
+    s << (this->ComponentModes[i] != Components::One
+            ? ", " + std::to_string(i) + " of " +
+                components[static_cast<int>(this->ComponentModes[i])]
+            : std::string());
   return s.str();
+}
+
+int vtkMultiVolumeShaderComposer::GetNumberOfComponents(Components mode)
+{
+  switch (mode)
+  {
+    case Components::One:
+      return 1;
+    case Components::Independent2:
+    case Components::ColorOpacity:
+      return 2;
+    case Components::Independent3:
+      return 3;
+    default:
+      return 4;
+  }
 }
 
 std::string vtkMultiVolumeShaderComposer::BuildFragmentShader(const FragmentKey& key)

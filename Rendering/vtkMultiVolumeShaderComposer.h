@@ -38,6 +38,21 @@ class STRATARENDERING_EXPORT vtkMultiVolumeShaderComposer
 public:
   using Classifications = vtkMultiVolumeRayCastMapper::Classifications;
 
+  /// How a volume's point components are classified (vtkVolumeProperty's IndependentComponents):
+  /// one scalar; 2-4 independent components, each with its own functions and weight; two
+  /// dependent (colour of the first, opacity of the second); four dependent (RGB and opacity).
+  enum class Components
+  {
+    One,
+    Independent2,
+    Independent3,
+    Independent4,
+    ColorOpacity,
+    RGBA
+  };
+  /// The number of components of a mode.
+  static int GetNumberOfComponents(Components mode);
+
   /// Everything a fragment's program depends on.
   struct FragmentKey
   {
@@ -62,6 +77,9 @@ public:
     /// Per volume: opacity scaled by the gradient opacity function (composite volumes,
     /// post-classification; missing entries: none).
     std::vector<bool> GradientOpacity;
+    /// Per volume: its components (missing entries: One). A volume of several is read from its
+    /// own texture, never the atlas, as a composite medium (post-classified, unshaded).
+    std::vector<Components> ComponentModes;
 
     bool operator<(const FragmentKey& other) const;
     /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".

@@ -18,12 +18,13 @@ vtkTextureObject* vtkTransferFunctionTable::GetTexture() const
   return this->Texture;
 }
 
-vtkMTimeType vtkTransferFunctionTable::GetMTime(vtkVolumeProperty* property)
+vtkMTimeType vtkTransferFunctionTable::GetMTime(vtkVolumeProperty* property, int component)
 {
-  const bool rgb = property->GetColorChannels(0) == 3;
-  const vtkMTimeType color = rgb ? property->GetRGBTransferFunction(0)->GetMTime()
-                                 : property->GetGrayTransferFunction(0)->GetMTime();
-  return std::max({ property->GetMTime(), property->GetScalarOpacity(0)->GetMTime(), color });
+  const int c = component;
+  const bool rgb = property->GetColorChannels(c) == 3;
+  const vtkMTimeType color = rgb ? property->GetRGBTransferFunction(c)->GetMTime()
+                                 : property->GetGrayTransferFunction(c)->GetMTime();
+  return std::max({ property->GetMTime(), property->GetScalarOpacity(c)->GetMTime(), color });
 }
 
 bool vtkTransferFunctionTable::TabulateGradientOpacity(vtkVolumeProperty* property,
@@ -46,13 +47,15 @@ void vtkTransferFunctionTable::Tabulate(vtkVolumeProperty* property,
   int size,
   double range[2],
   std::vector<float>& rgb,
-  std::vector<float>& opacity)
+  std::vector<float>& opacity,
+  int component)
 {
   // Only the getter of the colour kind in use: VTK's getters create (and switch to) a default.
-  const bool useRgb = property->GetColorChannels(0) == 3;
-  vtkColorTransferFunction* color = useRgb ? property->GetRGBTransferFunction(0) : nullptr;
-  vtkPiecewiseFunction* gray = useRgb ? nullptr : property->GetGrayTransferFunction(0);
-  vtkPiecewiseFunction* alpha = property->GetScalarOpacity(0);
+  const int c = component;
+  const bool useRgb = property->GetColorChannels(c) == 3;
+  vtkColorTransferFunction* color = useRgb ? property->GetRGBTransferFunction(c) : nullptr;
+  vtkPiecewiseFunction* gray = useRgb ? nullptr : property->GetGrayTransferFunction(c);
+  vtkPiecewiseFunction* alpha = property->GetScalarOpacity(c);
   alpha->GetRange(range);
   double cr[2];
   if (useRgb)
@@ -85,11 +88,12 @@ void vtkTransferFunctionTable::TabulateExtinction(vtkVolumeProperty* property,
   int size,
   double range[2],
   std::vector<float>& rgbTau,
-  std::vector<float>& opacity)
+  std::vector<float>& opacity,
+  int component)
 {
   std::vector<float> rgb;
-  Tabulate(property, size, range, rgb, opacity);
-  const double unit = std::max(property->GetScalarOpacityUnitDistance(0), 1e-30);
+  Tabulate(property, size, range, rgb, opacity, component);
+  const double unit = std::max(property->GetScalarOpacityUnitDistance(component), 1e-30);
   rgbTau.resize(4 * size_t(size));
   for (int i = 0; i < size; ++i)
   {
@@ -100,14 +104,18 @@ void vtkTransferFunctionTable::TabulateExtinction(vtkVolumeProperty* property,
   }
 }
 
-bool vtkTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property)
+bool vtkTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin,
+  vtkVolumeProperty* property,
+  int component)
 {
-  const vtkMTimeType time = GetMTime(property);
-  if (this->Texture && this->Property == property && this->Time >= time)
+  const vtkMTimeType time = GetMTime(property, component);
+  if (this->Texture && this->Property == property && this->Component == component &&
+      this->Time >= time)
   {
     return false;
   }
-  TabulateExtinction(property, TableSize, this->ScalarRange, this->RGBTau, this->Opacity);
+  TabulateExtinction(
+    property, TableSize, this->ScalarRange, this->RGBTau, this->Opacity, component);
   if (!this->Texture)
   {
     this->Texture = vtkSmartPointer<vtkTextureObject>::New();
@@ -126,6 +134,7 @@ bool vtkTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePr
   this->TableRange[1] = (TableSize - 1.0) / (TableSize * (r[1] - r[0]));
   this->TableRange[2] = 0.5 / TableSize;
   this->Property = property;
+  this->Component = component;
   this->Time = time;
   ++this->BuildCount;
   return true;

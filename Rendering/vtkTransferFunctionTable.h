@@ -35,27 +35,29 @@ public:
   static constexpr int TableSize = 1024;
 
   /**
-   * `size` entries of `property`'s component-0 functions evenly over `range` (the union of
-   * the colour and opacity functions' ranges, widened to one unit when empty): RGB colour
+   * `size` entries of `property`'s functions of `component` evenly over `range` (the union
+   * of the colour and opacity functions' ranges, widened to one unit when empty): RGB colour
    * (grey repeated for a grey function) and opacity per unit distance.
    */
   static void Tabulate(vtkVolumeProperty* property,
     int size,
     double range[2],
     std::vector<float>& rgb,
-    std::vector<float>& opacity);
+    std::vector<float>& opacity,
+    int component = 0);
 
   /**
    * Tabulate's table with the opacity turned into extinction per unit length,
-   * -ln(1 - a) / ScalarOpacityUnitDistance (a capped at 1 - 1e-6 so that it stays finite: a
-   * unit length then lets 1e-6 through), interleaved RGBA per entry; `opacity` gets the
-   * tabulated opacity.
+   * -ln(1 - a) / ScalarOpacityUnitDistance of the component (a capped at 1 - 1e-6 so that it
+   * stays finite: a unit length then lets 1e-6 through), interleaved RGBA per entry; `opacity`
+   * gets the tabulated opacity.
    */
   static void TabulateExtinction(vtkVolumeProperty* property,
     int size,
     double range[2],
     std::vector<float>& rgbTau,
-    std::vector<float>& opacity);
+    std::vector<float>& opacity,
+    int component = 0);
 
   /**
    * The gradient opacity function of `property` (component 0), `size` entries evenly over its
@@ -69,7 +71,7 @@ public:
 
   /// When `property`'s transfer functions last changed (those of its colour kind only: VTK's
   /// getters of the other kind would create, and switch to, a default).
-  static vtkMTimeType GetMTime(vtkVolumeProperty* property);
+  static vtkMTimeType GetMTime(vtkVolumeProperty* property, int component = 0);
 
   vtkTransferFunctionTable();
   ~vtkTransferFunctionTable();
@@ -77,10 +79,11 @@ public:
   vtkTransferFunctionTable& operator=(const vtkTransferFunctionTable&) = delete;
 
   /**
-   * Tabulates `property` (TableSize entries, TabulateExtinction) and uploads the texture when
-   * the property is another one or changed since the last call. Returns whether it did.
+   * Tabulates `property`'s functions of `component` (TableSize entries, TabulateExtinction)
+   * and uploads the texture when the property or component is another one or changed since the
+   * last call. Returns whether it did.
    */
-  bool Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property);
+  bool Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, int component = 0);
 
   /// The RGBA32F texture (null before the first Update).
   vtkTextureObject* GetTexture() const;
@@ -101,6 +104,7 @@ public:
 private:
   vtkSmartPointer<vtkTextureObject> Texture;
   vtkVolumeProperty* Property = nullptr;
+  int Component = 0;
   vtkMTimeType Time = 0;
   unsigned long BuildCount = 0;
   double TableRange[3] = { 0.0, 1.0, 0.0 };

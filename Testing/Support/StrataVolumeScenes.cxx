@@ -124,6 +124,57 @@ vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step)
   return points;
 }
 
+namespace
+{
+// Component c's functions exactly as the mapper tabulates them.
+vtkMultiVolumeReferenceIntegrator::TransferFunction ReferenceFunction(vtkVolumeProperty* p, int c)
+{
+  vtkMultiVolumeReferenceIntegrator::TransferFunction tf;
+  double range[2];
+  std::vector<float> rgb, alpha;
+  vtkTransferFunctionTable::Tabulate(p, vtkTransferFunctionTable::TableSize, range, rgb, alpha, c);
+  tf.Range[0] = range[0];
+  tf.Range[1] = range[1];
+  tf.Opacity.assign(alpha.begin(), alpha.end());
+  tf.Color.assign(rgb.begin(), rgb.end());
+  tf.UnitDistance = p->GetScalarOpacityUnitDistance(c);
+  return tf;
+}
+
+// The components of `v` (scalars already copied, interleaved) under `p`, as the mapper reads
+// them: independent functions and weights, or RGBA colour over each component's finite range.
+void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v, vtkVolumeProperty* p)
+{
+  using Components = vtkMultiVolumeReferenceIntegrator::Components;
+  const int nc = v.NumberOfComponents;
+  if (nc == 1)
+    return;
+  if (p->GetIndependentComponents())
+  {
+    v.ComponentMode = Components::Independent;
+    for (int c = 0; c < nc; ++c)
+    {
+      v.ComponentWeights[c] = p->GetComponentWeight(c);
+      if (c > 0)
+        v.ComponentClassifications.push_back(ReferenceFunction(p, c));
+    }
+    return;
+  }
+  v.ComponentMode = nc == 2 ? Components::ColorOpacity : Components::RGBA;
+  for (int c = 0; nc == 4 && c < 3; ++c)
+  {
+    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
+    for (size_t i = c; i < v.FloatScalars.size(); i += nc)
+    {
+      lo = std::min(lo, double(v.FloatScalars[i]));
+      hi = std::max(hi, double(v.FloatScalars[i]));
+    }
+    v.ColorRange[c][0] = lo;
+    v.ColorRange[c][1] = hi > lo ? hi : lo + 1e-6;
+  }
+}
+}
+
 vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   vtkVolume* member,
   vtkMultiVolumeRayCastMapper* mapper,
@@ -139,10 +190,14 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   member->ComputeMatrix();
   std::copy(member->GetMatrix()->GetData(), member->GetMatrix()->GetData() + 16, v.ModelMatrix);
   vtkDataArray* s = image->GetPointData()->GetScalars();
-  v.FloatScalars.resize(s->GetNumberOfTuples());
+  const int nc = s->GetNumberOfComponents();
+  v.NumberOfComponents = nc;
+  v.FloatScalars.resize(s->GetNumberOfTuples() * nc);
   for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
-    v.FloatScalars[i] = static_cast<float>(s->GetComponent(i, 0));
+    for (int c = 0; c < nc; ++c)
+      v.FloatScalars[i * nc + c] = static_cast<float>(s->GetComponent(i, c));
   vtkVolumeProperty* p = member->GetProperty();
+  ReferenceComponents(v, p);
   v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
                  ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
                  : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;

@@ -1,0 +1,4 @@
+tf = strataMedium@n@(p);
+  //STRATA::Shade::Impl
+  e += tf.rgb * tf.a;
+  tau += tf.a;
