@@ -90,7 +90,7 @@
  * steps, so it does not depend on the sample distance. ColorOpacity (2 components): colour
  * c(s_0), opacity alpha(s_1), both from Classification. RGBA (4 components): colour
  * (s_k - ColorRange[k][0]) / (ColorRange[k][1] - ColorRange[k][0]), clamped to [0, 1], for
- * k = 0, 1, 2 (VTK 9.1 normalises each component over its data range), opacity alpha(s_3).
+ * k = 0, 1, 2 (the caller states how its data type maps to colour), opacity alpha(s_3).
  * Pieces are cut at the kinks of every component's function. GetErrorBound() counts component
  * 0 alone (its bound is not derived for the mixing rules).
  *

@@ -86,6 +86,33 @@ bool vtkMultiVolumeInput::CollectComponents(vtkMultiVolumeRayCastMapper* mapper,
   return true;
 }
 
+void vtkMultiVolumeInput::GetColorRange(vtkDataArray* scalars, int c, double range[2])
+{
+  range[0] = 0.0;
+  switch (scalars->GetDataType())
+  {
+    case VTK_UNSIGNED_CHAR:
+      range[1] = VTK_UNSIGNED_CHAR_MAX;
+      return;
+    case VTK_SIGNED_CHAR:
+      range[1] = VTK_SIGNED_CHAR_MAX;
+      return;
+    case VTK_UNSIGNED_SHORT:
+      range[1] = VTK_UNSIGNED_SHORT_MAX;
+      return;
+    case VTK_SHORT:
+      range[1] = VTK_SHORT_MAX;
+      return;
+    case VTK_FLOAT:
+      range[1] = 1.0;
+      return;
+    default:
+      scalars->GetFiniteRange(range, c);
+      if (!(range[1] > range[0]))
+        range[1] = range[0] + 1.0;
+  }
+}
+
 vtkMultiVolumeInput::vtkMultiVolumeInput() = default;
 vtkMultiVolumeInput::~vtkMultiVolumeInput() = default;
 
@@ -108,22 +135,11 @@ bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
   const int nc = this->NumberOfComponents;
   this->ComponentScalars.clear();
   this->ComponentScalars.resize(nc > 1 ? size_t(n) * nc : 0);
-  for (int c = 0; c < nc; ++c)
-  {
-    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
-    for (vtkIdType i = 0; nc > 1 && i < n; ++i)
-    {
-      const float v = static_cast<float>(scalars->GetComponent(i, c));
-      this->ComponentScalars[size_t(i) * nc + c] = v;
-      if (std::isfinite(v))
-      {
-        lo = std::min(lo, double(v));
-        hi = std::max(hi, double(v));
-      }
-    }
-    this->ComponentRanges[c][0] = lo <= hi ? lo : 0.0;
-    this->ComponentRanges[c][1] = lo <= hi ? hi : 1.0;
-  }
+  for (int c = 0; nc > 1 && c < nc; ++c)
+    for (vtkIdType i = 0; i < n; ++i)
+      this->ComponentScalars[size_t(i) * nc + c] = static_cast<float>(scalars->GetComponent(i, c));
+  for (int c = 0; nc == 4 && c < 3; ++c)
+    GetColorRange(scalars, c, this->ColorRanges[c]);
   this->DataTime = image->GetMTime();
   this->DataInput = image;
   this->Tree.reset();
@@ -532,7 +548,7 @@ void vtkMultiVolumeInput::BindComponents(vtkShaderProgram* program,
     float lo[3], scale[3];
     for (int c = 0; c < 3; ++c)
     {
-      const double* r = this->ComponentRanges[c];
+      const double* r = this->ColorRanges[c];
       lo[c] = static_cast<float>(r[0]);
       scale[c] = static_cast<float>(r[1] > r[0] ? 1.0 / (r[1] - r[0]) : 1.0e6);
     }

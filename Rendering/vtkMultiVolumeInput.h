@@ -84,13 +84,18 @@ public:
   /**
    * Copies `scalars` (component 0, one per point of `image`) as float when `image` is another
    * one or changed since; the brick tree and plain texture then follow. Of several components
-   * (at most 4) all are kept, interleaved, with their finite ranges. Returns whether it copied.
+   * (at most 4) all are kept, interleaved, with their colour ranges. Returns whether it copied.
    */
   bool UpdateScalars(vtkImageData* image, vtkDataArray* scalars, vtkWindow* window);
   /// The components UpdateScalars kept (1 for one scalar).
   int GetNumberOfComponents() const { return this->NumberOfComponents; }
-  /// The finite range of component c of the kept scalars.
-  const double* GetComponentRange(int c) const { return this->ComponentRanges[c]; }
+  /**
+   * The scalars of RGBA component `c` (0, 1, 2) that map to colour 0 and 1, as VTK 9.1 reads
+   * them (its textures normalise 8- and 16-bit integers, keep float as it is, and scale wider
+   * types over each component's range): [0, 255] for unsigned char, [0, 127] signed char,
+   * [0, 65535] unsigned short, [0, 32767] short, [0, 1] float, else the finite range.
+   */
+  static void GetColorRange(vtkDataArray* scalars, int c, double range[2]);
 
   /**
    * The transfer tables of components 1, 2, ... of independent components (component 0's is
@@ -211,8 +216,8 @@ private:
   std::vector<float> Scalars; ///< the input as float; the brick tree borrows it
   int NumberOfComponents = 1;
   std::vector<float> ComponentScalars; ///< several components: all, interleaved
-  double ComponentRanges[4][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 }, { 0, 1 } };
-  vtkTransferFunctionTable ComponentTables[3]; ///< independent components 1, 2, 3
+  double ColorRanges[3][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 } }; ///< RGBA: GetColorRange
+  vtkTransferFunctionTable ComponentTables[3];                 ///< independent components 1, 2, 3
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
   std::unique_ptr<vtkVolumeBrickTree> Tree;

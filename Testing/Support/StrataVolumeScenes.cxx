@@ -14,6 +14,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
+#include "vtkMultiVolumeInput.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -142,8 +143,10 @@ vtkMultiVolumeReferenceIntegrator::TransferFunction ReferenceFunction(vtkVolumeP
 }
 
 // The components of `v` (scalars already copied, interleaved) under `p`, as the mapper reads
-// them: independent functions and weights, or RGBA colour over each component's finite range.
-void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v, vtkVolumeProperty* p)
+// them: independent functions and weights, or RGBA colour ranges by the data type.
+void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v,
+  vtkVolumeProperty* p,
+  vtkDataArray* scalars)
 {
   using Components = vtkMultiVolumeReferenceIntegrator::Components;
   const int nc = v.NumberOfComponents;
@@ -162,16 +165,7 @@ void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v, vtkVolume
   }
   v.ComponentMode = nc == 2 ? Components::ColorOpacity : Components::RGBA;
   for (int c = 0; nc == 4 && c < 3; ++c)
-  {
-    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX;
-    for (size_t i = c; i < v.FloatScalars.size(); i += nc)
-    {
-      lo = std::min(lo, double(v.FloatScalars[i]));
-      hi = std::max(hi, double(v.FloatScalars[i]));
-    }
-    v.ColorRange[c][0] = lo;
-    v.ColorRange[c][1] = hi > lo ? hi : lo + 1e-6;
-  }
+    vtkMultiVolumeInput::GetColorRange(scalars, c, v.ColorRange[c]);
 }
 }
 
@@ -197,7 +191,7 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
     for (int c = 0; c < nc; ++c)
       v.FloatScalars[i * nc + c] = static_cast<float>(s->GetComponent(i, c));
   vtkVolumeProperty* p = member->GetProperty();
-  ReferenceComponents(v, p);
+  ReferenceComponents(v, p, s);
   v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
                  ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
                  : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
