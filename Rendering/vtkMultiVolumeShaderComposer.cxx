@@ -745,6 +745,8 @@ std::string Composite(const Key& key)
 
 bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) const
 {
+  if (this->ComponentModes != o.ComponentModes)
+    return this->ComponentModes < o.ComponentModes;
   return std::tie(this->Volumes,
            this->Shaded,
            this->Classification,
@@ -759,23 +761,21 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Modes,
            this->Reduce,
            this->Cropped,
-           this->GradientOpacity,
-           this->ComponentModes) < std::tie(o.Volumes,
-                                     o.Shaded,
-                                     o.Classification,
-                                     o.FrontToBack,
-                                     o.Barrier,
-                                     o.Rays,
-                                     o.Coherent,
-                                     o.Atlas,
-                                     o.Skipping,
-                                     o.Feedback,
-                                     o.Footprint,
-                                     o.Modes,
-                                     o.Reduce,
-                                     o.Cropped,
-                                     o.GradientOpacity,
-                                     o.ComponentModes);
+           this->GradientOpacity) < std::tie(o.Volumes,
+                                      o.Shaded,
+                                      o.Classification,
+                                      o.FrontToBack,
+                                      o.Barrier,
+                                      o.Rays,
+                                      o.Coherent,
+                                      o.Atlas,
+                                      o.Skipping,
+                                      o.Feedback,
+                                      o.Footprint,
+                                      o.Modes,
+                                      o.Reduce,
+                                      o.Cropped,
+                                      o.GradientOpacity);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
