@@ -8,7 +8,8 @@
  * are shaded, their blend modes (composite volumes are media; isosurface volumes add their
  * contour surfaces; MIP, MinIP, average and additive volumes are read as layers that their own
  * reduction pass, a program of its own, wrote), the classification, the compositing order, rays per
- * pixel and coherence, brick atlas, empty-space skipping and level-of-detail feedback. The fragment
+ * pixel and coherence, brick atlas, empty-space skipping, level-of-detail feedback and each
+ * volume's components (independent, colour + opacity, RGBA: one medium per volume). The fragment
  * template (vtkMultiVolumeFragmentFS.glsl) is a skeleton of tags; each feature has one builder
  * below that fills its tags from .glsl snippets (per volume, `@n@` standing for the volume's place
  * in the fragment), so a feature the scene does not use leaves no code behind. The lookup that
