@@ -86,6 +86,21 @@ bool vtkMultiVolumeInput::CollectComponents(vtkMultiVolumeRayCastMapper* mapper,
   return true;
 }
 
+int vtkMultiVolumeInput::GetOpacityComponent(Components mode)
+{
+  switch (mode)
+  {
+    case Components::One:
+      return 0;
+    case Components::ColorOpacity:
+      return 1;
+    case Components::RGBA:
+      return 3;
+    default:
+      return -1;
+  }
+}
+
 void vtkMultiVolumeInput::GetColorRange(vtkDataArray* scalars, int c, double range[2])
 {
   range[0] = 0.0;
@@ -322,17 +337,19 @@ double vtkMultiVolumeInput::GetEmptyScalar() const
 void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   const std::string& pool,
   const int dims[3],
-  int cellSize)
+  int cellSize,
+  int opacityComponent)
 {
   if (poolTree && this->SkipPool != pool)
   {
     this->SkipPool = pool;
     this->SkipDataTime = 0;
   }
-  const bool build = poolTree
-                       ? this->SkipDataTime == 0
-                       : this->SkipDataTime != this->DataTime ||
-                           this->Skip.GetCellSize() != cellSize || this->Skip.GetMinima().empty();
+  const int component = this->NumberOfComponents > 1 ? opacityComponent : 0;
+  const bool build =
+    poolTree ? this->SkipDataTime == 0
+             : this->SkipDataTime != this->DataTime || this->Skip.GetCellSize() != cellSize ||
+                 this->Skip.GetMinima().empty() || this->SkipComponent != component;
   if (build && poolTree)
   {
     // Paged: the level-0 bricks' ranges are the cells (stride B - 1), nothing is read.
@@ -347,10 +364,19 @@ void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
     this->Skip.BuildFromRanges(nb, poolTree->GetBrickStride(), lo.data(), hi.data());
     this->SkipDataTime = 1;
   }
-  else if (build)
+  else if (build && component > 0)
   {
+    std::vector<float> values(this->Scalars.size());
+    for (size_t i = 0; i < values.size(); ++i)
+      values[i] = this->ComponentScalars[i * this->NumberOfComponents + component];
+    this->Skip.Build(values.data(), dims, cellSize);
+  }
+  else if (build)
     this->Skip.Build(this->Scalars.data(), dims, cellSize);
+  if (build && !poolTree)
+  {
     this->SkipDataTime = this->DataTime;
+    this->SkipComponent = component;
   }
   if (!build && this->SkipTime == this->Table.GetBuildCount() && this->SkipTexture)
     return;

@@ -154,12 +154,16 @@ public:
   /**
    * The skip grid: cell ranges from the scalars (`cellSize` voxels) or, for a paged volume,
    * from `poolTree`'s level-0 bricks (rebuilt when `pool` names another pool); distances
-   * classified again when the transfer table changed; uploaded as R8UI.
+   * classified again when the transfer table changed; uploaded as R8UI. Of dependent
+   * components, the ranges are those of the component the opacity reads (`opacityComponent`).
    */
   void UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
     const std::string& pool,
     const int dims[3],
-    int cellSize);
+    int cellSize,
+    int opacityComponent = 0);
+  /// The component the opacity of `mode` reads when it is one (dependent), else -1.
+  static int GetOpacityComponent(Components mode);
 
   /// The pre-integration table of the classification at `sampleDistance`, uploaded on change.
   void UpdatePreIntegration(vtkOpenGLRenderWindow* window,
@@ -240,6 +244,7 @@ private:
   vtkStrataGLObject SkipTexture{ vtkStrataGLObject::Kinds::Texture }; ///< R8UI distances
   unsigned long SkipTime = 0;    ///< distances classified for this table build
   vtkMTimeType SkipDataTime = 0; ///< cell ranges built from this data (1: from a pool)
+  int SkipComponent = 0;         ///< the component they were built from
   std::string SkipPool;          ///< the pool the paged ranges came from
 };
 

@@ -419,9 +419,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
   }
   for (const FrameVolume& e : frame.Volumes)
   {
-    if (self->EmptySpaceSkipping && e.ComponentMode == Components::One)
+    const int opacity = vtkMultiVolumeInput::GetOpacityComponent(e.ComponentMode);
+    if (self->EmptySpaceSkipping && opacity >= 0)
       this->Inputs[e.Port].UpdateSkipGrid(
-        this->Pager.GetPoolTree(e.Port), e.Pool, e.Dims, self->SkipCellSize);
+        this->Pager.GetPoolTree(e.Port), e.Pool, e.Dims, self->SkipCellSize, opacity);
   }
   return true;
 }
@@ -812,12 +813,13 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
 {
   vtkMultiVolumeShaderComposer::FragmentKey key;
   key.Volumes = static_cast<int>(volumes.size());
-  bool components = false;
+  bool components = false, unskipped = false;
   for (int v : volumes)
   {
     const FrameVolume& e = frame.Volumes[v];
     const bool one = e.ComponentMode == Components::One;
     components = components || !one;
+    unskipped = unskipped || vtkMultiVolumeInput::GetOpacityComponent(e.ComponentMode) < 0;
     key.Shaded.push_back(one && frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
     key.Modes.push_back(e.Mode);
     key.Cropped.push_back(e.Cropped);
@@ -829,8 +831,8 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
   if (!components)
     key.ComponentModes.clear(); // one key for scenes of one-component volumes
   key.Reduce = reduce;
-  // A fragment with a volume of several components is post-classified and not skipped (its
-  // components have no tables or skip grid of their own for that).
+  // A fragment with a volume of several components is post-classified (its components have no
+  // pre-integration tables) and not skipped with independent ones (no skip grid for their mix).
   key.Classification = components ? Classifications::PostClassification : self->Classification;
   key.FrontToBack = reduce || frame.FrontToBack;
   key.Barrier = !reduce && frame.Barrier;
@@ -838,7 +840,7 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
   key.Coherent = self->RayCoherence && frame.Rays > 1 && !frame.AnyReduced;
   key.Atlas = frame.Atlas;
   key.Skipping =
-    self->EmptySpaceSkipping && !components &&
+    self->EmptySpaceSkipping && !unskipped &&
     !(reduce && frame.Volumes[volumes[0]].Mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
   // Feedback comes from the volumes a program samples (a layer's bricks report in its pass).
   bool samples = reduce;
