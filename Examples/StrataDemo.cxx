@@ -11,17 +11,20 @@
 #include "StrataDemoScene.h"
 #include "StrataImageHelpers.h"
 #include "StrataRealVolumes.h"
+#include "StrataSubsurfaceDemo.h"
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkHorizonVolumeSampler.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkHybridVolumeMapper.h"
 #include "vtkImageAppend.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkIrapBinaryGridReader.h"
+#include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
@@ -72,6 +75,50 @@ int main(int argc, char* argv[])
     dataDirs.push_back(paths.SharedData);
   }
   std::vector<std::string> written;
+
+  // --- Scene 0: the subsurface scene: two synthetic surveys from the Reek horizons (one
+  // paged), the top horizon draped with the amplitude, the base by depth, a well.
+  std::string reekDir;
+  for (size_t a = 0; a < dataDirs.size() && reekDir.empty(); ++a)
+  {
+    std::ifstream probe(dataDirs[a] + "/horizons/reek_01_topreek_rota.gri");
+    if (probe)
+    {
+      reekDir = dataDirs[a] + "/horizons/";
+    }
+  }
+  if (!reekDir.empty())
+  {
+    vtkNew<vtkRenderWindow> win;
+    win->SetSize(800, 600);
+    win->SetMultiSamples(0);
+    vtkNew<vtkRenderer> ren;
+    ren->SetBackground(0.08, 0.09, 0.12);
+    win->AddRenderer(ren);
+    strata_test::SubsurfaceDemo scene;
+    if (strata_test::AddSubsurfaceDemo(ren, reekDir, out, scene))
+    {
+      strata_test::FrameReekScene(ren, scene.Horizons, 2.0);
+      int frame = 0;
+      for (; frame < 40; ++frame)
+      {
+        win->Render();
+        if (scene.VolumeMapper->GetPagingStatistics().Converged)
+          break;
+        scene.VolumeMapper->WaitForPages(1.0);
+      }
+      std::cerr << "subsurface: " << scene.Drape->GetNumberOfSampledPoints()
+                << " horizon points draped (" << scene.Drape->GetNumberOfPagesRead()
+                << " pages read); survey A paged, settled after " << frame << " frames\n";
+      written.push_back(Save(win, out + "/strata-subsurface.png"));
+    }
+    strata_test::RemoveSubsurfaceDemoFiles(scene);
+    if (getenv("STRATA_DEMO_ONLY_SUBSURFACE"))
+    {
+      std::cout << written.back() << "\n";
+      return EXIT_SUCCESS;
+    }
+  }
 
   // --- Scene 1: synthetic stack, well and target (shared with TestHeightFieldDemo).
   {
@@ -135,15 +182,6 @@ int main(int argc, char* argv[])
   }
 
   // --- Scene 2: the four Reek horizons.
-  std::string reekDir;
-  for (size_t a = 0; a < dataDirs.size() && reekDir.empty(); ++a)
-  {
-    std::ifstream probe(dataDirs[a] + "/horizons/reek_01_topreek_rota.gri");
-    if (probe)
-    {
-      reekDir = dataDirs[a] + "/horizons/";
-    }
-  }
   if (reekDir.empty())
   {
     std::cerr << "Reek horizons not found in the data directories given; skipping that image.\n";

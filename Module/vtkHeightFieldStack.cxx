@@ -115,6 +115,48 @@ bool vtkHeightFieldStack::HasHoles() const
   return false;
 }
 
+bool vtkHeightFieldStack::Interpolate(int k, double x, double y, double& value) const
+{
+  x = std::min(std::max(x, 0.0), static_cast<double>(this->NX - 1));
+  y = std::min(std::max(y, 0.0), static_cast<double>(this->NY - 1));
+  const int i = std::min(static_cast<int>(x), this->NX - 2);
+  const int j = std::min(static_cast<int>(y), this->NY - 2);
+  const double u = x - i, v = y - j;
+  const double weights[4] = { (1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v };
+  const float corners[4] = { this->GetHeight(k, i, j),
+    this->GetHeight(k, i + 1, j),
+    this->GetHeight(k, i, j + 1),
+    this->GetHeight(k, i + 1, j + 1) };
+  double sum = 0.0, weight = 0.0;
+  for (int c = 0; c < 4; ++c)
+  {
+    if (!std::isnan(corners[c]))
+    {
+      sum += weights[c] * corners[c];
+      weight += weights[c];
+    }
+  }
+  // A point exactly on a hole corner has weight 0 from the valid ones: take their mean then.
+  if (weight <= 0.0)
+  {
+    int valid = 0;
+    for (int c = 0; c < 4; ++c)
+    {
+      if (!std::isnan(corners[c]))
+      {
+        sum += corners[c];
+        ++valid;
+      }
+    }
+    if (valid == 0)
+      return false;
+    value = sum / valid;
+    return true;
+  }
+  value = sum / weight;
+  return true;
+}
+
 void vtkHeightFieldStack::GetZRange(double range[2]) const
 {
   range[0] = std::numeric_limits<double>::infinity();

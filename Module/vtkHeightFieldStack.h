@@ -72,6 +72,14 @@ public:
   double GetLayerMax(int k) const { return this->Layers[k].Max; }
   /// Number of no-data points of layer k (on the input grid).
   size_t GetNumberOfHoles(int k) const { return this->Layers[k].Holes; }
+  /**
+   * Layer k's bilinear interpolant at grid point (x, y) (clamped to the grid), over the valid
+   * corners of its cell only, their weights renormalised, so that a value next to a hole stays
+   * the nearest data's rather than becoming NaN; false (value untouched) when all four corners
+   * are holes. The rule the horizon colouring draws a second grid (an attribute on the lateral
+   * grid) with, on the GPU and in its references.
+   */
+  bool Interpolate(int k, double x, double y, double& value) const;
   /// True when any layer has a no-data point: only then does the shader test for holes.
   bool HasHoles() const;
   /// Bounds over all layers of the valid heights.

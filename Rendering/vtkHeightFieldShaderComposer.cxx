@@ -5,10 +5,12 @@
 #include "vtkHeightFieldTileAtlas.h"
 #include "vtkStrataShaderCache.h"
 
+#include "vtkStackedHeightFieldAttribute.h"
 #include "vtkStackedHeightFieldFS.h"
 #include "vtkStackedHeightFieldFeedback.h"
 #include "vtkStackedHeightFieldFeedbackWrite.h"
 #include "vtkStackedHeightFieldHeadlight.h"
+#include "vtkStackedHeightFieldHorizonColor.h"
 #include "vtkStackedHeightFieldLight.h"
 #include "vtkStackedHeightFieldPositionalLight.h"
 #include "vtkStackedHeightFieldShading.h"
@@ -77,6 +79,22 @@ void Color(const Key& key, std::string& fs)
   {
     Replace(fs, "//STRATA::Color::Dec", "");
     Replace(fs, "//STRATA::Color::Impl", "");
+    return;
+  }
+  if (key.PerHorizon)
+  {
+    std::string colors = vtkStackedHeightFieldHorizonColor;
+    Replace(
+      colors, "//STRATA::Attribute::Dec", key.Attributes ? vtkStackedHeightFieldAttribute : "");
+    Replace(colors,
+      "//STRATA::Attribute::Impl",
+      key.Attributes ? "if (d.y >= 0.0 && !strataAttribute(int(d.y), pGrid.xy, value))\n"
+                       "  {\n"
+                       "    return texelFetch(uColors, table + 1024).rgb;\n"
+                       "  }"
+                     : "");
+    Replace(fs, "//STRATA::Color::Dec", colors);
+    Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = strataHorizonColor(hitLayer, pGrid);");
     return;
   }
   if (key.LookupTable)
@@ -151,6 +169,8 @@ bool vtkHeightFieldShaderComposer::Key::operator<(const Key& o) const
            this->Holes,
            this->Shaded,
            this->LookupTable,
+           this->PerHorizon,
+           this->Attributes,
            this->Lit,
            this->LightingComplexity,
            this->LightCount) < std::tie(o.Paged,
@@ -158,6 +178,8 @@ bool vtkHeightFieldShaderComposer::Key::operator<(const Key& o) const
                                  o.Holes,
                                  o.Shaded,
                                  o.LookupTable,
+                                 o.PerHorizon,
+                                 o.Attributes,
                                  o.Lit,
                                  o.LightingComplexity,
                                  o.LightCount);
@@ -168,7 +190,8 @@ std::string vtkHeightFieldShaderComposer::Key::ToString() const
   std::ostringstream s;
   s << (this->Paged ? "paged" : "in core") << (this->Feedback ? ", feedback" : "")
     << (this->Holes ? ", holes" : "")
-    << (!this->Shaded        ? ", horizon ids"
+    << (!this->Shaded       ? ", horizon ids"
+         : this->PerHorizon ? (this->Attributes ? ", per horizon with attributes" : ", per horizon")
          : this->LookupTable ? ", lookup table"
                              : ", solid colours");
   if (this->Lit)

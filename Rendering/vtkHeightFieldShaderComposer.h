@@ -7,7 +7,9 @@
  * The fragment template (vtkStackedHeightFieldFS.glsl) is a skeleton of tags; each feature of
  * Key fills its own: where heights live (in core, or paged: the tile atlas's lookup,
  * vtkHeightFieldTileAtlas), holes, level-of-detail feedback, colours (per horizon or a lookup
- * table over depth, or horizon ids), lighting with the renderer's lights (its complexity and
+ * table over depth, or horizon ids; or each horizon its own source: its solid colour, its table
+ * over its depth or over an attribute grid, with the attribute sampling compiled only when a
+ * horizon is coloured by one), lighting with the renderer's lights (its complexity and
  * number of lights, as VTK's own mappers unroll them). A feature the scene does not use
  * leaves no code behind. Programs are kept by key (vtkStrataShaderCache), so an unchanged frame
  * builds no source and hashes nothing.
@@ -37,6 +39,8 @@ public:
     bool Holes = false;         ///< some sample can be a hole
     bool Shaded = true;         ///< colours (else horizon ids)
     bool LookupTable = false;   ///< colour by depth through a table (else one per horizon)
+    bool PerHorizon = false;    ///< each horizon its own colour source (solid, table, attribute)
+    bool Attributes = false;    ///< some horizon is coloured by an attribute grid
     bool Lit = false;           ///< lighting
     int LightingComplexity = 0; ///< vtkOpenGLRenderer's, when lit
     int LightCount = 0;         ///< vtkOpenGLRenderer's, when lit

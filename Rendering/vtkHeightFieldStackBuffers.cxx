@@ -41,8 +41,13 @@ vtkHeightFieldStackBuffers::vtkHeightFieldStackBuffers()
 
 vtkHeightFieldStackBuffers::~vtkHeightFieldStackBuffers() = default;
 
-bool vtkHeightFieldStackBuffers::UploadHeights(vtkOpenGLRenderWindow* window,
+namespace
+{
+// The layers of `stack` as one R32F 2-D array texture (NaN kept: it marks no data).
+bool UploadLayers(vtkOpenGLRenderWindow* window,
+  unsigned int texture,
   const vtkHeightFieldStack& stack,
+  const char* what,
   std::string& error)
 {
   const int nx = stack.GetNX(), ny = stack.GetNY(), layers = stack.GetNumberOfLayers();
@@ -52,13 +57,13 @@ bool vtkHeightFieldStackBuffers::UploadHeights(vtkOpenGLRenderWindow* window,
   if (nx > maxSize || ny > maxSize || layers > maxLayers)
   {
     error = "A grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " x " +
-            std::to_string(layers) + " horizons exceeds this GPU's texture limits (" +
+            std::to_string(layers) + " " + what + " exceeds this GPU's texture limits (" +
             std::to_string(maxSize) + " per side, " + std::to_string(maxLayers) +
             " layers); page it from a tile pool instead.";
     return false;
   }
   window->GetState()->vtkglActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, this->Heights.Get());
+  glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -73,11 +78,31 @@ bool vtkHeightFieldStackBuffers::UploadHeights(vtkOpenGLRenderWindow* window,
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
   if (glGetError() != GL_NO_ERROR)
   {
-    error = "Could not upload " + std::to_string(layers) + " horizons of " + std::to_string(nx) +
-            " x " + std::to_string(ny) + " heights (out of GPU memory?).";
+    error = "Could not upload " + std::to_string(layers) + " " + what + " of " +
+            std::to_string(nx) + " x " + std::to_string(ny) + " values (out of GPU memory?).";
     return false;
   }
   return true;
+}
+}
+
+bool vtkHeightFieldStackBuffers::UploadHeights(vtkOpenGLRenderWindow* window,
+  const vtkHeightFieldStack& stack,
+  std::string& error)
+{
+  return UploadLayers(window, this->Heights.Get(), stack, "horizons", error);
+}
+
+bool vtkHeightFieldStackBuffers::UploadAttributes(vtkOpenGLRenderWindow* window,
+  const vtkHeightFieldStack& attributes,
+  std::string& error)
+{
+  if (attributes.GetNumberOfLayers() == 0)
+  {
+    this->Attributes.Release();
+    return true;
+  }
+  return UploadLayers(window, this->Attributes.Get(), attributes, "attribute grids", error);
 }
 
 void vtkHeightFieldStackBuffers::UploadTree(vtkOpenGLRenderWindow* window,
@@ -217,6 +242,7 @@ void vtkHeightFieldStackBuffers::Deactivate(bool colors)
 void vtkHeightFieldStackBuffers::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Heights.Release();
+  this->Attributes.Release();
   for (auto* t : { this->NodeTexture.Get(),
          this->IntervalTexture.Get(),
          this->LayerListTexture.Get(),

@@ -6,7 +6,8 @@
  *          the rays.
  *
  * In core the heights are one R32F 2-D array texture, one layer per horizon (paged, the tile
- * atlas holds them: vtkHeightFieldTileAtlas). The quadtree (vtkMinMaxQuadtree: nodes, depth
+ * atlas holds them: vtkHeightFieldTileAtlas), and the attribute grids horizons are coloured by
+ * another, one layer per coloured horizon. The quadtree (vtkMinMaxQuadtree: nodes, depth
  * intervals, horizon lists) and the colour table (one per horizon or 1024 over depth) are
  * float texture buffers; ints stored as floats are exact below 2^24, far above any tree built
  * here. The box spans the grid and the value range, slightly taller than the data so that
@@ -46,6 +47,14 @@ public:
     std::string& error);
   bool HasHeights() const { return static_cast<bool>(this->Heights); }
   unsigned int GetHeightTexture() const { return this->Heights.GetName(); }
+  /**
+   * Attribute grids on the same lateral grid (one layer each, NaN for no data), for horizons
+   * coloured by a second grid; an empty stack releases them.
+   */
+  bool UploadAttributes(vtkOpenGLRenderWindow* window,
+    const vtkHeightFieldStack& attributes,
+    std::string& error);
+  unsigned int GetAttributeTexture() const { return this->Attributes.GetName(); }
 
   void UploadTree(vtkOpenGLRenderWindow* window, const vtkMinMaxQuadtree& tree);
   /// The proxy box over an nx x ny grid and the value range (empty range: 0).
@@ -66,6 +75,7 @@ public:
 
 private:
   vtkStrataGLObject Heights{ vtkStrataGLObject::Kinds::Texture };
+  vtkStrataGLObject Attributes{ vtkStrataGLObject::Kinds::Texture };
   vtkNew<vtkOpenGLBufferObject> NodeBuffer, IntervalBuffer, LayerListBuffer, ColorBuffer;
   vtkNew<vtkTextureObject> NodeTexture, IntervalTexture, LayerListTexture, ColorTexture;
   vtkNew<vtkOpenGLBufferObject> BoxVertices, BoxIndices;

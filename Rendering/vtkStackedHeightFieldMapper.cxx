@@ -100,6 +100,11 @@ public:
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   std::map<int, std::array<double, 3>> HorizonColors;
   vtkSmartPointer<vtkScalarsToColors> Lut;
+  // Per horizon: a colour array (its name) and a lookup table; the arrays' values in core.
+  std::map<int, std::string> ColorArrays;
+  std::map<int, vtkSmartPointer<vtkScalarsToColors>> HorizonLuts;
+  vtkHeightFieldStack Attributes;
+  std::vector<int> AttributeLayer; ///< per horizon: its layer of Attributes, or -1
   vtkTimeStamp ColorsModified;
   // What the renderer draws, in core or paged: grid size, horizons, value range, holes.
   int NX = 0, NY = 0, Layers = 0;
@@ -135,15 +140,19 @@ public:
   {
     bool Shaded = true;
     bool LookupTable = false;
+    bool PerHorizon = false; ///< some horizon has its own table or colour array
     bool Lit = false;
     double LutRange[2] = { 0.0, 1.0 };
     vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;
     int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
   };
 
+  bool ReadAttributes(Self* self, const std::vector<vtkImageData*>& images);
   bool Upload(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
   bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor);
   void UpdateColors(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  bool ColorsCurrent() const;
+  std::vector<float> PerHorizonColors(Self* self) const;
   bool UseFeedback(Self* self);
   vtkShaderProgram* ReadyProgram(Self* self,
     vtkOpenGLRenderWindow* renWin,
@@ -208,6 +217,30 @@ void vtkStackedHeightFieldMapper::SetOutputMode(OutputModes mode)
 void vtkStackedHeightFieldMapper::SetHorizonColor(int index, double r, double g, double b)
 {
   this->Internals->HorizonColors[index] = { r, g, b };
+  this->Internals->ColorsModified.Modified();
+  this->Modified();
+}
+
+void vtkStackedHeightFieldMapper::SetHorizonColorArray(int index, const char* name)
+{
+  auto& arrays = this->Internals->ColorArrays;
+  const std::string value = name ? name : "";
+  auto it = arrays.find(index);
+  if ((it == arrays.end() ? std::string() : it->second) == value)
+    return;
+  if (value.empty())
+    arrays.erase(index);
+  else
+    arrays[index] = value;
+  this->Modified(); // the attribute grids are read with the inputs
+}
+
+void vtkStackedHeightFieldMapper::SetHorizonLookupTable(int index, vtkScalarsToColors* lut)
+{
+  if (lut)
+    this->Internals->HorizonLuts[index] = lut;
+  else
+    this->Internals->HorizonLuts.erase(index);
   this->Internals->ColorsModified.Modified();
   this->Modified();
 }
@@ -291,8 +324,15 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
     return false;
   }
   in.Paged = pooled > 0;
+  in.AttributeLayer.assign(n, -1);
+  in.Attributes.Initialize(1, 1);
   if (in.Paged)
   {
+    if (!in.ColorArrays.empty())
+    {
+      vtkWarningMacro("Paged horizons carry heights only: the horizons given colour arrays are "
+                      "coloured by their depth.");
+    }
     return this->UpdatePagedStack(images);
   }
 
@@ -371,6 +411,10 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
       return false;
     }
   }
+  if (!in.ReadAttributes(this, images))
+  {
+    return false;
+  }
   in.Tree.Build(in.Stack, this->TileSize);
   in.NX = in.Stack.GetNX();
   in.NY = in.Stack.GetNY();
@@ -395,6 +439,59 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   }
   this->ComputeBounds();
   in.Valid = true;
+  return true;
+}
+
+// --- The colour arrays of the horizons that have one, as a second stack on the same grid (the
+// same ribbon expansion), one layer per coloured horizon.
+bool vtkStackedHeightFieldMapper::vtkInternals::ReadAttributes(Self* self,
+  const std::vector<vtkImageData*>& images)
+{
+  const int n = static_cast<int>(images.size());
+  this->AttributeLayer.assign(n, -1);
+  if (!this->Attributes.Initialize(this->Stack.GetInputNX(), this->Stack.GetInputNY()))
+    return false;
+  const vtkIdType points =
+    static_cast<vtkIdType>(this->Stack.GetInputNX()) * this->Stack.GetInputNY();
+  for (const auto& entry : this->ColorArrays)
+  {
+    const int k = entry.first;
+    if (k < 0 || k >= n)
+    {
+      vtkWarningWithObjectMacro(self,
+        "Horizon " << k << " has a colour array (" << entry.second << ") but the stack has " << n
+                   << " horizons.");
+      continue;
+    }
+    vtkDataArray* array = images[k]->GetPointData()->GetArray(entry.second.c_str());
+    if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != points)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Horizon " << k << " has no single-component point array " << entry.second
+                   << " with one value per point.");
+      return false;
+    }
+    bool ok;
+    if (auto* f = vtkFloatArray::FastDownCast(array))
+    {
+      ok = this->Attributes.AddLayer(f->GetPointer(0));
+      this->Arrays.emplace_back(f);
+    }
+    else
+    {
+      vtkNew<vtkDoubleArray> copy;
+      copy->DeepCopy(array);
+      ok = this->Attributes.AddLayer(copy->GetPointer(0));
+    }
+    if (!ok)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Cannot read horizon " << k << "'s colour array " << entry.second << ": "
+                               << this->Attributes.GetErrorMessage());
+      return false;
+    }
+    this->AttributeLayer[k] = this->Attributes.GetNumberOfLayers() - 1;
+  }
   return true;
 }
 
@@ -634,7 +731,8 @@ bool vtkStackedHeightFieldMapper::vtkInternals::Upload(Self* self,
   if (this->UploadTime >= this->BuildTime && this->Buffers.HasHeights())
     return true;
   std::string error;
-  if (!this->Buffers.UploadHeights(renWin, this->Stack, error))
+  if (!this->Buffers.UploadHeights(renWin, this->Stack, error) ||
+      !this->Buffers.UploadAttributes(renWin, this->Attributes, error))
   {
     vtkErrorWithObjectMacro(self, << error);
     return false;
@@ -646,44 +744,126 @@ bool vtkStackedHeightFieldMapper::vtkInternals::Upload(Self* self,
 }
 
 // --- Colours: one per horizon (SetHorizonColor or the palette) or 1024 entries of the lookup
-// table (or the default depth map) over its range or the stack's.
+// table (or the default depth map) over its range or the stack's; or, when some horizon has its
+// own table or colour array, per horizon a descriptor, its solid colour and its table.
+namespace
+{
+const int TableEntries = 1024;
+
+// A table of TableEntries colours over range, then the colour of no data.
+void AppendTable(vtkScalarsToColors* lut, const double range[2], std::vector<float>& colors)
+{
+  for (int e = 0; e <= TableEntries; ++e)
+  {
+    double rgb[3] = { 0.5, 0.5, 0.5 };
+    const double s = (e + 0.5) / TableEntries;
+    if (e == TableEntries)
+    {
+      if (lut)
+        lut->GetColor(std::nan(""), rgb);
+    }
+    else if (lut)
+      lut->GetColor(range[0] + s * (range[1] - range[0]), rgb);
+    else
+      DefaultDepthColor(s, rgb);
+    colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+  }
+}
+
+// The table's range: the table's own when it has one, else `fallback`; never empty.
+void TableRange(vtkScalarsToColors* lut, double lo, double hi, double range[2])
+{
+  range[0] = lo;
+  range[1] = hi;
+  if (lut)
+  {
+    const double* r = lut->GetRange();
+    if (r[0] < r[1])
+    {
+      range[0] = r[0];
+      range[1] = r[1];
+    }
+  }
+  if (!(range[1] > range[0]))
+    range[1] = range[0] + 1.0;
+}
+}
+
+bool vtkStackedHeightFieldMapper::vtkInternals::ColorsCurrent() const
+{
+  if (this->ColorTime < this->ColorsModified.GetMTime() || this->ColorTime < this->BuildTime)
+    return false;
+  if (this->Lut && this->ColorTime < this->Lut->GetMTime())
+    return false;
+  for (const auto& entry : this->HorizonLuts)
+  {
+    if (this->ColorTime < entry.second->GetMTime())
+      return false;
+  }
+  return true;
+}
+
+std::vector<float> vtkStackedHeightFieldMapper::vtkInternals::PerHorizonColors(Self* self) const
+{
+  std::vector<float> colors(8 * static_cast<size_t>(this->Layers), 0.0f);
+  for (int k = 0; k < this->Layers; ++k)
+  {
+    auto lutIt = this->HorizonLuts.find(k);
+    vtkScalarsToColors* lut = lutIt != this->HorizonLuts.end() ? lutIt->second.Get() : nullptr;
+    const int attribute =
+      k < static_cast<int>(this->AttributeLayer.size()) ? this->AttributeLayer[k] : -1;
+    float* d = &colors[8 * static_cast<size_t>(k)];
+    auto colorIt = this->HorizonColors.find(k);
+    const double* rgb =
+      colorIt != this->HorizonColors.end() ? colorIt->second.data() : DefaultPalette[k % 8];
+    std::copy_n(rgb, 3, d + 4);
+    d[7] = 1.0f;
+    const bool byDepth = self->ColorMode == ColorModes::LookupTable;
+    if (!lut && attribute < 0 && !byDepth)
+    {
+      d[0] = -1.0f; // its solid colour
+      continue;
+    }
+    double range[2];
+    if (attribute >= 0)
+      TableRange(lut,
+        this->Attributes.GetLayerMin(attribute),
+        this->Attributes.GetLayerMax(attribute),
+        range);
+    else
+      TableRange(lut ? lut : this->Lut.Get(), this->ZRange[0], this->ZRange[1], range);
+    d[0] = static_cast<float>(colors.size() / 4);
+    d[1] = static_cast<float>(attribute);
+    d[2] = static_cast<float>(range[0]);
+    d[3] = static_cast<float>(range[1]);
+    AppendTable(lut || attribute >= 0 ? lut : this->Lut.Get(), range, colors);
+  }
+  return colors;
+}
+
 void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
   vtkOpenGLRenderWindow* renWin,
   Frame& frame)
 {
   frame.Shaded = self->OutputMode == OutputModes::Shaded;
-  frame.LookupTable = frame.Shaded && self->ColorMode == ColorModes::LookupTable;
-  frame.LutRange[0] = this->ZRange[0];
-  frame.LutRange[1] = this->ZRange[1];
-  if (this->Lut && frame.LookupTable)
-  {
-    const double* r = this->Lut->GetRange();
-    if (r[0] < r[1])
-    {
-      frame.LutRange[0] = r[0];
-      frame.LutRange[1] = r[1];
-    }
-  }
-  if (frame.LutRange[1] <= frame.LutRange[0])
-    frame.LutRange[1] = frame.LutRange[0] + 1.0;
-  if (!frame.Shaded ||
-      (this->ColorTime >= this->ColorsModified.GetMTime() && this->ColorTime >= this->BuildTime &&
-        (!this->Lut || this->ColorTime >= this->Lut->GetMTime())))
+  frame.PerHorizon =
+    frame.Shaded && (!this->HorizonLuts.empty() || std::any_of(this->AttributeLayer.begin(),
+                                                     this->AttributeLayer.end(),
+                                                     [](int l) { return l >= 0; }));
+  frame.LookupTable =
+    frame.Shaded && !frame.PerHorizon && self->ColorMode == ColorModes::LookupTable;
+  TableRange(this->Lut, this->ZRange[0], this->ZRange[1], frame.LutRange);
+  if (!frame.Shaded || (this->ColorTime != 0 && this->ColorsCurrent()))
     return;
   std::vector<float> colors;
-  if (frame.LookupTable)
+  if (frame.PerHorizon)
   {
-    const int entries = 1024;
-    for (int e = 0; e < entries; ++e)
-    {
-      const double s = (e + 0.5) / entries;
-      double rgb[3];
-      if (this->Lut)
-        this->Lut->GetColor(frame.LutRange[0] + s * (frame.LutRange[1] - frame.LutRange[0]), rgb);
-      else
-        DefaultDepthColor(s, rgb);
-      colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
-    }
+    colors = this->PerHorizonColors(self);
+  }
+  else if (frame.LookupTable)
+  {
+    AppendTable(this->Lut, frame.LutRange, colors);
+    colors.resize(4 * TableEntries); // the flat table has no entry for no data
   }
   else
   {
@@ -699,6 +879,8 @@ void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
   this->ColorTime = std::max(this->ColorsModified.GetMTime(), this->BuildTime);
   if (this->Lut)
     this->ColorTime = std::max(this->ColorTime, this->Lut->GetMTime());
+  for (const auto& entry : this->HorizonLuts)
+    this->ColorTime = std::max(this->ColorTime, entry.second->GetMTime());
 }
 
 // Feedback needs paging, image load/store (GL 4.2 or the ARB extension) and at most 63
@@ -745,6 +927,8 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   key.Holes = this->Holes;
   key.Shaded = frame.Shaded;
   key.LookupTable = frame.LookupTable;
+  key.PerHorizon = frame.PerHorizon;
+  key.Attributes = frame.PerHorizon && !this->Paged && this->Attributes.GetNumberOfLayers() > 0;
   key.Lit = frame.Lit;
   key.LightingComplexity = frame.Lit ? oglRen->GetLightingComplexity() : 0;
   key.LightCount = frame.Lit ? oglRen->GetLightingCount() : 0;
@@ -1013,6 +1197,14 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     program->SetUniformi("uHeights", heightUnit);
   }
   in.Buffers.Activate(program, frame.Shaded);
+  int attributeUnit = -1;
+  if (in.LastKey.Attributes)
+  {
+    attributeUnit = units->Allocate();
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + attributeUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, in.Buffers.GetAttributeTexture());
+    program->SetUniformi("uAttributes", attributeUnit);
+  }
   if (frame.LookupTable)
   {
     const float lr[2] = { float(frame.LutRange[0]), float(frame.LutRange[1]) };
@@ -1024,6 +1216,12 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   in.Draw(renWin, program);
   in.Buffers.Deactivate(frame.Shaded);
+  if (attributeUnit >= 0)
+  {
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + attributeUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    units->Free(attributeUnit);
+  }
   if (in.Paged)
   {
     in.Atlas.Unbind(renWin);

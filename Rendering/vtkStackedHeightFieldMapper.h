@@ -26,9 +26,16 @@
  * (no cracks) and refined tiles blend in over MorphFrames frames (no pops). Every frame shows a
  * complete, coarser surface until the cut settles; converged, the image equals the in-core one.
  *
+ * Colours: one per horizon, or a lookup table over depth (ColorMode), or per horizon its own:
+ * a lookup table over its depth (SetHorizonLookupTable) or over a second grid on the same
+ * lateral grid, a point array of its input such as the thickness to the next horizon or an
+ * amplitude extracted along it (SetHorizonColorArray), bilinear over the valid corners of the
+ * hit cell (vtkHeightFieldStack::Interpolate), its no-data points in the table's NaN colour.
+ *
  * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
- * table code with solid colours, no hole test when no horizon has holes. GetFragmentShaderSource
- * returns the source last used.
+ * table code with solid colours, no per-horizon sources unless a horizon has one, no attribute
+ * sampling unless a horizon is coloured by a grid, no hole test when no horizon has holes.
+ * GetFragmentShaderSource returns the source last used.
  *
  * @code
  * vtkNew<vtkStackedHeightFieldMapper> mapper;
@@ -159,6 +166,21 @@ public:
    * it has one.
    */
   void SetHeightLookupTable(vtkScalarsToColors* lut);
+
+  /**
+   * Colours horizon `index` by the point array `name` of its input (one value per grid point;
+   * NaN and |v| >= 1e30 are no data) through its lookup table (SetHorizonLookupTable, else the
+   * built-in colour map over the array's range); null or empty (default) colours it as
+   * ColorMode says. In core only: paged horizons carry heights only (a warning, then depth).
+   */
+  void SetHorizonColorArray(int index, const char* name);
+
+  /**
+   * Lookup table of horizon `index`, over its colour array or, without one, over its height
+   * value, whatever ColorMode says; its own range when it has one, else the array's (or the
+   * stack's) range. Values of no data take its NaN colour. Null (default) removes it.
+   */
+  void SetHorizonLookupTable(int index, vtkScalarsToColors* lut);
 
   ///@{
   /**

@@ -172,6 +172,7 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
   vtkHeightFieldReferenceCaster caster(stack);
   std::vector<double> points;
   caster.CastImage(clipToGrid->GetData(), w, h, r.RefIds, points);
+  r.RefPoints = points;
 
   const IdComparison cmp = CompareIds(r.GpuIds, r.RefIds, w, h);
   r.Covered = cmp.Covered;

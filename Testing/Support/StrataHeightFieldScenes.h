@@ -47,7 +47,8 @@ struct ReferenceResult
   double MaxRelDepthError = 0.0; ///< max |d_gpu - d_ref| / d_ref over pixels with equal ids
   double DepthBoundViolations = 0;
   std::vector<int> GpuIds, RefIds;
-  std::vector<double> RefDepth; ///< window depth [0, 1] of the reference's hits, 1 where none
+  std::vector<double> RefDepth;  ///< window depth [0, 1] of the reference's hits, 1 where none
+  std::vector<double> RefPoints; ///< grid-space hit points of the reference, 3 per pixel
   double MismatchFraction() const
   {
     return this->Covered ? double(this->Mismatched) / this->Covered : 0.0;
