@@ -22,9 +22,10 @@ public:
   {
     std::unique_ptr<vtkVolumeBrickTree> Tree;
     std::map<int, vtkPageCache::Page> Held;
-    int Step = 0;          ///< the time step shown
-    int PoolId = 0;        ///< its pool (GetPoolId)
-    int NextPoolId = -1;   ///< the step prefetched (SetNextStep), -1 none
+    int Step = 0;                                 ///< the time step shown
+    int PoolId = 0;                               ///< its pool (GetPoolId)
+    int NextPoolId = -1;                          ///< the step prefetched (SetNextStep), -1 none
+    std::unique_ptr<vtkVolumeBrickTree> NextTree; ///< its structure and ranges
     bool Switched = false; ///< the step changed since the last Update: swap the held pages
     int PlayedStep = -1;   ///< the step FollowPlayback saw last
     int Direction = 1;     ///< of playback: the sign of the last step change
@@ -42,6 +43,11 @@ public:
   std::map<int, std::vector<std::array<int, 2>>> FixedCuts;
   bool FixedCutsChanged = false;
 
+  const Paged* PagedPort(int port) const
+  {
+    auto it = this->Ports.find(port);
+    return it == this->Ports.end() ? nullptr : &it->second;
+  }
   Paged* PagedPort(int port)
   {
     auto it = this->Ports.find(port);
@@ -112,31 +118,59 @@ public:
     return key;
   }
 
-  /// After a step switch: every held page becomes the new step's page of the same brick, from
-  /// the cache (prefetched) or read here; the atlas is written again. Returns the pages read.
+  /// Whether `node` of `tree` may be visible under `volume`'s transfer function: a cut leaf
+  /// that was empty (and had no page) may show data in another step. With a halo a
+  /// neighbour's range decides too: then every node may.
+  static bool MayShow(const Volume& volume, const vtkVolumeBrickTree& tree, int node)
+  {
+    const auto& n = tree.GetNode(node);
+    return volume.Halo || !volume.Opacity ||
+           (n.SubtreeMin <= n.SubtreeMax && volume.Opacity(n.SubtreeMin, n.SubtreeMax) > 0.0);
+  }
+
+  /// The pages a step of `paged` needs for the last cut of volume `v`: the held ones, and the
+  /// cut's leaves without a page that the step's `tree` may show.
+  std::vector<int> StepNodes(int v, const Paged& paged, const vtkVolumeBrickTree& tree) const
+  {
+    std::vector<int> nodes;
+    for (const auto& held : paged.Held)
+      nodes.push_back(held.first);
+    for (int n : this->Cut.GetCutNodes(v))
+      if (!paged.Held.count(n) && MayShow(this->Volumes[v], tree, n))
+        nodes.push_back(n);
+    return nodes;
+  }
+
+  /// After a step switch: every page of the last cut becomes the new step's page of the same
+  /// brick, from the cache (prefetched) or read here; the atlas is written again. Returns the
+  /// pages read, -1 with `error` set when one cannot be.
   int SwitchSteps(std::string& error)
   {
     int read = 0;
-    for (auto& [port, paged] : this->Ports)
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
     {
-      if (!paged.Switched)
+      Paged* paged = this->PagedPort(this->Volumes[v].Port);
+      if (!paged || !paged->Switched || static_cast<int>(v) >= this->Cut.GetNumberOfVolumes())
         continue;
-      paged.Switched = false;
-      for (auto& [node, page] : paged.Held)
+      paged->Switched = false;
+      for (int node : this->StepNodes(static_cast<int>(v), *paged, *paged->Tree))
       {
-        const vtkPageCache::Key key = KeyOf(paged, paged.PoolId, node);
-        page = this->Pools.Find(key);
-        if (page)
-          continue;
-        std::string why;
-        page = this->Pools.ReadPage(key.Dataset, key.Level, static_cast<uint64_t>(key.Page), why);
+        const vtkPageCache::Key key = KeyOf(*paged, paged->PoolId, node);
+        vtkPageCache::Page page = this->Pools.Find(key);
         if (!page)
         {
-          error = "Cannot read page " + std::to_string(key.Level) + "/" + std::to_string(key.Page) +
-                  " of \"" + this->Pools.GetPoolName(key.Dataset) + "\": " + why;
-          return -1;
+          std::string why;
+          page = this->Pools.ReadPage(key.Dataset, key.Level, static_cast<uint64_t>(key.Page), why);
+          if (!page)
+          {
+            error = "Cannot read page " + std::to_string(key.Level) + "/" +
+                    std::to_string(key.Page) + " of \"" + this->Pools.GetPoolName(key.Dataset) +
+                    "\": " + why;
+            return -1;
+          }
+          ++read;
         }
-        ++read;
+        paged->Held[node] = page;
       }
       this->Atlas.Clear(); // every resident brick holds the old step
       ++this->Stats.StepSwitches;
@@ -144,18 +178,19 @@ public:
     return read;
   }
 
-  /// The next step's pages of every brick held (cut and ancestors), below the demand requests:
-  /// coarse levels first, so an interrupted prefetch still helps the coarse cut.
+  /// The next step's pages of the cut (StepNodes under the next step's ranges), below the
+  /// demand requests: coarse levels first, so an interrupted prefetch still helps.
   void PrefetchNextSteps()
   {
     this->Stats.NextStepPagesResident = this->Stats.NextStepPagesWanted = 0;
-    for (const auto& [port, paged] : this->Ports)
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
     {
-      if (paged.NextPoolId < 0)
+      const Paged* paged = this->PagedPort(this->Volumes[v].Port);
+      if (!paged || paged->NextPoolId < 0 || !paged->NextTree)
         continue;
-      for (const auto& held : paged.Held)
+      for (int node : this->StepNodes(static_cast<int>(v), *paged, *paged->NextTree))
       {
-        const vtkPageCache::Key key = KeyOf(paged, paged.NextPoolId, held.first);
+        const vtkPageCache::Key key = KeyOf(*paged, paged->NextPoolId, node);
         ++this->Stats.NextStepPagesWanted;
         if (this->Pools.IsResident(key))
           ++this->Stats.NextStepPagesResident;
@@ -346,15 +381,16 @@ bool vtkVolumePager::SetNextStep(int port,
   std::shared_ptr<vtkPagePoolFile> file = in.Pools.OpenPool(id, fileName, error);
   if (!file)
     return false;
-  vtkVolumeBrickTree tree;
+  auto tree = std::make_unique<vtkVolumeBrickTree>();
   if (file->GetKind() != vtkPagePoolFormat::Kind::BrickPool ||
-      !vtkPagedPools::BuildTree(*file, tree) || !SameStructure(tree, *paged->Tree))
+      !vtkPagedPools::BuildTree(*file, *tree) || !SameStructure(*tree, *paged->Tree))
   {
     error = "the pool \"" + fileName + "\" of step " + std::to_string(step) +
             " does not have the structure of the step shown";
     return false;
   }
   paged->NextPoolId = id;
+  paged->NextTree = std::move(tree);
   return true;
 }
 

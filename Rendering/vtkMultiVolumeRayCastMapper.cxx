@@ -343,7 +343,8 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
   auto& [shown, warned] = this->ShownPools[port];
   this->HeldValid = this->HeldValid && shown == pool;
   shown = pool;
-  const int next = this->Pager.FollowPlayback(port, step, steps);
+  const int followed = this->Pager.FollowPlayback(port, step, steps);
+  const int next = self->PrefetchTimeSteps ? followed : -1;
   const char* nextPool = next >= 0 ? info->Get(Reader::POOL_SERIES(), next) : "";
   if (!this->Pager.SetNextStep(port, next, nextPool ? nextPool : "", error) && error != warned)
     vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
@@ -1476,6 +1477,7 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PageCacheBudget: " << this->PageCacheBudget << " MB\n";
   os << indent << "PagesPerFrame: " << this->PagesPerFrame << "\n";
   os << indent << "Prefetch: " << this->Prefetch << "\n";
+  os << indent << "PrefetchTimeSteps: " << this->PrefetchTimeSteps << "\n";
   os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << "\n";
   os << indent << "FeedbackScale: " << this->FeedbackScale << "\n";
   os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";
