@@ -13,6 +13,10 @@
 //   I/O-wait frames and draws the converged image of that step at once. After a step change
 //   backwards, the step below is prefetched instead. A jump to a step that was not prefetched
 //   reads every held page itself, in one I/O-wait frame (exact counts: the counter can fail).
+// - Hidden bricks: with values below 30 transparent, bricks the cut keeps as empty leaves (no
+//   page) show data in the next step: the prefetch and the switch load them too (0 pages read
+//   on the render thread, no "entered the cut without its page" error: measured before the
+//   fix), and every step converges to its in-core image.
 // - Bad series: a step of other dimensions, a missing step, and times not increasing give a
 //   VTK error naming the step, and no crash (reader and mapper).
 //
@@ -347,6 +351,51 @@ void Unprefetched(Fixture& fx)
   Check(after.IoWaitFrames - before.IoWaitFrames == 1, "one I/O-wait frame");
 }
 
+/// Values below 30 transparent: blobs of other steps cover bricks the cut keeps as empty
+/// leaves without a page, which a switch must load (the new step's ranges show them).
+void HiddenBricks(Fixture& fx)
+{
+  auto property = MakeProperty();
+  property->GetScalarOpacity()->RemoveAllPoints();
+  property->GetScalarOpacity()->AddPoint(0.0, 0.0);
+  property->GetScalarOpacity()->AddPoint(30.0, 0.0);
+  property->GetScalarOpacity()->AddPoint(100.0, 0.4);
+  Scene s(property);
+  vtkSmartPointer<vtkPagePoolReader> reader = fx.MakeReader();
+  vtkNew<vtkMultiVolumeRayCastMapper> paged;
+  paged->SetInputConnection(reader->GetOutputPort());
+  Configure(paged);
+  SetTime(paged, Times[0]);
+  int frames = 0;
+  Converge(s, paged, frames);
+  for (int next = 1; next < Steps; ++next)
+  {
+    paged->WaitForPages(30.0);
+    s.Render(paged);
+    const auto before = paged->GetPagingStatistics();
+    SetTime(paged, Times[next]);
+    const auto first = s.Render(paged);
+    const auto after = paged->GetPagingStatistics();
+    const auto image = Converge(s, paged, frames);
+    vtkNew<vtkMultiVolumeRayCastMapper> incore;
+    incore->SetInputData(fx.Images[next]);
+    Configure(incore);
+    const auto reference = s.Render(incore);
+    const ChannelError e = ImageError(image, reference);
+    const std::string at = "hidden bricks, switch to step " + std::to_string(next);
+    std::cout << "Hidden bricks, switch to step " << next << ": " << before.NextStepPagesResident
+              << " of " << before.NextStepPagesWanted << " next-step pages resident, "
+              << after.StepPagesRead - before.StepPagesRead << " read on the render thread; "
+              << "first frame RMS " << ImageError(first, reference).Rms << ", converged after "
+              << frames << " more frames: RMS " << e.Rms << ", max " << e.Max << "\n";
+    Check(
+      before.NextStepPagesWanted > 0 && before.NextStepPagesResident == before.NextStepPagesWanted,
+      at + ": every page of the next step prefetched");
+    Check(after.StepPagesRead == before.StepPagesRead, at + ": 0 pages read synchronously");
+    Check(frames > 0 && e.Max <= 1.0 && e.Rms <= 0.05, at + ": converges to the in-core image");
+  }
+}
+
 /// One bad series: the reader's information fails with an error naming `expect` (the first
 /// error of the update), and a mapper on it renders without crashing. Returns that error.
 std::string BadSeries(const std::string& what,
@@ -413,6 +462,7 @@ int TestMultiVolumeTimeSeries(int argc, char* argv[])
       { "ImagesPerStep", [&] { ImagesPerStep(fx); } },
       { "Prefetch", [&] { Prefetch(fx); } },
       { "Unprefetched", [&] { Unprefetched(fx); } },
+      { "HiddenBricks", [&] { HiddenBricks(fx); } },
       { "BadInput", [&] { BadInput(fx); } },
       { "NoOtherMessages", [&] { CheckNoVtkMessages(output); } },
     },
