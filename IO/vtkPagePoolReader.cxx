@@ -10,6 +10,7 @@
 #include "vtkInformationDoubleKey.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
+#include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -91,6 +92,106 @@ const char* const vtkPagePoolReader::PoolFileNameArray = "PagePoolFileName";
 const char* const vtkPagePoolReader::PoolLayerArray = "PagePoolLayer";
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_FILE_NAME, String);
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_LAYER, Integer);
+vtkInformationKeyMacro(vtkPagePoolReader, POOL_TIME_STEP, Integer);
+vtkInformationKeyMacro(vtkPagePoolReader, POOL_SERIES, StringVector);
+
+//------------------------------------------------------------------------------
+void vtkPagePoolReader::AddTimeStep(const char* fileName, double time)
+{
+  this->StepFiles.emplace_back(fileName ? fileName : "");
+  this->StepTimes.push_back(time);
+  this->Modified();
+}
+
+void vtkPagePoolReader::RemoveAllTimeSteps()
+{
+  if (this->StepFiles.empty())
+    return;
+  this->StepFiles.clear();
+  this->StepTimes.clear();
+  this->Modified();
+}
+
+const char* vtkPagePoolReader::GetTimeStepFileName(int step) const
+{
+  return step >= 0 && step < this->GetNumberOfTimeSteps() ? this->StepFiles[step].c_str() : nullptr;
+}
+
+double vtkPagePoolReader::GetTimeStepValue(int step) const
+{
+  return step >= 0 && step < this->GetNumberOfTimeSteps() ? this->StepTimes[step] : 0.0;
+}
+
+int vtkPagePoolReader::ChooseTimeStep(const double* times, int count, double t)
+{
+  // The last step at or below t: upper_bound finds the first above it.
+  const int above = static_cast<int>(std::upper_bound(times, times + count, t) - times);
+  return std::max(0, std::min(above - 1, count - 1));
+}
+
+std::string vtkPagePoolReader::SelectPool(vtkInformation* outInfo, int& step)
+{
+  step = 0;
+  if (this->StepFiles.empty())
+  {
+    outInfo->Remove(POOL_TIME_STEP());
+    outInfo->Remove(POOL_SERIES());
+    return this->FileName ? this->FileName : "";
+  }
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    step = ChooseTimeStep(this->StepTimes.data(),
+      this->GetNumberOfTimeSteps(),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+  outInfo->Set(POOL_TIME_STEP(), step);
+  outInfo->Remove(POOL_SERIES());
+  for (const std::string& file : this->StepFiles)
+    outInfo->Append(POOL_SERIES(), file.c_str());
+  return this->StepFiles[step];
+}
+
+bool vtkPagePoolReader::CheckSeries(std::string& error) const
+{
+  Format::Header first;
+  int firstLevels = 0;
+  for (int i = 0; i < this->GetNumberOfTimeSteps(); ++i)
+  {
+    const std::string step = "time step " + std::to_string(i) + " (\"" + this->StepFiles[i] + "\")";
+    if (i > 0 && !(this->StepTimes[i] > this->StepTimes[i - 1]))
+    {
+      error = step + ": times must increase (" + std::to_string(this->StepTimes[i]) + " after " +
+              std::to_string(this->StepTimes[i - 1]) + ")";
+      return false;
+    }
+    vtkPagePoolFile file;
+    if (!file.Open(this->StepFiles[i]))
+    {
+      error = step + ": " + file.GetErrorMessage();
+      return false;
+    }
+    const Format::Header& h = file.GetHeader();
+    if (i == 0)
+    {
+      first = h;
+      firstLevels = file.GetNumberOfLevels();
+      continue;
+    }
+    std::ostringstream msg;
+    if (h.PoolKind != first.PoolKind || h.Type != first.Type || h.PageSize != first.PageSize ||
+        file.GetNumberOfLevels() != firstLevels)
+      msg << "its kind, scalar type, page size or levels differ from step 0's";
+    for (int a = 0; a < 3 && msg.str().empty(); ++a)
+      if (h.Dimensions[a] != first.Dimensions[a])
+        msg << "dimensions " << h.Dimensions[0] << " x " << h.Dimensions[1] << " x "
+            << h.Dimensions[2] << " differ from step 0's " << first.Dimensions[0] << " x "
+            << first.Dimensions[1] << " x " << first.Dimensions[2];
+    if (!msg.str().empty())
+    {
+      error = step + ": " + msg.str();
+      return false;
+    }
+  }
+  return true;
+}
 
 //------------------------------------------------------------------------------
 vtkInformationDoubleKey* vtkPagePoolReader::UPDATE_RESOLUTION()
@@ -126,6 +227,10 @@ void vtkPagePoolReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IsTilePool: " << this->IsTilePool << "\n";
   os << indent << "NumberOfPagesRead: " << this->NumberOfPagesRead << "\n";
   os << indent << "LevelRead: " << this->LevelRead << "\n";
+  os << indent << "TimeSteps: " << this->StepFiles.size() << "\n";
+  for (size_t i = 0; i < this->StepFiles.size(); ++i)
+    os << indent.GetNextIndent() << this->StepTimes[i] << ": " << this->StepFiles[i] << "\n";
+  os << indent << "TimeStepRead: " << this->TimeStepRead << "\n";
 }
 
 //------------------------------------------------------------------------------
@@ -140,6 +245,9 @@ void vtkPagePoolReader::MarkPool(vtkImageData* output, const std::string& name)
   layer->InsertNextValue(this->IsTilePool ? this->Layer : 0);
   output->GetFieldData()->AddArray(file);
   output->GetFieldData()->AddArray(layer);
+  if (this->TimeStepRead >= 0 && this->TimeStepRead < this->GetNumberOfTimeSteps())
+    output->GetInformation()->Set(
+      vtkDataObject::DATA_TIME_STEP(), this->StepTimes[this->TimeStepRead]);
 }
 
 //------------------------------------------------------------------------------
@@ -232,16 +340,42 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   this->NumberOfLayers = 0;
   this->IsTilePool = false;
   vtkPagePoolFile file;
-  if (!this->FileName || !*this->FileName || !file.Open(this->FileName))
+  int step = 0;
+  const std::string name = this->SelectPool(outInfo, step);
+  std::string error;
+  const bool series = !this->StepFiles.empty();
+  if (series ? !this->CheckSeries(error) : (name.empty() || !file.Open(name)))
   {
+    if (!series)
+      error = name.empty() ? std::string("no file name set") : file.GetErrorMessage();
     ClearOutput(outInfo);
     outInfo->Remove(POOL_FILE_NAME());
     outInfo->Remove(POOL_LAYER());
-    vtkErrorMacro("Cannot read page pool \""
-                  << (this->FileName ? this->FileName : "") << "\": "
-                  << (this->FileName && *this->FileName ? file.GetErrorMessage()
-                                                        : std::string("no file name set")));
+    outInfo->Remove(POOL_TIME_STEP());
+    outInfo->Remove(POOL_SERIES());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    vtkErrorMacro(
+      "Cannot read page pool " << (series ? "series" : "\"" + name + "\"") << ": " << error);
     return 0;
+  }
+  if (series && !file.Open(name))
+  {
+    vtkErrorMacro("Cannot read page pool \"" << name << "\": " << file.GetErrorMessage());
+    return 0;
+  }
+  if (series)
+  {
+    const double range[2] = { this->StepTimes.front(), this->StepTimes.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(),
+      this->StepTimes.data(),
+      this->GetNumberOfTimeSteps());
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  else
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
   }
   const Format::Header& h = file.GetHeader();
   this->NumberOfLevels = file.GetNumberOfLevels();
@@ -254,7 +388,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::ORIGIN(), h.Origin, 3);
   outInfo->Set(vtkDataObject::DIRECTION(), h.Direction, 9);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-  outInfo->Set(POOL_FILE_NAME(), this->FileName);
+  outInfo->Set(POOL_FILE_NAME(), name.c_str());
   outInfo->Set(POOL_LAYER(), this->IsTilePool ? this->Layer : 0);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), 1);
   return 1;
@@ -269,13 +403,17 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outInfo);
   this->NumberOfPagesRead = 0;
   this->LevelRead = -1;
+  this->TimeStepRead = -1;
   if (!output)
   {
     vtkErrorMacro("No vtkImageData output to fill.");
     return 0;
   }
   output->Initialize();
-  const std::string name = this->FileName ? this->FileName : "";
+  int step = 0;
+  const std::string name = this->SelectPool(outInfo, step);
+  if (!name.empty())
+    outInfo->Set(POOL_FILE_NAME(), name.c_str()); // the step this request shows
   auto fail = [&](const std::string& error)
   {
     output->Initialize();
@@ -287,6 +425,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   {
     return fail("no file name set");
   }
+  this->TimeStepRead = step;
   // The same request as last time, the reader unchanged: the same output, without reading.
   std::ostringstream request;
   {

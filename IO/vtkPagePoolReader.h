@@ -29,6 +29,19 @@
  * extent is that level-l extent. (Coarse samples sit up to one level-0 spacing from where the
  * filter took them when n_0 - 1 is not a multiple of 2^l; that is the price of exact bounds.)
  *
+ * Time series. A series is one pool per time step, given with AddTimeStep(file, time) in
+ * increasing time (FileName is then ignored): RequestInformation checks that every step's
+ * pool opens and has the kind, dimensions, page size, levels and scalar type of the first
+ * (else an error naming the step and what differs, and no output), and reports the times as
+ * TIME_STEPS and TIME_RANGE. A request's UPDATE_TIME_STEP t selects the step at or below t,
+ * as VTK's readers do: the last step whose time is <= t, the first step for t before it,
+ * the last for t after it; without UPDATE_TIME_STEP, the first step. The output's
+ * DATA_TIME_STEP is that step's time, and POOL_FILE_NAME names that step's pool (on the
+ * output information after RequestData and on the data), beside POOL_TIME_STEP (its index)
+ * and POOL_SERIES (every step's pool, in time order), so that a mapper paging the pool pages
+ * the step shown and can prefetch the next one. Steps share one geometry: the first step's
+ * spacing, origin and direction.
+ *
  * Pages read are counted (GetNumberOfPagesRead, reset at every RequestData) so tests and
  * benchmarks can verify that a sub-extent reads only what it needs. Errors (missing file,
  * corrupt header, table or page) are reported with vtkErrorMacro and leave the output empty.
@@ -48,10 +61,12 @@ class vtkInformationIntegerKey;
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
+#include <vector> // For std::vector
 
 class vtkImageData;
 class vtkInformationDoubleKey;
 class vtkInformationStringKey;
+class vtkInformationStringVectorKey;
 class vtkInformationVector;
 
 class STRATAIO_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
@@ -95,6 +110,22 @@ public:
   vtkGetStringMacro(ArrayName);
   ///@}
 
+  ///@{
+  /**
+   * A time series: step `fileName` at time `time` (times strictly increasing; see the class
+   * documentation). With any step, FileName is ignored. Default: no steps.
+   */
+  void AddTimeStep(const char* fileName, double time);
+  void RemoveAllTimeSteps();
+  int GetNumberOfTimeSteps() const { return static_cast<int>(this->StepFiles.size()); }
+  const char* GetTimeStepFileName(int step) const;
+  double GetTimeStepValue(int step) const;
+  ///@}
+  /// The step that time `t` selects among increasing `times` (the last at or below t).
+  static int ChooseTimeStep(const double* times, int count, double t);
+  /// The step the last RequestData read (-1 before, 0 without a series).
+  vtkGetMacro(TimeStepRead, int);
+
   /// Requested resolution in [0, 1] (1 = finest), read from the reader's output information.
   /**
    * The pool's file name, set by RequestInformation on the output information and by
@@ -108,6 +139,11 @@ public:
   static vtkInformationIntegerKey* POOL_LAYER();
 
   static vtkInformationDoubleKey* UPDATE_RESOLUTION();
+
+  /// The time step of a series that POOL_FILE_NAME names (0 without a series).
+  static vtkInformationIntegerKey* POOL_TIME_STEP();
+  /// Every step's pool of a series, in time order (absent without a series).
+  static vtkInformationStringVectorKey* POOL_SERIES();
 
   ///@{
   /**
@@ -159,6 +195,12 @@ public:
 
 protected:
   void MarkPool(vtkImageData* output, const std::string& name);
+  /// The pool that `outInfo`'s request reads (the series' step of its time), the step's
+  /// index in `step`; the request's pool keys set on `outInfo`.
+  std::string SelectPool(vtkInformation* outInfo, int& step);
+  /// A series' steps checked against the first (see the class documentation); false, with
+  /// `error` set, when one cannot be opened or differs.
+  bool CheckSeries(std::string& error) const;
 
   vtkPagePoolReader();
   ~vtkPagePoolReader() override;
@@ -180,6 +222,9 @@ protected:
   bool IsTilePool = false;
   vtkIdType NumberOfPagesRead = 0;
   int LevelRead = -1;
+  int TimeStepRead = -1;
+  std::vector<std::string> StepFiles;
+  std::vector<double> StepTimes;
   // The last output and the request it answered: the executive asks again for every update of
   // a coarse level (its extent is in level indices, never "inside" the level-0 request), and
   // the answer must not cost I/O again, nor fail if the file changed on disk since.

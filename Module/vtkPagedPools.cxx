@@ -177,6 +177,21 @@ vtkPageCache::Page vtkPagedPools::Acquire(const vtkPageCache::Key& key, double p
   return nullptr;
 }
 
+bool vtkPagedPools::IsResident(const vtkPageCache::Key& key) const
+{
+  return this->Internals->Cache.IsResident(key);
+}
+
+vtkPageCache::Page vtkPagedPools::Find(const vtkPageCache::Key& key)
+{
+  return this->Internals->Cache.Find(key);
+}
+
+void vtkPagedPools::Prefetch(const vtkPageCache::Key& key, double priority)
+{
+  this->Internals->Cache.Prefetch(key, priority);
+}
+
 int vtkPagedPools::PlanHeldPages(int slots, int children)
 {
   vtkInternals& in = *this->Internals;
@@ -265,7 +280,7 @@ vtkPageCache::Page vtkPagedPools::PadRoot(const float* values,
   return page;
 }
 
-vtkPageCache::Page vtkPagedPools::ReadRoot(int id, int level, uint64_t index, std::string& error)
+vtkPageCache::Page vtkPagedPools::ReadNow(int id, int level, uint64_t index, std::string& error)
 {
   const std::shared_ptr<vtkPagePoolFile> pool = this->Internals->Find(id);
   if (!pool)
@@ -278,7 +293,20 @@ vtkPageCache::Page vtkPagedPools::ReadRoot(int id, int level, uint64_t index, st
   {
     return nullptr;
   }
-  ++this->Stats.RootPagesRead;
+  return page;
+}
+
+vtkPageCache::Page vtkPagedPools::ReadRoot(int id, int level, uint64_t index, std::string& error)
+{
+  vtkPageCache::Page page = this->ReadNow(id, level, index, error);
+  this->Stats.RootPagesRead += page ? 1 : 0;
+  return page;
+}
+
+vtkPageCache::Page vtkPagedPools::ReadPage(int id, int level, uint64_t index, std::string& error)
+{
+  vtkPageCache::Page page = this->ReadNow(id, level, index, error);
+  this->Stats.StepPagesRead += page ? 1 : 0;
   return page;
 }
 

@@ -48,6 +48,7 @@ public:
     long long BytesRead = 0;  ///< by the cache's workers, in all
     long long CacheBytes = 0; ///< resident in the page cache now
     int RootPagesRead = 0;    ///< roots the render thread read itself (ReadRoot)
+    int StepPagesRead = 0;    ///< pages of a new time step the render thread read itself (ReadPage)
     int Failures = 0;         ///< pages whose load failed, in all (TakeNewFailures)
 
     /// Calls `visit(name, value)` for each field, in declaration order (wrappable forms, logs).
@@ -59,6 +60,7 @@ public:
       visit("BytesRead", this->BytesRead);
       visit("CacheBytes", this->CacheBytes);
       visit("RootPagesRead", this->RootPagesRead);
+      visit("StepPagesRead", this->StepPagesRead);
       visit("Failures", this->Failures);
     }
   };
@@ -124,6 +126,15 @@ public:
    * and requested at `priority` while the frame's requests are under the limit.
    */
   vtkPageCache::Page Acquire(const vtkPageCache::Key& key, double priority);
+  /// Whether page `key` is in RAM now (no pin, no statistics).
+  bool IsResident(const vtkPageCache::Key& key) const;
+  /// Page `key` if it is in RAM (pinned for this frame), else null; requests nothing.
+  vtkPageCache::Page Find(const vtkPageCache::Key& key);
+  /**
+   * Queues page `key` below every demand request, at `priority` among prefetches (the next
+   * time step of a series); renews it while it waits. Never waits.
+   */
+  void Prefetch(const vtkPageCache::Key& key, double priority);
   /// After the cut update: drops the requests it did not renew.
   void EndFrame();
   /// Load failures not reported before, oldest first (each counts in Failures).
@@ -138,6 +149,9 @@ public:
   /// Page `index` of `level` of pool `id` read on the calling thread (the root when no reader
   /// produced it); null with `error` set on failure. Counts in RootPagesRead.
   vtkPageCache::Page ReadRoot(int id, int level, uint64_t index, std::string& error);
+  /// The same read for a page that had to be there and is not (a time step's page that was not
+  /// prefetched in time): the render thread waits for it. Counts in StepPagesRead.
+  vtkPageCache::Page ReadPage(int id, int level, uint64_t index, std::string& error);
 
   /// The counts so far, the cache's (pending, bytes read and resident) as of now.
   Statistics GetStatistics() const;
@@ -147,6 +161,8 @@ public:
   bool WaitForIdle(double seconds);
 
 private:
+  vtkPageCache::Page ReadNow(int id, int level, uint64_t index, std::string& error);
+
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   double CacheMiB = 512.0;

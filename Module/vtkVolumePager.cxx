@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -21,6 +22,13 @@ public:
   {
     std::unique_ptr<vtkVolumeBrickTree> Tree;
     std::map<int, vtkPageCache::Page> Held;
+    int Step = 0;                                 ///< the time step shown
+    int PoolId = 0;                               ///< its pool (GetPoolId)
+    int NextPoolId = -1;                          ///< the step prefetched (SetNextStep), -1 none
+    std::unique_ptr<vtkVolumeBrickTree> NextTree; ///< its structure and ranges
+    bool Switched = false; ///< the step changed since the last Update: swap the held pages
+    int PlayedStep = -1;   ///< the step FollowPlayback saw last
+    int Direction = 1;     ///< of playback: the sign of the last step change
   };
   vtkPagedPools Pools;
   std::map<int, Paged> Ports;
@@ -35,6 +43,11 @@ public:
   std::map<int, std::vector<std::array<int, 2>>> FixedCuts;
   bool FixedCutsChanged = false;
 
+  const Paged* PagedPort(int port) const
+  {
+    auto it = this->Ports.find(port);
+    return it == this->Ports.end() ? nullptr : &it->second;
+  }
   Paged* PagedPort(int port)
   {
     auto it = this->Ports.find(port);
@@ -81,15 +94,11 @@ public:
   /// requested at the node's priority for a later frame.
   vtkVolumeCut::AvailabilityFunction Availability(int port, Paged* paged)
   {
-    return [this, port, paged](int node, double priority)
+    return [this, paged](int node, double priority)
     {
       if (paged->Held.count(node))
         return true;
-      const auto& n = paged->Tree->GetNode(node);
-      vtkPageCache::Key key;
-      key.Dataset = port;
-      key.Level = n.Level;
-      key.Page = node - paged->Tree->GetLevelOffset(n.Level);
+      const vtkPageCache::Key key = this->KeyOf(*paged, paged->PoolId, node);
       if (vtkPageCache::Page page = this->Pools.Acquire(key, priority))
       {
         paged->Held[node] = page;
@@ -97,6 +106,98 @@ public:
       }
       return false;
     };
+  }
+
+  static vtkPageCache::Key KeyOf(const Paged& paged, int poolId, int node)
+  {
+    const int level = paged.Tree->GetNode(node).Level;
+    vtkPageCache::Key key;
+    key.Dataset = poolId;
+    key.Level = level;
+    key.Page = node - paged.Tree->GetLevelOffset(level);
+    return key;
+  }
+
+  /// Whether `node` of `tree` may be visible under `volume`'s transfer function: a cut leaf
+  /// that was empty (and had no page) may show data in another step. With a halo a
+  /// neighbour's range decides too: then every node may.
+  static bool MayShow(const Volume& volume, const vtkVolumeBrickTree& tree, int node)
+  {
+    const auto& n = tree.GetNode(node);
+    return volume.Halo || !volume.Opacity ||
+           (n.SubtreeMin <= n.SubtreeMax && volume.Opacity(n.SubtreeMin, n.SubtreeMax) > 0.0);
+  }
+
+  /// The pages a step of `paged` needs for the last cut of volume `v`: the held ones, and the
+  /// cut's leaves without a page that the step's `tree` may show.
+  std::vector<int> StepNodes(int v, const Paged& paged, const vtkVolumeBrickTree& tree) const
+  {
+    std::vector<int> nodes;
+    for (const auto& held : paged.Held)
+      nodes.push_back(held.first);
+    for (int n : this->Cut.GetCutNodes(v))
+      if (!paged.Held.count(n) && MayShow(this->Volumes[v], tree, n))
+        nodes.push_back(n);
+    return nodes;
+  }
+
+  /// After a step switch: every page of the last cut becomes the new step's page of the same
+  /// brick, from the cache (prefetched) or read here; the atlas is written again. Returns the
+  /// pages read, -1 with `error` set when one cannot be.
+  int SwitchSteps(std::string& error)
+  {
+    int read = 0;
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
+    {
+      Paged* paged = this->PagedPort(this->Volumes[v].Port);
+      if (!paged || !paged->Switched || static_cast<int>(v) >= this->Cut.GetNumberOfVolumes())
+        continue;
+      paged->Switched = false;
+      for (int node : this->StepNodes(static_cast<int>(v), *paged, *paged->Tree))
+      {
+        const vtkPageCache::Key key = KeyOf(*paged, paged->PoolId, node);
+        vtkPageCache::Page page = this->Pools.Find(key);
+        if (!page)
+        {
+          std::string why;
+          page = this->Pools.ReadPage(key.Dataset, key.Level, static_cast<uint64_t>(key.Page), why);
+          if (!page)
+          {
+            error = "Cannot read page " + std::to_string(key.Level) + "/" +
+                    std::to_string(key.Page) + " of \"" + this->Pools.GetPoolName(key.Dataset) +
+                    "\": " + why;
+            return -1;
+          }
+          ++read;
+        }
+        paged->Held[node] = page;
+      }
+      this->Atlas.Clear(); // every resident brick holds the old step
+      ++this->Stats.StepSwitches;
+    }
+    return read;
+  }
+
+  /// The next step's pages of the cut (StepNodes under the next step's ranges), below the
+  /// demand requests: coarse levels first, so an interrupted prefetch still helps.
+  void PrefetchNextSteps()
+  {
+    this->Stats.NextStepPagesResident = this->Stats.NextStepPagesWanted = 0;
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
+    {
+      const Paged* paged = this->PagedPort(this->Volumes[v].Port);
+      if (!paged || paged->NextPoolId < 0 || !paged->NextTree)
+        continue;
+      for (int node : this->StepNodes(static_cast<int>(v), *paged, *paged->NextTree))
+      {
+        const vtkPageCache::Key key = KeyOf(*paged, paged->NextPoolId, node);
+        ++this->Stats.NextStepPagesWanted;
+        if (this->Pools.IsResident(key))
+          ++this->Stats.NextStepPagesResident;
+        else
+          this->Pools.Prefetch(key, key.Level);
+      }
+    }
   }
 
   /// The cut's priority, opacity and availability of every volume for this frame.
@@ -165,12 +266,12 @@ public:
         continue;
       }
       std::string why;
-      paged->Held[root] = this->Pools.ReadRoot(volume.Port, level, 0, why);
+      paged->Held[root] = this->Pools.ReadRoot(paged->PoolId, level, 0, why);
       if (!paged->Held[root])
       {
         paged->Held.erase(root);
         error =
-          "Cannot read the root page of \"" + this->Pools.GetPoolName(volume.Port) + "\": " + why;
+          "Cannot read the root page of \"" + this->Pools.GetPoolName(paged->PoolId) + "\": " + why;
         return false;
       }
     }
@@ -185,14 +286,38 @@ vtkVolumePager::vtkVolumePager()
 
 vtkVolumePager::~vtkVolumePager() = default;
 
+namespace
+{
+/// Two trees of the same levels, level dimensions and brick size: one cut fits both.
+bool SameStructure(const vtkVolumeBrickTree& a, const vtkVolumeBrickTree& b)
+{
+  bool same = a.GetNumberOfNodes() == b.GetNumberOfNodes() &&
+              a.GetNumberOfLevels() == b.GetNumberOfLevels() &&
+              a.GetBrickSize() == b.GetBrickSize();
+  for (int l = 0; same && l < a.GetNumberOfLevels(); ++l)
+    same =
+      std::equal(a.GetLevelDimensions(l), a.GetLevelDimensions(l) + 3, b.GetLevelDimensions(l));
+  return same;
+}
+}
+
 const vtkPagePoolFile* vtkVolumePager::OpenPool(int port,
   const std::string& fileName,
-  std::string& error)
+  std::string& error,
+  int step)
 {
   vtkInternals& in = *this->Internals;
+  if (port < 0 || port >= MaxPorts || step < 0 || step >= MaxSteps)
+  {
+    error = "port " + std::to_string(port) + " or time step " + std::to_string(step) +
+            " out of range (at most " + std::to_string(MaxPorts) + " ports and " +
+            std::to_string(MaxSteps) + " steps)";
+    return nullptr;
+  }
+  const int id = GetPoolId(port, step);
   vtkInternals::Paged* paged = in.PagedPort(port);
-  const bool same = paged && in.Pools.GetPoolName(port) == fileName;
-  std::shared_ptr<vtkPagePoolFile> file = in.Pools.OpenPool(port, fileName, error);
+  const bool same = paged && paged->PoolId == id && in.Pools.GetPoolName(id) == fileName;
+  std::shared_ptr<vtkPagePoolFile> file = in.Pools.OpenPool(id, fileName, error);
   if (!file)
   {
     return nullptr;
@@ -212,15 +337,84 @@ const vtkPagePoolFile* vtkVolumePager::OpenPool(int port,
     error = "the pool \"" + fileName + "\" does not match its brick tree";
     return nullptr;
   }
-  in.Ports[port].Tree = std::move(tree);
-  in.Ports[port].Held.clear();
+  if (paged && paged->Step != step && SameStructure(*paged->Tree, *tree))
+  {
+    // Another step of the series: the same cut, the new ranges in the same tree (the cut
+    // keeps its pointer), the held pages swapped at the next Update.
+    vtkPagedPools::BuildTree(*file, *paged->Tree);
+    paged->Step = step;
+    paged->PoolId = id;
+    paged->Switched = true;
+    return file.get();
+  }
+  vtkInternals::Paged& p = in.Ports[port];
+  p.Tree = std::move(tree);
+  p.Held.clear();
+  p.Step = step;
+  p.PoolId = id;
+  p.NextPoolId = -1;
+  p.Switched = false;
   this->CutValid = false;
   return file.get();
 }
 
+bool vtkVolumePager::SetNextStep(int port,
+  int step,
+  const std::string& fileName,
+  std::string& error)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInternals::Paged* paged = in.PagedPort(port);
+  if (!paged)
+    return step < 0;
+  const int id = step >= 0 && step < MaxSteps ? GetPoolId(port, step) : -1;
+  if (id >= 0 && id == paged->NextPoolId && in.Pools.GetPoolName(id) == fileName)
+    return true; // checked before
+  paged->NextPoolId = -1;
+  if (step < 0 || step == paged->Step)
+    return true;
+  if (id < 0)
+  {
+    error = "time step " + std::to_string(step) + " out of range";
+    return false;
+  }
+  std::shared_ptr<vtkPagePoolFile> file = in.Pools.OpenPool(id, fileName, error);
+  if (!file)
+    return false;
+  auto tree = std::make_unique<vtkVolumeBrickTree>();
+  if (file->GetKind() != vtkPagePoolFormat::Kind::BrickPool ||
+      !vtkPagedPools::BuildTree(*file, *tree) || !SameStructure(*tree, *paged->Tree))
+  {
+    error = "the pool \"" + fileName + "\" of step " + std::to_string(step) +
+            " does not have the structure of the step shown";
+    return false;
+  }
+  paged->NextPoolId = id;
+  paged->NextTree = std::move(tree);
+  return true;
+}
+
+int vtkVolumePager::FollowPlayback(int port, int step, int steps)
+{
+  vtkInternals::Paged* paged = this->Internals->PagedPort(port);
+  if (!paged || steps < 2)
+    return -1;
+  if (paged->PlayedStep >= 0 && step != paged->PlayedStep)
+  {
+    int change = step - paged->PlayedStep;
+    if (2 * std::abs(change) > steps)
+      change += change > 0 ? -steps : steps;
+    paged->Direction = change > 0 ? 1 : -1;
+  }
+  paged->PlayedStep = step;
+  return ((step + paged->Direction) % steps + steps) % steps;
+}
+
 const vtkPagePoolFile* vtkVolumePager::GetPool(int port) const
 {
-  return this->Internals->Ports.count(port) ? this->Internals->Pools.GetPool(port) : nullptr;
+  auto it = this->Internals->Ports.find(port);
+  return it == this->Internals->Ports.end() ? nullptr
+                                            : this->Internals->Pools.GetPool(it->second.PoolId);
 }
 
 const vtkVolumeBrickTree* vtkVolumePager::GetPoolTree(int port) const
@@ -374,6 +568,8 @@ int vtkVolumePager::Update(const vtkVolumeCut::Camera& camera,
   }
   in.Configure(settings);
   const bool paged = in.AnyPaged();
+  int switched = 0;
+  bool waited = false;
   if (paged)
   {
     in.Pools.SetCacheBudgetMiB(settings.CacheBudgetMiB);
@@ -382,8 +578,11 @@ int vtkVolumePager::Update(const vtkVolumeCut::Camera& camera,
     in.Pools.BeginFrame();
     // The pages the cut holds stay pinned in the cache: leave room there for the loads.
     in.Cut.SetPageBudget(in.Pools.PlanHeldPages(in.Atlas.GetNumberOfSlots(), 8));
-    if (!in.HoldRoots(error))
+    const int readBefore = in.Pools.GetStatistics().RootPagesRead;
+    switched = in.SwitchSteps(error);
+    if (switched < 0 || !in.HoldRoots(error))
       return -1;
+    waited = switched > 0 || in.Pools.GetStatistics().RootPagesRead > readBefore;
   }
   else
   {
@@ -401,11 +600,14 @@ int vtkVolumePager::Update(const vtkVolumeCut::Camera& camera,
     for (size_t v = 0; v < in.Volumes.size(); ++v)
       if (vtkInternals::Paged* p = in.PagedPort(in.Volumes[v].Port))
         vtkCutPages::Prune(p->Held, in.Cut, static_cast<int>(v), *p->Tree);
+    in.PrefetchNextSteps();
     in.Pools.EndFrame();
     static_cast<vtkPagedPools::Statistics&>(in.Stats) = in.Pools.GetStatistics();
     // The cache's reads plus the root pages, read here or by the readers, a page of floats each.
-    in.Stats.BytesRead += (in.Stats.RootPagesRead + in.Stats.RootPagesFromPipeline) *
-                          static_cast<long long>(std::pow(in.BrickSize, 3) * sizeof(float));
+    in.Stats.BytesRead +=
+      (in.Stats.RootPagesRead + in.Stats.StepPagesRead + in.Stats.RootPagesFromPipeline) *
+      static_cast<long long>(std::pow(in.BrickSize, 3) * sizeof(float));
+    in.Stats.IoWaitFrames += waited ? 1 : 0;
     in.Stats.Converged = entered == 0 && in.Stats.MissesThisFrame == 0 &&
                          in.Stats.PendingPages == 0 && (!settings.Feedback || feedbackCurrent);
   }
@@ -506,9 +708,12 @@ std::vector<std::string> vtkVolumePager::TakeNewFailures()
   std::vector<std::string> messages;
   for (const auto& f : this->Internals->Pools.TakeNewFailures())
   {
+    const int port = f.PageKey.Dataset % MaxPorts, step = f.PageKey.Dataset / MaxPorts;
     messages.push_back("Page " + std::to_string(f.PageKey.Level) + "/" +
                        std::to_string(f.PageKey.Page) + " of the volume on port " +
-                       std::to_string(f.PageKey.Dataset) + " failed to load (" + f.Error + ")");
+                       std::to_string(port) +
+                       (step ? " (time step " + std::to_string(step) + ")" : std::string()) +
+                       " failed to load (" + f.Error + ")");
   }
   this->Internals->Stats.Failures = this->Internals->Pools.GetStatistics().Failures;
   return messages;

@@ -21,6 +21,16 @@
  *   for each frame it moves (PrepareDemand).
  * - Fixed cuts (SetFixedCut) split exactly the ancestors of given bricks, so the in-core
  *   rendering of any paged frame's cut can be drawn.
+ * - Time series: each step of a paged port is its own pool (cache data set
+ *   GetPoolId(port, step)). OpenPool with another step of the same structure (level
+ *   dimensions and page size) keeps the cut: the next Update swaps every held page for the
+ *   new step's page of the same brick, found in the cache or, when it did not arrive, read on
+ *   the render thread (StepPagesRead; that frame counts in IoWaitFrames), and uploads every
+ *   brick again. SetNextStep names the step playback goes to next: each Update then
+ *   prefetches that step's pages of the bricks it holds (the cut and its ancestors), below
+ *   every demand request, so that the switch finds them in RAM. The cache must hold two cuts
+ *   for that (the held one and the prefetched one). A port keeps the pools of the steps it
+ *   visited open (one file each) until the cut is rebuilt for another structure.
  *
  * The caller (the mapper) turns the uploads into atlas texture writes (GetBrick) and the index
  * tables (BuildIndexTable) into index textures; the shader lookup is the atlas's.
@@ -73,6 +83,17 @@ public:
     int RootPagesFromPipeline = 0; ///< roots taken from the readers' coarsest levels
     int FeedbackPages = 0;         ///< distinct pages in the last feedback reduced
     int FeedbackPixels = 0;        ///< its pixels that asked for a page
+    int StepSwitches = 0;          ///< time-step switches kept the cut, in all
+    /**
+     * Frames the render thread waited on the disk, in all: it read a page itself (a root, or a
+     * new step's page of a brick the last step's cut held that was not prefetched in time). A
+     * switch never draws such a brick coarser instead: it waits, and counts here. Bricks the
+     * new step's cut adds arrive like any refinement (MissesThisFrame).
+     */
+    int IoWaitFrames = 0;
+    /// Of the pages the last frame held, how many of the next step's are in RAM now.
+    int NextStepPagesResident = 0;
+    int NextStepPagesWanted = 0; ///< and how many it held (0 without SetNextStep)
 
     template<typename Visit>
     void ForEachField(Visit&& visit) const
@@ -82,6 +103,10 @@ public:
       visit("RootPagesFromPipeline", this->RootPagesFromPipeline);
       visit("FeedbackPages", this->FeedbackPages);
       visit("FeedbackPixels", this->FeedbackPixels);
+      visit("StepSwitches", this->StepSwitches);
+      visit("IoWaitFrames", this->IoWaitFrames);
+      visit("NextStepPagesResident", this->NextStepPagesResident);
+      visit("NextStepPagesWanted", this->NextStepPagesWanted);
     }
   };
 
@@ -100,12 +125,36 @@ public:
   vtkVolumePager(const vtkVolumePager&) = delete;
   vtkVolumePager& operator=(const vtkVolumePager&) = delete;
 
+  /// Ports and time steps a pool id (a cache data set, 16 bits) can name.
+  static constexpr int MaxPorts = 64;
+  static constexpr int MaxSteps = 1024;
+  /// The pool id of step `step` of the volume on `port`: port + MaxPorts step.
+  static int GetPoolId(int port, int step) { return port + MaxPorts * step; }
+
   /**
-   * Pages the volume of `port` from the brick pool `fileName` (kept while the name stays);
-   * null with `error` set when it cannot be opened, is not a brick pool, or its pages do not
-   * form its tree.
+   * Pages the volume of `port` from the brick pool `fileName`, time step `step` of its series
+   * (kept while the name and step stay); null with `error` set when it cannot be opened, is
+   * not a brick pool, its pages do not form its tree, or port or step is out of range. Another
+   * step of the same structure keeps the cut (see the class documentation).
    */
-  const vtkPagePoolFile* OpenPool(int port, const std::string& fileName, std::string& error);
+  const vtkPagePoolFile* OpenPool(int port,
+    const std::string& fileName,
+    std::string& error,
+    int step = 0);
+  /**
+   * The step `step` (pool `fileName`) that playback on `port` shows next, whose pages each
+   * Update prefetches; `step` < 0: none. False, with `error` set, when the pool cannot be
+   * opened or its structure differs from the port's (then nothing is prefetched).
+   */
+  bool SetNextStep(int port, int step, const std::string& fileName, std::string& error);
+  /**
+   * The step playback on paged `port` goes to after showing `step` of a series of `steps`
+   * (call once a frame): the next one in the direction of the last step change (forward at
+   * first), wrapping around at the ends, as a looping animation does; a change of more than
+   * half the series is taken as such a wrap (7 -> 0 of 8 steps goes forward). -1 for a series
+   * of fewer than two steps or a port that is not paged.
+   */
+  int FollowPlayback(int port, int step, int steps);
   /// The pool of a paged port and its tree (structure only); null when `port` is not paged.
   const vtkPagePoolFile* GetPool(int port) const;
   const vtkVolumeBrickTree* GetPoolTree(int port) const;

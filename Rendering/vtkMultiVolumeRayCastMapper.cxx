@@ -21,7 +21,9 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
+#include "vtkInformationStringVectorKey.h"
 #include "vtkIntArray.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
@@ -200,8 +202,12 @@ public:
   bool CutHalo = false;
   vtkStrataRegion CutRegion;
   PagingStatistics Paging;
+  /// By paged port: the pool shown (a new step's bricks end HoldCut) and the last prefetch
+  /// warning (made once).
+  std::map<int, std::array<std::string, 2>> ShownPools;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
+  const vtkPagePoolFile* OpenPool(Self* self, int port, const char* pool);
   bool SupportsFeedback(Self* self, const Frame& frame);
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
@@ -277,14 +283,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     const char* pool = portInfo ? portInfo->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
     if (pool && *pool)
     {
-      std::string error;
-      const vtkPagePoolFile* file = this->Pager.OpenPool(port, pool, error);
+      const vtkPagePoolFile* file = this->OpenPool(self, port, pool);
       if (!file)
-      {
-        vtkErrorWithObjectMacro(
-          self, "Cannot page the volume on port " << port << " from \"" << pool << "\": " << error);
         continue;
-      }
       const vtkPagePoolFile::Header& h = file->GetHeader();
       e.Pool = pool;
       std::copy(h.Dimensions, h.Dimensions + 3, e.Dims);
@@ -338,6 +339,36 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
   }
   frame.Atlas = (self->UseBrickAtlas && !anyComponents) || frame.AnyPooled;
   return !frame.Volumes.empty();
+}
+
+// The pool of a paged port: the step of its series the input shows (POOL_TIME_STEP), and the
+// next step in the direction of playback prefetched (vtkVolumePager::FollowPlayback).
+const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
+  int port,
+  const char* pool)
+{
+  using Reader = vtkPagePoolReader;
+  vtkInformation* info = self->GetInputInformation(port, 0);
+  const int step = info->Has(Reader::POOL_TIME_STEP()) ? info->Get(Reader::POOL_TIME_STEP()) : 0;
+  const int steps = info->Has(Reader::POOL_SERIES()) ? info->Length(Reader::POOL_SERIES()) : 0;
+  std::string error;
+  const vtkPagePoolFile* file = this->Pager.OpenPool(port, pool, error, step);
+  if (!file)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Cannot page the volume on port " << port << " from \"" << pool << "\": " << error);
+    return nullptr;
+  }
+  auto& [shown, warned] = this->ShownPools[port];
+  this->HeldValid = this->HeldValid && shown == pool;
+  shown = pool;
+  const int followed = this->Pager.FollowPlayback(port, step, steps);
+  const int next = self->PrefetchTimeSteps ? followed : -1;
+  const char* nextPool = next >= 0 ? info->Get(Reader::POOL_SERIES(), next) : "";
+  if (!this->Pager.SetNextStep(port, next, nextPool ? nextPool : "", error) && error != warned)
+    vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
+  warned = error;
+  return file;
 }
 
 // Feedback ranks the bricks of every volume while any is paged. It needs image load/store, and
@@ -1477,6 +1508,7 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PageCacheBudget: " << this->PageCacheBudget << " MB\n";
   os << indent << "PagesPerFrame: " << this->PagesPerFrame << "\n";
   os << indent << "Prefetch: " << this->Prefetch << "\n";
+  os << indent << "PrefetchTimeSteps: " << this->PrefetchTimeSteps << "\n";
   os << indent << "LevelOfDetailFeedback: " << this->LevelOfDetailFeedback << "\n";
   os << indent << "FeedbackScale: " << this->FeedbackScale << "\n";
   os << indent << "FeedbackOpenCL: " << this->FeedbackOpenCL << "\n";

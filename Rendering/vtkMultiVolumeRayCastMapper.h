@@ -157,6 +157,20 @@ public:
 
   ///@{
   /**
+   * PrefetchTimeSteps (default on): for an input that is a time series of page pools
+   * (vtkPagePoolReader::AddTimeStep), the page-cache workers read, below every demand request,
+   * the next step's pages of the bricks the current step's cut holds, the next step in the
+   * direction of playback (the sign of the last step change, wrapping around), so that the
+   * switch finds them in RAM and the render thread reads none (PagingStatistics StepPagesRead
+   * and IoWaitFrames count what it read). The cache must hold two cuts for that.
+   */
+  vtkSetMacro(PrefetchTimeSteps, bool);
+  vtkGetMacro(PrefetchTimeSteps, bool);
+  vtkBooleanMacro(PrefetchTimeSteps, bool);
+  ///@}
+
+  ///@{
+  /**
    * Level-of-detail feedback (default on), used while any input is paged; it then ranks the
    * bricks of every volume in the scene. The ray caster reports the detail it lacks, in the
    * same pass: the centre ray of every FeedbackScale-th pixel per axis (default 4, a buffer of
@@ -462,6 +476,7 @@ protected:
   double PageCacheBudget = 512.0;
   int PagesPerFrame = 64;
   bool Prefetch = false;
+  bool PrefetchTimeSteps = true;
   int SkipCellSize = 8;
   bool RayCoherence = false;
   double TerminationOpacity = 0.999;

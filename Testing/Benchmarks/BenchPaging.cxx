@@ -3,8 +3,9 @@
 // Benchmark of out-of-core volume rendering: vtkPagePoolReader + vtkMultiVolumeRayCastMapper
 // paging bricks from page pools through a RAM cache into the GPU atlas. scripts/bench paging
 // runs it. Usage:
-//   BenchPaging generate <dir>     -> nine 1024^3 uint8 volumes (9.7 GB of voxels) and one
-//                                     512^3 accuracy volume as page pools in <dir>, each made
+//   BenchPaging generate <dir>     -> nine 1024^3 uint8 volumes (9.7 GB of voxels), one 512^3
+//                                     accuracy volume and eight 256^3 series steps as page
+//                                     pools in <dir>, each made
 //                                     once (streamed slab by slab from vtkRTAnalyticSource)
 //   BenchPaging header             -> the CSV header of `flythrough`
 //   BenchPaging flythrough <dir> <cache MB> <atlas MB> [no-feedback] [prefetch]
@@ -27,6 +28,13 @@
 //                                     MB uploaded
 //   BenchPaging report <csv> <png> -> the accuracy rows (any case in the CSV, e.g. horizons)
 //                                     as RMS error against atlas budget
+//   BenchPaging series-header      -> the CSV header of `series`
+//   BenchPaging series <dir> <cache MB> <atlas MB> [no-prefetch]
+//                                  -> one row: a 4-D series (eight 256^3 time steps, one pool
+//                                     each, made by `generate`) played twice through at four
+//                                     steps a second: I/O-wait frames, ms per step switch, MB
+//                                     read per step, with the next step prefetched or not
+//                                     (the steps are made first if `generate` has not)
 // Rendering at 256 x 256 on whatever OpenGL the EGL window finds (llvmpipe here).
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
@@ -43,6 +51,7 @@
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
 #include "vtkImageToPagePoolWriter.h"
+#include "vtkInformation.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
@@ -54,6 +63,7 @@
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -301,6 +311,144 @@ int FlyThrough(const std::string& dir, double cacheMB, double atlasMB, bool feed
     seconds,
     st.RootPagesRead,
     st.Failures,
+    Size,
+    Size);
+  return 0;
+}
+
+const int SeriesEdge = 256; // voxels per axis of each time step
+const int SeriesSteps = 8;
+
+std::string SeriesPath(const std::string& dir, int step)
+{
+  return dir + "/paging-series-" + std::to_string(step) + ".spp";
+}
+
+const char* const SeriesHeader =
+  "case,steps,switches,cache_mb,atlas_mb,io_wait_frames,pipeline_read_switches,step_pages_read,"
+  "ms_per_switch_median,ms_per_switch_max,ms_per_frame_median,frames_per_step,mb_read_per_step,"
+  "prefetched_fraction,note";
+
+/// What one playback measured.
+struct Playback
+{
+  std::vector<double> SwitchMs, FrameMs, Prefetched;
+  int PipelineSwitches = 0; ///< switches whose pipeline update read a page (the new root)
+  int Frames = 0;
+};
+
+/// Shows the step of `time` for `frames` frames, as an animation holding each step for a few
+/// frames does; the switch frame is timed apart.
+void ShowStep(vtkRenderWindow* win,
+  vtkMultiVolumeRayCastMapper* mapper,
+  const PageReads& reads,
+  double time,
+  int frames,
+  Playback& play)
+{
+  using Clock = std::chrono::steady_clock;
+  const long long pipelineBefore = reads.Pages;
+  mapper->GetInputInformation(0, 0)->Set(
+    vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), time);
+  for (int f = 0; f < frames; ++f)
+  {
+    const auto t0 = Clock::now();
+    win->Render();
+    win->WaitForCompletion();
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    (f == 0 ? play.SwitchMs : play.FrameMs).push_back(ms);
+    ++play.Frames;
+  }
+  const auto st = mapper->GetPagingStatistics();
+  play.Prefetched.push_back(
+    st.NextStepPagesWanted ? double(st.NextStepPagesResident) / st.NextStepPagesWanted : 0.0);
+  play.PipelineSwitches += reads.Pages > pipelineBefore ? 1 : 0;
+}
+
+// A 4-D playback: eight time steps of a 256^3 volume (one pool each, vtkPagePoolReader::
+// AddTimeStep), converged on step 0, then played twice through (16 step switches), each step
+// shown for 3 frames, with or without the next step prefetched. No waits: what the loaders
+// read while the render thread draws is what the switch finds.
+int Series(const std::string& dir, double cacheMB, double atlasMB, bool prefetch)
+{
+  const std::string name = prefetch ? "series-8x256" : "series-8x256-no-prefetch";
+  for (int k = 0; k < SeriesSteps; ++k)
+    if (!FileExists(SeriesPath(dir, k)) && !Generate(SeriesPath(dir, k), SeriesEdge, k))
+    {
+      std::printf("%s,,,,,,,,,,,,,,cannot write %s\n", name.c_str(), SeriesPath(dir, k).c_str());
+      return 1;
+    }
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  strata_test::MakeWindow(win, ren, Size, Size);
+  vtkNew<vtkPagePoolReader> reader;
+  for (int k = 0; k < SeriesSteps; ++k)
+    reader->AddTimeStep(SeriesPath(dir, k).c_str(), k);
+  PageReads reads;
+  vtkNew<vtkCallbackCommand> counter;
+  counter->SetCallback(&PageReads::Count);
+  counter->SetClientData(&reads);
+  reader->AddObserver(vtkCommand::EndEvent, counter);
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  mapper->SetSampleDistance(2.0);
+  mapper->SetAtlasBudget(atlasMB);
+  mapper->SetPageCacheBudget(cacheMB);
+  mapper->SetPagesPerFrame(64);
+  mapper->SetPrefetchTimeSteps(prefetch);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(Property());
+  ren->AddVolume(volume);
+  vtkCamera* cam = ren->GetActiveCamera();
+  const double c = 0.5 * (SeriesEdge - 1);
+  cam->SetFocalPoint(c, c, c);
+  cam->SetPosition(c + 1.6 * SeriesEdge, c - 1.9 * SeriesEdge, c + 1.2 * SeriesEdge);
+  cam->SetViewUp(0, 0, 1);
+  cam->SetViewAngle(30);
+  ren->ResetCameraClippingRange(0, SeriesEdge, 0, SeriesEdge, 0, SeriesEdge);
+  // Step 0 settled first (the loaders waited on: set-up, not measured).
+  mapper->GetInputInformation(0, 0)->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), 0.0);
+  int settle = 0;
+  for (; settle < 200 && !mapper->GetPagingStatistics().Converged; ++settle)
+  {
+    win->Render();
+    mapper->WaitForPages(60.0);
+  }
+  const auto before = mapper->GetPagingStatistics();
+  Playback play;
+  const int switches = 2 * SeriesSteps;
+  for (int s = 1; s <= switches; ++s)
+    ShowStep(win, mapper, reads, s % SeriesSteps, 3, play);
+  const auto after = mapper->GetPagingStatistics();
+  const double mbPerStep = (after.BytesRead - before.BytesRead) / 1048576.0 / switches;
+  std::printf(
+    "%s,%d,%d,%g,%g,%d,%d,%d,%.1f,%.1f,%.1f,%.1f,%.2f,%.3f,%d uint8 steps of %d^3 in "
+    "32^3 bricks (one pool each); settled on step 0 in %d frames (%d bricks resident); "
+    "played twice through, 3 frames a step; io_wait_frames: frames in "
+    "which the mapper read a page on the render thread (StepPagesRead: a new step's "
+    "held brick not prefetched in time; roots); pipeline_read_switches: switches whose "
+    "reader update read the new step's coarsest page (the pipeline's own stand-in); "
+    "prefetched_fraction: the least share of the next step's pages in RAM when a step ended; "
+    "sample distance 2 voxels; %dx%d\n",
+    name.c_str(),
+    SeriesSteps,
+    switches,
+    cacheMB,
+    atlasMB,
+    after.IoWaitFrames - before.IoWaitFrames,
+    play.PipelineSwitches,
+    after.StepPagesRead - before.StepPagesRead,
+    Percentile(play.SwitchMs, 0.5),
+    Percentile(play.SwitchMs, 1.0),
+    play.FrameMs.empty() ? 0.0 : Percentile(play.FrameMs, 0.5),
+    double(play.Frames) / switches,
+    mbPerStep,
+    Percentile(play.Prefetched, 0.0),
+    SeriesSteps,
+    SeriesEdge,
+    settle,
+    mapper->GetNumberOfResidentBricks(),
     Size,
     Size);
   return 0;
@@ -577,6 +725,8 @@ int main(int argc, char* argv[])
     for (int i = 0; i < 9; ++i)
       ok = Generate(PoolPath(argv[2], i), Edge, i) && ok;
     ok = Generate(PoolPath(argv[2], 9), Small, 9) && ok;
+    for (int k = 0; k < SeriesSteps; ++k)
+      ok = Generate(SeriesPath(argv[2], k), SeriesEdge, k) && ok;
     return ok ? 0 : 1;
   }
   if (mode == "header")
@@ -597,6 +747,16 @@ int main(int argc, char* argv[])
   }
   if (mode == "feedback")
     return Feedback();
+  if (mode == "series-header")
+  {
+    std::printf("%s\n", SeriesHeader);
+    return 0;
+  }
+  if (mode == "series" && argc > 4)
+    return Series(argv[2],
+      std::atof(argv[3]),
+      std::atof(argv[4]),
+      argc <= 5 || std::string(argv[5]) != "no-prefetch");
   if (mode == "accuracy-header")
   {
     std::printf("%s\n", AccuracyHeader);
@@ -608,6 +768,7 @@ int main(int argc, char* argv[])
     return Report(argv[2], argv[3]);
   std::cerr << "usage: BenchPaging generate <dir> | header | flythrough <dir> <cache MB> <atlas "
                "MB> [no-feedback] [prefetch] | "
-               "feedback | accuracy-header | accuracy <dir> | report <csv> <png>\n";
+               "feedback | accuracy-header | accuracy <dir> | report <csv> <png> | series-header | "
+               "series <dir> <cache MB> <atlas MB> [no-prefetch]\n";
   return 2;
 }
