@@ -406,7 +406,9 @@ public:
    * (vtkVolumeSurfaceLayers, a vtkOpenGLRenderPass on each actor's property keys); a ray
    * splits its lattice step at each layer it crosses and composites the layer there; layers in
    * front of, between or behind the volumes' fragments are composited in ray order too. Where
-   * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. Needs the
+   * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. Layers are
+   * peeled once per pixel (at its centre): with several rays per pixel the surfaces' edges are
+   * not anti-aliased. Needs the
    * front-to-back order and texture barriers (else the actors are not drawn, with a warning).
    * A scene without translucent actors compiles no surface code.
    *

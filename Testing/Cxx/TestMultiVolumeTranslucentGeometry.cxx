@@ -9,7 +9,10 @@
 // and max 2 (StrataMultiVolumeCase.h: 8-bit output, quarter-voxel midpoint samples). The
 // surfaces add no discretisation of their own: the reference composites them at their exact
 // crossing and the ray caster splits its step there, with the layer's depth from the
-// rasteriser in float (measured RMS 0.22-0.30, max 1.27 in all four cases). The test can fail:
+// rasteriser in float (measured RMS 0.22-0.30, max 1.27 in all five cases). With two rays per
+// pixel the layers are still peeled once per pixel, at its centre, so pixels whose sub-pixel
+// rays cross different surfaces (146 edge pixels of 16384 here, off by up to 34) are left out
+// of that case's comparison: surfaces are not anti-aliased. The test can fail:
 // the rendering is compared with the two wrong models too, the volumes without the surfaces
 // (RMS 8.9-25.7 measured) and the surfaces blended over the volumes' composite, what a renderer
 // drawing the translucent actors after the volumes gives (RMS 7.7-16.1 where the planes cross
@@ -22,6 +25,7 @@
 
 #include "vtkActor.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
@@ -34,6 +38,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -92,15 +97,21 @@ struct Images
 {
   std::vector<unsigned char> Gpu;
   std::vector<double> Expected, NoSurfaces, SurfacesOver; ///< 8-bit units
+  /// Pixels whose sub-pixel rays cross different surfaces (a surface's edge): the layers are
+  /// peeled once per pixel, at its centre, so there several rays per pixel do not anti-alias.
+  std::vector<bool> Edges;
 };
 
 /// Reference of the scene's volumes with `surfaces` (and, with `volumes` false, a fully
-/// transparent volume only), stopped at `stop` (window depths) when given.
+/// transparent volume only), stopped at `stop` (window depths) when given; the mean of the
+/// mapper's sub-pixel rays.
 std::vector<double> Reference(VolumeScene& s,
   const std::vector<Ref::Surface>& surfaces,
   bool volumes,
-  const double* stop)
+  const double* stop,
+  std::vector<bool>* edges = nullptr)
 {
+  const int rays = s.Mapper->GetRaysPerPixel(), n = MultiVolumeCaseSize;
   Ref ref;
   ref.SetStepFraction(1.0 / 16.0);
   for (size_t i = 0; i < s.Images.size(); ++i)
@@ -112,9 +123,26 @@ std::vector<double> Reference(VolumeScene& s,
   }
   for (const Ref::Surface& surface : surfaces)
     ref.AddSurface(surface);
-  std::vector<double> rgba;
-  ref.IntegrateImage(
-    ClipToWorld(s.Ren)->GetData(), MultiVolumeCaseSize, MultiVolumeCaseSize, rgba, nullptr, stop);
+  std::vector<double> rgba(4 * size_t(n) * n, 0.0), one, first;
+  for (int ray = 0; ray < rays; ++ray)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, rays, offset);
+    vtkNew<vtkMatrix4x4> shift, shifted;
+    shift->SetElement(0, 3, 2.0 * offset[0] / n);
+    shift->SetElement(1, 3, 2.0 * offset[1] / n);
+    vtkMatrix4x4::Multiply4x4(ClipToWorld(s.Ren), shift, shifted);
+    ref.IntegrateImage(shifted->GetData(), n, n, one, nullptr, stop);
+    for (size_t i = 0; i < one.size(); ++i)
+      rgba[i] += one[i] / rays;
+    if (ray == 0)
+      first = one;
+    if (edges && ray == 0)
+      edges->assign(size_t(n) * n, false);
+    for (size_t i = 0; edges && i < edges->size(); ++i)
+      for (int c = 0; c < 4; ++c)
+        (*edges)[i] = (*edges)[i] || std::abs(one[4 * i + c] - first[4 * i + c]) > 1e-9;
+  }
   return rgba;
 }
 
@@ -144,7 +172,7 @@ Images Render(VolumeScene& s, const std::vector<Plane*>& planes, const std::stri
   const std::vector<double> volumesOnly = Reference(s, {}, true, stop.data());
   r.NoSurfaces = CompositeOver(volumesOnly, sceneRgb);
   // The surfaces blended over the volumes' composite: S + (1 - S.a) V.
-  std::vector<double> over = Reference(s, surfaces, false, stop.data());
+  std::vector<double> over = Reference(s, surfaces, false, stop.data(), &r.Edges);
   for (size_t i = 0; i < over.size(); i += 4)
     for (int c = 0; c < 4; ++c)
       over[i + c] += (1.0 - over[i + 3]) * volumesOnly[i + c];
@@ -159,16 +187,32 @@ Images Render(VolumeScene& s, const std::vector<Plane*>& planes, const std::stri
   return r;
 }
 
-/// Asserts the rendering within the bounds, and that the wrong models asked for are off by more
-/// than 2 RMS (for a plane in front of every volume, "over the volumes" is the right model).
-void CheckCase(const Images& r, const std::string& name, bool checkOver)
+/// Asserts the rendering within RMS 0.4 and max `maxBound`, and that the wrong models asked for
+/// are off by more than 2 RMS (for a plane in front of every volume, "over the volumes" is the
+/// right model).
+void CheckCase(const Images& r, const std::string& name, bool checkOver, double maxBound = 2.0)
 {
-  const ChannelError e = ImageError(r.Gpu, r.Expected);
+  // Edge pixels (only with several rays per pixel) left out of the comparison with the reference.
+  std::vector<unsigned char> gpu;
+  std::vector<double> expected;
+  long edges = 0;
+  for (size_t i = 0; i < r.Edges.size(); ++i)
+  {
+    edges += r.Edges[i];
+    for (int c = 0; c < 3 && !r.Edges[i]; ++c)
+    {
+      gpu.push_back(r.Gpu[3 * i + c]);
+      expected.push_back(r.Expected[3 * i + c]);
+    }
+  }
+  const ChannelError e = ImageError(gpu, expected);
   const ChannelError none = ImageError(r.Gpu, r.NoSurfaces);
   const ChannelError over = ImageError(r.Gpu, r.SurfacesOver);
-  std::cout << name << ": RMS " << e.Rms << ", max " << e.Max << " of 255; without surfaces RMS "
-            << none.Rms << "; surfaces over the volumes RMS " << over.Rms << "\n";
-  Check(e.Rms <= 0.4 && e.Max <= 2, name + ": within RMS 0.4 / max 2 of the reference");
+  std::cout << name << ": RMS " << e.Rms << ", max " << e.Max << " of 255 (" << edges
+            << " edge pixels left out); without surfaces RMS " << none.Rms
+            << "; surfaces over the volumes RMS " << over.Rms << "\n";
+  Check(e.Rms <= 0.4 && e.Max <= maxBound,
+    name + ": within RMS 0.4 / max " + std::to_string(maxBound) + " of the reference");
   Check(none.Rms > 2.0, name + ": differs from the volumes without the surfaces by > 2 RMS");
   if (checkOver)
     Check(over.Rms > 2.0, name + ": differs from the surfaces blended over the volumes by > 2 RMS");
@@ -197,6 +241,13 @@ int TestMultiVolumeTranslucentGeometry(int argc, char* argv[])
   const std::string source = s.Mapper->GetFragmentShaderSource(2);
   Check(source.find("strataSurfacesBefore") != std::string::npos,
     "with translucent actors the two-volume fragment composites surface layers");
+
+  // Two rays per pixel with pre-integration: ray 1's progress is the second 3 bits.
+  s.Mapper->SetRaysPerPixel(2);
+  s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PreIntegrated);
+  CheckCase(Render(s, { &vertical, &tilted }, "TranslucentRays"), "TranslucentRays", true);
+  s.Mapper->SetRaysPerPixel(1);
+  s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PostClassification);
 
   // One plane in front of both volumes (towards the camera) and one behind them.
   const double o3[3] = { -30, -30, 40 }, a3[3] = { 10, -60, 40 }, b3[3] = { -30, -30, 70 };
