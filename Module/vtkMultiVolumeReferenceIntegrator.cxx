@@ -453,6 +453,7 @@ public:
   };
 
   std::vector<Vol> Volumes;
+  std::vector<Surface> Surfaces; ///< world coordinates
   double LocalOrigin[3] = { 0.0, 0.0, 0.0 };
   double SmallestVoxel = 0.0;
   double StepFraction = 1.0 / 16.0;
@@ -469,6 +470,11 @@ public:
     Workspace& ws) const;
   void BuildCover(const Active& a, double ta, double tm, Cover& c) const;
   Layer Reduce(const Active& a, double dn) const;
+  void ClipSurfaces(const double o[3],
+    const double d[3],
+    double t0,
+    double t1,
+    Workspace& ws) const;
   void Clip(const double o[3], const double d[3], double t0, double t1, double dn, Workspace& ws)
     const;
   void AppendSurfaces(const Cover& c, double len, Workspace& ws) const;
@@ -736,7 +742,45 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::Clip(const double o[3],
       }
     }
   }
+  this->ClipSurfaces(o, d, t0, t1, ws);
   std::sort(ws.Breaks.begin(), ws.Breaks.end());
+}
+
+// Every translucent surface the ray crosses in [t0, t1) becomes a layer at its crossing, and the
+// ray is cut there (Cramer's rule on corner + u e1 + v e2 = o + t d, local frame).
+void vtkMultiVolumeReferenceIntegrator::vtkInternals::ClipSurfaces(const double o[3],
+  const double d[3],
+  double t0,
+  double t1,
+  Workspace& ws) const
+{
+  auto cross = [](const double a[3], const double b[3], double c[3])
+  {
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+  };
+  auto dot = [](const double a[3], const double b[3])
+  { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  for (const Surface& s : this->Surfaces)
+  {
+    const double q[3] = { o[0] - (s.Corner[0] - this->LocalOrigin[0]),
+      o[1] - (s.Corner[1] - this->LocalOrigin[1]),
+      o[2] - (s.Corner[2] - this->LocalOrigin[2]) };
+    double p[3], r[3];
+    cross(d, s.Edge2, p);
+    const double det = dot(s.Edge1, p);
+    if (det == 0.0)
+      continue; // the ray lies in the surface's plane
+    const double u = dot(q, p) / det;
+    cross(q, s.Edge1, r);
+    const double v = dot(d, r) / det;
+    const double t = dot(s.Edge2, r) / det;
+    if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0 || !(t >= t0 && t < t1))
+      continue;
+    ws.Layers.push_back(Layer{ t, { s.Color[0], s.Color[1], s.Color[2], s.Color[3] } });
+    ws.Breaks.push_back(t);
+  }
 }
 
 std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
@@ -1250,6 +1294,16 @@ int vtkMultiVolumeReferenceIntegrator::AddVolume(Volume in)
   self.Volumes.push_back(std::move(v));
   self.LastError.clear();
   return static_cast<int>(self.Volumes.size()) - 1;
+}
+
+void vtkMultiVolumeReferenceIntegrator::AddSurface(const Surface& surface)
+{
+  this->Internals->Surfaces.push_back(surface);
+}
+
+void vtkMultiVolumeReferenceIntegrator::RemoveAllSurfaces()
+{
+  this->Internals->Surfaces.clear();
 }
 
 void vtkMultiVolumeReferenceIntegrator::RemoveAllVolumes()

@@ -98,6 +98,13 @@
  * off: the ray is cut at the crop planes too, and a piece (or a reduction's sample) of the volume
  * in a hidden region is left out, as if that volume were not there.
  *
+ * Translucent surfaces (Surface, AddSurface): parallelograms of constant premultiplied colour
+ * and opacity, such as a translucent vtkActor lit by ambient light alone. Each crossing of a ray
+ * with one is a layer at its exact depth: the ray is cut there and the layer is composited over
+ * what lies behind it, in ray order with the media, the isosurfaces and the reduced layers
+ * (exact, up to rounding: no discretisation of its own). A surface beyond the ray's stop (opaque
+ * geometry) is not reached.
+ *
  * Limits: model matrices must be affine; boxes are closed, so a ray lying exactly in a face
  * shared by two volumes sees both (a set of measure zero); NaN scalars classify as the first
  * table entry. Cost: about 50 ns per step and covering volume on one core, steps h apart
@@ -197,6 +204,15 @@ public:
     int CropFlags = 0x0002000; ///< VTK_CROP_SUBVOLUME
   };
 
+  /// A translucent parallelogram Corner + u Edge1 + v Edge2, u and v in [0, 1] (world).
+  struct Surface
+  {
+    double Corner[3] = { 0.0, 0.0, 0.0 };
+    double Edge1[3] = { 1.0, 0.0, 0.0 };
+    double Edge2[3] = { 0.0, 1.0, 0.0 };
+    double Color[4] = { 0.0, 0.0, 0.0, 0.0 }; ///< premultiplied RGB and opacity
+  };
+
   /// Leading-order discretisation error bounds, per RGBA component (see the class comment).
   struct ErrorBound
   {
@@ -215,6 +231,9 @@ public:
    */
   int AddVolume(Volume volume);
   void RemoveAllVolumes();
+  /// Adds a translucent surface (see the class comment); it stays until RemoveAllSurfaces.
+  void AddSurface(const Surface& surface);
+  void RemoveAllSurfaces();
   int GetNumberOfVolumes() const;
   const std::string& GetLastError() const;
 

@@ -15,6 +15,7 @@
 #include "vtkVolumeFragmentGeometry.h"
 #include "vtkVolumeIntegrationBuffers.h"
 #include "vtkVolumePager.h"
+#include "vtkVolumeSurfaceLayers.h"
 
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -106,6 +107,7 @@ struct Frame
   bool FrontToBack = true;
   bool Barrier = false;
   bool AnyReduced = false; ///< some volume is drawn as a layer by its own reduction pass
+  int Surfaces = 0;        ///< translucent surface layers peeled this frame
   bool Lit = false;
   std::vector<float> LightDirections, LightColors;
   // Feedback uniforms: threshold x pixel size = x + y * distance, the eye, and per volume
@@ -184,6 +186,7 @@ public:
   vtkBrickAtlasTexture Atlas;
   vtkFeedbackBuffer Feedback{ true };
   vtkVolumeIntegrationBuffers Buffers;
+  vtkVolumeSurfaceLayers SurfaceLayers;                    ///< with the translucent actors
   std::map<int, vtkVolumeIntegrationBuffers> LayerBuffers; ///< by port: reduced volumes' layers
   vtkMultiVolumeShaderComposer Composer;
   std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
@@ -739,7 +742,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   Frame& frame)
 {
   vtkOpenGLState* state = renWin->GetState();
-  this->Buffers.Bind(renWin, frame.Rays);
+  this->Buffers.Bind(renWin, frame.Rays, this->SurfaceLayers.GetProgress());
   vtkOpenGLState::ScopedglViewport viewportSaver(state);
   vtkOpenGLState::ScopedglClearColor clearSaver(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
@@ -783,7 +786,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   {
     this->Buffers.Unbind(renWin);
     this->DrawReductions(self, renWin, order, frame);
-    this->Buffers.Bind(renWin, frame.Rays);
+    this->Buffers.Bind(renWin, frame.Rays, this->SurfaceLayers.GetProgress());
     state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
     state->vtkglEnable(GL_BLEND);
   }
@@ -862,6 +865,7 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
   if (!components)
     key.ComponentModes.clear(); // one key for scenes of one-component volumes
   key.Reduce = reduce;
+  key.Surfaces = reduce ? 0 : frame.Surfaces;
   // A fragment with a volume of several components is post-classified (its components have no
   // pre-integration tables) and not skipped with independent ones (no skip grid for their mix).
   key.Classification = components ? Classifications::PostClassification : self->Classification;
@@ -929,6 +933,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   vtkTextureObject* depth = this->Buffers.GetSceneDepth();
   depth->Activate();
   program->SetUniformi("uSceneDepth", depth->GetTextureUnit());
+  this->SurfaceLayers.SetUniforms(program);
   // Read back: this pass's own buffers (early termination, or a reduction's state so far),
   // and the layers of the reduced volumes of the fragment.
   std::vector<vtkTextureObject*> readBack;
@@ -1013,6 +1018,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     glBindTexture(GL_TEXTURE_3D, 0);
     units->Free(unit);
   }
+  this->SurfaceLayers.Deactivate();
   depth->Deactivate();
   this->Geometry.Unbind();
   this->LastFragments += reduce < 0 ? 1 : 0;
@@ -1091,9 +1097,11 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
 void vtkMultiVolumeRayCastMapper::vtkInternals::Composite(vtkOpenGLRenderWindow* renWin,
   const Frame& frame)
 {
-  vtkShaderProgram* program = this->Composer.ReadyCompositeProgram(renWin, frame.Rays);
+  vtkShaderProgram* program =
+    this->Composer.ReadyCompositeProgram(renWin, frame.Rays, frame.Surfaces);
   if (!program)
     return;
+  this->SurfaceLayers.SetUniforms(program);
   vtkOpenGLState* state = renWin->GetState();
   vtkOpenGLState::ScopedglViewport viewportSaver(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
@@ -1108,6 +1116,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::Composite(vtkOpenGLRenderWindow*
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   this->Buffers.Composite(program, frame.Viewport, frame.Rays);
+  this->SurfaceLayers.Deactivate();
 }
 
 vtkStandardNewMacro(vtkMultiVolumeRayCastMapper);
@@ -1347,6 +1356,23 @@ void vtkMultiVolumeRayCastMapper::GetReductionRatio(double ratio[3])
   ratio[0] = ratio[1] = ratio[2] = 1.0;
 }
 
+void vtkMultiVolumeRayCastMapper::AddTranslucentActor(vtkActor* actor)
+{
+  this->Internals->SurfaceLayers.AddActor(actor);
+  this->Modified();
+}
+
+void vtkMultiVolumeRayCastMapper::RemoveAllTranslucentActors()
+{
+  this->Internals->SurfaceLayers.RemoveAllActors();
+  this->Modified();
+}
+
+int vtkMultiVolumeRayCastMapper::GetNumberOfTranslucentActors() const
+{
+  return this->Internals->SurfaceLayers.GetNumberOfActors();
+}
+
 void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
@@ -1358,6 +1384,7 @@ void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Atlas.ReleaseGraphicsResources();
   in.Feedback.ReleaseGraphicsResources();
   in.Buffers.ReleaseGraphicsResources(window);
+  in.SurfaceLayers.ReleaseGraphicsResources(window);
   for (auto& layer : in.LayerBuffers)
     layer.second.ReleaseGraphicsResources(window);
   in.LayerBuffers.clear();
@@ -1484,6 +1511,13 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   in.UpdatePreIntegration(this, renWin, frame);
   vtkStrataRenderUtilities::GetLights(ren, frame.LightDirections, frame.LightColors);
   frame.Lit = ren->GetLights()->GetNumberOfItems() > 0;
+  frame.Surfaces = in.SurfaceLayers.Peel(ren,
+    renWin,
+    in.Buffers.GetSceneDepth(),
+    frame.Viewport,
+    this->TranslucentLayers,
+    frame.Rays,
+    frame.Barrier);
   in.DrawFragments(this, ren, renWin, frame);
   in.Composite(renWin, frame);
   vtkOpenGLCheckErrorMacro("failed after multi-volume ray casting");
@@ -1495,6 +1529,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CompositeOrder: "
      << (this->CompositeOrder == CompositeOrders::FrontToBack ? "FrontToBack" : "BackToFront")
      << "\n";
+  os << indent << "TranslucentActors: " << this->GetNumberOfTranslucentActors()
+     << ", TranslucentLayers: " << this->TranslucentLayers << "\n";
   os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "UseBrickAtlas: " << this->UseBrickAtlas << "\n";

@@ -43,6 +43,7 @@
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+class vtkActor;
 class vtkFieldData;
 class vtkIntArray;
 class vtkWindow;
@@ -407,6 +408,40 @@ public:
   bool GetEffectiveCropping(int port, double planes[6], int& flags) const;
   ///@}
 
+  ///@{
+  /**
+   * Translucent geometry among the volumes: actors (opacity below 1, any polygonal mapper) whose
+   * surfaces each ray composites at the exact depth where it crosses them, in order with the
+   * volume samples, front to back (e.g. a plane of opacity 0.4 through two overlapping volumes).
+   * Give them to this mapper instead of the renderer (a renderer would blend them before the
+   * volumes, over or under everything; add them there too and they are drawn twice); the
+   * renderer's camera and lights draw them. Opaque geometry stays in the renderer and still
+   * stops the rays (and hides surfaces behind it).
+   *
+   * How: each frame the actors are depth-peeled into TranslucentLayers layers (default 4, at
+   * most 7) of colour and window depth per pixel, in front of the opaque depth
+   * (vtkVolumeSurfaceLayers, a vtkOpenGLRenderPass on each actor's property keys); a ray
+   * splits its lattice step at each layer it crosses and composites the layer there; layers in
+   * front of, between or behind the volumes' fragments are composited in ray order too. Where
+   * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. Layers are
+   * peeled once per pixel (at its centre): with several rays per pixel the surfaces' edges are
+   * not anti-aliased. Needs the
+   * front-to-back order and texture barriers (else the actors are not drawn, with a warning).
+   * A scene without translucent actors compiles no surface code.
+   *
+   * Why not vtkDualDepthPeelingPass (vtkRenderer::UseDepthPeelingForVolumes): in VTK 9.1 it
+   * injects code written for vtkOpenGLGPUVolumeRayCastMapper's own shader (its castRay(zStart,
+   * zEnd), g_dataPos, ip_textureCoords, in_inverseVolumeMatrix) and expects one draw per volume
+   * and peel writing its front/back blend targets; this mapper draws one program per BSP
+   * fragment into its own float integration buffers.
+   */
+  void AddTranslucentActor(vtkActor* actor);
+  void RemoveAllTranslucentActors();
+  int GetNumberOfTranslucentActors() const;
+  vtkSetClampMacro(TranslucentLayers, int, 1, 7);
+  vtkGetMacro(TranslucentLayers, int);
+  ///@}
+
   /**
    * Sub-pixel offset (in pixels from the pixel centre) of ray `ray` of `rays`; the offsets of
    * the R rays average to the centre. Tests and references use it to integrate the same rays.
@@ -487,6 +522,7 @@ protected:
   bool HoldCut = false;
   vtkStrataRegion Region;
   bool MeasureRenderTime = false;
+  int TranslucentLayers = 4;
   std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode
   struct InputCrop
   {

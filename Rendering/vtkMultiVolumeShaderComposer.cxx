@@ -37,6 +37,7 @@
 #include "vtkMultiVolumeSkip.h"
 #include "vtkMultiVolumeSkipUniforms.h"
 #include "vtkMultiVolumeSkipVolume.h"
+#include "vtkMultiVolumeSurfaces.h"
 
 #include "vtkVolumeMapper.h"
 
@@ -538,11 +539,48 @@ std::string RayStore(const Key& key, int r, const std::string& call)
          "] = " + (r == 0 ? "inside0" : "inside") + " ? state : gState;\n  }\n";
 }
 
+// --- Surface layers (vtkVolumeSurfaceLayers): what ray r composited so far is 3 bits of the
+// progress texel, at 8^r; the fragment adds what it took, in draw buffer `Rays`.
+std::string SurfacePrologue(const Key& key, int r)
+{
+  if (key.Surfaces == 0)
+    return std::string();
+  const std::string scale = std::to_string(1 << (3 * r)) + ".0";
+  return "  gSurfaceNext = int(mod(floor(surfaceProgress / " + scale +
+         "), 8.0));\n"
+         "  int surfaceStart" +
+         std::to_string(r) + " = gSurfaceNext;\n";
+}
+
+std::string SurfaceEpilogue(const Key& key, int r)
+{
+  if (key.Surfaces == 0)
+    return std::string();
+  const std::string scale = std::to_string(1 << (3 * r)) + ".0";
+  return "  surfacesTaken += float(gSurfaceNext - surfaceStart" + std::to_string(r) + ") * " +
+         scale + ";\n";
+}
+
+std::string SurfaceRaysStart(const Key& key)
+{
+  if (key.Surfaces == 0)
+    return std::string();
+  return "  float surfaceProgress = texelFetch(uSurfaceProgress, ivec2(gl_FragCoord.xy), 0).r;\n"
+         "  float surfacesTaken = 0.0;\n";
+}
+
+std::string SurfaceRaysEnd(const Key& key)
+{
+  if (key.Surfaces == 0)
+    return std::string();
+  return "  gl_FragData[" + std::to_string(key.Rays) + "] = vec4(surfacesTaken, 0.0, 0.0, 0.0);\n";
+}
+
 std::string Rays(const Key& key)
 {
   const int rays = key.Rays;
   std::ostringstream code;
-  code << "float tFirst0;\n  bool inside0;\n";
+  code << "float tFirst0;\n  bool inside0;\n" << SurfaceRaysStart(key);
   for (int r = 0; r < rays; ++r)
   {
     double offset[2];
@@ -558,11 +596,12 @@ std::string Rays(const Key& key)
       if (key.Feedback)
         code << "  gFeedbackRay = all(equal(ivec2(gl_FragCoord.xy) % uFeedbackScale, "
                 "ivec2(uFeedbackScale / 2)));\n";
-      code << RayPrologue(key, 0)
+      code << RayPrologue(key, 0) << SurfacePrologue(key, 0)
            << RayStore(key,
                 0,
                 "strataCastRay(" + (rays > 1 ? pixel.str() : std::string("gl_FragCoord.xy")) +
-                  ", 0.0, " + prior + ", 0.0, tFirst0, inside0)");
+                  ", 0.0, " + prior + ", 0.0, tFirst0, inside0)")
+           << SurfaceEpilogue(key, 0);
       if (key.Feedback)
         code << "  gFeedbackRay = false;\n";
       if (rays > 1)
@@ -575,12 +614,14 @@ std::string Rays(const Key& key)
     std::ostringstream phase;
     phase.precision(9);
     phase << double(r) / rays;
-    code << RayPrologue(key, r)
+    code << RayPrologue(key, r) << SurfacePrologue(key, r)
          << RayStore(key,
               r,
               "strataCastRay(" + pixel.str() + ", " + phase.str() + ", " + prior + ", " +
-                (key.Coherent ? "tStart" : "0.0") + ", tFirst, inside)");
+                (key.Coherent ? "tStart" : "0.0") + ", tFirst, inside)")
+         << SurfaceEpilogue(key, r);
   }
+  code << SurfaceRaysEnd(key);
   if (key.Feedback)
   {
     // The fragment's costliest lacking brick replaces the texel's if it costs more (fragments
@@ -673,6 +714,48 @@ std::string IsoStep(const Key& key)
   return code;
 }
 
+// The surface layers in the front-to-back loop: pending layers in front of the step go first
+// (also after a skip: the space skipped was empty), the step ends at the next layer, and the
+// same lattice step resumes behind it.
+void SurfaceSteps(const Key& key, std::string& loop)
+{
+  const bool on = key.Surfaces > 0 && key.FrontToBack;
+  Replace(loop, "//STRATA::Surfaces::Start", on ? "float surfaceFrom = tEnter;" : "");
+  Replace(loop,
+    "//STRATA::Surfaces::Split",
+    on ? "a = max(a, surfaceFrom);\n    strataSurfacesBefore(a, acc);\n    float bStep = b;\n"
+         "    b = min(b, strataSurfaceNext());"
+       : "");
+  Replace(loop,
+    "//STRATA::Surfaces::Resume",
+    on ? "if (b < bStep)\n    {\n      surfaceFrom = b;\n      continue;\n    }" : "");
+}
+
+// The surface layers' declarations and their load onto the ray, unrolled per layer (samplers).
+void Surfaces(const Key& key, std::string& fs)
+{
+  if (key.Surfaces == 0)
+  {
+    Replace(fs, "//STRATA::Surfaces::Dec", "");
+    Replace(fs, "//STRATA::Surfaces::Load", "");
+    return;
+  }
+  std::string dec = vtkMultiVolumeSurfaces, samplers, load;
+  for (int k = 0; k < key.Surfaces; ++k)
+  {
+    const std::string K = std::to_string(k);
+    samplers +=
+      "uniform sampler2D uSurfaceColor" + K + ";\nuniform sampler2D uSurfaceDepth" + K + ";\n";
+    load += "\n  strataSurfaceSet(" + K + ", texelFetch(uSurfaceColor" + K +
+            ", ivec2(gl_FragCoord.xy), 0), texelFetch(uSurfaceDepth" + K +
+            ", ivec2(gl_FragCoord.xy), 0).r, ndc, o, d);";
+  }
+  Replace(dec, "//STRATA::SurfaceSamplers::Dec", samplers);
+  Replace(dec, "@K@", std::to_string(key.Surfaces));
+  Replace(fs, "//STRATA::Surfaces::Dec", dec);
+  Replace(fs, "//STRATA::Surfaces::Load", load);
+}
+
 std::string Composite(const Key& key)
 {
   if (key.Reduce)
@@ -683,8 +766,9 @@ std::string Composite(const Key& key)
     ftb ? "strataLayersBefore(b, acc);" : "strataLayersBehind(b, acc);";
   const std::string layersAfter =
     ftb ? "strataLayersBefore(3.0e38, acc);" : "strataLayersBehind(-1.0e38, acc);";
-  if (CountIf(key, Sampled) == 0)
-    return LayerStart(key) + layersAfter; // nothing to sample: the layers alone
+  if (CountIf(key, Sampled) == 0) // nothing to sample: the layers alone
+    return LayerStart(key) + layersAfter +
+           (key.Surfaces > 0 ? "\n  strataSurfacesBefore(tExit, acc);" : "");
   const bool pre = PreIntegrated(key);
   const std::string K = std::to_string(key.Volumes);
   const char* end = ftb ? "tEnter" : "tExit";
@@ -739,6 +823,7 @@ std::string Composite(const Key& key)
   Replace(loop, "//STRATA::Skip::Impl", skip);
   Replace(loop, "//STRATA::Step::Impl", step);
   Replace(loop, "//STRATA::Probe::Impl", key.Skipping ? "probe = c.a <= 0.0;" : "");
+  SurfaceSteps(key, loop);
   return (AnyShaded(key) ? "gViewDirection = -normalize(d);\n  " : "") + LayerStart(key) + loop;
 }
 }
@@ -761,21 +846,23 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Modes,
            this->Reduce,
            this->Cropped,
-           this->GradientOpacity) < std::tie(o.Volumes,
-                                      o.Shaded,
-                                      o.Classification,
-                                      o.FrontToBack,
-                                      o.Barrier,
-                                      o.Rays,
-                                      o.Coherent,
-                                      o.Atlas,
-                                      o.Skipping,
-                                      o.Feedback,
-                                      o.Footprint,
-                                      o.Modes,
-                                      o.Reduce,
-                                      o.Cropped,
-                                      o.GradientOpacity);
+           this->GradientOpacity,
+           this->Surfaces) < std::tie(o.Volumes,
+                               o.Shaded,
+                               o.Classification,
+                               o.FrontToBack,
+                               o.Barrier,
+                               o.Rays,
+                               o.Coherent,
+                               o.Atlas,
+                               o.Skipping,
+                               o.Feedback,
+                               o.Footprint,
+                               o.Modes,
+                               o.Reduce,
+                               o.Cropped,
+                               o.GradientOpacity,
+                               o.Surfaces);
 }
 
 std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
@@ -817,6 +904,8 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
             ? ", " + std::to_string(i) + " of " +
                 components[static_cast<int>(this->ComponentModes[i])]
             : std::string());
+  if (this->Surfaces > 0)
+    s << ", " << this->Surfaces << " surface layers";
   return s.str();
 }
 
@@ -845,12 +934,45 @@ std::string vtkMultiVolumeShaderComposer::BuildFragmentShader(const FragmentKey&
   Replace(fs, "//STRATA::Volumes::Dec", Volumes(key));
   Replace(fs, "//STRATA::Segment::Dec", Segment(key) + Skipping(key));
   Termination(key, fs);
+  Surfaces(key, fs);
   Replace(fs, "//STRATA::Rays::Impl", Rays(key));
   Replace(fs, "//STRATA::Composite::Impl", Composite(key));
   return fs;
 }
 
-std::string vtkMultiVolumeShaderComposer::BuildCompositeShader(int rays)
+namespace
+{
+// Behind each ray's colour, the surface layers no fragment composited (in front of the scene's
+// opaque depth, behind every volume the ray crossed, or where it crossed none).
+std::string CompositeSurfaces(int rays, int surfaces, std::string& dec)
+{
+  dec += "uniform sampler2D uSurfaceProgress;\n";
+  std::string code = "float progress = texelFetch(uSurfaceProgress, pixel, 0).r;\n  vec4 sum = "
+                     "vec4(0.0);\n";
+  for (int k = 0; k < surfaces; ++k)
+  {
+    const std::string K = std::to_string(k);
+    dec += "uniform sampler2D uSurfaceColor" + K + ";\nuniform sampler2D uSurfaceDepth" + K + ";\n";
+    code += "  vec4 surface" + K + " = texelFetch(uSurfaceDepth" + K +
+            ", pixel, 0).r < 1.0 ? texelFetch(uSurfaceColor" + K +
+            ", pixel, 0) : vec4(0.0);\n  surface" + K + ".rgb *= surface" + K + ".a;\n";
+  }
+  for (int r = 0; r < rays; ++r)
+  {
+    const std::string R = std::to_string(r);
+    code += "  {\n    vec4 acc = texelFetch(uAccumulation" + R +
+            ", pixel, 0);\n    int done = " + "int(mod(floor(progress / " +
+            std::to_string(1 << (3 * r)) + ".0), 8.0));\n";
+    for (int k = 0; k < surfaces; ++k)
+      code += "    acc += " + std::to_string(k) + " >= done ? (1.0 - acc.a) * surface" +
+              std::to_string(k) + " : vec4(0.0);\n";
+    code += "    sum += acc;\n  }\n";
+  }
+  return code + "  fragOutput0 = sum / " + std::to_string(rays) + ".0;";
+}
+}
+
+std::string vtkMultiVolumeShaderComposer::BuildCompositeShader(int rays, int surfaces)
 {
   // The pixel is the mean of its rays' composites.
   std::string fs = vtkMultiVolumeCompositeFS;
@@ -859,6 +981,14 @@ std::string vtkMultiVolumeShaderComposer::BuildCompositeShader(int rays)
   {
     dec << "uniform sampler2D uAccumulation" << r << ";\n";
     impl << (r ? " + " : "") << "texelFetch(uAccumulation" << r << ", pixel, 0)";
+  }
+  if (surfaces > 0)
+  {
+    std::string surfaceDec = dec.str();
+    const std::string code = CompositeSurfaces(rays, surfaces, surfaceDec);
+    Replace(fs, "//STRATA::Accumulation::Dec", surfaceDec);
+    Replace(fs, "//STRATA::Accumulation::Impl", code);
+    return fs;
   }
   Replace(fs, "//STRATA::Accumulation::Dec", dec.str());
   Replace(fs,
@@ -894,14 +1024,16 @@ vtkShaderProgram* vtkMultiVolumeShaderComposer::ReadyFragmentProgram(vtkOpenGLRe
 }
 
 vtkShaderProgram* vtkMultiVolumeShaderComposer::ReadyCompositeProgram(vtkOpenGLRenderWindow* window,
-  int rays)
+  int rays,
+  int surfaces)
 {
+  // Keyed by rays (1-8) and surface layers (0-7) in one int.
   return this->Internals->Composites.Ready(window,
-    rays,
-    [](int r, std::string& vs, std::string& fs)
+    rays + 16 * surfaces,
+    [](int k, std::string& vs, std::string& fs)
     {
       vs = vtkMultiVolumeCompositeVS;
-      fs = BuildCompositeShader(r);
+      fs = BuildCompositeShader(k % 16, k / 16);
     });
 }
 

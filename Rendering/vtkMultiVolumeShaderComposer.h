@@ -81,6 +81,9 @@ public:
     /// Per volume: its components (missing entries: One). A volume of several is read from its
     /// own texture, never the atlas, as a composite medium (post-classified, unshaded).
     std::vector<Components> ComponentModes;
+    /// Translucent surface layers (vtkVolumeSurfaceLayers) the rays composite where they cross
+    /// them (front to back across fragments, with Barrier); 0: none, no surface code.
+    int Surfaces = 0;
 
     bool operator<(const FragmentKey& other) const;
     /// A printable form, e.g. "2 volumes (shaded, -) post-classification front-to-back ...".
@@ -94,16 +97,19 @@ public:
 
   /// Binds the program of `key` (built and compiled the first time); null if it fails.
   vtkShaderProgram* ReadyFragmentProgram(vtkOpenGLRenderWindow* window, const FragmentKey& key);
-  /// Binds the program that blends the integration buffers of `rays` rays over the scene.
-  vtkShaderProgram* ReadyCompositeProgram(vtkOpenGLRenderWindow* window, int rays);
+  /// Binds the program that blends the integration buffers of `rays` rays over the scene,
+  /// with the `surfaces` surface layers no fragment composited behind each ray's colour.
+  vtkShaderProgram* ReadyCompositeProgram(vtkOpenGLRenderWindow* window,
+    int rays,
+    int surfaces = 0);
 
   /// The fragment source of `key`, empty if it was never built.
   std::string GetFragmentSource(const FragmentKey& key) const;
 
   /// The fragment shader source for `key` (what ReadyFragmentProgram compiles).
   static std::string BuildFragmentShader(const FragmentKey& key);
-  /// The composite shader source for `rays` rays.
-  static std::string BuildCompositeShader(int rays);
+  /// The composite shader source for `rays` rays and `surfaces` surface layers.
+  static std::string BuildCompositeShader(int rays, int surfaces = 0);
 
   /// Sources built and programs compiled since construction (fragment and composite).
   int GetNumberOfSourcesBuilt() const;

@@ -51,7 +51,9 @@ void vtkVolumeIntegrationBuffers::Prepare(vtkOpenGLRenderWindow* window,
   this->SceneDepth->Deactivate();
 }
 
-void vtkVolumeIntegrationBuffers::Bind(vtkOpenGLRenderWindow* window, int rays)
+void vtkVolumeIntegrationBuffers::Bind(vtkOpenGLRenderWindow* window,
+  int rays,
+  vtkTextureObject* extra)
 {
   window->GetState()->PushFramebufferBindings();
   this->Framebuffer->Bind();
@@ -59,7 +61,11 @@ void vtkVolumeIntegrationBuffers::Bind(vtkOpenGLRenderWindow* window, int rays)
   {
     this->Framebuffer->AddColorAttachment(r, this->Accumulation[r]);
   }
-  this->Framebuffer->ActivateDrawBuffers(rays);
+  if (extra)
+    this->Framebuffer->AddColorAttachment(rays, extra);
+  else
+    this->Framebuffer->RemoveColorAttachment(rays);
+  this->Framebuffer->ActivateDrawBuffers(rays + (extra ? 1 : 0));
 }
 
 void vtkVolumeIntegrationBuffers::Unbind(vtkOpenGLRenderWindow* window)

@@ -40,8 +40,9 @@ public:
    * scene's depth there.
    */
   void Prepare(vtkOpenGLRenderWindow* window, const int viewport[4], int rays);
-  /// Binds the framebuffer with the buffers of `rays` rays as draw buffers (pushes bindings).
-  void Bind(vtkOpenGLRenderWindow* window, int rays);
+  /// Binds the framebuffer with the buffers of `rays` rays as draw buffers (pushes bindings),
+  /// and `extra` after them when given (the surface layers' progress, vtkVolumeSurfaceLayers).
+  void Bind(vtkOpenGLRenderWindow* window, int rays, vtkTextureObject* extra = nullptr);
   /// Pops the framebuffer bindings Bind() pushed.
   void Unbind(vtkOpenGLRenderWindow* window);
 

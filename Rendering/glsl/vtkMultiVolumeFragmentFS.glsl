@@ -23,6 +23,8 @@ uniform int uNumRegionPlanes; // 6 with a region (SetRegion), else 0
 uniform vec4 uRegionPlanes[6]; // its faces, the same convention
 uniform sampler2D uSceneDepth;
 
+//STRATA::Surfaces::Dec
+
 //STRATA::Volumes::Dec
 
 //STRATA::Termination::Dec
@@ -98,6 +100,7 @@ vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float t
   }
   inside = true;
   tFirst = tExit;
+  //STRATA::Surfaces::Load
   tEnter = max(tEnter, tMin);
 
   // t spans the near-to-far segment [0, 1]; the sample lattice is t = (k + phase) dt.

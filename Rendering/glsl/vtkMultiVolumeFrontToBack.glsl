@@ -2,6 +2,7 @@
   // fragment; stops at the fragment's share of the termination opacity.
   float kk = floor(tEnter / dt - phase);
   //STRATA::Start::Impl
+  //STRATA::Surfaces::Start
   for (int it = 0; it < 1048576; ++it)
   {
     float a = max((kk + phase) * dt, tEnter);
@@ -12,6 +13,7 @@
     }
     //STRATA::Layers::Impl
     //STRATA::Skip::Impl
+    //STRATA::Surfaces::Split
     if (b > a)
     {
       //STRATA::Step::Impl
@@ -26,6 +28,7 @@
         break;
       }
     }
+    //STRATA::Surfaces::Resume
     kk += 1.0;
   }
   //STRATA::LayersAfter::Impl

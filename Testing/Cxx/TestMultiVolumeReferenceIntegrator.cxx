@@ -1089,6 +1089,74 @@ void BlendModes()
 }
 }
 
+namespace
+{
+// Translucent surfaces: layers at their exact crossing, in ray order with the media.
+void Surfaces(double exactTol)
+{
+  std::printf("(j) translucent surfaces\n");
+  auto over = [](const RGBA& front, const RGBA& back)
+  {
+    RGBA r;
+    for (int k = 0; k < 4; ++k)
+      r[k] = front[k] + (1.0 - front[3]) * back[k];
+    return r;
+  };
+  // A constant box over x in [0, 10] (tau 0.5, grey 0.5), a ray along +x from x = -2.
+  Volume box =
+    MakeVolume(11, 3, 3, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, [](int, int, int) { return 0.0; });
+  box.Classification = ConstantTF(1.0 - std::exp(-0.5), 0.5, 0.5, 0.5, 1.0);
+  auto medium = [](double length)
+  {
+    const double a = 1.0 - std::exp(-0.5 * length);
+    return RGBA{ 0.5 * a, 0.5 * a, 0.5 * a, a };
+  };
+  // Surfaces x = c, spanning y, z in [-5, 5]: colour 0.4 (0.3, 0.1, 0.2) premultiplied.
+  auto plane = [](double x)
+  {
+    Integrator::Surface s;
+    const double corner[3] = { x, -5.0, -5.0 }, e1[3] = { 0.0, 10.0, 0.0 },
+                 e2[3] = { 0.0, 0.0, 10.0 };
+    std::copy(corner, corner + 3, s.Corner);
+    std::copy(e1, e1 + 3, s.Edge1);
+    std::copy(e2, e2 + 3, s.Edge2);
+    const double c[4] = { 0.12, 0.04, 0.08, 0.4 };
+    std::copy(c, c + 4, s.Color);
+    return s;
+  };
+  const RGBA layer = { 0.12, 0.04, 0.08, 0.4 };
+  const double o[3] = { -2.0, 1.0, 1.0 }, d[3] = { 1.0, 0.0, 0.0 };
+  auto ray = [&](const std::vector<double>& xs, double t1)
+  {
+    Integrator integ;
+    Add(integ, box);
+    for (double x : xs)
+      integ.AddSurface(plane(x));
+    return integ.IntegrateRay(o, d, 0.0, t1);
+  };
+  Check("(j) surface inside the medium at x = 3",
+    MaxDiff(ray({ 3.0 }, 14.0), over(medium(3.0), over(layer, medium(7.0)))),
+    exactTol);
+  Check("(j) two surfaces, given far first, nearest composited first",
+    MaxDiff(ray({ 8.0, 3.0 }, 14.0),
+      over(medium(3.0), over(layer, over(medium(5.0), over(layer, medium(2.0)))))),
+    exactTol);
+  Check("(j) surfaces in front of and behind the medium",
+    MaxDiff(ray({ -1.0, 11.0 }, 14.0), over(layer, over(medium(10.0), layer))),
+    exactTol);
+  Check("(j) a surface beyond the stop is not reached",
+    MaxDiff(ray({ 3.0, 8.0 }, 7.0), over(medium(3.0), over(layer, medium(2.0)))),
+    exactTol);
+  Integrator integ;
+  Add(integ, box);
+  integ.AddSurface(plane(3.0));
+  const double away[3] = { -2.0, 7.0, 1.0 }; // y = 7: misses the surface (|y| <= 5) and the box
+  Check("(j) a ray beside the surface meets nothing",
+    MaxDiff(integ.IntegrateRay(away, d, 0.0, 14.0), RGBA{ 0.0, 0.0, 0.0, 0.0 }),
+    0.0);
+}
+}
+
 int TestMultiVolumeReferenceIntegrator(int, char*[])
 {
   const auto startTime = std::chrono::steady_clock::now();
@@ -1110,6 +1178,7 @@ int TestMultiVolumeReferenceIntegrator(int, char*[])
       { "Convergence", [&] { Convergence(W, H, cam, base); } },
       { "StartAndStop", [&] { StartAndStop(cam); } },
       { "BlendModes", [&] { BlendModes(); } },
+      { "Surfaces", [&] { Surfaces(exactTol); } },
     },
     [] { return Failures; });
 

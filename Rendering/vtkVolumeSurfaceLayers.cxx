@@ -1,0 +1,290 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+#include "vtkVolumeSurfaceLayers.h"
+
+#include "vtkActor.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderPass.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <string>
+
+/**
+ * The peel's hook into vtkOpenGLPolyDataMapper's fragment shader (through the actor's
+ * vtkOpenGLRenderPass::RenderPasses() key): a fragment survives pass k only in front of the
+ * opaque scene and, for k > 0, behind layer k - 1; the depth test keeps the nearest survivor.
+ */
+class vtkVolumeSurfacePeelPass : public vtkOpenGLRenderPass
+{
+public:
+  static vtkVolumeSurfacePeelPass* New();
+  vtkTypeMacro(vtkVolumeSurfacePeelPass, vtkOpenGLRenderPass);
+
+  void Render(const vtkRenderState*) override {}
+
+  bool PreReplaceShaderValues(std::string&,
+    std::string&,
+    std::string& fragmentShader,
+    vtkAbstractMapper*,
+    vtkProp*) override
+  {
+    vtkShaderProgram::Substitute(fragmentShader,
+      "//VTK::DepthPeeling::Dec",
+      "uniform sampler2D strataPeelScene;\nuniform sampler2D strataPeelPrevious;\n"
+      "uniform int strataPeelLayer;\n//VTK::DepthPeeling::Dec");
+    vtkShaderProgram::Substitute(fragmentShader,
+      "//VTK::DepthPeeling::PreColor",
+      "{\n    ivec2 strataPixel = ivec2(gl_FragCoord.xy);\n"
+      "    if (gl_FragCoord.z >= texelFetch(strataPeelScene, strataPixel, 0).r ||\n"
+      "      (strataPeelLayer > 0 &&\n"
+      "        gl_FragCoord.z <= texelFetch(strataPeelPrevious, strataPixel, 0).r))\n"
+      "    {\n      discard;\n    }\n  }\n  //VTK::DepthPeeling::PreColor");
+    return true;
+  }
+
+  bool SetShaderParameters(vtkShaderProgram* program,
+    vtkAbstractMapper*,
+    vtkProp*,
+    vtkOpenGLVertexArrayObject*) override
+  {
+    program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
+    program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());
+    program->SetUniformi("strataPeelLayer", this->Layer);
+    return true;
+  }
+
+  vtkTextureObject* Scene = nullptr;    ///< activated by Peel
+  vtkTextureObject* Previous = nullptr; ///< activated by Peel
+  int Layer = 0;
+
+protected:
+  vtkVolumeSurfacePeelPass() = default;
+  ~vtkVolumeSurfacePeelPass() override = default;
+
+private:
+  vtkVolumeSurfacePeelPass(const vtkVolumeSurfacePeelPass&) = delete;
+  void operator=(const vtkVolumeSurfacePeelPass&) = delete;
+};
+vtkStandardNewMacro(vtkVolumeSurfacePeelPass);
+
+vtkVolumeSurfaceLayers::vtkVolumeSurfaceLayers()
+  : Pass(vtkSmartPointer<vtkVolumeSurfacePeelPass>::New())
+{
+}
+
+vtkVolumeSurfaceLayers::~vtkVolumeSurfaceLayers()
+{
+  this->RemoveAllActors(); // no actor keeps a peel that nothing sets up
+}
+
+void vtkVolumeSurfaceLayers::Allocate(vtkOpenGLRenderWindow* window,
+  int width,
+  int height,
+  int layers)
+{
+  auto sized = [&](vtkSmartPointer<vtkTextureObject>& t, bool depth, int components)
+  {
+    if (!t)
+      t = vtkSmartPointer<vtkTextureObject>::New();
+    t->SetContext(window);
+    if (int(t->GetWidth()) == width && int(t->GetHeight()) == height && t->GetHandle())
+      return;
+    t->ReleaseGraphicsResources(window);
+    t->SetContext(window);
+    if (depth)
+      t->AllocateDepth(width, height, vtkTextureObject::Float32);
+    else
+      t->Allocate2D(width, height, components, VTK_FLOAT);
+  };
+  this->Colors.resize(std::max<size_t>(this->Colors.size(), layers));
+  this->Depths.resize(std::max<size_t>(this->Depths.size(), layers));
+  for (int k = 0; k < layers; ++k)
+  {
+    sized(this->Colors[k], false, 4);
+    sized(this->Depths[k], true, 1);
+  }
+  // RGBA, alpha kept 0: the integration blend scales the source by 1 - destination alpha, and a
+  // one-channel texture would read alpha 1.
+  sized(this->Progress, false, 4);
+  if (!this->Framebuffer)
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+  this->Framebuffer->SetContext(window);
+  this->Layers = layers;
+}
+
+void vtkVolumeSurfaceLayers::Attach(vtkActor* actor) const
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (!keys)
+  {
+    vtkNew<vtkInformation> info;
+    actor->SetPropertyKeys(info);
+    keys = info;
+  }
+  if (!keys->Has(vtkOpenGLRenderPass::RenderPasses()) ||
+      keys->Length(vtkOpenGLRenderPass::RenderPasses()) == 0)
+    keys->Append(vtkOpenGLRenderPass::RenderPasses(), this->Pass);
+}
+
+void vtkVolumeSurfaceLayers::AddActor(vtkActor* actor)
+{
+  if (actor)
+    this->Actors.emplace_back(actor);
+}
+
+void vtkVolumeSurfaceLayers::RemoveAllActors()
+{
+  for (vtkActor* actor : this->Actors)
+  {
+    vtkInformation* keys = actor->GetPropertyKeys();
+    if (keys && keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+      keys->Remove(vtkOpenGLRenderPass::RenderPasses(), this->Pass);
+  }
+  this->Actors.clear();
+}
+
+bool vtkVolumeSurfaceLayers::HasVisibleActors() const
+{
+  return std::any_of(this->Actors.begin(),
+    this->Actors.end(),
+    [](vtkActor* a) { return a->GetVisibility() && a->GetMapper(); });
+}
+
+int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
+  vtkOpenGLRenderWindow* window,
+  vtkTextureObject* sceneDepth,
+  const int viewport[4],
+  int layers,
+  int rays,
+  bool acrossFragments)
+{
+  this->Layers = 0;
+  std::vector<vtkActor*> actors;
+  for (vtkActor* actor : this->Actors)
+    if (actor->GetVisibility() && actor->GetMapper())
+      actors.push_back(actor);
+  if (actors.empty() || layers <= 0)
+    return 0;
+  if (!acrossFragments || rays >= 8)
+  {
+    if (!this->UnsupportedWarned)
+      vtkGenericWarningMacro("Translucent actors among volumes need the front-to-back order, "
+                             "texture barriers and at most 7 rays per pixel: not drawn.");
+    this->UnsupportedWarned = true;
+    return 0;
+  }
+  const int width = viewport[2], height = viewport[3];
+  this->Allocate(window, width, height, layers);
+  vtkOpenGLState* state = window->GetState();
+  state->PushFramebufferBindings();
+  {
+    vtkOpenGLState::ScopedglViewport viewportSaver(state);
+    vtkOpenGLState::ScopedglClearColor clearSaver(state);
+    vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);
+    vtkOpenGLState::ScopedglEnableDisable depthEnable(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+    this->Framebuffer->Bind();
+    state->vtkglViewport(0, 0, width, height);
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_LESS);
+    state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    state->vtkglClearDepth(1.0);
+    for (vtkActor* actor : actors)
+      this->Attach(actor);
+    for (int k = 0; k < layers; ++k)
+    {
+      this->Framebuffer->AddColorAttachment(0, this->Colors[k]);
+      this->Framebuffer->AddDepthAttachment(this->Depths[k]);
+      this->Framebuffer->ActivateDrawBuffers(1);
+      state->vtkglDepthMask(GL_TRUE);
+      state->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      this->Pass->Layer = k;
+      this->Pass->Scene = sceneDepth;
+      this->Pass->Previous = k > 0 ? this->Depths[k - 1].Get() : sceneDepth;
+      sceneDepth->Activate();
+      this->Pass->Previous->Activate();
+      // vtkActor::Render directly, not RenderTranslucentPolygonalGeometry: outside the
+      // translucent pass the actor writes depth, which the peel needs.
+      for (vtkActor* actor : actors)
+        actor->Render(ren, actor->GetMapper());
+      this->Pass->Previous->Deactivate();
+      sceneDepth->Deactivate();
+    }
+    this->Framebuffer->RemoveDepthAttachment();
+    this->Framebuffer->RemoveColorAttachment(0);
+  }
+  state->PopFramebufferBindings();
+  return this->Layers;
+}
+
+vtkTextureObject* vtkVolumeSurfaceLayers::GetColor(int layer) const
+{
+  return this->Colors[layer];
+}
+
+vtkTextureObject* vtkVolumeSurfaceLayers::GetDepth(int layer) const
+{
+  return this->Depths[layer];
+}
+
+vtkTextureObject* vtkVolumeSurfaceLayers::GetProgress() const
+{
+  return this->Layers > 0 ? this->Progress.Get() : nullptr;
+}
+
+void vtkVolumeSurfaceLayers::SetUniforms(vtkShaderProgram* program) const
+{
+  if (this->Layers == 0)
+    return;
+  for (int k = 0; k < this->Layers; ++k)
+  {
+    const std::string K = std::to_string(k);
+    this->Colors[k]->Activate();
+    program->SetUniformi(("uSurfaceColor" + K).c_str(), this->Colors[k]->GetTextureUnit());
+    this->Depths[k]->Activate();
+    program->SetUniformi(("uSurfaceDepth" + K).c_str(), this->Depths[k]->GetTextureUnit());
+  }
+  this->Progress->Activate();
+  program->SetUniformi("uSurfaceProgress", this->Progress->GetTextureUnit());
+}
+
+void vtkVolumeSurfaceLayers::Deactivate() const
+{
+  if (this->Layers == 0)
+    return;
+  for (int k = 0; k < this->Layers; ++k)
+  {
+    this->Colors[k]->Deactivate();
+    this->Depths[k]->Deactivate();
+  }
+  this->Progress->Deactivate();
+}
+
+void vtkVolumeSurfaceLayers::ReleaseGraphicsResources(vtkWindow* window)
+{
+  for (auto& t : this->Colors)
+    t->ReleaseGraphicsResources(window);
+  for (auto& t : this->Depths)
+    t->ReleaseGraphicsResources(window);
+  if (this->Progress)
+    this->Progress->ReleaseGraphicsResources(window);
+  if (this->Framebuffer)
+    this->Framebuffer->ReleaseGraphicsResources(window);
+  this->Colors.clear();
+  this->Depths.clear();
+  this->Progress = nullptr;
+  this->Framebuffer = nullptr;
+  this->Layers = 0;
+}
