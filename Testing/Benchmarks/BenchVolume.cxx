@@ -1216,6 +1216,39 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
   chart.Write(png);
 }
 
+/// The brick atlas's indirection against one plain texture (issue 16: atlas ms / no-atlas ms
+/// <= 1.05 on llvmpipe), from the `frame` rows of the single and sparse cases.
+void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
+  const std::vector<std::string>& cases)
+{
+  std::printf("\nBrick atlas vs one plain texture (ratio = strata ms / strata-no-atlas ms, "
+              "target <= 1.05)\n");
+  std::printf("%-16s %9s %12s %7s %5s\n", "case", "atlas_ms", "no_atlas_ms", "ratio", "met");
+  for (const auto& c : cases)
+  {
+    if (c.rfind("single-", 0) != 0 && c.rfind("sparse-", 0) != 0)
+      continue;
+    double atlas = NaN, plain = NaN;
+    for (const auto& r : rows)
+      if (Get(r, "case") == c && !Get(r, "ms_per_frame").empty())
+      {
+        if (Get(r, "method") == "strata")
+          atlas = Number(r, "ms_per_frame");
+        else if (Get(r, "method") == "strata-no-atlas")
+          plain = Number(r, "ms_per_frame");
+      }
+    const double ratio = atlas / plain;
+    std::printf("%-16s %9.1f %12.1f %7.2f %5s\n",
+      c.c_str(),
+      atlas,
+      plain,
+      ratio,
+      std::isnan(ratio) ? "-"
+      : ratio <= 1.05   ? "yes"
+                        : "NO");
+  }
+}
+
 int Report(const std::string& csv, const std::string& png)
 {
   const auto rows = ReadCsv(csv);
@@ -1381,6 +1414,8 @@ int Report(const std::string& csv, const std::string& png)
       fmt(v ? Number(*v, "peak_rss_mb") : NaN, "%.0f").c_str(),
       note.c_str());
   }
+
+  AtlasCostTable(rows, cases);
 
   // 3. BSP rebuilds.
   std::printf("\nBSP rebuild (vtkVolumeBSPTree::Build; the paper reports 0.15 to 0.29 ms)\n");
