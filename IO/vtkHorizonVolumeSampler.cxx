@@ -47,27 +47,35 @@ void Apply(vtkMatrix4x4* m, const double p[3], double out[3])
   std::copy_n(r, 3, out);
 }
 
-/// Component 0 of `values` (on `image`'s extent) at continuous index x, trilinear or
-/// nearest; NaN outside the extent (a rounding's worth of slack at its faces).
-double Sample(vtkImageData* image, vtkDataArray* values, const double x[3], bool nearest)
+vtkDataArray* NamedOrScalars(vtkImageData* image, const std::string& name)
+{
+  return name.empty() ? image->GetPointData()->GetScalars()
+                      : image->GetPointData()->GetArray(name.c_str());
+}
+}
+
+double vtkHorizonVolumeSampler::SampleImage(vtkImageData* image,
+  vtkDataArray* values,
+  const double x[3],
+  bool nearest)
 {
   const int* e = image->GetExtent();
   int base[3];
   double f[3];
   for (int c = 0; c < 3; ++c)
   {
-    const double slack = 1e-9 * std::max(1.0, std::abs(x[c]));
-    if (!(x[c] >= e[2 * c] - slack && x[c] <= e[2 * c + 1] + slack))
+    if (!(x[c] >= e[2 * c] - 1e-9 && x[c] <= e[2 * c + 1] + 1e-9))
       return NaN;
-    const double xc = std::min(std::max(x[c], double(e[2 * c])), double(e[2 * c + 1]));
     if (nearest)
     {
-      base[c] = std::min(static_cast<int>(std::floor(xc + 0.5)), e[2 * c + 1]);
+      base[c] =
+        std::min(std::max(static_cast<int>(std::floor(x[c] + 0.5)), e[2 * c]), e[2 * c + 1]);
       f[c] = 0.0;
       continue;
     }
-    base[c] = std::min(static_cast<int>(std::floor(xc)), std::max(e[2 * c + 1] - 1, e[2 * c]));
-    f[c] = e[2 * c + 1] > e[2 * c] ? xc - base[c] : 0.0;
+    base[c] = std::min(
+      std::max(static_cast<int>(std::floor(x[c])), e[2 * c]), std::max(e[2 * c + 1] - 1, e[2 * c]));
+    f[c] = e[2 * c + 1] > e[2 * c] ? std::min(std::max(x[c] - base[c], 0.0), 1.0) : 0.0;
   }
   const vtkIdType nx = e[1] - e[0] + 1, ny = e[3] - e[2] + 1;
   double sum = 0.0;
@@ -87,13 +95,6 @@ double Sample(vtkImageData* image, vtkDataArray* values, const double x[3], bool
     sum += w * values->GetComponent(id, 0);
   }
   return sum;
-}
-
-vtkDataArray* NamedOrScalars(vtkImageData* image, const std::string& name)
-{
-  return name.empty() ? image->GetPointData()->GetScalars()
-                      : image->GetPointData()->GetArray(name.c_str());
-}
 }
 
 vtkHorizonVolumeSampler::vtkHorizonVolumeSampler()
@@ -279,7 +280,7 @@ int vtkHorizonVolumeSampler::RequestData(vtkInformation*,
         {
           const double* x = &index[3 * (static_cast<size_t>(j - j0) * (i1 - i0) + (i - i0))];
           const double v =
-            !any || std::isnan(x[0]) ? NaN : Sample(source, data, x, this->NearestNeighbor);
+            !any || std::isnan(x[0]) ? NaN : SampleImage(source, data, x, this->NearestNeighbor);
           values->SetValue(static_cast<vtkIdType>(j) * dims[0] + i, static_cast<float>(v));
           ++(std::isnan(v) ? this->NumberOfEmptyPoints : this->NumberOfSampledPoints);
         }

@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkMultiVolumeRayCastMapper.h"
+#include "vtkMultiVolumeRayCastMapperInternals.h"
 
 #include "vtkBrickAtlasAllocator.h"
 #include "vtkBrickAtlasTexture.h"
@@ -52,31 +53,12 @@
 #include <cmath>
 #include <map>
 
+using namespace vtkMultiVolumeRayCastMapperFrame;
+
 namespace
 {
 constexpr int MaxPlanes = 64;
 constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
-using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
-
-// One volume of the current frame.
-using Components = vtkMultiVolumeShaderComposer::Components;
-
-struct FrameVolume
-{
-  int Port = 0;
-  vtkImageData* Input = nullptr;
-  vtkVolumeProperty* Property = nullptr;
-  vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
-  float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
-  int Dims[3] = { 0, 0, 0 };
-  std::string Pool; ///< the page pool the volume is paged from; Input is then a coarse stand-in
-  int Mode = vtkVolumeMapper::COMPOSITE_BLEND; ///< its effective blend mode
-  bool Cropped = false;
-  float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
-  int CropFlags = 0;
-  /// Several components: a composite medium from a plain texture (vtkMultiVolumeInput).
-  Components ComponentMode = Components::One;
-};
 
 bool IsReduced(int mode)
 {
@@ -85,38 +67,6 @@ bool IsReduced(int mode)
          mode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
          mode == vtkVolumeMapper::ADDITIVE_BLEND;
 }
-
-// What one frame draws and how, gathered once and read by every step.
-struct Frame
-{
-  std::vector<FrameVolume> Volumes;
-  int BrickSize = 32;
-  bool AnyPooled = false;
-  bool Atlas = true;
-  bool Feedback = false;
-  bool Footprint = false;
-  bool Hold = false;
-  int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
-  vtkNew<vtkMatrix4x4> ToWorld, LocalToClip, ClipToLocal;
-  std::vector<float> ClipPlanes;   ///< inside: dot(n, p) + w <= 0, local frame
-  std::vector<float> RegionPlanes; ///< the region's six faces (SetRegion), same convention
-  ViewKey View{};
-  bool Moved = false;
-  double SampleDistance = 1.0;
-  int Rays = 1;
-  bool FrontToBack = true;
-  bool Barrier = false;
-  bool AnyReduced = false; ///< some volume is drawn as a layer by its own reduction pass
-  int Surfaces = 0;        ///< translucent surface layers peeled this frame
-  bool Lit = false;
-  std::vector<float> LightDirections, LightColors;
-  // Feedback uniforms: threshold x pixel size = x + y * distance, the eye, and per volume
-  // 1 / level-0 voxel size with its coarsest level, and the bricks per axis of each level.
-  float FeedbackFootprint[2] = { 0.f, 0.f };
-  float FeedbackEye[3] = { 0.f, 0.f, 0.f };
-  std::vector<std::array<float, 2>> FeedbackLod;
-  std::vector<std::vector<int>> LevelBricks;
-};
 
 // The volume's coarsest level as floats when the image the reader produced is one page (the
 // pager pads it into the root page).
@@ -169,80 +119,6 @@ double LongestVoxelEdge(const FrameVolume& e)
   return longest > 0.0 ? longest : (any > 0.0 ? any : 1.0);
 }
 }
-
-class vtkMultiVolumeRayCastMapper::vtkInternals
-{
-public:
-  using Self = vtkMultiVolumeRayCastMapper;
-  explicit vtkInternals(Self* self)
-    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
-  {
-  }
-
-  vtkStrataResourceFreeCallback<Self> ResourceCallback;
-  vtkVolumeFragmentGeometry Geometry;
-  std::map<int, vtkMultiVolumeInput> Inputs; // by input port
-  vtkVolumePager Pager;
-  vtkBrickAtlasTexture Atlas;
-  vtkFeedbackBuffer Feedback{ true };
-  vtkVolumeIntegrationBuffers Buffers;
-  vtkVolumeSurfaceLayers SurfaceLayers;                    ///< with the translucent actors
-  std::map<int, vtkVolumeIntegrationBuffers> LayerBuffers; ///< by port: reduced volumes' layers
-  vtkMultiVolumeShaderComposer Composer;
-  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
-  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
-  int LastFragments = 0;
-  int ResidentBricks = 0;
-  int Max3DTexture = 0;   ///< the GPU's, asked once
-  bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
-  bool FeedbackUnsupportedWarned = false;
-  bool ComponentLimitsWarned = false;
-  ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
-  ViewKey LastView{};     ///< the view of the last frame
-  /// What decides which bricks are empty besides the transfer functions: the halo
-  /// (pre-integration) and the region. When it changes the cut starts again from the roots:
-  /// a brick that turns non-empty under a node already split has no page yet.
-  bool CutHalo = false;
-  vtkStrataRegion CutRegion;
-  PagingStatistics Paging;
-  /// By paged port: the pool shown (a new step's bricks end HoldCut) and the last prefetch
-  /// warning (made once).
-  std::map<int, std::array<std::string, 2>> ShownPools;
-
-  bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
-  const vtkPagePoolFile* OpenPool(Self* self, int port, const char* pool);
-  bool SupportsFeedback(Self* self, const Frame& frame);
-  bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
-  bool UpdateAtlas(Self* self, vtkRenderer* ren, Frame& frame);
-  bool UpdateCut(Self* self, vtkRenderer* ren, Frame& frame);
-  void UploadBricks(Self* self,
-    const std::vector<vtkVolumeCut::Upload>& uploads,
-    const Frame& frame);
-  void UpdatePreIntegration(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  void PrepareFeedback(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  void DrawFragments(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  void DrawReductions(Self* self,
-    vtkOpenGLRenderWindow* renWin,
-    const std::vector<int>& order,
-    Frame& frame);
-  vtkMultiVolumeShaderComposer::FragmentKey MakeKey(Self* self,
-    const std::vector<int>& volumes,
-    bool reduce,
-    const Frame& frame) const;
-  bool DrawFragment(Self* self,
-    vtkOpenGLRenderWindow* renWin,
-    int f,
-    Frame& frame,
-    int reduce = -1);
-  void SetFragmentUniforms(Self* self,
-    vtkShaderProgram* program,
-    int f,
-    const std::vector<int>& volumes,
-    const vtkMultiVolumeShaderComposer::FragmentKey& key,
-    const Frame& frame);
-  void Composite(vtkOpenGLRenderWindow* renWin, const Frame& frame);
-};
 
 // --- The volumes of this frame: a vtkMultiVolume's members on their ports, or one volume; a
 // page pool behind an input (vtkPagePoolReader) pages it, and pools fix the brick size.
@@ -1175,202 +1051,6 @@ void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[
   const int r = std::min(std::max(ray, 0), count - 1);
   offset[0] = pattern[r][0] - mean[0];
   offset[1] = pattern[r][1] - mean[1];
-}
-
-void vtkMultiVolumeRayCastMapper::SetClassification(Classifications classification)
-{
-  if (classification != this->Classification)
-  {
-    this->Classification = classification;
-    this->Modified();
-  }
-}
-
-void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
-{
-  if (order != this->CompositeOrder)
-  {
-    this->CompositeOrder = order;
-    this->Modified();
-  }
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfResidentBricks() const
-{
-  return this->Internals->ResidentBricks;
-}
-
-std::vector<int> vtkMultiVolumeRayCastMapper::GetResidentBricksPerLevel(int port) const
-{
-  return this->Internals->Pager.GetResidentBricksPerLevel(port);
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
-{
-  return this->Internals->Pager.GetAtlas().GetNumberOfSlots();
-}
-
-std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int port) const
-{
-  return this->Internals->Pager.GetCutBricks(port);
-}
-
-void vtkMultiVolumeRayCastMapper::SetFixedCut(int port,
-  const std::vector<std::array<int, 2>>& bricks)
-{
-  this->Internals->Pager.SetFixedCut(port, bricks);
-  this->Modified();
-}
-
-void vtkMultiVolumeRayCastMapper::GetCutBricks(int port, vtkIntArray* bricks) const
-{
-  if (!bricks)
-  {
-    return;
-  }
-  const std::vector<std::array<int, 2>> cut = this->GetCutBricks(port);
-  bricks->SetNumberOfComponents(2);
-  bricks->SetNumberOfTuples(static_cast<vtkIdType>(cut.size()));
-  for (size_t i = 0; i < cut.size(); ++i)
-  {
-    bricks->SetTypedTuple(static_cast<vtkIdType>(i), cut[i].data());
-  }
-}
-
-void vtkMultiVolumeRayCastMapper::SetFixedCut(int port, vtkIntArray* bricks)
-{
-  if (!bricks || bricks->GetNumberOfComponents() != 2)
-  {
-    vtkErrorMacro("SetFixedCut needs an array of two components (level, brick), not "
-                  << (bricks ? bricks->GetNumberOfComponents() : 0));
-    return;
-  }
-  std::vector<std::array<int, 2>> cut(static_cast<size_t>(bricks->GetNumberOfTuples()));
-  for (size_t i = 0; i < cut.size(); ++i)
-  {
-    bricks->GetTypedTuple(static_cast<vtkIdType>(i), cut[i].data());
-  }
-  this->SetFixedCut(port, cut);
-}
-
-void vtkMultiVolumeRayCastMapper::RemoveAllFixedCuts()
-{
-  if (!this->Internals->Pager.HasFixedCuts())
-    return;
-  this->Internals->Pager.RemoveAllFixedCuts();
-  this->Modified();
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfFragments() const
-{
-  return this->Internals->LastFragments;
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfShaderSourcesBuilt() const
-{
-  return this->Internals->Composer.GetNumberOfSourcesBuilt();
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfShaderCompilations() const
-{
-  return this->Internals->Composer.GetNumberOfCompilations();
-}
-
-void vtkMultiVolumeRayCastMapper::SetInputBlendMode(int port, int mode)
-{
-  auto it = this->InputBlendModes.find(port);
-  if (mode < 0 ? it == this->InputBlendModes.end()
-               : it != this->InputBlendModes.end() && it->second == mode)
-    return;
-  if (mode < 0)
-    this->InputBlendModes.erase(it);
-  else
-    this->InputBlendModes[port] = mode;
-  this->Modified();
-}
-
-void vtkMultiVolumeRayCastMapper::SetInputCropping(int port,
-  bool cropping,
-  const double planes[6],
-  int flags)
-{
-  InputCrop crop;
-  crop.Cropping = cropping;
-  std::copy(planes, planes + 6, crop.Planes);
-  crop.Flags = flags;
-  auto it = this->InputCroppings.find(port);
-  if (it != this->InputCroppings.end() && it->second.Cropping == crop.Cropping &&
-      it->second.Flags == crop.Flags && std::equal(planes, planes + 6, it->second.Planes))
-    return;
-  this->InputCroppings[port] = crop;
-  this->Modified();
-}
-
-void vtkMultiVolumeRayCastMapper::RemoveInputCropping(int port)
-{
-  if (this->InputCroppings.erase(port))
-    this->Modified();
-}
-
-bool vtkMultiVolumeRayCastMapper::GetEffectiveCropping(int port, double planes[6], int& flags) const
-{
-  auto it = this->InputCroppings.find(port);
-  const bool own = it != this->InputCroppings.end();
-  std::copy(own ? it->second.Planes : this->CroppingRegionPlanes,
-    (own ? it->second.Planes : this->CroppingRegionPlanes) + 6,
-    planes);
-  flags = own ? it->second.Flags : this->CroppingRegionFlags;
-  return own ? it->second.Cropping : this->Cropping != 0;
-}
-
-int vtkMultiVolumeRayCastMapper::GetInputBlendMode(int port) const
-{
-  auto it = this->InputBlendModes.find(port);
-  return it == this->InputBlendModes.end() ? -1 : it->second;
-}
-
-int vtkMultiVolumeRayCastMapper::GetEffectiveBlendMode(int port) const
-{
-  const int mode = this->GetInputBlendMode(port);
-  return mode < 0 ? this->BlendMode : mode;
-}
-
-std::string vtkMultiVolumeRayCastMapper::GetReductionShaderSource(int blendMode) const
-{
-  auto it = this->Internals->LastReduceKeys.find(blendMode);
-  return it == this->Internals->LastReduceKeys.end()
-           ? std::string()
-           : this->Internals->Composer.GetFragmentSource(it->second);
-}
-
-std::string vtkMultiVolumeRayCastMapper::GetFragmentShaderSource(int numberOfVolumes) const
-{
-  auto it = this->Internals->LastKeys.find(numberOfVolumes);
-  return it == this->Internals->LastKeys.end()
-           ? std::string()
-           : this->Internals->Composer.GetFragmentSource(it->second);
-}
-
-void vtkMultiVolumeRayCastMapper::GetReductionRatio(double ratio[3])
-{
-  ratio[0] = ratio[1] = ratio[2] = 1.0;
-}
-
-void vtkMultiVolumeRayCastMapper::AddTranslucentActor(vtkActor* actor)
-{
-  this->Internals->SurfaceLayers.AddActor(actor);
-  this->Modified();
-}
-
-void vtkMultiVolumeRayCastMapper::RemoveAllTranslucentActors()
-{
-  this->Internals->SurfaceLayers.RemoveAllActors();
-  this->Modified();
-}
-
-int vtkMultiVolumeRayCastMapper::GetNumberOfTranslucentActors() const
-{
-  return this->Internals->SurfaceLayers.GetNumberOfActors();
 }
 
 void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)

@@ -1,0 +1,173 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+//
+// Private to vtkMultiVolumeRayCastMapper's sources (not installed): what one frame draws
+// (vtkMultiVolumeRayCastMapperFrame) and the mapper's internals, shared by the frame's code
+// (vtkMultiVolumeRayCastMapper.cxx) and its settings and introspection
+// (vtkMultiVolumeRayCastMapperSettings.cxx).
+#ifndef vtkMultiVolumeRayCastMapperInternals_h
+#define vtkMultiVolumeRayCastMapperInternals_h
+
+#include "vtkMultiVolumeRayCastMapper.h"
+
+#include "vtkBrickAtlasTexture.h"
+#include "vtkFeedbackBuffer.h"
+#include "vtkMultiVolumeInput.h"
+#include "vtkMultiVolumeShaderComposer.h"
+#include "vtkStrataResourceFreeCallback.h"
+#include "vtkVolumeCut.h"
+#include "vtkVolumeFragmentGeometry.h"
+#include "vtkVolumeIntegrationBuffers.h"
+#include "vtkVolumePager.h"
+#include "vtkVolumeSurfaceLayers.h"
+
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkPagePoolFile;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkVolume;
+class vtkVolumeProperty;
+
+namespace vtkMultiVolumeRayCastMapperFrame
+{
+using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
+
+// One volume of the current frame.
+using Components = vtkMultiVolumeShaderComposer::Components;
+
+struct FrameVolume
+{
+  int Port = 0;
+  vtkImageData* Input = nullptr;
+  vtkVolumeProperty* Property = nullptr;
+  vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
+  float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
+  int Dims[3] = { 0, 0, 0 };
+  std::string Pool; ///< the page pool the volume is paged from; Input is then a coarse stand-in
+  int Mode = vtkVolumeMapper::COMPOSITE_BLEND; ///< its effective blend mode
+  bool Cropped = false;
+  float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
+  int CropFlags = 0;
+  /// Several components: a composite medium from a plain texture (vtkMultiVolumeInput).
+  Components ComponentMode = Components::One;
+};
+
+// What one frame draws and how, gathered once and read by every step.
+struct Frame
+{
+  std::vector<FrameVolume> Volumes;
+  int BrickSize = 32;
+  bool AnyPooled = false;
+  bool Atlas = true;
+  bool Feedback = false;
+  bool Footprint = false;
+  bool Hold = false;
+  int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
+  vtkNew<vtkMatrix4x4> ToWorld, LocalToClip, ClipToLocal;
+  std::vector<float> ClipPlanes;   ///< inside: dot(n, p) + w <= 0, local frame
+  std::vector<float> RegionPlanes; ///< the region's six faces (SetRegion), same convention
+  ViewKey View{};
+  bool Moved = false;
+  double SampleDistance = 1.0;
+  int Rays = 1;
+  bool FrontToBack = true;
+  bool Barrier = false;
+  bool AnyReduced = false; ///< some volume is drawn as a layer by its own reduction pass
+  int Surfaces = 0;        ///< translucent surface layers peeled this frame
+  bool Lit = false;
+  std::vector<float> LightDirections, LightColors;
+  // Feedback uniforms: threshold x pixel size = x + y * distance, the eye, and per volume
+  // 1 / level-0 voxel size with its coarsest level, and the bricks per axis of each level.
+  float FeedbackFootprint[2] = { 0.f, 0.f };
+  float FeedbackEye[3] = { 0.f, 0.f, 0.f };
+  std::vector<std::array<float, 2>> FeedbackLod;
+  std::vector<std::vector<int>> LevelBricks;
+};
+}
+
+class vtkMultiVolumeRayCastMapper::vtkInternals
+{
+public:
+  using Frame = vtkMultiVolumeRayCastMapperFrame::Frame;
+  using ViewKey = vtkMultiVolumeRayCastMapperFrame::ViewKey;
+  using Self = vtkMultiVolumeRayCastMapper;
+  explicit vtkInternals(Self* self)
+    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+  {
+  }
+
+  vtkStrataResourceFreeCallback<Self> ResourceCallback;
+  vtkVolumeFragmentGeometry Geometry;
+  std::map<int, vtkMultiVolumeInput> Inputs; // by input port
+  vtkVolumePager Pager;
+  vtkBrickAtlasTexture Atlas;
+  vtkFeedbackBuffer Feedback{ true };
+  vtkVolumeIntegrationBuffers Buffers;
+  vtkVolumeSurfaceLayers SurfaceLayers;                    ///< with the translucent actors
+  std::map<int, vtkVolumeIntegrationBuffers> LayerBuffers; ///< by port: reduced volumes' layers
+  vtkMultiVolumeShaderComposer Composer;
+  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
+  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
+  int LastFragments = 0;
+  int ResidentBricks = 0;
+  int Max3DTexture = 0;   ///< the GPU's, asked once
+  bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
+  bool FeedbackUnsupportedWarned = false;
+  bool ComponentLimitsWarned = false;
+  ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
+  ViewKey LastView{};     ///< the view of the last frame
+  /// What decides which bricks are empty besides the transfer functions: the halo
+  /// (pre-integration) and the region. When it changes the cut starts again from the roots:
+  /// a brick that turns non-empty under a node already split has no page yet.
+  bool CutHalo = false;
+  vtkStrataRegion CutRegion;
+  PagingStatistics Paging;
+  /// By paged port: the pool shown (a new step's bricks end HoldCut) and the last prefetch
+  /// warning (made once).
+  std::map<int, std::array<std::string, 2>> ShownPools;
+
+  bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
+  const vtkPagePoolFile* OpenPool(Self* self, int port, const char* pool);
+  bool SupportsFeedback(Self* self, const Frame& frame);
+  bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
+  bool UpdateAtlas(Self* self, vtkRenderer* ren, Frame& frame);
+  bool UpdateCut(Self* self, vtkRenderer* ren, Frame& frame);
+  void UploadBricks(Self* self,
+    const std::vector<vtkVolumeCut::Upload>& uploads,
+    const Frame& frame);
+  void UpdatePreIntegration(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  void PrepareFeedback(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  void DrawFragments(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  void DrawReductions(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    const std::vector<int>& order,
+    Frame& frame);
+  vtkMultiVolumeShaderComposer::FragmentKey MakeKey(Self* self,
+    const std::vector<int>& volumes,
+    bool reduce,
+    const Frame& frame) const;
+  bool DrawFragment(Self* self,
+    vtkOpenGLRenderWindow* renWin,
+    int f,
+    Frame& frame,
+    int reduce = -1);
+  void SetFragmentUniforms(Self* self,
+    vtkShaderProgram* program,
+    int f,
+    const std::vector<int>& volumes,
+    const vtkMultiVolumeShaderComposer::FragmentKey& key,
+    const Frame& frame);
+  void Composite(vtkOpenGLRenderWindow* renWin, const Frame& frame);
+};
+
+#endif
