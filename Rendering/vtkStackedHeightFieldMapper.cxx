@@ -853,7 +853,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
   frame.LookupTable =
     frame.Shaded && !frame.PerHorizon && self->ColorMode == ColorModes::LookupTable;
   TableRange(this->Lut, this->ZRange[0], this->ZRange[1], frame.LutRange);
-  if (!frame.Shaded || (this->ColorTime != 0 && this->ColorsCurrent()))
+  if (!frame.Shaded || this->ColorsCurrent())
     return;
   std::vector<float> colors;
   if (frame.PerHorizon)

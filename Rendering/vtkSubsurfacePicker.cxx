@@ -41,16 +41,11 @@ vtkStandardNewMacro(vtkSubsurfacePicker);
 
 namespace
 {
-/// Row-major 4x4 of index -> world of an image geometry: [D diag(s) | o].
+/// index -> world of an image geometry (origin + D diag(s) index), as VTK composes it.
 void IndexMatrix(const double o[3], const double s[3], const double* d, vtkMatrix4x4* m)
 {
-  m->Identity();
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-      m->SetElement(r, c, d[3 * r + c] * s[c]);
-    m->SetElement(r, 3, o[r]);
-  }
+  vtkImageData::ComputeIndexToPhysicalMatrix(o, s, d, m->GetData());
+  m->Modified();
 }
 
 void Apply(vtkMatrix4x4* m, const double p[3], double out[3])

@@ -115,34 +115,10 @@ vtkSmartPointer<vtkImageData> MakeVolume()
 /// Trilinear of the volume's stored floats at world point w (the per-pixel ideal); NaN outside.
 double VolumeAt(vtkImageData* volume, const double w[3])
 {
-  const double* o = volume->GetOrigin();
-  const double* s = volume->GetSpacing();
-  const double* d = volume->GetDirectionMatrix()->GetData(); // rotation: inverse = transpose
-  const double rel[3] = { w[0] - o[0], w[1] - o[1], w[2] - o[2] };
   double x[3];
-  for (int c = 0; c < 3; ++c)
-    x[c] = (d[c] * rel[0] + d[3 + c] * rel[1] + d[6 + c] * rel[2]) / s[c];
-  const int dims[3] = { VX, VY, VZ };
-  int b[3];
-  double f[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    if (!(x[c] >= 0.0 && x[c] <= dims[c] - 1))
-      return std::nan("");
-    b[c] = std::min(static_cast<int>(x[c]), dims[c] - 2);
-    f[c] = x[c] - b[c];
-  }
-  auto* a = vtkFloatArray::SafeDownCast(volume->GetPointData()->GetScalars());
-  double sum = 0.0;
-  for (int k = 0; k < 8; ++k)
-  {
-    const int e[3] = { k & 1, (k >> 1) & 1, (k >> 2) & 1 };
-    double wgt = 1.0;
-    for (int c = 0; c < 3; ++c)
-      wgt *= e[c] ? f[c] : 1.0 - f[c];
-    sum += wgt * a->GetValue((vtkIdType(b[2] + e[2]) * VY + b[1] + e[1]) * VX + b[0] + e[0]);
-  }
-  return sum;
+  volume->TransformPhysicalPointToContinuousIndex(w, x);
+  return vtkHorizonVolumeSampler::SampleImage(
+    volume, volume->GetPointData()->GetScalars(), x, false);
 }
 
 /// A fractal horizon (depths 1200-1100 m, HeightScale -1) over 1.6 km x 1.6 km at `spacing`.
