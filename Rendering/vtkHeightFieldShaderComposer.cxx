@@ -11,6 +11,9 @@
 #include "vtkStackedHeightFieldFeedbackWrite.h"
 #include "vtkStackedHeightFieldHeadlight.h"
 #include "vtkStackedHeightFieldHorizonColor.h"
+#include "vtkStackedHeightFieldLayerDec.h"
+#include "vtkStackedHeightFieldLayerMerge.h"
+#include "vtkStackedHeightFieldLayerStart.h"
 #include "vtkStackedHeightFieldLight.h"
 #include "vtkStackedHeightFieldPositionalLight.h"
 #include "vtkStackedHeightFieldShading.h"
@@ -23,6 +26,7 @@
 namespace
 {
 using Key = vtkHeightFieldShaderComposer::Key;
+using Translucency = vtkHeightFieldShaderComposer::Translucency;
 
 void Replace(std::string& source, const std::string& tag, const std::string& code)
 {
@@ -77,7 +81,7 @@ void Color(const Key& key, std::string& fs)
 {
   if (!key.Shaded)
   {
-    Replace(fs, "//STRATA::Color::Dec", "");
+    Replace(fs, "//STRATA::Color::Dec", "float strataHorizonOpacity(int layer) { return 1.0; }");
     Replace(fs, "//STRATA::Color::Impl", "");
     return;
   }
@@ -93,6 +97,10 @@ void Color(const Key& key, std::string& fs)
                        "    return texelFetch(uColors, table + 1024).rgb;\n"
                        "  }"
                      : "");
+    colors += "float strataHorizonOpacity(int layer) { return texelFetch(uColors, 2 * layer + "
+              "1).a; }\n"
+              "vec3 strataLayerColor(int layer, vec3 pGrid) { return strataHorizonColor(layer, "
+              "pGrid); }\n";
     Replace(fs, "//STRATA::Color::Dec", colors);
     Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = strataHorizonColor(hitLayer, pGrid);");
     return;
@@ -101,14 +109,19 @@ void Color(const Key& key, std::string& fs)
   {
     Replace(fs,
       "//STRATA::Color::Dec",
-      "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;");
+      "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;\n"
+      "float strataHorizonOpacity(int layer) { return 1.0; } // translucency makes it per horizon");
     Replace(fs,
       "//STRATA::Color::Impl",
       "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
       "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
     return;
   }
-  Replace(fs, "//STRATA::Color::Dec", "uniform samplerBuffer uColors; // one per horizon");
+  Replace(fs,
+    "//STRATA::Color::Dec",
+    "uniform samplerBuffer uColors; // one per horizon, its opacity in alpha\n"
+    "float strataHorizonOpacity(int layer) { return texelFetch(uColors, layer).a; }\n"
+    "vec3 strataLayerColor(int layer, vec3 pGrid) { return texelFetch(uColors, layer).rgb; }");
   Replace(fs, "//STRATA::Color::Impl", "vec3 baseColor = texelFetch(uColors, hitLayer).rgb;");
 }
 
@@ -134,6 +147,7 @@ std::string Lights(const Key& key)
 // --- Shading and output: lit colour, flat colour, or the horizon id packed in 24-bit RGB.
 void Shading(const Key& key, const std::string& lightingUniforms, std::string& fs)
 {
+  const std::string alpha = key.Translucent == Translucency::Layer ? "layerAlpha" : "1.0";
   if (!key.Shaded)
   {
     Replace(fs, "//STRATA::Shading::Dec", "");
@@ -149,7 +163,7 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
   {
     Replace(fs, "//STRATA::Shading::Dec", "");
     Replace(fs, "//STRATA::Shading::Impl", "");
-    Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, 1.0);");
+    Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, " + alpha + ");");
     return;
   }
   std::string dec = vtkStackedHeightFieldShadingDec;
@@ -158,7 +172,31 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
   Replace(impl, "//STRATA::Lights::Impl", Lights(key));
   Replace(fs, "//STRATA::Shading::Dec", dec);
   Replace(fs, "//STRATA::Shading::Impl", impl);
-  Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), 1.0);");
+  Replace(fs,
+    "//STRATA::Output::Impl",
+    "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), " + alpha + ");");
+}
+
+// --- Translucent horizons: passed through by the opaque pass; or one peel layer, the first
+// translucent hit behind the previous layer's depth and in front of the scene, merged with the
+// translucent horizons coincident with it there (index order, as the references composite
+// them).
+void Translucent(const Key& key, std::string& fs)
+{
+  const bool layer = key.Translucent == Translucency::Layer;
+  Replace(fs,
+    "//STRATA::Translucency::Skip",
+    key.Translucent == Translucency::Skip
+      ? "if (strataHorizonOpacity(layer) < 1.0)\n          {\n            continue;\n          }"
+      : "");
+  Replace(fs, "//STRATA::Translucency::Dec", layer ? vtkStackedHeightFieldLayerDec : "");
+  Replace(fs, "//STRATA::Translucency::Start", layer ? vtkStackedHeightFieldLayerStart : "");
+  Replace(fs,
+    "//STRATA::Translucency::Depth",
+    layer ? "if (gl_FragDepth >= peelScene || strataHorizonOpacity(hitLayer) >= 1.0)\n"
+            "  {\n    discard;\n  }"
+          : "");
+  Replace(fs, "//STRATA::Translucency::Merge", layer ? vtkStackedHeightFieldLayerMerge : "");
 }
 }
 
@@ -173,16 +211,18 @@ bool vtkHeightFieldShaderComposer::Key::operator<(const Key& o) const
            this->Attributes,
            this->Lit,
            this->LightingComplexity,
-           this->LightCount) < std::tie(o.Paged,
-                                 o.Feedback,
-                                 o.Holes,
-                                 o.Shaded,
-                                 o.LookupTable,
-                                 o.PerHorizon,
-                                 o.Attributes,
-                                 o.Lit,
-                                 o.LightingComplexity,
-                                 o.LightCount);
+           this->LightCount,
+           this->Translucent) < std::tie(o.Paged,
+                                  o.Feedback,
+                                  o.Holes,
+                                  o.Shaded,
+                                  o.LookupTable,
+                                  o.PerHorizon,
+                                  o.Attributes,
+                                  o.Lit,
+                                  o.LightingComplexity,
+                                  o.LightCount,
+                                  o.Translucent);
 }
 
 std::string vtkHeightFieldShaderComposer::Key::ToString() const
@@ -197,6 +237,10 @@ std::string vtkHeightFieldShaderComposer::Key::ToString() const
   if (this->Lit)
     s << ", lit (complexity " << this->LightingComplexity << ", " << this->LightCount
       << (this->LightCount == 1 ? " light)" : " lights)");
+  if (this->Translucent == Translucency::Skip)
+    s << ", translucent skipped";
+  else if (this->Translucent == Translucency::Layer)
+    s << ", translucent layer";
   return s.str();
 }
 
@@ -208,6 +252,7 @@ std::string vtkHeightFieldShaderComposer::BuildFragmentShader(const Key& key,
   Feedback(key, fs);
   Color(key, fs);
   Shading(key, lightingUniforms, fs);
+  Translucent(key, fs);
   return fs;
 }
 

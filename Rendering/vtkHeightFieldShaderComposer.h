@@ -10,7 +10,9 @@
  * table over depth, or horizon ids; or each horizon its own source: its solid colour, its table
  * over its depth or over an attribute grid, with the attribute sampling compiled only when a
  * horizon is coloured by one), lighting with the renderer's lights (its complexity and
- * number of lights, as VTK's own mappers unroll them). A feature the scene does not use
+ * number of lights, as VTK's own mappers unroll them), translucent horizons (skipped by the
+ * opaque pass; one peel layer per pass for vtkVolumeSurfaceLayers, coincident translucent
+ * horizons merged). A feature the scene does not use
  * leaves no code behind. Programs are kept by key (vtkStrataShaderCache), so an unchanged frame
  * builds no source and hashes nothing.
  *
@@ -31,6 +33,14 @@ class vtkShaderProgram;
 class STRATARENDERING_EXPORT vtkHeightFieldShaderComposer
 {
 public:
+  /// What a pass does with translucent horizons (opacity below 1).
+  enum class Translucency
+  {
+    None,  ///< every horizon opaque: no translucency code at all
+    Skip,  ///< the opaque pass of a stack with translucent horizons: rays pass through them
+    Layer, ///< one peel of vtkVolumeSurfaceLayers: the first translucent hit behind the last
+  };
+
   /// Everything the program depends on.
   struct Key
   {
@@ -44,6 +54,7 @@ public:
     bool Lit = false;           ///< lighting
     int LightingComplexity = 0; ///< vtkOpenGLRenderer's, when lit
     int LightCount = 0;         ///< vtkOpenGLRenderer's, when lit
+    Translucency Translucent = Translucency::None;
 
     bool operator<(const Key& other) const;
     /// A printable form, e.g. "paged, feedback, holes, lookup table, lit (complexity 2, 1 light)".

@@ -13,6 +13,7 @@
 #include "vtkStrataRenderUtilities.h"
 #include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeCut.h"
+#include "vtkVolumeSurfaceLayers.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -38,6 +39,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
@@ -99,6 +101,7 @@ public:
   bool Valid = false;
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   std::map<int, std::array<double, 3>> HorizonColors;
+  std::map<int, double> HorizonOpacities; ///< below 1 only
   vtkSmartPointer<vtkScalarsToColors> Lut;
   // Per horizon: a colour array (its name) and a lookup table; the arrays' values in core.
   std::map<int, std::string> ColorArrays;
@@ -121,6 +124,7 @@ public:
   int64_t FeedbackFrame = 0;
   bool FeedbackActive = false; ///< this frame's shader writes the buffer
   bool FeedbackUnsupportedWarned = false;
+  bool UnpeeledWarned = false;
   std::array<double, 16> LastView{};
   vtkStackedHeightFieldMapper::PagingStatistics Paging;
 
@@ -142,16 +146,30 @@ public:
     bool LookupTable = false;
     bool PerHorizon = false; ///< some horizon has its own table or colour array
     bool Lit = false;
+    /// Skip in the opaque pass of a stack with translucent horizons, Layer in a peel.
+    vtkHeightFieldShaderComposer::Translucency Translucent =
+      vtkHeightFieldShaderComposer::Translucency::None;
+    vtkVolumeSurfacePeelPass* Peel = nullptr; ///< the peel drawing this frame's layer
     double LutRange[2] = { 0.0, 1.0 };
     vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;
     int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
   };
 
   bool ReadAttributes(Self* self, const std::vector<vtkImageData*>& images);
-  bool Upload(Self* self, vtkRenderer* ren, vtkActor* actor, vtkOpenGLRenderWindow* renWin);
+  /// pageFrame: advance paging (false in a peel, which redraws the frame's cut).
+  bool Upload(Self* self,
+    vtkRenderer* ren,
+    vtkActor* actor,
+    vtkOpenGLRenderWindow* renWin,
+    bool pageFrame);
+  bool ChooseTranslucency(Self* self, vtkActor* actor, Frame& frame);
+  void SetPeelUniforms(vtkShaderProgram* program, const Frame& frame) const;
   bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor);
   void UpdateColors(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   bool ColorsCurrent() const;
+  double Opacity(int horizon) const;
+  bool AnyTranslucent() const;
+  bool AnyOpaque() const;
   std::vector<float> PerHorizonColors(Self* self) const;
   bool UseFeedback(Self* self);
   vtkShaderProgram* ReadyProgram(Self* self,
@@ -219,6 +237,59 @@ void vtkStackedHeightFieldMapper::SetHorizonColor(int index, double r, double g,
   this->Internals->HorizonColors[index] = { r, g, b };
   this->Internals->ColorsModified.Modified();
   this->Modified();
+}
+
+void vtkStackedHeightFieldMapper::SetHorizonOpacity(int index, double opacity)
+{
+  opacity = std::min(std::max(opacity, 0.0), 1.0);
+  if (this->GetHorizonOpacity(index) == opacity)
+    return;
+  if (opacity < 1.0)
+    this->Internals->HorizonOpacities[index] = opacity;
+  else
+    this->Internals->HorizonOpacities.erase(index);
+  this->Internals->ColorsModified.Modified();
+  this->Modified();
+}
+
+double vtkStackedHeightFieldMapper::GetHorizonOpacity(int index) const
+{
+  return this->Internals->Opacity(index);
+}
+
+double vtkStackedHeightFieldMapper::vtkInternals::Opacity(int horizon) const
+{
+  auto it = this->HorizonOpacities.find(horizon);
+  return it != this->HorizonOpacities.end() ? it->second : 1.0;
+}
+
+// Over the horizons the stack has (before the first read, over the opacities set).
+bool vtkStackedHeightFieldMapper::vtkInternals::AnyTranslucent() const
+{
+  return std::any_of(this->HorizonOpacities.begin(),
+    this->HorizonOpacities.end(),
+    [this](const std::pair<const int, double>& e)
+    { return !this->Valid || e.first < this->Layers; });
+}
+
+bool vtkStackedHeightFieldMapper::vtkInternals::AnyOpaque() const
+{
+  if (!this->Valid)
+    return true;
+  for (int k = 0; k < this->Layers; ++k)
+    if (this->Opacity(k) >= 1.0)
+      return true;
+  return false;
+}
+
+bool vtkStackedHeightFieldMapper::HasOpaqueGeometry()
+{
+  return this->OutputMode != OutputModes::Shaded || this->Internals->AnyOpaque();
+}
+
+bool vtkStackedHeightFieldMapper::HasTranslucentPolygonalGeometry()
+{
+  return this->OutputMode == OutputModes::Shaded && this->Internals->AnyTranslucent();
 }
 
 void vtkStackedHeightFieldMapper::SetHorizonColorArray(int index, const char* name)
@@ -710,11 +781,12 @@ bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
 bool vtkStackedHeightFieldMapper::vtkInternals::Upload(Self* self,
   vtkRenderer* ren,
   vtkActor* actor,
-  vtkOpenGLRenderWindow* renWin)
+  vtkOpenGLRenderWindow* renWin,
+  bool pageFrame)
 {
   if (this->Paged)
   {
-    if (!this->UpdatePages(self, ren, actor))
+    if (pageFrame && !this->UpdatePages(self, ren, actor))
       return false;
     if (this->UploadTime < this->BuildTime)
     {
@@ -817,7 +889,7 @@ std::vector<float> vtkStackedHeightFieldMapper::vtkInternals::PerHorizonColors(S
     const double* rgb =
       colorIt != this->HorizonColors.end() ? colorIt->second.data() : DefaultPalette[k % 8];
     std::copy_n(rgb, 3, d + 4);
-    d[7] = 1.0f;
+    d[7] = static_cast<float>(this->Opacity(k));
     const bool byDepth = self->ColorMode == ColorModes::LookupTable;
     if (!lut && attribute < 0 && !byDepth)
     {
@@ -846,10 +918,13 @@ void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
   Frame& frame)
 {
   frame.Shaded = self->OutputMode == OutputModes::Shaded;
+  // Translucency with a table over depth: per horizon, the table of each (its opacity there).
   frame.PerHorizon =
-    frame.Shaded && (!this->HorizonLuts.empty() || std::any_of(this->AttributeLayer.begin(),
-                                                     this->AttributeLayer.end(),
-                                                     [](int l) { return l >= 0; }));
+    frame.Shaded &&
+    (!this->HorizonLuts.empty() ||
+      (self->ColorMode == ColorModes::LookupTable && this->AnyTranslucent()) ||
+      std::any_of(
+        this->AttributeLayer.begin(), this->AttributeLayer.end(), [](int l) { return l >= 0; }));
   frame.LookupTable =
     frame.Shaded && !frame.PerHorizon && self->ColorMode == ColorModes::LookupTable;
   TableRange(this->Lut, this->ZRange[0], this->ZRange[1], frame.LutRange);
@@ -872,7 +947,8 @@ void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
       auto it = this->HorizonColors.find(k);
       const double* rgb =
         it != this->HorizonColors.end() ? it->second.data() : DefaultPalette[k % 8];
-      colors.insert(colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f });
+      colors.insert(
+        colors.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]), float(this->Opacity(k)) });
     }
   }
   this->Buffers.UploadColors(renWin, colors);
@@ -923,7 +999,8 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
 {
   vtkHeightFieldShaderComposer::Key key;
   key.Paged = this->Paged;
-  key.Feedback = this->UseFeedback(self);
+  // A peel redraws the frame's cut: no feedback of its own.
+  key.Feedback = frame.Peel ? false : this->UseFeedback(self);
   key.Holes = this->Holes;
   key.Shaded = frame.Shaded;
   key.LookupTable = frame.LookupTable;
@@ -932,6 +1009,7 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   key.Lit = frame.Lit;
   key.LightingComplexity = frame.Lit ? oglRen->GetLightingComplexity() : 0;
   key.LightCount = frame.Lit ? oglRen->GetLightingCount() : 0;
+  key.Translucent = frame.Translucent;
   vtkShaderProgram* program =
     this->Composer.ReadyProgram(renWin, key, [oglRen] { return oglRen->GetLightingUniforms(); });
   if (!program)
@@ -1136,6 +1214,53 @@ void vtkStackedHeightFieldMapper::vtkInternals::ReadFeedback(Self* self)
   this->Paging.FeedbackOpenCL = this->Feedback.GetLastReadUsedOpenCL();
 }
 
+// --- Which horizons this call draws: all (every one opaque); the opaque ones (the renderer's
+// opaque pass, rays passing through the translucent); or, inside a peel of the volume ray
+// caster's surface layers, one layer of the translucent ones. The renderer's translucent pass
+// draws nothing: the ray caster composites translucent horizons among the volumes.
+bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
+  vtkActor* actor,
+  Frame& frame)
+{
+  using Translucency = vtkHeightFieldShaderComposer::Translucency;
+  const bool translucent = self->OutputMode == OutputModes::Shaded && this->AnyTranslucent();
+  vtkVolumeSurfacePeelPass* peel = vtkVolumeSurfacePeelPass::Find(actor);
+  if (peel && peel->Active)
+  {
+    frame.Peel = peel;
+    frame.Translucent = Translucency::Layer;
+    return translucent;
+  }
+  if (actor->IsRenderingTranslucentPolygonalGeometry())
+  {
+    if (translucent && !peel && !this->UnpeeledWarned)
+    {
+      vtkWarningWithObjectMacro(self,
+        "Translucent horizons are composited by a vtkMultiVolumeRayCastMapper: give it this "
+        "actor (AddTranslucentActor); until then they are not drawn.");
+      this->UnpeeledWarned = true;
+    }
+    return false;
+  }
+  frame.Translucent = translucent ? Translucency::Skip : Translucency::None;
+  return !translucent || this->AnyOpaque();
+}
+
+// --- A peel: its framebuffer is the viewport's size from (0, 0); the scene's and the last
+// layer's depths (activated by the peel), the horizons the merge looks through.
+void vtkStackedHeightFieldMapper::vtkInternals::SetPeelUniforms(vtkShaderProgram* program,
+  const Frame& frame) const
+{
+  if (!frame.Peel)
+    return;
+  const float viewport[4] = { 0.0f, 0.0f, float(frame.Viewport[2]), float(frame.Viewport[3]) };
+  program->SetUniform4f("uViewport", viewport);
+  program->SetUniformi("uPeelScene", frame.Peel->Scene->GetTextureUnit());
+  program->SetUniformi("uPeelPrevious", frame.Peel->Previous->GetTextureUnit());
+  program->SetUniformi("uPeelLayer", frame.Peel->Layer);
+  program->SetUniformi("uNumHorizons", this->Layers);
+}
+
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
@@ -1164,13 +1289,17 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     vtkErrorMacro("vtkStackedHeightFieldMapper needs an OpenGL render window.");
     return;
   }
-  in.ResourceCallback.RegisterGraphicsResources(renWin);
-  vtkOpenGLClearErrorMacro();
-  if (!in.Upload(this, ren, actor, renWin))
+  vtkInternals::Frame frame;
+  if (!in.ChooseTranslucency(this, actor, frame))
   {
     return;
   }
-  vtkInternals::Frame frame;
+  in.ResourceCallback.RegisterGraphicsResources(renWin);
+  vtkOpenGLClearErrorMacro();
+  if (!in.Upload(this, ren, actor, renWin, frame.Peel == nullptr))
+  {
+    return;
+  }
   in.UpdateColors(this, renWin, frame);
   frame.Lit =
     frame.Shaded && actor->GetProperty()->GetLighting() && oglRen->GetLightingComplexity() > 0;
@@ -1183,6 +1312,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     in.SetLightingUniforms(oglRen, actor, program, frame);
   }
+  in.SetPeelUniforms(program, frame);
+  const bool feedback = in.LastKey.Feedback;
   vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
   int heightUnit = -1;
   if (in.Paged)
@@ -1210,7 +1341,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     const float lr[2] = { float(frame.LutRange[0]), float(frame.LutRange[1]) };
     program->SetUniform2f("uLutRange", lr);
   }
-  if (in.FeedbackActive)
+  if (feedback)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
@@ -1232,7 +1363,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     units->Free(heightUnit);
   }
-  if (in.FeedbackActive)
+  if (feedback)
   {
     in.Feedback.UnbindImages();
     std::array<double, 16> view;

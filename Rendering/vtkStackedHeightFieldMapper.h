@@ -184,6 +184,23 @@ public:
 
   ///@{
   /**
+   * Opacity of horizon `index` (default 1: opaque). A translucent horizon (below 1) is not
+   * drawn by the renderer's passes; give the actor to the volume ray caster too
+   * (vtkMultiVolumeRayCastMapper::AddTranslucentActor; it stays in the renderer for its opaque
+   * horizons), which composites each translucent horizon where a ray crosses it, in ray order
+   * with the volume samples and the other translucent surfaces (vtkVolumeSurfaceLayers: this
+   * mapper's rays find, per peel, the first translucent hit behind the last layer; translucent
+   * horizons that touch, equal where the ray meets them, are one layer, composited in index
+   * order). Opaque horizons of the same stack still hide what lies behind them. With horizon
+   * ids (OutputMode HorizonId) every horizon is opaque. The shaders of a stack whose horizons
+   * are all opaque hold no translucency code.
+   */
+  void SetHorizonOpacity(int index, double opacity);
+  double GetHorizonOpacity(int index) const;
+  ///@}
+
+  ///@{
+  /**
    * Paging budgets, used when the inputs are tile pools, with the names and defaults of
    * vtkMultiVolumeRayCastMapper's: RAM page cache in MiB (default 512), GPU tile atlas in MiB
    * (default 256, floats; never more tiles than the GPU's array layers) and tiles uploaded per
@@ -342,8 +359,10 @@ public:
   void ReleaseGraphicsResources(vtkWindow* win) override;
   double* GetBounds() override;
   void GetBounds(double bounds[6]) override { this->vtkMapper::GetBounds(bounds); }
-  bool HasOpaqueGeometry() override { return 1; }
-  bool HasTranslucentPolygonalGeometry() override { return 0; }
+  /// False when every horizon is translucent.
+  bool HasOpaqueGeometry() override;
+  /// True when some horizon is translucent (SetHorizonOpacity).
+  bool HasTranslucentPolygonalGeometry() override;
 
 protected:
   vtkStackedHeightFieldMapper();

@@ -19,62 +19,50 @@
 #include <algorithm>
 #include <string>
 
-/**
- * The peel's hook into vtkOpenGLPolyDataMapper's fragment shader (through the actor's
- * vtkOpenGLRenderPass::RenderPasses() key): a fragment survives pass k only in front of the
- * opaque scene and, for k > 0, behind layer k - 1; the depth test keeps the nearest survivor.
- */
-class vtkVolumeSurfacePeelPass : public vtkOpenGLRenderPass
+bool vtkVolumeSurfacePeelPass::PreReplaceShaderValues(std::string&,
+  std::string&,
+  std::string& fragmentShader,
+  vtkAbstractMapper*,
+  vtkProp*)
 {
-public:
-  static vtkVolumeSurfacePeelPass* New();
-  vtkTypeMacro(vtkVolumeSurfacePeelPass, vtkOpenGLRenderPass);
+  vtkShaderProgram::Substitute(fragmentShader,
+    "//VTK::DepthPeeling::Dec",
+    "uniform sampler2D strataPeelScene;\nuniform sampler2D strataPeelPrevious;\n"
+    "uniform int strataPeelLayer;\n//VTK::DepthPeeling::Dec");
+  vtkShaderProgram::Substitute(fragmentShader,
+    "//VTK::DepthPeeling::PreColor",
+    "{\n    ivec2 strataPixel = ivec2(gl_FragCoord.xy);\n"
+    "    if (gl_FragCoord.z >= texelFetch(strataPeelScene, strataPixel, 0).r ||\n"
+    "      (strataPeelLayer > 0 &&\n"
+    "        gl_FragCoord.z <= texelFetch(strataPeelPrevious, strataPixel, 0).r))\n"
+    "    {\n      discard;\n    }\n  }\n  //VTK::DepthPeeling::PreColor");
+  return true;
+}
 
-  void Render(const vtkRenderState*) override {}
+bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
+  vtkAbstractMapper*,
+  vtkProp*,
+  vtkOpenGLVertexArrayObject*)
+{
+  program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
+  program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());
+  program->SetUniformi("strataPeelLayer", this->Layer);
+  return true;
+}
 
-  bool PreReplaceShaderValues(std::string&,
-    std::string&,
-    std::string& fragmentShader,
-    vtkAbstractMapper*,
-    vtkProp*) override
-  {
-    vtkShaderProgram::Substitute(fragmentShader,
-      "//VTK::DepthPeeling::Dec",
-      "uniform sampler2D strataPeelScene;\nuniform sampler2D strataPeelPrevious;\n"
-      "uniform int strataPeelLayer;\n//VTK::DepthPeeling::Dec");
-    vtkShaderProgram::Substitute(fragmentShader,
-      "//VTK::DepthPeeling::PreColor",
-      "{\n    ivec2 strataPixel = ivec2(gl_FragCoord.xy);\n"
-      "    if (gl_FragCoord.z >= texelFetch(strataPeelScene, strataPixel, 0).r ||\n"
-      "      (strataPeelLayer > 0 &&\n"
-      "        gl_FragCoord.z <= texelFetch(strataPeelPrevious, strataPixel, 0).r))\n"
-      "    {\n      discard;\n    }\n  }\n  //VTK::DepthPeeling::PreColor");
-    return true;
-  }
+vtkVolumeSurfacePeelPass* vtkVolumeSurfacePeelPass::Find(vtkActor* actor)
+{
+  vtkInformation* keys = actor ? actor->GetPropertyKeys() : nullptr;
+  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+    return nullptr;
+  const int count = keys->Length(vtkOpenGLRenderPass::RenderPasses());
+  for (int i = 0; i < count; ++i)
+    if (auto* peel =
+          vtkVolumeSurfacePeelPass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
+      return peel;
+  return nullptr;
+}
 
-  bool SetShaderParameters(vtkShaderProgram* program,
-    vtkAbstractMapper*,
-    vtkProp*,
-    vtkOpenGLVertexArrayObject*) override
-  {
-    program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
-    program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());
-    program->SetUniformi("strataPeelLayer", this->Layer);
-    return true;
-  }
-
-  vtkTextureObject* Scene = nullptr;    ///< activated by Peel
-  vtkTextureObject* Previous = nullptr; ///< activated by Peel
-  int Layer = 0;
-
-protected:
-  vtkVolumeSurfacePeelPass() = default;
-  ~vtkVolumeSurfacePeelPass() override = default;
-
-private:
-  vtkVolumeSurfacePeelPass(const vtkVolumeSurfacePeelPass&) = delete;
-  void operator=(const vtkVolumeSurfacePeelPass&) = delete;
-};
 vtkStandardNewMacro(vtkVolumeSurfacePeelPass);
 
 vtkVolumeSurfaceLayers::vtkVolumeSurfaceLayers()
@@ -203,6 +191,7 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
     state->vtkglClearDepth(1.0);
     for (vtkActor* actor : actors)
       this->Attach(actor);
+    this->Pass->Active = true;
     for (int k = 0; k < layers; ++k)
     {
       this->Framebuffer->AddColorAttachment(0, this->Colors[k]);
@@ -222,6 +211,7 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
       this->Pass->Previous->Deactivate();
       sceneDepth->Deactivate();
     }
+    this->Pass->Active = false;
     this->Framebuffer->RemoveDepthAttachment();
     this->Framebuffer->RemoveColorAttachment(0);
   }

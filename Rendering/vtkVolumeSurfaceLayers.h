@@ -19,11 +19,14 @@
  * the scene's depth, through a vtkOpenGLRenderPass on each actor's property keys (VTK's own hook
  * into vtkOpenGLPolyDataMapper's shader: //VTK::DepthPeeling::Dec and ::PreColor).
  *
- * Another producer later: vtkStackedHeightFieldMapper's first K hits of a horizon stack are
- * already sorted along the ray; written as colour + window depth into these K pairs of textures
- * (one colour output and gl_FragDepth per hit, or the k-th hit per pass), they reach the ray
- * integration unchanged, and an opaque horizon stays a depth in the scene's depth buffer that the
- * rays stop at. Several producers would merge their sorted lists per pixel into the K layers.
+ * A second producer: vtkStackedHeightFieldMapper. An actor of that mapper given to the ray
+ * caster (vtkMultiVolumeRayCastMapper::AddTranslucentActor) sees this peel on its keys
+ * (vtkVolumeSurfacePeelPass::Find) while Peel draws it, and its ray caster then writes, for
+ * pass k, the first translucent horizon hit behind layer k - 1 and in front of the scene, as
+ * the same colour and gl_FragDepth; coincident translucent horizons are merged into one layer
+ * there. The depth test merges its hits with the actors' per pixel, so the K layers are the
+ * first K surfaces of both. Its opaque horizons stay in the renderer's opaque pass and its
+ * translucent ones are left out of the renderer's translucent pass while a peel is attached.
  *
  * Progress: a ray crosses the volumes' BSP fragments in several passes, and layers between
  * fragments must still come in order. The progress texture counts, per pixel and ray, the
@@ -40,6 +43,7 @@
 #define vtkVolumeSurfaceLayers_h
 
 #include "StrataRenderingModule.h" // For export macro
+#include "vtkOpenGLRenderPass.h"   // For vtkOpenGLRenderPass
 #include "vtkSmartPointer.h"       // For vtkSmartPointer
 
 #include <vector> // For std::vector
@@ -50,8 +54,48 @@ class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkShaderProgram;
 class vtkTextureObject;
-class vtkVolumeSurfacePeelPass;
 class vtkWindow;
+
+/**
+ * The peel's hook into vtkOpenGLPolyDataMapper's fragment shader (through the actor's
+ * vtkOpenGLRenderPass::RenderPasses() key): a fragment survives pass k only in front of the
+ * opaque scene and, for k > 0, behind layer k - 1; the depth test keeps the nearest survivor.
+ * Mappers with their own shaders (vtkStackedHeightFieldMapper) find it on their actor and read
+ * the same textures.
+ */
+class STRATARENDERING_EXPORT vtkVolumeSurfacePeelPass : public vtkOpenGLRenderPass
+{
+public:
+  static vtkVolumeSurfacePeelPass* New();
+  vtkTypeMacro(vtkVolumeSurfacePeelPass, vtkOpenGLRenderPass);
+
+  /// The peel on `actor`'s keys, or null.
+  static vtkVolumeSurfacePeelPass* Find(vtkActor* actor);
+
+  void Render(const vtkRenderState*) override {}
+  bool PreReplaceShaderValues(std::string& vertexShader,
+    std::string& geometryShader,
+    std::string& fragmentShader,
+    vtkAbstractMapper* mapper,
+    vtkProp* prop) override;
+  bool SetShaderParameters(vtkShaderProgram* program,
+    vtkAbstractMapper* mapper,
+    vtkProp* prop,
+    vtkOpenGLVertexArrayObject* vao) override;
+
+  vtkTextureObject* Scene = nullptr;    ///< the opaque scene's depth, activated by Peel
+  vtkTextureObject* Previous = nullptr; ///< layer k - 1's depth (k > 0), activated by Peel
+  int Layer = 0;                        ///< k
+  bool Active = false;                  ///< Peel is drawing (else attached between frames)
+
+protected:
+  vtkVolumeSurfacePeelPass() = default;
+  ~vtkVolumeSurfacePeelPass() override = default;
+
+private:
+  vtkVolumeSurfacePeelPass(const vtkVolumeSurfacePeelPass&) = delete;
+  void operator=(const vtkVolumeSurfacePeelPass&) = delete;
+};
 
 class STRATARENDERING_EXPORT vtkVolumeSurfaceLayers
 {

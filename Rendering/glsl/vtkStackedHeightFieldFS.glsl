@@ -33,6 +33,8 @@ uniform samplerBuffer uLayerLists; // layer ids
 
 //STRATA::Shading::Dec
 
+//STRATA::Translucency::Dec
+
 const float BIG = 3.0e38;
 
 // f(t) = ray height - surface height, in the cell `c` whose corners are h (00, 10, 01, 11).
@@ -165,6 +167,102 @@ vec2 strataSlab(vec3 o, vec3 d, float z0, float z1, float ta, float tb)
   return inside ? vec2(ta, tb) : vec2(1.0, 0.0);
 }
 
+// The first hit of the stack for t in [tEnter, tExit]: top-down traversal. Nodes are stepped
+// as integers across the face the ray leaves by and children are chosen by clamping into the
+// parent, so that the walk always advances whatever the float rounding of positions far along
+// the ray. False when there is none.
+bool strataCast(vec3 o, vec3 d, float tEnter, float tExit, out float tHit, out int hitLayer, out ivec2 hitCell)
+{
+  // children are chosen by clamping into the parent, so that the walk always advances whatever
+  // the float rounding of positions far along the ray.
+  tHit = BIG;
+  hitLayer = -1;
+  hitCell = ivec2(0);
+  float t = tEnter;
+  int level = uNumLevels - 1;
+  int S = uTileSize << level;
+  ivec2 node = clamp(ivec2(floor((o + t * d).xy / float(S))), ivec2(0), uLevelDims[level] - 1);
+  ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
+  bool up = d.z >= 0.0;
+  for (int it = 0; it < 65536; ++it)
+  {
+    vec4 nd = texelFetch(uNodes, uLevelOffset[level] + node.y * uLevelDims[level].x + node.x);
+    vec2 nlo = vec2(node * S);
+    vec2 nhi = min(vec2((node + 1) * S), uGridMax);
+    float tx = d.x > 0.0 ? (nhi.x - o.x) / d.x : (d.x < 0.0 ? (nlo.x - o.x) / d.x : BIG);
+    float ty = d.y > 0.0 ? (nhi.y - o.y) / d.y : (d.y < 0.0 ? (nlo.y - o.y) / d.y : BIG);
+    float tNodeExit = min(min(tx, ty), tExit);
+    vec2 slab = nd.x <= nd.y ? strataSlab(o, d, nd.x, nd.y, t, tNodeExit) : vec2(1.0, 0.0);
+    if (slab.x <= slab.y)
+    {
+      if (level > 0)
+      {
+        level -= 1;
+        S >>= 1;
+        t = max(t, slab.x);
+        ivec2 child = ivec2(floor((o + t * d).xy / float(S)));
+        node = clamp(child, node * 2, min(node * 2 + 1, uLevelDims[level] - 1));
+        continue;
+      }
+      // Leaf: its depth intervals in ray order; the first one with a hit holds the nearest.
+      int first = int(nd.z);
+      int count = int(nd.w);
+      ivec2 cLo = node * S;
+      ivec2 cHi = min((node + 1) * S, ivec2(uGridMax)) - 1;
+      for (int q = 0; q < count && hitLayer < 0; ++q)
+      {
+        vec4 iv = texelFetch(uIntervals, first + (up ? q : count - 1 - q));
+        vec2 s = strataSlab(o, d, iv.x, iv.y, slab.x, slab.y);
+        if (s.x > s.y)
+        {
+          continue;
+        }
+        float best = BIG;
+        for (int r = 0; r < int(iv.w); ++r)
+        {
+          int layer = int(texelFetch(uLayerLists, int(iv.z) + r).x);
+          //STRATA::Translucency::Skip
+          ivec2 cell;
+          float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), cLo, cHi, cell);
+          // Coincident horizons: a later one wins only when clearly nearer, so that float
+          // noise cannot flip ids where two horizons are equal (the lower index wins ties).
+          if (th < best - uTieEps)
+          {
+            best = th;
+            hitLayer = layer;
+            hitCell = cell;
+          }
+        }
+        tHit = best;
+      }
+      if (hitLayer >= 0)
+      {
+        break;
+      }
+    }
+    // On to the neighbour across the exit face, climbing while it lies in another parent.
+    if (tNodeExit >= tExit)
+    {
+      break;
+    }
+    t = max(t, tNodeExit);
+    ivec2 next = tx < ty ? ivec2(node.x + stepDir.x, node.y) : ivec2(node.x, node.y + stepDir.y);
+    while (level < uNumLevels - 1 && any(notEqual(next >> 1, node >> 1)))
+    {
+      level += 1;
+      S <<= 1;
+      node >>= 1;
+      next >>= 1;
+    }
+    if (any(lessThan(next, ivec2(0))) || any(greaterThanEqual(next, uLevelDims[level])))
+    {
+      break;
+    }
+    node = next;
+  }
+  return hitLayer >= 0;
+}
+
 void main()
 {
   vec2 ndc = (gl_FragCoord.xy - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
@@ -209,98 +307,15 @@ void main()
       discard;
     }
   }
+  //STRATA::Translucency::Start
   if (tEnter > tExit)
   {
     discard;
   }
-  // Top-down traversal. Nodes are stepped as integers across the face the ray leaves by and
-  // children are chosen by clamping into the parent, so that the walk always advances whatever
-  // the float rounding of positions far along the ray.
-  float tHit = BIG;
-  int hitLayer = -1;
-  ivec2 hitCell = ivec2(0);
-  float t = tEnter;
-  int level = uNumLevels - 1;
-  int S = uTileSize << level;
-  ivec2 node = clamp(ivec2(floor((o + t * d).xy / float(S))), ivec2(0), uLevelDims[level] - 1);
-  ivec2 stepDir = ivec2(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1);
-  bool up = d.z >= 0.0;
-  for (int it = 0; it < 65536; ++it)
-  {
-    vec4 nd = texelFetch(uNodes, uLevelOffset[level] + node.y * uLevelDims[level].x + node.x);
-    vec2 nlo = vec2(node * S);
-    vec2 nhi = min(vec2((node + 1) * S), uGridMax);
-    float tx = d.x > 0.0 ? (nhi.x - o.x) / d.x : (d.x < 0.0 ? (nlo.x - o.x) / d.x : BIG);
-    float ty = d.y > 0.0 ? (nhi.y - o.y) / d.y : (d.y < 0.0 ? (nlo.y - o.y) / d.y : BIG);
-    float tNodeExit = min(min(tx, ty), tExit);
-    vec2 slab = nd.x <= nd.y ? strataSlab(o, d, nd.x, nd.y, t, tNodeExit) : vec2(1.0, 0.0);
-    if (slab.x <= slab.y)
-    {
-      if (level > 0)
-      {
-        level -= 1;
-        S >>= 1;
-        t = max(t, slab.x);
-        ivec2 child = ivec2(floor((o + t * d).xy / float(S)));
-        node = clamp(child, node * 2, min(node * 2 + 1, uLevelDims[level] - 1));
-        continue;
-      }
-      // Leaf: its depth intervals in ray order; the first one with a hit holds the nearest.
-      int first = int(nd.z);
-      int count = int(nd.w);
-      ivec2 cLo = node * S;
-      ivec2 cHi = min((node + 1) * S, ivec2(uGridMax)) - 1;
-      for (int q = 0; q < count && hitLayer < 0; ++q)
-      {
-        vec4 iv = texelFetch(uIntervals, first + (up ? q : count - 1 - q));
-        vec2 s = strataSlab(o, d, iv.x, iv.y, slab.x, slab.y);
-        if (s.x > s.y)
-        {
-          continue;
-        }
-        float best = BIG;
-        for (int r = 0; r < int(iv.w); ++r)
-        {
-          int layer = int(texelFetch(uLayerLists, int(iv.z) + r).x);
-          ivec2 cell;
-          float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), cLo, cHi, cell);
-          // Coincident horizons: a later one wins only when clearly nearer, so that float
-          // noise cannot flip ids where two horizons are equal (the lower index wins ties).
-          if (th < best - uTieEps)
-          {
-            best = th;
-            hitLayer = layer;
-            hitCell = cell;
-          }
-        }
-        tHit = best;
-      }
-      if (hitLayer >= 0)
-      {
-        break;
-      }
-    }
-    // On to the neighbour across the exit face, climbing while it lies in another parent.
-    if (tNodeExit >= tExit)
-    {
-      break;
-    }
-    t = max(t, tNodeExit);
-    ivec2 next = tx < ty ? ivec2(node.x + stepDir.x, node.y) : ivec2(node.x, node.y + stepDir.y);
-    while (level < uNumLevels - 1 && any(notEqual(next >> 1, node >> 1)))
-    {
-      level += 1;
-      S <<= 1;
-      node >>= 1;
-      next >>= 1;
-    }
-    if (any(lessThan(next, ivec2(0))) || any(greaterThanEqual(next, uLevelDims[level])))
-    {
-      break;
-    }
-    node = next;
-  }
-  if (hitLayer < 0)
+  float tHit;
+  int hitLayer;
+  ivec2 hitCell;
+  if (!strataCast(o, d, tEnter, tExit, tHit, hitLayer, hitCell))
   {
     discard;
   }
@@ -309,10 +324,12 @@ void main()
   vec4 clip = uGridToClip * vec4(pGrid, 1.0);
   float ndcDepth = clip.z / clip.w;
   gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+  //STRATA::Translucency::Depth
 
   //STRATA::Feedback::Impl
 
   //STRATA::Color::Impl
+  //STRATA::Translucency::Merge
 
   //STRATA::Shading::Impl
 
