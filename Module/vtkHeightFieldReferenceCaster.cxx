@@ -59,6 +59,140 @@ double SmallestRoot(double a, double b, double c, double len)
 }
 }
 
+namespace
+{
+// The roots of a s^2 + b s + c in [lo, hi) (the stable quadratic formula); none when the ray
+// lies in the surface.
+int Roots(double a, double b, double c, double len, double lo, double hi, double roots[2])
+{
+  const double scale = std::max({ std::abs(a) * len * len, std::abs(b) * len, std::abs(c) });
+  if (scale == 0.0)
+    return 0;
+  double r[2];
+  int n = 0;
+  if (std::abs(a) * len * len <= 1e-14 * scale)
+  {
+    if (b != 0.0)
+      r[n++] = -c / b;
+  }
+  else
+  {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0)
+      return 0;
+    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+    r[n++] = q / a;
+    if (q != 0.0)
+      r[n++] = c / q;
+  }
+  int kept = 0;
+  for (int k = 0; k < n; ++k)
+    if (r[k] >= lo && r[k] < hi && (kept == 0 || r[k] != roots[0]))
+      roots[kept++] = r[k];
+  return kept;
+}
+}
+
+std::vector<vtkHeightFieldReferenceCaster::Hit> vtkHeightFieldReferenceCaster::CastAll(
+  const double o[3],
+  const double d[3],
+  double tMin,
+  double tMax) const
+{
+  std::vector<Hit> hits;
+  const vtkHeightFieldStack& s = this->Stack;
+  const int nx = s.GetNX(), ny = s.GetNY(), layers = s.GetNumberOfLayers();
+  double zr[2];
+  s.GetZRange(zr);
+  if (layers == 0 || zr[0] > zr[1] || nx < 2 || ny < 2)
+    return hits;
+  // The lateral box only (every height lies in it), and a cell walk as Cast's.
+  double t0 = tMin, t1 = tMax;
+  const double hi[2] = { double(nx - 1), double(ny - 1) };
+  for (int a = 0; a < 2; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < 0.0 || o[a] > hi[a])
+        return hits;
+      continue;
+    }
+    double ta = -o[a] / d[a], tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb)
+      std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 <= t1))
+    return hits;
+  const double px = o[0] + t0 * d[0], py = o[1] + t0 * d[1];
+  int i = std::min(std::max(static_cast<int>(std::floor(px)), 0), nx - 2);
+  int j = std::min(std::max(static_cast<int>(std::floor(py)), 0), ny - 2);
+  if (d[0] < 0.0 && px == std::floor(px) && i > 0 && px <= i)
+    i = std::max(i - 1, 0);
+  if (d[1] < 0.0 && py == std::floor(py) && j > 0 && py <= j)
+    j = std::max(j - 1, 0);
+  const int stepX = d[0] > 0.0 ? 1 : -1, stepY = d[1] > 0.0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  auto nextT = [&](double p0, double dir, int cell) {
+    return dir > 0.0 ? (cell + 1 - p0) / dir : dir < 0.0 ? (cell - p0) / dir : inf;
+  };
+  double tx = nextT(o[0], d[0], i), ty = nextT(o[1], d[1], j);
+  double t = t0;
+  while (t <= t1)
+  {
+    const double tEnd = std::min({ tx, ty, t1 });
+    const double len = tEnd - t;
+    const bool last = tEnd >= t1;
+    const double tol = 1e-12 * std::max(len, 1e-300);
+    const double u0 = o[0] + t * d[0] - i, v0 = o[1] + t * d[1] - j, z0 = o[2] + t * d[2];
+    for (int k = 0; k < layers; ++k)
+    {
+      const double h00 = s.GetHeight(k, i, j), h10 = s.GetHeight(k, i + 1, j);
+      const double h01 = s.GetHeight(k, i, j + 1), h11 = s.GetHeight(k, i + 1, j + 1);
+      if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11))
+        continue;
+      const double ea = h10 - h00, eb = h01 - h00, ec = h00 - h10 - h01 + h11;
+      const double qa = -ec * d[0] * d[1];
+      const double qb = d[2] - ea * d[0] - eb * d[1] - ec * (u0 * d[1] + v0 * d[0]);
+      const double qc = z0 - h00 - ea * u0 - eb * v0 - ec * u0 * v0;
+      double roots[2];
+      // [-tol, len - tol): a root on the boundary with the next cell is that cell's.
+      const int n =
+        Roots(qa, qb, qc, len, t == t0 ? 0.0 : -tol, last ? len + tol : len - tol, roots);
+      for (int r = 0; r < n; ++r)
+      {
+        Hit hit;
+        hit.Layer = k;
+        hit.T = t + std::min(std::max(roots[r], 0.0), len);
+        for (int a = 0; a < 3; ++a)
+          hit.Point[a] = o[a] + hit.T * d[a];
+        hits.push_back(hit);
+      }
+    }
+    if (last)
+      break;
+    if (tx < ty)
+    {
+      i += stepX;
+      t = tx;
+      tx += std::abs(1.0 / d[0]);
+    }
+    else
+    {
+      j += stepY;
+      t = ty;
+      ty += std::abs(1.0 / d[1]);
+    }
+    if (i < 0 || i > nx - 2 || j < 0 || j > ny - 2)
+      break;
+  }
+  std::stable_sort(hits.begin(),
+    hits.end(),
+    [](const Hit& a, const Hit& b) { return a.T < b.T || (a.T == b.T && a.Layer < b.Layer); });
+  return hits;
+}
+
 vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(const double o[3],
   const double d[3],
   double tMin,

@@ -37,6 +37,16 @@ public:
   Hit Cast(const double origin[3], const double direction[3], double tMin, double tMax) const;
 
   /**
+   * Every crossing of origin + t * direction with every layer for t in [tMin, tMax], in ray
+   * order (equal t: lower layer first), grid coordinates: all roots of each crossed cell's
+   * bilinear patches, a root on a cell boundary once. The model of translucent horizons.
+   */
+  std::vector<Hit> CastAll(const double origin[3],
+    const double direction[3],
+    double tMin,
+    double tMax) const;
+
+  /**
    * One ray per pixel centre of a width x height image. ndcToGrid (row-major 4x4, column
    * vectors) maps normalised device coordinates to homogeneous grid coordinates; each ray runs
    * from the near plane (NDC z = -1) to the far plane (z = +1), as the GPU's does. Fills

@@ -454,6 +454,7 @@ public:
 
   std::vector<Vol> Volumes;
   std::vector<Surface> Surfaces; ///< world coordinates
+  std::vector<CrossingFunction> CrossingFunctions;
   double LocalOrigin[3] = { 0.0, 0.0, 0.0 };
   double SmallestVoxel = 0.0;
   double StepFraction = 1.0 / 16.0;
@@ -781,6 +782,24 @@ void vtkMultiVolumeReferenceIntegrator::vtkInternals::ClipSurfaces(const double 
     ws.Layers.push_back(Layer{ t, { s.Color[0], s.Color[1], s.Color[2], s.Color[3] } });
     ws.Breaks.push_back(t);
   }
+  if (this->CrossingFunctions.empty())
+    return;
+  const double world[3] = {
+    o[0] + this->LocalOrigin[0], o[1] + this->LocalOrigin[1], o[2] + this->LocalOrigin[2]
+  };
+  std::vector<Crossing> crossings;
+  for (const CrossingFunction& f : this->CrossingFunctions)
+  {
+    crossings.clear();
+    f(world, d, t0, t1, crossings);
+    for (const Crossing& c : crossings)
+    {
+      if (!(c.T >= t0 && c.T < t1))
+        continue;
+      ws.Layers.push_back(Layer{ c.T, { c.Color[0], c.Color[1], c.Color[2], c.Color[3] } });
+      ws.Breaks.push_back(c.T);
+    }
+  }
 }
 
 std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate(const double o[3],
@@ -798,7 +817,7 @@ std::array<double, 4> vtkMultiVolumeReferenceIntegrator::vtkInternals::Integrate
   const double hT = this->StepLength() / dn;
 
   this->Clip(o, d, t0, t1, dn, ws);
-  std::sort(ws.Layers.begin(), ws.Layers.end());
+  std::stable_sort(ws.Layers.begin(), ws.Layers.end()); // equal depths in the order given
 
   double T = 1.0;
   double C[3] = { 0.0, 0.0, 0.0 };
@@ -1301,9 +1320,16 @@ void vtkMultiVolumeReferenceIntegrator::AddSurface(const Surface& surface)
   this->Internals->Surfaces.push_back(surface);
 }
 
+void vtkMultiVolumeReferenceIntegrator::AddSurfaceCrossings(CrossingFunction crossings)
+{
+  if (crossings)
+    this->Internals->CrossingFunctions.push_back(std::move(crossings));
+}
+
 void vtkMultiVolumeReferenceIntegrator::RemoveAllSurfaces()
 {
   this->Internals->Surfaces.clear();
+  this->Internals->CrossingFunctions.clear();
 }
 
 void vtkMultiVolumeReferenceIntegrator::RemoveAllVolumes()

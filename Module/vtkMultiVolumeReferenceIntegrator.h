@@ -103,7 +103,10 @@
  * with one is a layer at its exact depth: the ray is cut there and the layer is composited over
  * what lies behind it, in ray order with the media, the isosurfaces and the reduced layers
  * (exact, up to rounding: no discretisation of its own). A surface beyond the ray's stop (opaque
- * geometry) is not reached.
+ * geometry) is not reached. Curved surfaces come as crossing functions (AddSurfaceCrossings):
+ * each gives, for a ray, its crossings and their colours, such as the translucent horizons of
+ * a height-field stack (vtkHeightFieldReferenceCaster::CastAll, every root of every horizon's
+ * bilinear patches); crossings at equal depth are composited in the order given.
  *
  * Limits: model matrices must be affine; boxes are closed, so a ray lying exactly in a face
  * shared by two volumes sees both (a set of measure zero); NaN scalars classify as the first
@@ -120,10 +123,11 @@
 
 #include "StrataCoreModule.h" // For export macro
 
-#include <array>  // For std::array
-#include <memory> // For std::unique_ptr
-#include <string> // For std::string
-#include <vector> // For std::vector
+#include <array>      // For std::array
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
+#include <string>     // For std::string
+#include <vector>     // For std::vector
 
 class STRATACORE_EXPORT vtkMultiVolumeReferenceIntegrator
 {
@@ -213,6 +217,22 @@ public:
     double Color[4] = { 0.0, 0.0, 0.0, 0.0 }; ///< premultiplied RGB and opacity
   };
 
+  /// A crossing of a ray with a surface: its ray parameter and premultiplied colour.
+  struct Crossing
+  {
+    double T = 0.0;
+    double Color[4] = { 0.0, 0.0, 0.0, 0.0 };
+  };
+  /**
+   * Appends the crossings of origin + t direction (world coordinates) for t in [t0, t1) to
+   * the list, in ray order; called from several threads at once.
+   */
+  using CrossingFunction = std::function<void(const double origin[3],
+    const double direction[3],
+    double t0,
+    double t1,
+    std::vector<Crossing>& crossings)>;
+
   /// Leading-order discretisation error bounds, per RGBA component (see the class comment).
   struct ErrorBound
   {
@@ -234,6 +254,8 @@ public:
   /// Adds a translucent surface (see the class comment); it stays until RemoveAllSurfaces.
   void AddSurface(const Surface& surface);
   void RemoveAllSurfaces();
+  /// Adds a source of surface crossings (see the class comment); removed by RemoveAllSurfaces.
+  void AddSurfaceCrossings(CrossingFunction crossings);
   int GetNumberOfVolumes() const;
   const std::string& GetLastError() const;
 

@@ -6,6 +6,7 @@
 #include "vtkStrataShaderCache.h"
 
 #include "vtkStackedHeightFieldAttribute.h"
+#include "vtkStackedHeightFieldBlend.h"
 #include "vtkStackedHeightFieldFS.h"
 #include "vtkStackedHeightFieldFeedback.h"
 #include "vtkStackedHeightFieldFeedbackWrite.h"
@@ -147,7 +148,9 @@ std::string Lights(const Key& key)
 // --- Shading and output: lit colour, flat colour, or the horizon id packed in 24-bit RGB.
 void Shading(const Key& key, const std::string& lightingUniforms, std::string& fs)
 {
-  const std::string alpha = key.Translucent == Translucency::Layer ? "layerAlpha" : "1.0";
+  const bool merged =
+    key.Translucent == Translucency::Layer || key.Translucent == Translucency::Blend;
+  const std::string alpha = merged ? "layerAlpha" : "1.0";
   if (!key.Shaded)
   {
     Replace(fs, "//STRATA::Shading::Dec", "");
@@ -163,7 +166,7 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
   {
     Replace(fs, "//STRATA::Shading::Dec", "");
     Replace(fs, "//STRATA::Shading::Impl", "");
-    Replace(fs, "//STRATA::Output::Impl", "fragOutput0 = vec4(baseColor, " + alpha + ");");
+    Replace(fs, "//STRATA::Output::Impl", "return vec4(baseColor, " + alpha + ");");
     return;
   }
   std::string dec = vtkStackedHeightFieldShadingDec;
@@ -184,19 +187,29 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
 void Translucent(const Key& key, std::string& fs)
 {
   const bool layer = key.Translucent == Translucency::Layer;
+  const bool blend = key.Translucent == Translucency::Blend;
   Replace(fs,
     "//STRATA::Translucency::Skip",
     key.Translucent == Translucency::Skip
       ? "if (strataHorizonOpacity(layer) < 1.0)\n          {\n            continue;\n          }"
       : "");
-  Replace(fs, "//STRATA::Translucency::Dec", layer ? vtkStackedHeightFieldLayerDec : "");
+  Replace(fs,
+    "//STRATA::Translucency::Dec",
+    std::string(layer ? vtkStackedHeightFieldLayerDec : "") +
+      (layer || blend ? "uniform int uNumHorizons;\n" : "") +
+      (blend ? "out vec4 fragOutput1;\n" : ""));
   Replace(fs, "//STRATA::Translucency::Start", layer ? vtkStackedHeightFieldLayerStart : "");
   Replace(fs,
     "//STRATA::Translucency::Depth",
-    layer ? "if (gl_FragDepth >= peelScene || strataHorizonOpacity(hitLayer) >= 1.0)\n"
-            "  {\n    discard;\n  }"
-          : "");
-  Replace(fs, "//STRATA::Translucency::Merge", layer ? vtkStackedHeightFieldLayerMerge : "");
+    layer   ? "if (gl_FragDepth >= peelScene || strataHorizonOpacity(hitLayer) >= 1.0)\n"
+              "  {\n    discard;\n  }"
+    : blend ? "if (strataHorizonOpacity(hitLayer) >= 1.0)\n  {\n    discard;\n  }"
+            : "");
+  Replace(
+    fs, "//STRATA::Translucency::Merge", layer || blend ? vtkStackedHeightFieldLayerMerge : "");
+  Replace(fs,
+    "//STRATA::Translucency::Output",
+    blend ? vtkStackedHeightFieldBlend : "fragOutput0 = strataShade(hitLayer, hitCell, pGrid);");
 }
 }
 
@@ -241,6 +254,8 @@ std::string vtkHeightFieldShaderComposer::Key::ToString() const
     s << ", translucent skipped";
   else if (this->Translucent == Translucency::Layer)
     s << ", translucent layer";
+  else if (this->Translucent == Translucency::Blend)
+    s << ", translucent blended";
   return s.str();
 }
 

@@ -39,6 +39,7 @@ public:
     None,  ///< every horizon opaque: no translucency code at all
     Skip,  ///< the opaque pass of a stack with translucent horizons: rays pass through them
     Layer, ///< one peel of vtkVolumeSurfaceLayers: the first translucent hit behind the last
+    Blend, ///< VTK's order-independent translucent pass: the stack's translucent hits in order
   };
 
   /// Everything the program depends on.

@@ -24,6 +24,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkInformationStringKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
@@ -33,6 +34,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
+#include "vtkOrderIndependentTranslucentPass.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
@@ -124,7 +126,7 @@ public:
   int64_t FeedbackFrame = 0;
   bool FeedbackActive = false; ///< this frame's shader writes the buffer
   bool FeedbackUnsupportedWarned = false;
-  bool UnpeeledWarned = false;
+  bool UnsupportedTranslucentWarned = false;
   std::array<double, 16> LastView{};
   vtkStackedHeightFieldMapper::PagingStatistics Paging;
 
@@ -189,7 +191,8 @@ public:
     vtkOpenGLRenderWindow* renWin,
     vtkShaderProgram* program,
     const Frame& frame);
-  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program);
+  /// writeDepth: false in the translucent pass (what lies behind stays visible to the rest).
+  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program, bool writeDepth);
   void ReadFeedback(Self* self);
 };
 
@@ -1177,15 +1180,17 @@ void vtkStackedHeightFieldMapper::vtkInternals::PrepareFeedback(Self* self,
 
 // --- The box's back faces, depth-clamped so far-plane clipping cannot cut rays short.
 void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renWin,
-  vtkShaderProgram* program)
+  vtkShaderProgram* program,
+  bool writeDepth)
 {
   vtkOpenGLState* state = renWin->GetState();
   this->Buffers.BindBox(program);
   vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
   state->vtkglEnable(GL_CULL_FACE);
   state->vtkglCullFace(GL_FRONT);
   state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthMask(writeDepth ? GL_TRUE : GL_FALSE);
   glEnable(GL_DEPTH_CLAMP);
   this->Buffers.DrawBox();
   glDisable(GL_DEPTH_CLAMP);
@@ -1214,10 +1219,25 @@ void vtkStackedHeightFieldMapper::vtkInternals::ReadFeedback(Self* self)
   this->Paging.FeedbackOpenCL = this->Feedback.GetLastReadUsedOpenCL();
 }
 
+namespace
+{
+template<typename Pass>
+bool HasRenderPass(vtkActor* actor)
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+    return false;
+  for (int i = 0; i < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++i)
+    if (Pass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
+      return true;
+  return false;
+}
+}
+
 // --- Which horizons this call draws: all (every one opaque); the opaque ones (the renderer's
-// opaque pass, rays passing through the translucent); or, inside a peel of the volume ray
-// caster's surface layers, one layer of the translucent ones. The renderer's translucent pass
-// draws nothing: the ray caster composites translucent horizons among the volumes.
+// opaque pass, rays passing through the translucent); inside a peel of the volume ray caster's
+// surface layers, one layer of the translucent ones; or, in the renderer's translucent pass of
+// an actor no ray caster peels, the translucent ones blended front to back.
 bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
   vtkActor* actor,
   Frame& frame)
@@ -1233,14 +1253,23 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
   }
   if (actor->IsRenderingTranslucentPolygonalGeometry())
   {
-    if (translucent && !peel && !this->UnpeeledWarned)
+    // Attached to a ray caster's peel: it composites them among its volumes. Else VTK's
+    // order-independent pass (vtkOpenGLRenderer's without depth peeling) takes the stack's
+    // translucent hits composited as one fragment; its depth peeling passes are not supported.
+    if (!translucent || peel)
+      return false;
+    if (!HasRenderPass<vtkOrderIndependentTranslucentPass>(actor))
     {
-      vtkWarningWithObjectMacro(self,
-        "Translucent horizons are composited by a vtkMultiVolumeRayCastMapper: give it this "
-        "actor (AddTranslucentActor); until then they are not drawn.");
-      this->UnpeeledWarned = true;
+      if (!this->UnsupportedTranslucentWarned)
+        vtkWarningWithObjectMacro(self,
+          "Translucent horizons are drawn by the renderer's order-independent translucent pass "
+          "(UseDepthPeeling off) or by a vtkMultiVolumeRayCastMapper (AddTranslucentActor): "
+          "not drawn.");
+      this->UnsupportedTranslucentWarned = true;
+      return false;
     }
-    return false;
+    frame.Translucent = Translucency::Blend;
+    return true;
   }
   frame.Translucent = translucent ? Translucency::Skip : Translucency::None;
   return !translucent || this->AnyOpaque();
@@ -1251,6 +1280,8 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
 void vtkStackedHeightFieldMapper::vtkInternals::SetPeelUniforms(vtkShaderProgram* program,
   const Frame& frame) const
 {
+  if (frame.Translucent == vtkHeightFieldShaderComposer::Translucency::Blend)
+    program->SetUniformi("uNumHorizons", this->Layers);
   if (!frame.Peel)
     return;
   const float viewport[4] = { 0.0f, 0.0f, float(frame.Viewport[2]), float(frame.Viewport[3]) };
@@ -1345,7 +1376,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
-  in.Draw(renWin, program);
+  in.Draw(renWin, program, frame.Translucent != vtkHeightFieldShaderComposer::Translucency::Blend);
   in.Buffers.Deactivate(frame.Shaded);
   if (attributeUnit >= 0)
   {

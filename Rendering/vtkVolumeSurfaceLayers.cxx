@@ -44,6 +44,8 @@ bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
   vtkProp*,
   vtkOpenGLVertexArrayObject*)
 {
+  if (!this->Scene || !this->Previous)
+    return true; // drawn outside a peel (an actor also in the renderer): nothing to bind
   program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
   program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());
   program->SetUniformi("strataPeelLayer", this->Layer);
@@ -126,8 +128,12 @@ void vtkVolumeSurfaceLayers::Attach(vtkActor* actor) const
 
 void vtkVolumeSurfaceLayers::AddActor(vtkActor* actor)
 {
-  if (actor)
-    this->Actors.emplace_back(actor);
+  if (!actor)
+    return;
+  this->Actors.emplace_back(actor);
+  // At once: a height-field actor in the renderer too knows from its first frame that its
+  // translucent horizons are peeled here (the translucent pass comes before the volumes').
+  this->Attach(actor);
 }
 
 void vtkVolumeSurfaceLayers::RemoveAllActors()

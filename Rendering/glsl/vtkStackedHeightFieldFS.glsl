@@ -263,6 +263,17 @@ bool strataCast(vec3 o, vec3 d, float tEnter, float tExit, out float tHit, out i
   return hitLayer >= 0;
 }
 
+// The colour of a hit: straight RGB and opacity (1, or the merged translucent layer's).
+vec4 strataShade(int hitLayer, ivec2 hitCell, vec3 pGrid)
+{
+  //STRATA::Color::Impl
+  //STRATA::Translucency::Merge
+
+  //STRATA::Shading::Impl
+
+  //STRATA::Output::Impl
+}
+
 void main()
 {
   vec2 ndc = (gl_FragCoord.xy - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
@@ -328,10 +339,5 @@ void main()
 
   //STRATA::Feedback::Impl
 
-  //STRATA::Color::Impl
-  //STRATA::Translucency::Merge
-
-  //STRATA::Shading::Impl
-
-  //STRATA::Output::Impl
+  //STRATA::Translucency::Output
 }

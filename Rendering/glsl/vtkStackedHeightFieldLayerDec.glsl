@@ -1,6 +1,5 @@
 // One peel of vtkVolumeSurfaceLayers: the opaque scene's window depth and layer k - 1's (for
-// k > 0), per pixel of the peel's viewport-sized framebuffer; the stack's horizon count.
+// k > 0), per pixel of the peel's viewport-sized framebuffer.
 uniform sampler2D uPeelScene;
 uniform sampler2D uPeelPrevious;
 uniform int uPeelLayer;
-uniform int uNumHorizons;
