@@ -158,7 +158,7 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
     Replace(fs,
       "//STRATA::Output::Impl",
       "int id = hitLayer + 1;\n"
-      "  fragOutput0 = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), "
+      "  return vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), "
       "255.0) / 255.0;");
     return;
   }
@@ -175,9 +175,8 @@ void Shading(const Key& key, const std::string& lightingUniforms, std::string& f
   Replace(impl, "//STRATA::Lights::Impl", Lights(key));
   Replace(fs, "//STRATA::Shading::Dec", dec);
   Replace(fs, "//STRATA::Shading::Impl", impl);
-  Replace(fs,
-    "//STRATA::Output::Impl",
-    "fragOutput0 = vec4(clamp(shadedColor, 0.0, 1.0), " + alpha + ");");
+  Replace(
+    fs, "//STRATA::Output::Impl", "return vec4(clamp(shadedColor, 0.0, 1.0), " + alpha + ");");
 }
 
 // --- Translucent horizons: passed through by the opaque pass; or one peel layer, the first

@@ -118,11 +118,9 @@ Ref::CrossingFunction Crossings(vtkStackedHeightFieldMapper* hf)
   std::vector<double> opacity(stack->GetNumberOfLayers());
   for (size_t k = 0; k < opacity.size(); ++k)
     opacity[k] = hf->GetHorizonOpacity(static_cast<int>(k));
-  return [stack, world2grid, opacity](const double o[3],
-           const double d[3],
-           double t0,
-           double t1,
-           std::vector<Ref::Crossing>& out)
+  return
+    [stack, world2grid, opacity](
+      const double o[3], const double d[3], double t0, double t1, std::vector<Ref::Crossing>& out)
   {
     double og[3], dg[3];
     for (int r = 0; r < 3; ++r)
@@ -245,7 +243,7 @@ std::vector<bool> EdgePixels(const std::vector<double>& expected)
           continue;
         for (int c = 0; c < 3; ++c)
           if (std::abs(expected[3 * (size_t(y) * n + x) + c] -
-                expected[3 * (size_t(q[1]) * n + q[0]) + c]) > 8.0)
+                       expected[3 * (size_t(q[1]) * n + q[0]) + c]) > 8.0)
             edge[size_t(y) * n + x] = true;
       }
     }
@@ -273,10 +271,10 @@ void CheckCase(const Images& r, const std::string& name, bool checkWrongModels)
   }
   const ChannelError none = ImageError(r.Gpu, r.NoHorizons);
   const ChannelError over = ImageError(r.Gpu, r.HorizonsOver);
-  std::cout << name << ": RMS " << e.Rms << ", max " << maxInside << " of 255 off the "
-            << edges << " edge pixels (" << edgesOff << " of them off by more than 2, max "
-            << e.Max << "); without the horizons RMS " << none.Rms
-            << "; horizons over the volumes RMS " << over.Rms << "\n";
+  std::cout << name << ": RMS " << e.Rms << ", max " << maxInside << " of 255 off the " << edges
+            << " edge pixels (" << edgesOff << " of them off by more than 2, max " << e.Max
+            << "); without the horizons RMS " << none.Rms << "; horizons over the volumes RMS "
+            << over.Rms << "\n";
   Check(e.Rms <= 0.4 && maxInside <= 2.0, name + ": within RMS 0.4 / max 2 of the reference");
   Check(edgesOff <= 2, name + ": at most 2 edge pixels off by more than 2");
   Check(none.Rms > 2.0, name + ": differs from the scene without the horizons by > 2 RMS");
@@ -354,8 +352,7 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   s.Mapper->SetBrickSize(16);
   CheckCase(Render(s, hf, actor, true, "HorizonsPaged", true), "HorizonsPaged", true);
   Check(s.Mapper->GetPagingStatistics().Converged, "the paged volumes converged");
-  std::cout << "HorizonsPaged: " << s.Mapper->GetNumberOfResidentBricks()
-            << " bricks resident\n";
+  std::cout << "HorizonsPaged: " << s.Mapper->GetNumberOfResidentBricks() << " bricks resident\n";
   for (size_t i = 0; i < s.Images.size(); ++i)
     s.Mapper->SetInputDataObject(static_cast<int>(i), s.Images[i]);
 

@@ -191,6 +191,10 @@ bool AddSubsurfaceDemo(vtkRenderer* ren,
   depth->AddRGBPoint(baseRange[0], 0.95, 0.8, 0.35);
   depth->AddRGBPoint(baseRange[1], 0.45, 0.25, 0.1);
   scene.HorizonMapper->SetHorizonLookupTable(1, depth);
+  // A middle horizon, translucent: composited inside the volumes where their rays cross it.
+  scene.HorizonMapper->AddInputConnection(grids[1]->GetOutputPort());
+  scene.HorizonMapper->SetHorizonColor(2, 0.3, 0.85, 0.95);
+  scene.HorizonMapper->SetHorizonOpacity(2, 0.45);
   scene.Horizons = vtkSmartPointer<vtkActor>::New();
   scene.Horizons->SetMapper(scene.HorizonMapper);
   scene.Horizons->SetScale(1, 1, Exaggeration);
@@ -205,6 +209,7 @@ bool AddSubsurfaceDemo(vtkRenderer* ren,
   scene.VolumeMapper->SetSampleDistance(0.5 * 2.0 * Exaggeration);
   scene.VolumeMapper->SetAtlasBudget(32);
   scene.VolumeMapper->SetPagesPerFrame(64);
+  scene.VolumeMapper->AddTranslucentActor(scene.Horizons);
   seismicA->Update();
   vtkImageData* full = seismicA->GetOutput();
   double planes[6];

@@ -7,7 +7,9 @@
 // middle, in core. Both drawn by one vtkMultiVolumeRayCastMapper in world coordinates (survey A
 // cropped to the last third of its first axis, so that the horizons show beside it); the top
 // horizon draped with survey A's amplitude (vtkHorizonVolumeSampler through the pool), the base
-// horizon coloured by depth; a deviated well through them. 8x vertical exaggeration.
+// horizon coloured by depth, the second horizon translucent (opacity 0.45, composited inside the
+// volumes by the ray caster's surface layers); a deviated well through them. 8x vertical
+// exaggeration.
 #ifndef StrataSubsurfaceDemo_h
 #define StrataSubsurfaceDemo_h
 
