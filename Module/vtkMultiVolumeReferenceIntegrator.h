@@ -321,6 +321,10 @@ public:
   ErrorBound GetErrorBound(double length) const;
 
 private:
+  /// What a volume must be for the integrator (vtkMultiVolumeReferenceValidation.cxx): null
+  /// when it is, else why not.
+  static const char* Validate(const Volume& volume);
+
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
 };
