@@ -77,7 +77,8 @@ int main(int argc, char* argv[])
   std::vector<std::string> written;
 
   // --- Scene 0: the subsurface scene: two synthetic surveys from the Reek horizons (one
-  // paged), the top horizon draped with the amplitude, the base by depth, a well.
+  // paged), the top horizon translucent, the second draped with the amplitude, the base by
+  // depth, a well.
   std::string reekDir;
   for (size_t a = 0; a < dataDirs.size() && reekDir.empty(); ++a)
   {

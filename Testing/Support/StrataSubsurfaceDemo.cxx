@@ -160,9 +160,9 @@ bool AddSubsurfaceDemo(vtkRenderer* ren,
   scene.Sources.push_back(pooled);
   scene.Sources.push_back(seismicB);
 
-  // The top horizon draped with A's amplitude, read from the pool.
+  // The second horizon draped with A's amplitude, read from the pool.
   scene.Drape = vtkSmartPointer<vtkHorizonVolumeSampler>::New();
-  scene.Drape->SetInputConnection(grids[0]->GetOutputPort());
+  scene.Drape->SetInputConnection(grids[1]->GetOutputPort());
   scene.Drape->SetVolumeConnection(pooled->GetOutputPort());
   scene.Drape->SetHeightScale(-1.0);
   scene.Drape->Update();
@@ -191,8 +191,8 @@ bool AddSubsurfaceDemo(vtkRenderer* ren,
   depth->AddRGBPoint(baseRange[0], 0.95, 0.8, 0.35);
   depth->AddRGBPoint(baseRange[1], 0.45, 0.25, 0.1);
   scene.HorizonMapper->SetHorizonLookupTable(1, depth);
-  // A middle horizon, translucent: composited inside the volumes where their rays cross it.
-  scene.HorizonMapper->AddInputConnection(grids[1]->GetOutputPort());
+  // The top horizon, translucent: composited inside the volumes where their rays cross it.
+  scene.HorizonMapper->AddInputConnection(grids[0]->GetOutputPort());
   scene.HorizonMapper->SetHorizonColor(2, 0.3, 0.85, 0.95);
   scene.HorizonMapper->SetHorizonOpacity(2, 0.45);
   scene.Horizons = vtkSmartPointer<vtkActor>::New();

@@ -5,10 +5,10 @@
 // trace coordinates): survey A on every 8th node of the horizons' grid, converted to a page pool
 // and paged; survey B, 2x finer laterally and 2x in depth, rotated 15 degrees more, over the
 // middle, in core. Both drawn by one vtkMultiVolumeRayCastMapper in world coordinates (survey A
-// cropped to the last third of its first axis, so that the horizons show beside it); the top
-// horizon draped with survey A's amplitude (vtkHorizonVolumeSampler through the pool), the base
-// horizon coloured by depth, the second horizon translucent (opacity 0.45, composited inside the
-// volumes by the ray caster's surface layers); a deviated well through them. 8x vertical
+// cropped to the last third of its first axis, so that the horizons show beside it); the
+// second horizon draped with survey A's amplitude (vtkHorizonVolumeSampler through the pool),
+// the base horizon coloured by depth, the top horizon translucent (opacity 0.45, composited
+// inside the volumes by the ray caster's surface layers); a deviated well through them. 8x vertical
 // exaggeration.
 #ifndef StrataSubsurfaceDemo_h
 #define StrataSubsurfaceDemo_h
