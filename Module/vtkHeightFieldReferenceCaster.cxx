@@ -93,41 +93,49 @@ int Roots(double a, double b, double c, double len, double lo, double hi, double
 }
 }
 
-std::vector<vtkHeightFieldReferenceCaster::Hit> vtkHeightFieldReferenceCaster::CastAll(
+namespace
+{
+/**
+ * The cells of the stack's lateral grid that origin + t d crosses for t in [tMin, tMax],
+ * clipped to the stack's box, in ray order (a 2-D DDA): visit(i, j, t, tEnd, last) for the
+ * cell (i, j) and its piece [t, tEnd] of the ray; a visit returning true stops the walk.
+ */
+template<typename Visit>
+void WalkCells(const vtkHeightFieldStack& s,
   const double o[3],
   const double d[3],
   double tMin,
-  double tMax) const
+  double tMax,
+  Visit&& visit)
 {
-  std::vector<Hit> hits;
-  const vtkHeightFieldStack& s = this->Stack;
-  const int nx = s.GetNX(), ny = s.GetNY(), layers = s.GetNumberOfLayers();
+  const int nx = s.GetNX(), ny = s.GetNY();
   double zr[2];
   s.GetZRange(zr);
-  if (layers == 0 || zr[0] > zr[1] || nx < 2 || ny < 2)
-    return hits;
-  // The lateral box only (every height lies in it), and a cell walk as Cast's.
+  if (s.GetNumberOfLayers() == 0 || zr[0] > zr[1] || nx < 2 || ny < 2)
+    return;
+  const double lo[3] = { 0.0, 0.0, zr[0] };
+  const double hi[3] = { double(nx - 1), double(ny - 1), zr[1] };
   double t0 = tMin, t1 = tMax;
-  const double hi[2] = { double(nx - 1), double(ny - 1) };
-  for (int a = 0; a < 2; ++a)
+  for (int a = 0; a < 3; ++a)
   {
     if (d[a] == 0.0)
     {
-      if (o[a] < 0.0 || o[a] > hi[a])
-        return hits;
+      if (o[a] < lo[a] || o[a] > hi[a])
+        return;
       continue;
     }
-    double ta = -o[a] / d[a], tb = (hi[a] - o[a]) / d[a];
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
     if (ta > tb)
       std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
   }
   if (!(t0 <= t1))
-    return hits;
+    return;
   const double px = o[0] + t0 * d[0], py = o[1] + t0 * d[1];
   int i = std::min(std::max(static_cast<int>(std::floor(px)), 0), nx - 2);
   int j = std::min(std::max(static_cast<int>(std::floor(py)), 0), ny - 2);
+  // On an exact boundary, start in the cell the ray moves into.
   if (d[0] < 0.0 && px == std::floor(px) && i > 0 && px <= i)
     i = std::max(i - 1, 0);
   if (d[1] < 0.0 && py == std::floor(py) && j > 0 && py <= j)
@@ -142,36 +150,9 @@ std::vector<vtkHeightFieldReferenceCaster::Hit> vtkHeightFieldReferenceCaster::C
   while (t <= t1)
   {
     const double tEnd = std::min({ tx, ty, t1 });
-    const double len = tEnd - t;
     const bool last = tEnd >= t1;
-    const double tol = 1e-12 * std::max(len, 1e-300);
-    const double u0 = o[0] + t * d[0] - i, v0 = o[1] + t * d[1] - j, z0 = o[2] + t * d[2];
-    for (int k = 0; k < layers; ++k)
-    {
-      const double h00 = s.GetHeight(k, i, j), h10 = s.GetHeight(k, i + 1, j);
-      const double h01 = s.GetHeight(k, i, j + 1), h11 = s.GetHeight(k, i + 1, j + 1);
-      if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11))
-        continue;
-      const double ea = h10 - h00, eb = h01 - h00, ec = h00 - h10 - h01 + h11;
-      const double qa = -ec * d[0] * d[1];
-      const double qb = d[2] - ea * d[0] - eb * d[1] - ec * (u0 * d[1] + v0 * d[0]);
-      const double qc = z0 - h00 - ea * u0 - eb * v0 - ec * u0 * v0;
-      double roots[2];
-      // [-tol, len - tol): a root on the boundary with the next cell is that cell's.
-      const int n =
-        Roots(qa, qb, qc, len, t == t0 ? 0.0 : -tol, last ? len + tol : len - tol, roots);
-      for (int r = 0; r < n; ++r)
-      {
-        Hit hit;
-        hit.Layer = k;
-        hit.T = t + std::min(std::max(roots[r], 0.0), len);
-        for (int a = 0; a < 3; ++a)
-          hit.Point[a] = o[a] + hit.T * d[a];
-        hits.push_back(hit);
-      }
-    }
-    if (last)
-      break;
+    if (visit(i, j, t, tEnd, last) || last)
+      return;
     if (tx < ty)
     {
       i += stepX;
@@ -185,12 +166,45 @@ std::vector<vtkHeightFieldReferenceCaster::Hit> vtkHeightFieldReferenceCaster::C
       ty += std::abs(1.0 / d[1]);
     }
     if (i < 0 || i > nx - 2 || j < 0 || j > ny - 2)
-      break;
+      return;
   }
-  std::stable_sort(hits.begin(),
-    hits.end(),
-    [](const Hit& a, const Hit& b) { return a.T < b.T || (a.T == b.T && a.Layer < b.Layer); });
-  return hits;
+}
+
+/// f(s) = z0 + s dz - h(u0 + s du, v0 + s dv) = qa s^2 + qb s + qc on the piece of the ray from
+/// t in cell (i, j) of layer k; false when a corner is a hole.
+bool CellQuadratic(const vtkHeightFieldStack& s,
+  int k,
+  int i,
+  int j,
+  const double o[3],
+  const double d[3],
+  double t,
+  double q[3])
+{
+  const double h00 = s.GetHeight(k, i, j), h10 = s.GetHeight(k, i + 1, j);
+  const double h01 = s.GetHeight(k, i, j + 1), h11 = s.GetHeight(k, i + 1, j + 1);
+  if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11))
+    return false;
+  const double u0 = o[0] + t * d[0] - i, v0 = o[1] + t * d[1] - j, z0 = o[2] + t * d[2];
+  const double ea = h10 - h00, eb = h01 - h00, ec = h00 - h10 - h01 + h11;
+  q[0] = -ec * d[0] * d[1];
+  q[1] = d[2] - ea * d[0] - eb * d[1] - ec * (u0 * d[1] + v0 * d[0]);
+  q[2] = z0 - h00 - ea * u0 - eb * v0 - ec * u0 * v0;
+  return true;
+}
+
+vtkHeightFieldReferenceCaster::Hit MakeHit(int layer,
+  double t,
+  const double o[3],
+  const double d[3])
+{
+  vtkHeightFieldReferenceCaster::Hit hit;
+  hit.Layer = layer;
+  hit.T = t;
+  for (int a = 0; a < 3; ++a)
+    hit.Point[a] = o[a] + t * d[a];
+  return hit;
+}
 }
 
 vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(const double o[3],
@@ -200,137 +214,71 @@ vtkHeightFieldReferenceCaster::Hit vtkHeightFieldReferenceCaster::Cast(const dou
 {
   Hit hit;
   const vtkHeightFieldStack& s = this->Stack;
-  const int nx = s.GetNX();
-  const int ny = s.GetNY();
-  const int layers = s.GetNumberOfLayers();
-  double zr[2];
-  s.GetZRange(zr);
-  if (layers == 0 || zr[0] > zr[1])
-  {
-    return hit;
-  }
-  // Clip to the stack's box.
-  const double lo[3] = { 0.0, 0.0, zr[0] };
-  const double hi[3] = { double(nx - 1), double(ny - 1), zr[1] };
-  double t0 = tMin, t1 = tMax;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] == 0.0)
+  WalkCells(s,
+    o,
+    d,
+    tMin,
+    tMax,
+    [&](int i, int j, double t, double tEnd, bool)
     {
-      if (o[a] < lo[a] || o[a] > hi[a])
+      // The first cell with a root holds the first hit: the smallest root over the layers.
+      double bestS = std::numeric_limits<double>::infinity();
+      int bestLayer = -1;
+      for (int k = 0; k < s.GetNumberOfLayers(); ++k)
       {
-        return hit;
+        double q[3];
+        if (!CellQuadratic(s, k, i, j, o, d, t, q))
+          continue;
+        const double root = SmallestRoot(q[0], q[1], q[2], tEnd - t);
+        if (root >= 0.0 && root < bestS)
+        {
+          bestS = root;
+          bestLayer = k;
+        }
       }
-      continue;
-    }
-    double ta = (lo[a] - o[a]) / d[a];
-    double tb = (hi[a] - o[a]) / d[a];
-    if (ta > tb)
-    {
-      std::swap(ta, tb);
-    }
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1)
-  {
-    return hit;
-  }
-
-  // 2-D DDA over cells from t0 to t1.
-  const double px = o[0] + t0 * d[0];
-  const double py = o[1] + t0 * d[1];
-  int i = std::min(std::max(static_cast<int>(std::floor(px)), 0), nx - 2);
-  int j = std::min(std::max(static_cast<int>(std::floor(py)), 0), ny - 2);
-  // On an exact boundary, start in the cell the ray moves into.
-  if (d[0] < 0.0 && px == std::floor(px) && i > 0 && px <= i)
-  {
-    i = std::max(i - 1, 0);
-  }
-  if (d[1] < 0.0 && py == std::floor(py) && j > 0 && py <= j)
-  {
-    j = std::max(j - 1, 0);
-  }
-  const int stepX = d[0] > 0.0 ? 1 : -1;
-  const int stepY = d[1] > 0.0 ? 1 : -1;
-  const double inf = std::numeric_limits<double>::infinity();
-  auto nextT = [&](double p0, double dir, int cell)
-  {
-    if (dir > 0.0)
-      return (cell + 1 - p0) / dir;
-    if (dir < 0.0)
-      return (cell - p0) / dir;
-    return inf;
-  };
-  double tx = nextT(o[0], d[0], i);
-  double ty = nextT(o[1], d[1], j);
-  double t = t0;
-  while (t <= t1)
-  {
-    const double tEnd = std::min({ tx, ty, t1 });
-    const double len = tEnd - t;
-    // Local cell coordinates at the segment start.
-    const double u0 = o[0] + t * d[0] - i;
-    const double v0 = o[1] + t * d[1] - j;
-    const double z0 = o[2] + t * d[2];
-    double bestS = inf;
-    int bestLayer = -1;
-    for (int k = 0; k < layers; ++k)
-    {
-      const double h00 = s.GetHeight(k, i, j);
-      const double h10 = s.GetHeight(k, i + 1, j);
-      const double h01 = s.GetHeight(k, i, j + 1);
-      const double h11 = s.GetHeight(k, i + 1, j + 1);
-      if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11))
-      {
-        continue;
-      }
-      const double ea = h10 - h00;
-      const double eb = h01 - h00;
-      const double ec = h00 - h10 - h01 + h11;
-      // f(s) = z0 + s dz - h(u0 + s du, v0 + s dv)
-      const double qa = -ec * d[0] * d[1];
-      const double qb = d[2] - ea * d[0] - eb * d[1] - ec * (u0 * d[1] + v0 * d[0]);
-      const double qc = z0 - h00 - ea * u0 - eb * v0 - ec * u0 * v0;
-      const double root = SmallestRoot(qa, qb, qc, len);
-      if (root >= 0.0 && root < bestS)
-      {
-        bestS = root;
-        bestLayer = k;
-      }
-    }
-    if (bestLayer >= 0)
-    {
-      hit.Layer = bestLayer;
-      hit.T = t + bestS;
-      for (int a = 0; a < 3; ++a)
-      {
-        hit.Point[a] = o[a] + hit.T * d[a];
-      }
-      return hit;
-    }
-    if (tEnd >= t1)
-    {
-      break;
-    }
-    if (tx < ty)
-    {
-      i += stepX;
-      t = tx;
-      tx += std::abs(1.0 / d[0]);
-    }
-    else
-    {
-      j += stepY;
-      t = ty;
-      ty += std::abs(1.0 / d[1]);
-    }
-    if (i < 0 || i > nx - 2 || j < 0 || j > ny - 2)
-    {
-      break;
-    }
-  }
+      if (bestLayer >= 0)
+        hit = MakeHit(bestLayer, t + bestS, o, d);
+      return bestLayer >= 0;
+    });
   return hit;
+}
+
+std::vector<vtkHeightFieldReferenceCaster::Hit> vtkHeightFieldReferenceCaster::CastAll(
+  const double o[3],
+  const double d[3],
+  double tMin,
+  double tMax) const
+{
+  std::vector<Hit> hits;
+  const vtkHeightFieldStack& s = this->Stack;
+  bool first = true;
+  WalkCells(s,
+    o,
+    d,
+    tMin,
+    tMax,
+    [&](int i, int j, double t, double tEnd, bool last)
+    {
+      const double len = tEnd - t;
+      const double tol = 1e-12 * std::max(len, 1e-300);
+      for (int k = 0; k < s.GetNumberOfLayers(); ++k)
+      {
+        double q[3], roots[2];
+        if (!CellQuadratic(s, k, i, j, o, d, t, q))
+          continue;
+        // [-tol, len - tol): a root on the boundary with the next cell is that cell's.
+        const int n =
+          Roots(q[0], q[1], q[2], len, first ? 0.0 : -tol, last ? len + tol : len - tol, roots);
+        for (int r = 0; r < n; ++r)
+          hits.push_back(MakeHit(k, t + std::min(std::max(roots[r], 0.0), len), o, d));
+      }
+      first = false;
+      return false;
+    });
+  std::stable_sort(hits.begin(),
+    hits.end(),
+    [](const Hit& a, const Hit& b) { return a.T < b.T || (a.T == b.T && a.Layer < b.Layer); });
+  return hits;
 }
 
 void vtkHeightFieldReferenceCaster::CastImage(const double m[16],
