@@ -15,16 +15,16 @@
 // (it stops the rays) and translucent (0.5) in the others.
 //
 // Cases: looking down (H0, H1 translucent, H2 opaque), looking up from below (all three
-// translucent: the reverse order), the volumes paged from page pools (the same scene, the
-// same reference), and the translucent horizons without a volume ray caster (the renderer's
-// translucent pass blends them front to back, against the reference with transparent
-// volumes). Bounds, in 8-bit units over all pixels: those of the translucent actors, RMS 0.4
-// and max 2 (TestMultiVolumeTranslucentGeometry), the max off the reference's edges, where a
-// silhouette or hole rim within float rounding of a pixel centre puts the GPU's ray and the
-// reference's on different sides (at most 2 such pixels); the horizons add no discretisation:
-// each layer is composited at its crossing found by the caster's search and bisection, with
-// the layer's depth in float. The test can fail: the rendering is compared with the volumes
-// without the horizons and with the horizons blended over the volumes' composite, each must
+// translucent: the reverse order), H2 flat and translucent exactly on a brick face (z = 16)
+// with the volumes paged from page pools of 16^3 bricks and in core, and the translucent horizons
+// without a volume ray caster (the renderer's translucent pass blends them front to back, against
+// the reference with transparent volumes). Bounds, in 8-bit units over all pixels: those of the
+// translucent actors, RMS 0.4 and max 2 (TestMultiVolumeTranslucentGeometry), the max off the
+// reference's edges, where a silhouette or hole rim within float rounding of a pixel centre puts
+// the GPU's ray and the reference's on different sides (at most 2 such pixels); the horizons add no
+// discretisation: each layer is composited at its crossing found by the caster's search and
+// bisection, with the layer's depth in float. The test can fail: the rendering is compared with the
+// volumes without the horizons and with the horizons blended over the volumes' composite, each must
 // be off by more than 2 RMS; H1 drawn where it touches H0 but unmerged (one layer lost) is
 // checked through the merged pixels' count and error.
 #include "StrataImageHelpers.h"
@@ -333,9 +333,14 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   s.Camera(up, focal);
   CheckCase(Render(s, hf, actor, true, "HorizonsUp"), "HorizonsUp", true);
 
-  // The volumes paged from page pools (bricks of 16^3): the first case's scene and reference.
+  // The volumes paged from page pools (bricks of 16^3), looking down, H2 flat and translucent
+  // exactly on the bricks' face z = 16 of the first volume (the brick and page boundary).
   s.Camera(down, focal);
-  hf->SetHorizonOpacity(2, 1.0);
+  auto* flat = vtkFloatArray::SafeDownCast(horizons[2]->GetPointData()->GetScalars());
+  for (vtkIdType p = 0; p < flat->GetNumberOfTuples(); ++p)
+    flat->SetValue(p, 16.0f);
+  flat->Modified();
+  horizons[2]->Modified();
   std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
   for (size_t i = 0; i < s.Images.size(); ++i)
   {
@@ -355,8 +360,14 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   std::cout << "HorizonsPaged: " << s.Mapper->GetNumberOfResidentBricks() << " bricks resident\n";
   for (size_t i = 0; i < s.Images.size(); ++i)
     s.Mapper->SetInputDataObject(static_cast<int>(i), s.Images[i]);
+  CheckCase(Render(s, hf, actor, true, "HorizonsOnBrickFace"), "HorizonsOnBrickFace", true);
 
-  // No ray caster: the renderer's translucent pass blends the stack front to back.
+  // No ray caster: the renderer's translucent pass blends the stack front to back (H2 opaque).
+  hf->SetHorizonOpacity(2, 1.0);
+  horizons[2] = MakeHorizon(2);
+  hf->RemoveAllInputs();
+  for (auto& h : horizons)
+    hf->AddInputData(h);
   CheckCase(Render(s, hf, actor, false, "HorizonsBlended"), "HorizonsBlended", false);
 
   return CaseResult(Failures() == 0, output);
