@@ -14,55 +14,9 @@ vtkHeightFieldReferenceCaster::vtkHeightFieldReferenceCaster(const vtkHeightFiel
 
 namespace
 {
-// Smallest root of a s^2 + b s + c in [0, len], or -1. Stable form of the quadratic formula;
-// tolerance 1e-12 of the segment so that a root exactly on a cell boundary is not lost.
-double SmallestRoot(double a, double b, double c, double len)
-{
-  const double tol = 1e-12 * std::max(len, 1e-300);
-  double roots[2];
-  int n = 0;
-  const double scale = std::max({ std::abs(a) * len * len, std::abs(b) * len, std::abs(c) });
-  if (scale == 0.0)
-  {
-    return 0.0; // the ray lies in the surface
-  }
-  if (std::abs(a) * len * len <= 1e-14 * scale)
-  {
-    if (b != 0.0)
-    {
-      roots[n++] = -c / b;
-    }
-  }
-  else
-  {
-    const double disc = b * b - 4.0 * a * c;
-    if (disc < 0.0)
-    {
-      return -1.0;
-    }
-    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-    roots[n++] = q / a;
-    if (q != 0.0)
-    {
-      roots[n++] = c / q;
-    }
-  }
-  double best = -1.0;
-  for (int k = 0; k < n; ++k)
-  {
-    if (roots[k] >= -tol && roots[k] <= len + tol && (best < 0.0 || roots[k] < best))
-    {
-      best = std::min(std::max(roots[k], 0.0), len);
-    }
-  }
-  return best;
-}
-}
-
-namespace
-{
-// The roots of a s^2 + b s + c in [lo, hi) (the stable quadratic formula); none when the ray
-// lies in the surface.
+// The roots of a s^2 + b s + c in [lo, hi) (the stable quadratic formula; nearly linear when
+// the quadratic term is 1e-14 of the others over [0, len]); none when all three vanish (the
+// ray lies in the surface).
 int Roots(double a, double b, double c, double len, double lo, double hi, double roots[2])
 {
   const double scale = std::max({ std::abs(a) * len * len, std::abs(b) * len, std::abs(c) });
@@ -91,10 +45,22 @@ int Roots(double a, double b, double c, double len, double lo, double hi, double
       roots[kept++] = r[k];
   return kept;
 }
+
+// Smallest root in [0, len], or -1; 0 when the ray lies in the surface. Tolerance 1e-12 of the
+// segment so that a root exactly on a cell boundary is not lost.
+double SmallestRoot(double a, double b, double c, double len)
+{
+  if (std::max({ std::abs(a) * len * len, std::abs(b) * len, std::abs(c) }) == 0.0)
+    return 0.0;
+  const double tol = 1e-12 * std::max(len, 1e-300);
+  double roots[2];
+  const int n = Roots(a, b, c, len, -tol, std::nextafter(len + tol, HUGE_VAL), roots);
+  if (n == 0)
+    return -1.0;
+  const double best = n == 2 ? std::min(roots[0], roots[1]) : roots[0];
+  return std::min(std::max(best, 0.0), len);
 }
 
-namespace
-{
 /**
  * The cells of the stack's lateral grid that origin + t d crosses for t in [tMin, tMax],
  * clipped to the stack's box, in ray order (a 2-D DDA): visit(i, j, t, tEnd, last) for the

@@ -24,7 +24,6 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
-#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkInformationStringKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
@@ -1219,21 +1218,6 @@ void vtkStackedHeightFieldMapper::vtkInternals::ReadFeedback(Self* self)
   this->Paging.FeedbackOpenCL = this->Feedback.GetLastReadUsedOpenCL();
 }
 
-namespace
-{
-template<typename Pass>
-bool HasRenderPass(vtkActor* actor)
-{
-  vtkInformation* keys = actor->GetPropertyKeys();
-  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
-    return false;
-  for (int i = 0; i < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++i)
-    if (Pass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
-      return true;
-  return false;
-}
-}
-
 // --- Which horizons this call draws: all (every one opaque); the opaque ones (the renderer's
 // opaque pass, rays passing through the translucent); inside a peel of the volume ray caster's
 // surface layers, one layer of the translucent ones; or, in the renderer's translucent pass of
@@ -1258,7 +1242,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
     // translucent hits composited as one fragment; its depth peeling passes are not supported.
     if (!translucent || peel)
       return false;
-    if (!HasRenderPass<vtkOrderIndependentTranslucentPass>(actor))
+    if (!vtkStrataRenderUtilities::FindRenderPass<vtkOrderIndependentTranslucentPass>(actor))
     {
       if (!this->UnsupportedTranslucentWarned)
         vtkWarningWithObjectMacro(self,

@@ -1,16 +1,33 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkStrataRenderUtilities.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderPass.h"
 #include "vtkRenderer.h"
 #include "vtkTypeInt64Array.h"
 
 #include <cmath>
+
+std::vector<vtkOpenGLRenderPass*> vtkStrataRenderUtilities::GetRenderPasses(vtkActor* actor)
+{
+  std::vector<vtkOpenGLRenderPass*> passes;
+  vtkInformation* keys = actor ? actor->GetPropertyKeys() : nullptr;
+  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+    return passes;
+  for (int i = 0; i < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++i)
+    if (auto* pass =
+          vtkOpenGLRenderPass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
+      passes.push_back(pass);
+  return passes;
+}
 
 vtkVolumeCut::Camera vtkStrataRenderUtilities::GetCutCamera(vtkRenderer* ren)
 {

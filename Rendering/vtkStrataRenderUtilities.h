@@ -17,7 +17,9 @@
 #include <type_traits> // For std::is_floating_point
 #include <vector>      // For std::vector
 
+class vtkActor;
 class vtkFieldData;
+class vtkOpenGLRenderPass;
 class vtkRenderer;
 
 class STRATARENDERING_EXPORT vtkStrataRenderUtilities
@@ -68,6 +70,19 @@ public:
 
   ///@{
   /// One named one-value array in `out` (replacing an array of that name).
+  /// The first render pass on `actor`'s keys (vtkOpenGLRenderPass::RenderPasses()) that is a
+  /// `Pass`, or null.
+  template<typename Pass>
+  static Pass* FindRenderPass(vtkActor* actor)
+  {
+    for (vtkOpenGLRenderPass* pass : GetRenderPasses(actor))
+      if (auto* found = Pass::SafeDownCast(pass))
+        return found;
+    return nullptr;
+  }
+  /// The render passes on `actor`'s keys, in order.
+  static std::vector<vtkOpenGLRenderPass*> GetRenderPasses(vtkActor* actor);
+
   static void SetField(vtkFieldData* out, const char* name, double value);
   static void SetField(vtkFieldData* out, const char* name, long long value);
   ///@}

@@ -1,6 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkVolumeSurfaceLayers.h"
 
+#include "vtkStrataRenderUtilities.h"
+
 #include "vtkActor.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
@@ -54,15 +56,7 @@ bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
 
 vtkVolumeSurfacePeelPass* vtkVolumeSurfacePeelPass::Find(vtkActor* actor)
 {
-  vtkInformation* keys = actor ? actor->GetPropertyKeys() : nullptr;
-  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
-    return nullptr;
-  const int count = keys->Length(vtkOpenGLRenderPass::RenderPasses());
-  for (int i = 0; i < count; ++i)
-    if (auto* peel =
-          vtkVolumeSurfacePeelPass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
-      return peel;
-  return nullptr;
+  return vtkStrataRenderUtilities::FindRenderPass<vtkVolumeSurfacePeelPass>(actor);
 }
 
 vtkStandardNewMacro(vtkVolumeSurfacePeelPass);
@@ -195,9 +189,7 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
     state->vtkglDepthFunc(GL_LESS);
     state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
     state->vtkglClearDepth(1.0);
-    for (vtkActor* actor : actors)
-      this->Attach(actor);
-    this->Pass->Active = true;
+    this->Pass->Active = true; // the actors carry the pass since AddActor
     for (int k = 0; k < layers; ++k)
     {
       this->Framebuffer->AddColorAttachment(0, this->Colors[k]);

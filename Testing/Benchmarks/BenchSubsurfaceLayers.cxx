@@ -9,6 +9,7 @@
 // crossings are dropped. Time: median of 7 frames (128^2, llvmpipe), read back.
 // Usage: BenchSubsurfaceLayers header | run | report <csv> <png>  (-T <temporary folder>)
 #include "StrataBenchChart.h"
+#include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestPaths.h"
@@ -16,13 +17,8 @@
 
 #include "vtkActor.h"
 #include "vtkChart.h"
-#include "vtkFloatArray.h"
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -32,6 +28,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -50,23 +47,17 @@ const double OX = 456000.0, OY = 6780000.0;
 constexpr int Horizons = 6;
 constexpr double Opacity = 0.3;
 
-vtkSmartPointer<vtkImageData> MakeHorizon(int k)
+vtkSmartPointer<vtkImageData> Horizon(int k)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(36, 30, 1);
-  image->SetSpacing(2.0, 2.0, 1.0);
-  image->SetOrigin(OX - 6.0, OY - 6.0, 0.0);
-  vtkNew<vtkFloatArray> z;
-  z->SetNumberOfTuples(36 * 30);
+  std::vector<float> z(36 * 30);
   for (int j = 0; j < 30; ++j)
     for (int i = 0; i < 36; ++i)
     {
       const double x = -6.0 + 2.0 * i, y = -6.0 + 2.0 * j;
-      z->SetValue(j * 36 + i,
-        static_cast<float>(4.0 + 4.0 * k + 0.08 * x - 0.05 * y + 1.5 * std::sin(0.2 * x + k)));
+      z[j * 36 + i] =
+        static_cast<float>(4.0 + 4.0 * k + 0.08 * x - 0.05 * y + 1.5 * std::sin(0.2 * x + k));
     }
-  image->GetPointData()->SetScalars(z);
-  return image;
+  return MakeHorizon(36, 30, OX - 6.0, OY - 6.0, 2.0, 2.0, 0.0, z);
 }
 
 void Color(int k, double rgb[3])
@@ -75,44 +66,6 @@ void Color(int k, double rgb[3])
   rgb[0] = 0.9 - 0.7 * s;
   rgb[1] = 0.3 + 0.4 * std::sin(3.14159 * s);
   rgb[2] = 0.2 + 0.7 * s;
-}
-
-Ref::CrossingFunction Crossings(vtkStackedHeightFieldMapper* hf)
-{
-  const vtkHeightFieldStack* stack = hf->GetStack();
-  double g2w[16];
-  hf->GetGridToWorld(g2w);
-  vtkNew<vtkMatrix4x4> w2g;
-  w2g->DeepCopy(g2w);
-  w2g->Invert();
-  std::vector<double> m(w2g->GetData(), w2g->GetData() + 16);
-  return
-    [stack, m](
-      const double o[3], const double d[3], double t0, double t1, std::vector<Ref::Crossing>& out)
-  {
-    double og[3], dg[3];
-    for (int r = 0; r < 3; ++r)
-    {
-      og[r] = m[4 * r + 3];
-      dg[r] = 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        og[r] += m[4 * r + c] * o[c];
-        dg[r] += m[4 * r + c] * d[c];
-      }
-    }
-    for (const auto& hit : vtkHeightFieldReferenceCaster(*stack).CastAll(og, dg, t0, t1))
-    {
-      Ref::Crossing c;
-      c.T = hit.T;
-      double rgb[3];
-      Color(hit.Layer, rgb);
-      for (int ch = 0; ch < 3; ++ch)
-        c.Color[ch] = Opacity * rgb[ch];
-      c.Color[3] = Opacity;
-      out.push_back(c);
-    }
-  };
 }
 
 int Run(const TestPaths& paths)
@@ -126,13 +79,13 @@ int Run(const TestPaths& paths)
   s.UseMultiVolume();
   vtkNew<vtkStackedHeightFieldMapper> hf;
   std::vector<vtkSmartPointer<vtkImageData>> horizons;
+  std::vector<std::array<double, 3>> colors(Horizons);
   for (int k = 0; k < Horizons; ++k)
   {
-    horizons.push_back(MakeHorizon(k));
+    horizons.push_back(Horizon(k));
     hf->AddInputData(horizons.back());
-    double rgb[3];
-    Color(k, rgb);
-    hf->SetHorizonColor(k, rgb[0], rgb[1], rgb[2]);
+    Color(k, colors[k].data());
+    hf->SetHorizonColor(k, colors[k][0], colors[k][1], colors[k][2]);
     hf->SetHorizonOpacity(k, Opacity);
   }
   vtkNew<vtkActor> actor;
@@ -150,7 +103,7 @@ int Run(const TestPaths& paths)
   ref.SetStepFraction(1.0 / 16.0);
   for (size_t i = 0; i < s.Images.size(); ++i)
     ref.AddVolume(ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i)));
-  ref.AddSurfaceCrossings(Crossings(hf));
+  ref.AddSurfaceCrossings(HorizonCrossings(hf, colors));
   std::vector<double> rgba;
   ref.IntegrateImage(ClipToWorld(s.Ren)->GetData(), n, n, rgba);
   const std::vector<double> expected = CompositeOver(rgba, background);

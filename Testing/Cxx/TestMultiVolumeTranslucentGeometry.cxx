@@ -173,17 +173,9 @@ Images Render(VolumeScene& s, const std::vector<Plane*>& planes, const std::stri
   r.NoSurfaces = CompositeOver(volumesOnly, sceneRgb);
   // The surfaces blended over the volumes' composite: S + (1 - S.a) V.
   std::vector<double> over = Reference(s, surfaces, false, stop.data(), &r.Edges);
-  for (size_t i = 0; i < over.size(); i += 4)
-    for (int c = 0; c < 4; ++c)
-      over[i + c] += (1.0 - over[i + 3]) * volumesOnly[i + c];
-  r.SurfacesOver = CompositeOver(over, sceneRgb);
-  std::vector<unsigned char> refImage(r.Expected.size());
-  for (size_t i = 0; i < refImage.size(); ++i)
-    refImage[i] = static_cast<unsigned char>(std::lround(r.Expected[i]));
-  WritePNG(
-    s.ImageDirectory + "/" + name + "-gpu.png", r.Gpu, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  WritePNG(
-    s.ImageDirectory + "/" + name + "-ref.png", refImage, MultiVolumeCaseSize, MultiVolumeCaseSize);
+  r.SurfacesOver = CompositeOver(Over(over, volumesOnly), sceneRgb);
+  WriteComparisonImages(
+    s.ImageDirectory, name, r.Gpu, r.Expected, MultiVolumeCaseSize, MultiVolumeCaseSize);
   return r;
 }
 

@@ -27,6 +27,7 @@
 // volumes without the horizons and with the horizons blended over the volumes' composite, each must
 // be off by more than 2 RMS; H1 drawn where it touches H0 but unmerged (one layer lost) is
 // checked through the merged pixels' count and error.
+#include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
@@ -35,11 +36,8 @@
 
 #include "vtkActor.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
-#include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h"
@@ -74,14 +72,9 @@ double Base(double x, double y)
 }
 
 /// Horizon k on 36 x 30 points at 2 m from (OX - 6, OY - 6); heights are world z.
-vtkSmartPointer<vtkImageData> MakeHorizon(int k)
+vtkSmartPointer<vtkImageData> Horizon(int k)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(36, 30, 1);
-  image->SetSpacing(2.0, 2.0, 1.0);
-  image->SetOrigin(OX - 6.0, OY - 6.0, 0.0);
-  vtkNew<vtkFloatArray> z;
-  z->SetNumberOfTuples(36 * 30);
+  std::vector<float> z(36 * 30);
   for (int j = 0; j < 30; ++j)
     for (int i = 0; i < 36; ++i)
     {
@@ -93,10 +86,9 @@ vtkSmartPointer<vtkImageData> MakeHorizon(int k)
         h += std::max(0.0, 0.3 * (x - 28.0));
       if (k == 2)
         h = 5.0 + 0.1 * y + 0.05 * x;
-      z->SetValue(j * 36 + i, static_cast<float>(h));
+      z[j * 36 + i] = static_cast<float>(h);
     }
-  image->GetPointData()->SetScalars(z);
-  return image;
+  return MakeHorizon(36, 30, OX - 6.0, OY - 6.0, 2.0, 2.0, 0.0, z);
 }
 
 struct Images
@@ -104,50 +96,6 @@ struct Images
   std::vector<unsigned char> Gpu;
   std::vector<double> Expected, NoHorizons, HorizonsOver; ///< 8-bit units
 };
-
-/// The horizons' translucent crossings as the reference's surfaces, in world coordinates.
-Ref::CrossingFunction Crossings(vtkStackedHeightFieldMapper* hf)
-{
-  const vtkHeightFieldStack* stack = hf->GetStack();
-  double g2w[16];
-  hf->GetGridToWorld(g2w);
-  vtkNew<vtkMatrix4x4> w2g;
-  w2g->DeepCopy(g2w);
-  w2g->Invert();
-  std::vector<double> world2grid(w2g->GetData(), w2g->GetData() + 16);
-  std::vector<double> opacity(stack->GetNumberOfLayers());
-  for (size_t k = 0; k < opacity.size(); ++k)
-    opacity[k] = hf->GetHorizonOpacity(static_cast<int>(k));
-  return
-    [stack, world2grid, opacity](
-      const double o[3], const double d[3], double t0, double t1, std::vector<Ref::Crossing>& out)
-  {
-    double og[3], dg[3];
-    for (int r = 0; r < 3; ++r)
-    {
-      og[r] = world2grid[4 * r + 3];
-      dg[r] = 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        og[r] += world2grid[4 * r + c] * o[c];
-        dg[r] += world2grid[4 * r + c] * d[c];
-      }
-    }
-    const vtkHeightFieldReferenceCaster caster(*stack);
-    for (const auto& hit : caster.CastAll(og, dg, t0, t1))
-    {
-      const double a = opacity[hit.Layer];
-      if (a >= 1.0)
-        continue; // opaque: the scene's depth stops the ray there
-      Ref::Crossing c;
-      c.T = hit.T;
-      for (int ch = 0; ch < 3; ++ch)
-        c.Color[ch] = a * Colors[hit.Layer][ch];
-      c.Color[3] = a;
-      out.push_back(c);
-    }
-  };
-}
 
 /// The reference of the scene's volumes (transparent with `volumes` false) with the horizons'
 /// crossings when `horizons`, stopped at the window depths `stop`.
@@ -167,7 +115,10 @@ std::vector<double> Reference(VolumeScene& s,
     ref.AddVolume(std::move(v));
   }
   if (horizons)
-    ref.AddSurfaceCrossings(Crossings(hf));
+    ref.AddSurfaceCrossings(HorizonCrossings(hf,
+      { { Colors[0][0], Colors[0][1], Colors[0][2] },
+        { Colors[1][0], Colors[1][1], Colors[1][2] },
+        { Colors[2][0], Colors[2][1], Colors[2][2] } }));
   std::vector<double> rgba;
   ref.IntegrateImage(
     ClipToWorld(s.Ren)->GetData(), MultiVolumeCaseSize, MultiVolumeCaseSize, rgba, nullptr, stop);
@@ -211,17 +162,9 @@ Images Render(VolumeScene& s,
   const std::vector<double> volumesOnly = Reference(s, hf, peeled, false, stop.data());
   r.NoHorizons = CompositeOver(volumesOnly, sceneRgb);
   std::vector<double> over = Reference(s, hf, false, true, stop.data());
-  for (size_t i = 0; i < over.size(); i += 4)
-    for (int c = 0; c < 4; ++c)
-      over[i + c] += (1.0 - over[i + 3]) * volumesOnly[i + c];
-  r.HorizonsOver = CompositeOver(over, sceneRgb);
-  std::vector<unsigned char> refImage(r.Expected.size());
-  for (size_t i = 0; i < refImage.size(); ++i)
-    refImage[i] = static_cast<unsigned char>(std::lround(r.Expected[i]));
-  WritePNG(
-    s.ImageDirectory + "/" + name + "-gpu.png", r.Gpu, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  WritePNG(
-    s.ImageDirectory + "/" + name + "-ref.png", refImage, MultiVolumeCaseSize, MultiVolumeCaseSize);
+  r.HorizonsOver = CompositeOver(Over(over, volumesOnly), sceneRgb);
+  WriteComparisonImages(
+    s.ImageDirectory, name, r.Gpu, r.Expected, MultiVolumeCaseSize, MultiVolumeCaseSize);
   s.Multi->VisibilityOn();
   return r;
 }
@@ -299,7 +242,7 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   std::vector<vtkSmartPointer<vtkImageData>> horizons;
   for (int k = 0; k < 3; ++k)
   {
-    horizons.push_back(MakeHorizon(k));
+    horizons.push_back(Horizon(k));
     hf->AddInputData(horizons.back());
     hf->SetHorizonColor(k, Colors[k][0], Colors[k][1], Colors[k][2]);
   }
@@ -364,7 +307,7 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
 
   // No ray caster: the renderer's translucent pass blends the stack front to back (H2 opaque).
   hf->SetHorizonOpacity(2, 1.0);
-  horizons[2] = MakeHorizon(2);
+  horizons[2] = Horizon(2);
   hf->RemoveAllInputs();
   for (auto& h : horizons)
     hf->AddInputData(h);

@@ -9,6 +9,8 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkHeightFieldReferenceCaster.h"
+#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMatrix3x3.h"
@@ -23,6 +25,7 @@
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkStackedHeightFieldMapper.h"
 #include "vtkTransferFunctionTable.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
@@ -269,18 +272,37 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   }
   const std::vector<unsigned char> grey(3 * size_t(w) * h, 128);
   const std::vector<double> expected = CompositeOver(r.Reference, grey);
-  std::vector<unsigned char> refImage(expected.size());
-  for (size_t i = 0; i < expected.size(); ++i)
-    refImage[i] = static_cast<unsigned char>(std::lround(expected[i]));
   for (int i = 0; i < w * h; ++i)
     r.Covered += r.Reference[4 * i + 3] > 1.0 / 255.0;
   const ChannelError e = ImageError(r.Gpu, expected);
   r.Rms = e.Rms;
   r.Max = e.Max;
   ren->SetBackground(oldBackground);
-  WritePNG(imageDirectory + "/" + name + "-gpu.png", r.Gpu, w, h);
-  WritePNG(imageDirectory + "/" + name + "-ref.png", refImage, w, h);
+  WriteComparisonImages(imageDirectory, name, r.Gpu, expected, w, h);
   return r;
+}
+
+std::vector<double> Over(const std::vector<double>& front, const std::vector<double>& back)
+{
+  std::vector<double> out = front;
+  for (size_t i = 0; i + 3 < out.size(); i += 4)
+    for (int c = 0; c < 4; ++c)
+      out[i + c] += (1.0 - front[i + 3]) * back[i + c];
+  return out;
+}
+
+void WriteComparisonImages(const std::string& directory,
+  const std::string& name,
+  const std::vector<unsigned char>& gpu,
+  const std::vector<double>& expected,
+  int width,
+  int height)
+{
+  std::vector<unsigned char> refImage(expected.size());
+  for (size_t i = 0; i < expected.size(); ++i)
+    refImage[i] = static_cast<unsigned char>(std::lround(expected[i]));
+  WritePNG(directory + "/" + name + "-gpu.png", gpu, width, height);
+  WritePNG(directory + "/" + name + "-ref.png", refImage, width, height);
 }
 
 vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren)
@@ -451,5 +473,57 @@ bool CheckVolumeComparison(const VolumeComparison& c,
     ok = false;
   }
   return ok;
+}
+
+vtkMultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
+  vtkStackedHeightFieldMapper* mapper,
+  const std::vector<std::array<double, 3>>& colors)
+{
+  using Ref = vtkMultiVolumeReferenceIntegrator;
+  const vtkHeightFieldStack* stack = mapper->GetStack();
+  double gridToWorld[16];
+  mapper->GetGridToWorld(gridToWorld);
+  vtkNew<vtkMatrix4x4> worldToGrid;
+  worldToGrid->DeepCopy(gridToWorld);
+  worldToGrid->Invert();
+  const std::vector<double> m(worldToGrid->GetData(), worldToGrid->GetData() + 16);
+  // Premultiplied colour of each translucent horizon (opacity 0 for an opaque one: skipped).
+  std::vector<std::array<double, 4>> premultiplied(stack ? stack->GetNumberOfLayers() : 0);
+  for (size_t k = 0; k < premultiplied.size(); ++k)
+  {
+    const double a = mapper->GetHorizonOpacity(static_cast<int>(k));
+    const std::array<double, 3> rgb = k < colors.size() ? colors[k] : std::array<double, 3>{};
+    premultiplied[k] = a < 1.0 ? std::array<double, 4>{ a * rgb[0], a * rgb[1], a * rgb[2], a }
+                               : std::array<double, 4>{};
+  }
+  return
+    [stack, m, premultiplied](
+      const double o[3], const double d[3], double t0, double t1, std::vector<Ref::Crossing>& out)
+  {
+    if (!stack)
+      return;
+    // World to grid is affine: the ray keeps its parameter.
+    double og[3], dg[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      og[r] = m[4 * r + 3];
+      dg[r] = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        og[r] += m[4 * r + c] * o[c];
+        dg[r] += m[4 * r + c] * d[c];
+      }
+    }
+    for (const auto& hit : vtkHeightFieldReferenceCaster(*stack).CastAll(og, dg, t0, t1))
+    {
+      const std::array<double, 4>& c = premultiplied[hit.Layer];
+      if (c[3] <= 0.0)
+        continue; // opaque: the scene's depth stops the ray there
+      Ref::Crossing crossing;
+      crossing.T = hit.T;
+      std::copy(c.begin(), c.end(), crossing.Color);
+      out.push_back(crossing);
+    }
+  };
 }
 }

@@ -9,6 +9,7 @@
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkSmartPointer.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@ class vtkMultiVolumeRayCastMapper;
 class vtkPolyData;
 class vtkRenderWindow;
 class vtkRenderer;
+class vtkStackedHeightFieldMapper;
 class vtkVolume;
 class vtkVolumeProperty;
 
@@ -66,6 +68,18 @@ vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren);
 std::vector<double> CompositeOver(const std::vector<double>& rgba,
   const std::vector<unsigned char>& background);
 
+/// Premultiplied RGBA `front` composited over `back` (same layout): F + (1 - F.a) B.
+std::vector<double> Over(const std::vector<double>& front, const std::vector<double>& back);
+
+/// Writes a comparison's two images, <directory>/<name>-gpu.png (RGB bytes) and -ref.png
+/// (`expected` in 8-bit units, rounded).
+void WriteComparisonImages(const std::string& directory,
+  const std::string& name,
+  const std::vector<unsigned char>& gpu,
+  const std::vector<double>& expected,
+  int width,
+  int height);
+
 /// RMS over all channels and largest channel difference, in 8-bit units, of `image` (RGB bytes)
 /// from `expected` (same layout, 8-bit units).
 struct ChannelError
@@ -106,6 +120,14 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
 vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren,
   const std::string& dataDir,
   std::vector<std::pair<vtkSmartPointer<vtkImageData>, vtkSmartPointer<vtkVolume>>>& inputs);
+
+/// The translucent horizons of `mapper` (opacity below 1; read after a render) as the reference's
+/// surface crossings, in world coordinates: every crossing of horizon k
+/// (vtkHeightFieldReferenceCaster::CastAll) in `colors`[k] (unlit) times its opacity. The
+/// stack is read at each call: keep the mapper unchanged while the reference integrates.
+vtkMultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
+  vtkStackedHeightFieldMapper* mapper,
+  const std::vector<std::array<double, 3>>& colors);
 
 /// Prints the comparison and asserts rms <= rmsBound, max <= maxBound, covered >= minCovered.
 bool CheckVolumeComparison(const VolumeComparison& c,
