@@ -237,33 +237,8 @@ void AgainstVtk(const TestPaths& paths, const ModeCase& m)
   s.Win->Render();
   const auto ours = ReadRGB(s.Win);
 
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  MakeWindow(win, ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0);
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetInputData(image);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->SetSampleDistance(0.25);
-  vtkMapper->SetBlendMode(m.Mode);
-  vtkNew<vtkVolume> vol;
-  vol->SetMapper(vtkMapper);
-  vol->SetProperty(prop);
-  ren->AddVolume(vol);
-  ren->SetActiveCamera(s.Ren->GetActiveCamera());
-  win->Render();
-  const auto theirs = ReadRGB(win);
-  const ChannelError diff = ImageError(ours, theirs);
-  const int w = MultiVolumeCaseSize;
-  WritePNG(paths.Output + "/BlendVtk" + m.Name + "-strata.png", ours, w, w);
-  WritePNG(paths.Output + "/BlendVtk" + m.Name + "-vtk.png", theirs, w, w);
-  long differing = PixelsOff(ours, theirs, 2);
-  std::cout << m.Name << " vs vtkGPUVolumeRayCastMapper: RMS " << diff.Rms << ", max " << diff.Max
-            << " of 255, " << differing << " pixels off by more than 2\n";
-  Check(diff.Rms <= 0.6 && diff.Max <= 6,
-    std::string(m.Name) + " matches vtkGPUVolumeRayCastMapper within RMS 0.6 / max 6");
-  Check(PixelsOff(ours, std::vector<unsigned char>(ours.size(), 128), 2) > 2000,
-    std::string(m.Name) + " draws something (over 2000 pixels not background)");
+  const auto theirs = RenderWithVtkGPUMapper(s, image, prop, m.Mode);
+  CheckAgainstVtkGPUMapper(ours, theirs, std::string("BlendVtk") + m.Name, paths.Output);
 }
 
 /// Writes `image` to a page pool of 8^3 pages.

@@ -286,32 +286,8 @@ void AgainstVtk(const TestPaths& paths, Mode mode)
   s.Win->Render();
   const auto ours = ReadRGB(s.Win);
 
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  MakeWindow(win, ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0);
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetInputData(image);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->SetSampleDistance(0.25);
-  vtkNew<vtkVolume> vol;
-  vol->SetMapper(vtkMapper);
-  vol->SetProperty(prop);
-  ren->AddVolume(vol);
-  ren->SetActiveCamera(s.Ren->GetActiveCamera());
-  win->Render();
-  const auto theirs = ReadRGB(win);
-  const ChannelError diff = ImageError(ours, theirs);
-  const int w = MultiVolumeCaseSize;
-  const std::string name = std::string("ComponentsVtk") + Name(mode);
-  WritePNG(paths.Output + "/" + name + "-strata.png", ours, w, w);
-  WritePNG(paths.Output + "/" + name + "-vtk.png", theirs, w, w);
-  std::cout << name << " vs vtkGPUVolumeRayCastMapper: RMS " << diff.Rms << ", max " << diff.Max
-            << " of 255, " << PixelsOff(ours, theirs, 2) << " pixels off by more than 2\n";
-  Check(diff.Rms <= 0.6 && diff.Max <= 6,
-    name + " matches vtkGPUVolumeRayCastMapper within RMS 0.6 / max 6");
-  Check(PixelsOff(ours, std::vector<unsigned char>(ours.size(), 128), 2) > 2000,
-    name + " draws something (over 2000 pixels not background)");
+  const auto theirs = RenderWithVtkGPUMapper(s, image, prop, vtkVolumeMapper::COMPOSITE_BLEND);
+  CheckAgainstVtkGPUMapper(ours, theirs, std::string("ComponentsVtk") + Name(mode), paths.Output);
 }
 
 // Only what the scene uses: one-component volumes have no component code; each mode its own.

@@ -161,24 +161,16 @@ void AgainstVtk(const TestPaths& paths)
   s.Ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0);
   s.Win->Render();
   const auto ours = ReadRGB(s.Win);
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  MakeWindow(win, ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0);
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetInputData(s.Images[0]);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->SetSampleDistance(0.25);
-  vtkMapper->CroppingOn();
-  vtkMapper->SetCroppingRegionPlanes(Planes);
-  vtkMapper->SetCroppingRegionFlagsToCross();
-  vtkNew<vtkVolume> vol;
-  vol->SetMapper(vtkMapper);
-  vol->SetProperty(s.Volumes[0]->GetProperty());
-  ren->AddVolume(vol);
-  ren->SetActiveCamera(s.Ren->GetActiveCamera());
-  win->Render();
-  const auto theirs = ReadRGB(win);
+  const auto theirs = RenderWithVtkGPUMapper(s,
+    s.Images[0],
+    s.Volumes[0]->GetProperty(),
+    vtkVolumeMapper::COMPOSITE_BLEND,
+    [](vtkGPUVolumeRayCastMapper* m)
+    {
+      m->CroppingOn();
+      m->SetCroppingRegionPlanes(Planes);
+      m->SetCroppingRegionFlagsToCross();
+    });
   const int w = MultiVolumeCaseSize;
   WritePNG(paths.Output + "/CropVtk-strata.png", ours, w, w);
   WritePNG(paths.Output + "/CropVtk-vtk.png", theirs, w, w);

@@ -43,21 +43,8 @@ int TestMultiVolumeSingle(int argc, char* argv[])
   auto r = s.Compare("Single");
   ok = CheckVolumeComparison(r, "Single", 0.4, 2, 3000);
 
-  vtkSmartPointer<vtkRenderWindow> win;
-  vtkSmartPointer<vtkRenderer> ren;
-  MakeWindow(win, ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
-  ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0); // as CompareVolumesWithReference
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetInputData(image);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->SetSampleDistance(0.25);
-  vtkNew<vtkVolume> vol;
-  vol->SetMapper(vtkMapper);
-  vol->SetProperty(prop);
-  ren->AddVolume(vol);
-  ren->SetActiveCamera(s.Ren->GetActiveCamera());
-  win->Render();
-  const auto theirs = ReadRGB(win);
+  // Over mid grey, as CompareVolumesWithReference.
+  const auto theirs = RenderWithVtkGPUMapper(s, image, prop, vtkVolumeMapper::COMPOSITE_BLEND);
   const ChannelError diff = ImageError(r.Gpu, std::vector<double>(theirs.begin(), theirs.end()));
   const double rms = diff.Rms, mx = diff.Max;
   std::cout << "Single vs vtkGPUVolumeRayCastMapper: RMS " << rms << ", max " << mx << " of 255\n";

@@ -2,11 +2,14 @@
 #include "StrataMultiVolumeCase.h"
 
 #include "StrataHeightFieldScenes.h" // For MakeWindow
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkCamera.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTransform.h"
@@ -155,5 +158,48 @@ int CaseResult(bool ok, const CapturingOutputWindow* output)
     ok = false;
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+std::vector<unsigned char> RenderWithVtkGPUMapper(VolumeScene& s,
+  vtkImageData* image,
+  vtkVolumeProperty* property,
+  int blendMode,
+  const std::function<void(vtkGPUVolumeRayCastMapper*)>& configure)
+{
+  vtkSmartPointer<vtkRenderWindow> win;
+  vtkSmartPointer<vtkRenderer> ren;
+  MakeWindow(win, ren, MultiVolumeCaseSize, MultiVolumeCaseSize);
+  ren->SetBackground(128.0 / 255.0, 128.0 / 255.0, 128.0 / 255.0);
+  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
+  vtkMapper->SetInputData(image);
+  vtkMapper->AutoAdjustSampleDistancesOff();
+  vtkMapper->SetSampleDistance(0.25);
+  vtkMapper->SetBlendMode(blendMode);
+  if (configure)
+    configure(vtkMapper);
+  vtkNew<vtkVolume> vol;
+  vol->SetMapper(vtkMapper);
+  vol->SetProperty(property);
+  ren->AddVolume(vol);
+  ren->SetActiveCamera(s.Ren->GetActiveCamera());
+  win->Render();
+  return ReadRGB(win);
+}
+
+void CheckAgainstVtkGPUMapper(const std::vector<unsigned char>& ours,
+  const std::vector<unsigned char>& theirs,
+  const std::string& name,
+  const std::string& directory)
+{
+  const ChannelError diff = ImageError(ours, theirs);
+  const int w = MultiVolumeCaseSize;
+  WritePNG(directory + "/" + name + "-strata.png", ours, w, w);
+  WritePNG(directory + "/" + name + "-vtk.png", theirs, w, w);
+  std::cout << name << " vs vtkGPUVolumeRayCastMapper: RMS " << diff.Rms << ", max " << diff.Max
+            << " of 255, " << PixelsOff(ours, theirs, 2) << " pixels off by more than 2\n";
+  Check(diff.Rms <= 0.6 && diff.Max <= 6,
+    name + " matches vtkGPUVolumeRayCastMapper within RMS 0.6 / max 6");
+  Check(PixelsOff(ours, std::vector<unsigned char>(ours.size(), 128), 2) > 2000,
+    name + " draws something (over 2000 pixels not background)");
 }
 }

@@ -20,9 +20,11 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
+class vtkGPUVolumeRayCastMapper;
 class vtkImageData;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -83,6 +85,24 @@ VolumeComparison RenderTwoVolumes(double ox,
   double oy,
   const std::string& tag,
   const std::string& imageDirectory);
+
+/// The scene's single volume `image` with `property` drawn by VTK's own
+/// vtkGPUVolumeRayCastMapper (sample distance 0.25, `blendMode`, then `configure` when given,
+/// e.g. cropping) under the scene's camera, in a window of the cases' size over mid grey: its
+/// RGB.
+std::vector<unsigned char> RenderWithVtkGPUMapper(VolumeScene& s,
+  vtkImageData* image,
+  vtkVolumeProperty* property,
+  int blendMode,
+  const std::function<void(vtkGPUVolumeRayCastMapper*)>& configure = nullptr);
+
+/// `ours` against VTK's rendering `theirs`: prints RMS, max and the pixels off by more than 2,
+/// asserts RMS <= 0.6 and max <= 6 and that ours draws something (over 2000 pixels not
+/// background), and writes <directory>/<name>-strata.png and -vtk.png.
+void CheckAgainstVtkGPUMapper(const std::vector<unsigned char>& ours,
+  const std::vector<unsigned char>& theirs,
+  const std::string& name,
+  const std::string& directory);
 
 /// A case's exit code: failure when `ok` is false or VTK printed errors or warnings (said so).
 int CaseResult(bool ok, const CapturingOutputWindow* output);
