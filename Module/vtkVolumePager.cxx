@@ -2,6 +2,7 @@
 #include "vtkVolumePager.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkBrickAtlasFormat.h"
 #include "vtkCutPages.h"
 #include "vtkPagePoolFile.h"
 #include "vtkVolumeBrickTree.h"
@@ -37,6 +38,7 @@ public:
   std::vector<Volume> Volumes; ///< of the frame, trees resolved
   int BrickSize = 0;
   double Budget = 0.0;
+  vtkVolumeBrickTree::ScalarType AtlasType = vtkVolumeBrickTree::ScalarType::Float32;
   Statistics Stats;
   /// Per volume and node: the pixels that asked for detail below the node (split priority).
   std::vector<std::vector<double>> Demand;
@@ -288,6 +290,21 @@ vtkVolumePager::~vtkVolumePager() = default;
 
 namespace
 {
+// The brick tree's name for a pool's scalar type.
+vtkVolumeBrickTree::ScalarType PoolType(vtkPagePoolFormat::ScalarType type)
+{
+  switch (type)
+  {
+    case vtkPagePoolFormat::ScalarType::UInt8:
+      return vtkVolumeBrickTree::ScalarType::UInt8;
+    case vtkPagePoolFormat::ScalarType::UInt16:
+      return vtkVolumeBrickTree::ScalarType::UInt16;
+    case vtkPagePoolFormat::ScalarType::Int16:
+      return vtkVolumeBrickTree::ScalarType::Int16;
+    default:
+      return vtkVolumeBrickTree::ScalarType::Float32;
+  }
+}
 /// Two trees of the same levels, level dimensions and brick size: one cut fits both.
 bool SameStructure(const vtkVolumeBrickTree& a, const vtkVolumeBrickTree& b)
 {
@@ -432,15 +449,22 @@ bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
 {
   vtkInternals& in = *this->Internals;
   std::vector<Volume> resolved = volumes;
+  std::vector<vtkVolumeBrickTree::ScalarType> types;
   for (Volume& v : resolved)
   {
     if (const vtkVolumeBrickTree* tree = this->GetPoolTree(v.Port))
+    {
       v.Tree = tree;
+      v.Type = PoolType(this->GetPool(v.Port)->GetScalarType());
+    }
+    types.push_back(v.Type);
   }
+  const auto atlasType = vtkBrickAtlasFormat::Choose(types, this->NativeAtlas);
   bool same = this->CutValid && resolved.size() == in.Volumes.size() && brickSize == in.BrickSize &&
-              budgetMiB == in.Budget;
+              budgetMiB == in.Budget && atlasType == in.AtlasType;
   for (size_t v = 0; same && v < resolved.size(); ++v)
-    same = resolved[v].Port == in.Volumes[v].Port && resolved[v].Tree == in.Volumes[v].Tree;
+    same = resolved[v].Port == in.Volumes[v].Port && resolved[v].Tree == in.Volumes[v].Tree &&
+           resolved[v].Type == in.Volumes[v].Type;
   in.Volumes = std::move(resolved);
   rebuilt = !same;
   if (same)
@@ -451,17 +475,19 @@ bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
   double allBricks = 0.0;
   for (const Volume& v : in.Volumes)
     allBricks += v.Tree->GetNumberOfNodes();
-  const double brickMiB = std::pow(double(brickSize), 3) * 4.0 / (1024.0 * 1024.0);
+  const int texel = vtkBrickAtlasFormat::GetTexelSize(atlasType);
+  const double brickMiB = std::pow(double(brickSize), 3) * texel / (1024.0 * 1024.0);
   const double budget = std::min(budgetMiB, (allBricks + 0.5) * brickMiB);
-  if (!in.Atlas.InitializeFromBudget(budget, brickSize, 4, std::min(maxTextureSize, 2048)))
+  if (!in.Atlas.InitializeFromBudget(budget, brickSize, texel, std::min(maxTextureSize, 2048)))
   {
     std::ostringstream msg;
-    msg << "An atlas budget of " << budgetMiB << " MB holds no brick of " << brickSize
-        << "^3 float voxels.";
+    msg << "An atlas budget of " << budgetMiB << " MB holds no brick of " << brickSize << "^3 "
+        << vtkBrickAtlasFormat::GetName(atlasType) << " voxels.";
     error = msg.str();
     this->CutValid = false;
     return false;
   }
+  in.AtlasType = atlasType;
   in.Cut.RemoveAllVolumes();
   for (const Volume& v : in.Volumes)
     in.Cut.AddVolume(v.Tree, v.IndexToWorld);
@@ -642,6 +668,16 @@ void vtkVolumePager::BuildIndexTable(int volume, std::vector<uint16_t>& table) c
 const vtkVolumeBrickTree* vtkVolumePager::GetTree(int volume) const
 {
   return this->Internals->Volumes[volume].Tree;
+}
+
+vtkVolumeBrickTree::ScalarType vtkVolumePager::GetAtlasType() const
+{
+  return this->Internals->AtlasType;
+}
+
+vtkVolumeBrickTree::ScalarType vtkVolumePager::GetVolumeType(int volume) const
+{
+  return this->Internals->Volumes[volume].Type;
 }
 
 const vtkBrickAtlasAllocator& vtkVolumePager::GetAtlas() const

@@ -43,6 +43,7 @@
 #include "StrataCoreModule.h"     // For export macro
 #include "vtkFeedbackReduction.h" // For vtkFeedbackReduction::Entry
 #include "vtkPagedPools.h"        // For vtkPagedPools::Statistics
+#include "vtkVolumeBrickTree.h"   // For vtkVolumeBrickTree::ScalarType
 #include "vtkVolumeCut.h"         // For vtkVolumeCut::Camera, Upload
 
 #include <array>      // For std::array
@@ -53,7 +54,6 @@
 
 class vtkBrickAtlasAllocator;
 class vtkPagePoolFile;
-class vtkVolumeBrickTree;
 
 class STRATACORE_EXPORT vtkVolumePager
 {
@@ -68,6 +68,9 @@ public:
     vtkVolumeCut::OpacityRangeFunction Opacity; ///< highest opacity over a value range
     /// Store the bricks next to visible ones too (pre-integration, vtkVolumeCut::SetVolumeHalo).
     bool Halo = false;
+    /// In core: the type of the caller's values (the atlas's texels, vtkBrickAtlasFormat).
+    /// Paged: ignored, the pool's type.
+    vtkVolumeBrickTree::ScalarType Type = vtkVolumeBrickTree::ScalarType::Float32;
     /**
      * Paged: the reader's coarsest level as floats (x fastest) and its dimensions, asked for
      * only while the root page is not held; empty (or no function): read the root here.
@@ -160,10 +163,11 @@ public:
   const vtkVolumeBrickTree* GetPoolTree(int port) const;
 
   /**
-   * The frame's volumes and atlas. The cut starts again from the roots when the volumes or
-   * their trees, the brick size or the budget (MiB of float bricks) changed, or after
-   * InvalidateCut(); `rebuilt` then says that the atlas was re-laid (GetAtlas()). False, with
-   * `error` set, when the budget holds no brick.
+   * The frame's volumes and atlas. The cut starts again from the roots when the volumes, their
+   * trees or types, the brick size, the budget (MiB of bricks in the atlas's type) or the
+   * atlas's type changed, or after InvalidateCut(); `rebuilt` then says that the atlas was
+   * re-laid (GetAtlas(), GetAtlasType()). False, with `error` set, when the budget holds no
+   * brick.
    */
   bool SetVolumes(const std::vector<Volume>& volumes,
     int brickSize,
@@ -171,6 +175,18 @@ public:
     int maxTextureSize,
     bool& rebuilt,
     std::string& error);
+  ///@{
+  /**
+   * Native storage (default on): the atlas holds bricks in the volumes' own type
+   * (vtkBrickAtlasFormat::Choose: R8 for 8-bit scenes, R16 for 16-bit ones); off: float.
+   * Takes effect at the next SetVolumes (which then rebuilds).
+   */
+  void SetNativeAtlas(bool native) { this->NativeAtlas = native; }
+  bool GetNativeAtlas() const { return this->NativeAtlas; }
+  ///@}
+  /// The atlas's texel type and the values' type of the frame's volume `volume`.
+  vtkVolumeBrickTree::ScalarType GetAtlasType() const;
+  vtkVolumeBrickTree::ScalarType GetVolumeType(int volume) const;
   /// Forces the next SetVolumes to rebuild (a caller's tree was rebuilt, or its atlas lost).
   void InvalidateCut() { this->CutValid = false; }
   int GetNumberOfVolumes() const;
@@ -237,6 +253,7 @@ private:
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   bool CutValid = false;
+  bool NativeAtlas = true;
 };
 
 #endif

@@ -4,6 +4,8 @@
 #include "vtkShaderProgram.h"
 #include "vtk_glew.h"
 
+#include <cmath>
+
 #include "vtkMultiVolumeAtlasLookup.h"
 
 std::string vtkBrickAtlasTexture::GetShaderDeclarations()
@@ -12,18 +14,62 @@ std::string vtkBrickAtlasTexture::GetShaderDeclarations()
          "uniform float uBrickSize;\n";
 }
 
-std::string vtkBrickAtlasTexture::GetLookupFunction(int n, const std::string& feedbackCheck)
+std::string vtkBrickAtlasTexture::GetLookupFunction(int n,
+  const std::string& feedbackCheck,
+  bool normalized)
 {
   std::string code = vtkMultiVolumeAtlasLookup;
+  // Feedback wants the level-0 brick and the node's level back from the resolved entry.
+  const std::string feedback =
+    feedbackCheck.empty()
+      ? std::string()
+      : "ivec3 b = min(ivec3(x / (uBrickSize - 1.0)), ivec3(uTableDims@n@) - 1);\n"
+        "  uvec4 e = uvec4(0u, 0u, 0u, f.w > 0.0 ? uint(-log2(f.w) + 0.5) : "
+        "(f.w > -1.5 ? 65534u : 65535u));\n  " +
+          feedbackCheck;
+  vtkShaderProgram::Substitute(code, "//STRATA::FeedbackCheck::Impl", feedback, true);
+  vtkShaderProgram::Substitute(code,
+    "//STRATA::Decode::Dec",
+    normalized ? "uniform vec2 uDecode@n@; // value = texel x + y (vtkBrickAtlasFormat)" : "",
+    true);
+  vtkShaderProgram::Substitute(
+    code, "@decode@", normalized ? " * uDecode@n@.x + uDecode@n@.y" : "", true);
   vtkShaderProgram::Substitute(code, "@n@", std::to_string(n), true);
-  vtkShaderProgram::Substitute(code, "//STRATA::FeedbackCheck::Impl", feedbackCheck, true);
   return code;
 }
 
-void vtkBrickAtlasTexture::Allocate(const std::array<int, 3>& size)
+namespace
 {
+// GL's internal format, format and type of an atlas of `type` texels.
+void GetTexelFormat(vtkVolumeBrickTree::ScalarType type, GLint& internal, GLenum& pixelType)
+{
+  switch (type)
+  {
+    case vtkVolumeBrickTree::ScalarType::UInt8:
+      internal = GL_R8;
+      pixelType = GL_UNSIGNED_BYTE;
+      return;
+    case vtkVolumeBrickTree::ScalarType::UInt16:
+    case vtkVolumeBrickTree::ScalarType::Int16:
+      internal = GL_R16;
+      pixelType = GL_UNSIGNED_SHORT;
+      return;
+    default:
+      internal = GL_R32F;
+      pixelType = GL_FLOAT;
+  }
+}
+}
+
+void vtkBrickAtlasTexture::Allocate(const std::array<int, 3>& size,
+  vtkVolumeBrickTree::ScalarType type)
+{
+  GLint internal = GL_R32F;
+  GLenum pixelType = GL_FLOAT;
+  GetTexelFormat(type, internal, pixelType);
   glBindTexture(GL_TEXTURE_3D, this->Atlas.Get());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size[0], size[1], size[2], 0, GL_RED, GL_FLOAT, nullptr);
+  glTexImage3D(
+    GL_TEXTURE_3D, 0, internal, size[0], size[1], size[2], 0, GL_RED, pixelType, nullptr);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -31,51 +77,83 @@ void vtkBrickAtlasTexture::Allocate(const std::array<int, 3>& size)
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_3D, 0);
   this->Size = size;
+  this->Type = type;
 }
 
 void vtkBrickAtlasTexture::BeginUploads()
 {
   glBindTexture(GL_TEXTURE_3D, this->Atlas.GetName());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
 }
 
 void vtkBrickAtlasTexture::UploadBrick(const std::array<int, 3>& slot,
   int brickSize,
-  const float* values)
+  const void* texels)
 {
+  GLint internal = GL_R32F;
+  GLenum pixelType = GL_FLOAT;
+  GetTexelFormat(this->Type, internal, pixelType);
   const int B = brickSize;
   glTexSubImage3D(
-    GL_TEXTURE_3D, 0, slot[0] * B, slot[1] * B, slot[2] * B, B, B, B, GL_RED, GL_FLOAT, values);
+    GL_TEXTURE_3D, 0, slot[0] * B, slot[1] * B, slot[2] * B, B, B, B, GL_RED, pixelType, texels);
 }
 
 void vtkBrickAtlasTexture::EndUploads()
 {
   glBindTexture(GL_TEXTURE_3D, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
 void vtkBrickAtlasTexture::SetIndex(int key,
   const int bricks[3],
+  int brickSize,
   const std::vector<uint16_t>& table)
 {
   auto it = this->Index.find(key);
   if (it == this->Index.end())
     it = this->Index.emplace(key, vtkStrataGLObject::Kinds::Texture).first;
+  // Entry of level-0 brick b covered by node (level w, slot e): the atlas texel of index x is
+  // e B + 0.5 + (x 2^-w - (b >> w) S), i.e. origin + x 2^-w, in texels (origin and scale are
+  // exact in float; the shader normalises after the one rounding of their sum).
+  const size_t n = table.size() / 4;
+  std::vector<float> entries(4 * n);
+  const int S = brickSize - 1;
+  for (int k = 0, i = 0; k < bricks[2]; ++k)
+    for (int j = 0; j < bricks[1]; ++j)
+      for (int l = 0; l < bricks[0]; ++l, ++i)
+      {
+        const uint16_t* e = &table[4 * size_t(i)];
+        float* out = &entries[4 * size_t(i)];
+        const int b[3] = { l, j, k };
+        if (e[3] >= 65534)
+        {
+          out[0] = out[1] = out[2] = 0.0f;
+          out[3] = e[3] == 65534 ? -1.0f : -2.0f;
+          continue;
+        }
+        for (int a = 0; a < 3; ++a)
+          out[a] = static_cast<float>(double(e[a]) * brickSize - double(b[a] >> e[3]) * S + 0.5);
+        out[3] = static_cast<float>(std::ldexp(1.0, -int(e[3])));
+      }
   glBindTexture(GL_TEXTURE_3D, it->second.Get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage3D(GL_TEXTURE_3D,
     0,
-    GL_RGBA16UI,
+    GL_RGBA32F,
     bricks[0],
     bricks[1],
     bricks[2],
     0,
-    GL_RGBA_INTEGER,
-    GL_UNSIGNED_SHORT,
-    table.data());
+    GL_RGBA,
+    GL_FLOAT,
+    entries.data());
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  // Lookups at the volume's far faces land on the table's edge, never wrap to its start.
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_3D, 0);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
 unsigned int vtkBrickAtlasTexture::GetIndexName(int key) const
@@ -91,4 +169,5 @@ void vtkBrickAtlasTexture::ReleaseGraphicsResources()
     i.second.Release();
   this->Index.clear();
   this->Size = { 0, 0, 0 };
+  this->Type = vtkVolumeBrickTree::ScalarType::Float32;
 }

@@ -5,12 +5,16 @@
  *          index texture per volume, and the GLSL lookup that reads them.
  *
  * vtkVolumePager decides which brick lives in which slot (vtkBrickAtlasAllocator) and writes
- * each volume's index table; this object holds the textures: the atlas (R32F, linear, bricks of
- * B^3 voxels sharing one voxel layer at their faces, so trilinear lookups are exact inside a
- * brick) and the index textures (RGBA16UI, one texel per level-0 brick: slot x, y, z and the
- * level of the cut node covering it, vtkVolumeCut::EmptyLevel and MissingLevel for transparent
- * and slotless bricks). Following Tuvok's rule, the object that owns the page table writes the
- * code that reads it: GetLookupFunction() is the only GLSL that knows where voxels live.
+ * each volume's index table; this object holds the textures: the atlas (R8, R16 or R32F by
+ * vtkBrickAtlasFormat, linear, bricks of B^3 voxels sharing one voxel layer at their faces, so
+ * trilinear lookups are exact inside a brick) and the index textures. The pager's table
+ * (slot x, y, z and the level of the cut node covering each level-0 brick,
+ * vtkVolumeCut::EmptyLevel and MissingLevel for transparent and slotless bricks) is stored
+ * resolved, as RGBA32F: the atlas texel of the brick's index-space origin (xyz) and the
+ * node's scale 2^-level (w; -1 transparent, -2 slotless), so that a sample costs one nearest
+ * fetch and one multiply-add before the atlas lookup. Following Tuvok's rule, the object that
+ * owns the page table writes the code that reads it: GetLookupFunction() is the only GLSL that
+ * knows where voxels live.
  *
  * The owner calls ReleaseGraphicsResources() from its own, with the context current.
  */
@@ -19,6 +23,7 @@
 
 #include "StrataRenderingModule.h" // For export macro
 #include "vtkStrataGLObject.h"     // For vtkStrataGLObject
+#include "vtkVolumeBrickTree.h"    // For vtkVolumeBrickTree::ScalarType
 
 #include <array>   // For std::array
 #include <cstdint> // For uint16_t
@@ -34,26 +39,33 @@ public:
   /**
    * `float strataScalarAt<n>(vec3 idx)`: volume n's scalar at index coordinates through its
    * index texture uIndex<n> (level-0 bricks uTableDims<n>) and the atlas; `feedbackCheck` is
-   * inserted where the index entry e of level-0 brick b is known (empty: none).
+   * inserted where the level-0 brick b and the level e.w of the node covering it are known
+   * (empty: none, and neither is computed). `normalized`: the atlas's texels are decoded,
+   * value = t uDecode<n>.x + uDecode<n>.y (vtkBrickAtlasFormat::GetDecode).
    */
-  static std::string GetLookupFunction(int n, const std::string& feedbackCheck);
+  static std::string GetLookupFunction(int n, const std::string& feedbackCheck, bool normalized);
 
   vtkBrickAtlasTexture() = default;
   vtkBrickAtlasTexture(const vtkBrickAtlasTexture&) = delete;
   vtkBrickAtlasTexture& operator=(const vtkBrickAtlasTexture&) = delete;
 
-  /// (Re)defines the atlas texture of `size` texels, contents undefined.
-  void Allocate(const std::array<int, 3>& size);
+  /// (Re)defines the atlas texture of `size` texels of `type`, contents undefined.
+  void Allocate(const std::array<int, 3>& size, vtkVolumeBrickTree::ScalarType type);
   bool IsAllocated() const { return static_cast<bool>(this->Atlas); }
   const std::array<int, 3>& GetSize() const { return this->Size; }
 
-  /// Writes bricks of B^3 floats into the atlas, at slot positions (in bricks).
+  /// Writes bricks of B^3 texels of the atlas's type (vtkBrickAtlasFormat::Encode) into the
+  /// atlas, at slot positions (in bricks).
   void BeginUploads();
-  void UploadBrick(const std::array<int, 3>& slot, int brickSize, const float* values);
+  void UploadBrick(const std::array<int, 3>& slot, int brickSize, const void* texels);
   void EndUploads();
 
-  /// Defines the index texture of `key` (the volume's input port) from its table.
-  void SetIndex(int key, const int bricks[3], const std::vector<uint16_t>& table);
+  /**
+   * Defines the index texture of `key` (the volume's input port) from the pager's table of
+   * `bricks` level-0 bricks of `brickSize` voxels (vtkVolumePager::BuildIndexTable), resolved
+   * against this atlas's size (Allocate first).
+   */
+  void SetIndex(int key, const int bricks[3], int brickSize, const std::vector<uint16_t>& table);
 
   unsigned int GetAtlasName() const { return this->Atlas.GetName(); }
   unsigned int GetIndexName(int key) const;
@@ -63,6 +75,7 @@ public:
 private:
   vtkStrataGLObject Atlas{ vtkStrataGLObject::Kinds::Texture };
   std::array<int, 3> Size = { 0, 0, 0 };
+  vtkVolumeBrickTree::ScalarType Type = vtkVolumeBrickTree::ScalarType::Float32;
   std::map<int, vtkStrataGLObject> Index;
 };
 

@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkMultiVolumeInput.h"
 
+#include "vtkBrickAtlasFormat.h"
 #include "vtkVolumeBrickTree.h"
 
 #include "vtkVolumeMapper.h"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace
 {
@@ -148,6 +150,7 @@ bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
     this->Scalars[i] = static_cast<float>(scalars->GetComponent(i, 0));
   this->NumberOfComponents = std::min(std::max(scalars->GetNumberOfComponents(), 1), 4);
   const int nc = this->NumberOfComponents;
+  this->ScalarType = vtkBrickAtlasFormat::FromVTKType(scalars->GetDataType());
   this->ComponentScalars.clear();
   this->ComponentScalars.resize(nc > 1 ? size_t(n) * nc : 0);
   for (int c = 0; nc > 1 && c < nc; ++c)
@@ -166,12 +169,43 @@ bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
   return true;
 }
 
-int vtkMultiVolumeInput::UpdateTree(const int dims[3], int brickSize, std::string& error)
+namespace
 {
-  if (this->Tree && this->Tree->GetBrickSize() == brickSize)
+template<typename T>
+void StoreAs(const std::vector<float>& values, std::vector<unsigned char>& storage)
+{
+  storage.resize(values.size() * sizeof(T));
+  T* out = reinterpret_cast<T*>(storage.data());
+  for (size_t i = 0; i < values.size(); ++i)
+    out[i] = static_cast<T>(values[i]); // integral values of the type's range: exact
+}
+}
+
+int vtkMultiVolumeInput::UpdateTree(const int dims[3],
+  int brickSize,
+  bool native,
+  std::string& error)
+{
+  using Type = vtkVolumeBrickTree::ScalarType;
+  // Natively (8- and 16-bit): coarse levels rounded as page pools round them.
+  const Type type = native ? this->ScalarType : Type::Float32;
+  if (this->Tree && this->Tree->GetBrickSize() == brickSize && this->Tree->GetScalarType() == type)
     return 0;
   this->Tree.reset(new vtkVolumeBrickTree);
-  if (!this->Tree->Build(this->Scalars.data(), dims, brickSize))
+  const void* scalars = this->Scalars.data();
+  if (type == Type::Float32)
+    this->NativeScalars.clear();
+  else
+  {
+    if (type == Type::UInt8)
+      StoreAs<uint8_t>(this->Scalars, this->NativeScalars);
+    else if (type == Type::UInt16)
+      StoreAs<uint16_t>(this->Scalars, this->NativeScalars);
+    else
+      StoreAs<int16_t>(this->Scalars, this->NativeScalars);
+    scalars = this->NativeScalars.data();
+  }
+  if (!this->Tree->Build(scalars, type, dims, brickSize))
   {
     error = this->Tree->GetErrorMessage();
     this->Tree.reset();
@@ -180,19 +214,40 @@ int vtkMultiVolumeInput::UpdateTree(const int dims[3], int brickSize, std::strin
   return 1;
 }
 
-void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3])
+void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window,
+  const int dims[3],
+  bool native)
 {
-  if (this->Data)
+  const int nc = this->NumberOfComponents;
+  // One component stores natively like the atlas (R8, R16); several stay float.
+  const auto type = vtkBrickAtlasFormat::Choose({ this->ScalarType }, native && nc == 1);
+  if (this->Data && this->DataType == type)
     return;
+  if (this->Data)
+    this->Data->ReleaseGraphicsResources(window);
   this->Data = vtkSmartPointer<vtkTextureObject>::New();
   this->Data->SetContext(window);
-  const int nc = this->NumberOfComponents;
-  this->Data->Create3DFromRaw(dims[0],
-    dims[1],
-    dims[2],
-    nc,
-    VTK_FLOAT,
-    nc > 1 ? this->ComponentScalars.data() : this->Scalars.data());
+  this->DataType = type;
+  if (vtkBrickAtlasFormat::IsNormalized(type))
+  {
+    std::vector<unsigned char> texels(
+      this->Scalars.size() * vtkBrickAtlasFormat::GetTexelSize(type));
+    vtkBrickAtlasFormat::Encode(
+      this->Scalars.data(), this->Scalars.size(), type, this->ScalarType, texels.data());
+    this->Data->Create3DFromRaw(dims[0],
+      dims[1],
+      dims[2],
+      1,
+      type == vtkVolumeBrickTree::ScalarType::UInt8 ? VTK_UNSIGNED_CHAR : VTK_UNSIGNED_SHORT,
+      texels.data());
+  }
+  else
+    this->Data->Create3DFromRaw(dims[0],
+      dims[1],
+      dims[2],
+      nc,
+      VTK_FLOAT,
+      nc > 1 ? this->ComponentScalars.data() : this->Scalars.data());
   this->Data->SetWrapS(vtkTextureObject::ClampToEdge);
   this->Data->SetWrapT(vtkTextureObject::ClampToEdge);
   this->Data->SetWrapR(vtkTextureObject::ClampToEdge);
@@ -458,6 +513,8 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
   program->SetUniformMatrix4x4(("uLocalToIndex" + N).c_str(), const_cast<float*>(b.LocalToIndex));
   program->SetUniformf(("uNearest" + N).c_str(),
     property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
+  if (b.Normalized)
+    program->SetUniform2f(("uDecode" + N).c_str(), b.Decode);
   if (b.Atlas)
   {
     bindRaw(b.IndexTexture, "uIndex" + N);
@@ -465,6 +522,11 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
       float(b.TableBricks[0]), float(b.TableBricks[1]), float(b.TableBricks[2])
     };
     program->SetUniform3f(("uTableDims" + N).c_str(), tableDims);
+    const float S = static_cast<float>(b.BrickSize - 1);
+    const float extent[3] = { tableDims[0] * S, tableDims[1] * S, tableDims[2] * S };
+    const float scale[3] = { 1.0f / extent[0], 1.0f / extent[1], 1.0f / extent[2] };
+    program->SetUniform3f(("uIndexExtent" + N).c_str(), extent);
+    program->SetUniform3f(("uIndexScale" + N).c_str(), scale);
     program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->GetEmptyScalar()));
   }
   else

@@ -28,6 +28,7 @@
 #include "vtkSmartPointer.h"              // For vtkSmartPointer
 #include "vtkStrataGLObject.h"            // For vtkStrataGLObject
 #include "vtkTransferFunctionTable.h"     // For vtkTransferFunctionTable
+#include "vtkVolumeBrickTree.h"           // For vtkVolumeBrickTree::ScalarType
 #include "vtkVolumeSkipGrid.h"            // For vtkVolumeSkipGrid
 
 #include <memory> // For std::unique_ptr
@@ -39,7 +40,6 @@ class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 class vtkTextureObject;
-class vtkVolumeBrickTree;
 class vtkVolumeProperty;
 class vtkWindow;
 
@@ -111,16 +111,23 @@ public:
   bool HasScalarsOf(vtkImageData* image) const;
 
   /**
-   * The in-core brick tree for bricks of `brickSize`, built when missing or of another size.
-   * Returns -1 with `error` set when it cannot be built, 1 when it was (re)built, 0 otherwise.
+   * The in-core brick tree for bricks of `brickSize`, built when missing or of another size or
+   * type: `native`, in the scalars' own type when 8- or 16-bit (GetScalarType(); its coarse
+   * levels rounded as page pools round them), else float. Returns -1 with `error` set when it
+   * cannot be built, 1 when it was (re)built, 0 otherwise.
    */
-  int UpdateTree(const int dims[3], int brickSize, std::string& error);
+  int UpdateTree(const int dims[3], int brickSize, bool native, std::string& error);
   /// The in-core tree, null if none (paged volumes use vtkVolumePager's).
   const vtkVolumeBrickTree* GetTree() const { return this->Tree.get(); }
 
-  /// The whole volume as one 3-D texture (no atlas), R32F or a float channel per component,
-  /// made once per scalars.
-  void UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3]);
+  /// The whole volume as one 3-D texture (no atlas): `native`, R8 or R16 for 8- and 16-bit
+  /// scalars (vtkBrickAtlasFormat), else R32F or a float channel per component; made once per
+  /// scalars and storage.
+  void UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3], bool native);
+  /// The type the one-component scalars are stored as natively (vtkBrickAtlasFormat).
+  vtkVolumeBrickTree::ScalarType GetScalarType() const { return this->ScalarType; }
+  /// The plain texture's texel type (Float32 until UpdatePlainTexture).
+  vtkVolumeBrickTree::ScalarType GetPlainTextureType() const { return this->DataType; }
 
   /// The transfer table and what follows from it (pre-integration input, empty scalar).
   void UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property);
@@ -178,6 +185,10 @@ public:
     bool Atlas = true;
     unsigned int IndexTexture = 0;    ///< the atlas's index texture of this volume
     const int* TableBricks = nullptr; ///< level-0 bricks per axis (the index's size)
+    int BrickSize = 0;                ///< of the atlas
+    /// Texels normalised (atlas or plain texture): value = texel Decode[0] + Decode[1].
+    bool Normalized = false;
+    float Decode[2] = { 1.0f, 0.0f };
     bool Skipping = true;
     bool Shaded = false;
     double SampleDistance = 1.0;
@@ -220,8 +231,11 @@ private:
     vtkVolumeProperty* property,
     const Binding& binding);
 
-  std::vector<float> Scalars; ///< the input as float; the brick tree borrows it
+  std::vector<float> Scalars;               ///< the input as float; a float brick tree borrows it
+  std::vector<unsigned char> NativeScalars; ///< in their own type: a native tree borrows them
   int NumberOfComponents = 1;
+  vtkVolumeBrickTree::ScalarType ScalarType = vtkVolumeBrickTree::ScalarType::Float32;
+  vtkVolumeBrickTree::ScalarType DataType = vtkVolumeBrickTree::ScalarType::Float32; ///< Data's
   std::vector<float> ComponentScalars; ///< several components: all, interleaved
   double ColorRanges[3][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 } }; ///< RGBA: GetColorRange
   vtkTransferFunctionTable ComponentTables[3];                 ///< independent components 1, 2, 3

@@ -3,6 +3,7 @@
 #include "vtkMultiVolumeRayCastMapperInternals.h"
 
 #include "vtkBrickAtlasAllocator.h"
+#include "vtkBrickAtlasFormat.h"
 #include "vtkBrickAtlasTexture.h"
 #include "vtkFeedbackBuffer.h"
 #include "vtkFeedbackReduction.h"
@@ -301,7 +302,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (e.Pool.empty() && frame.Atlas)
     {
       std::string error;
-      const int built = input.UpdateTree(e.Dims, frame.BrickSize, error);
+      const int built = input.UpdateTree(e.Dims, frame.BrickSize, self->NativeScalarStorage, error);
       if (built < 0)
       {
         vtkErrorWithObjectMacro(
@@ -312,7 +313,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
         this->Pager.InvalidateCut(); // the cut must be rebuilt with this tree
     }
     if (!frame.Atlas)
-      input.UpdatePlainTexture(renWin, e.Dims);
+      input.UpdatePlainTexture(renWin, e.Dims, self->NativeScalarStorage);
     input.UpdateTransfer(renWin, e.Property);
     input.UpdateComponentTables(renWin, e.Property, e.ComponentMode);
     std::vector<double> iso;
@@ -407,6 +408,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     vtkVolumePager::Volume v;
     v.Port = e.Port;
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree() : nullptr;
+    v.Type = v.Tree ? v.Tree->GetScalarType() : vtkVolumeBrickTree::ScalarType::Float32;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
     v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
@@ -437,6 +439,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   }
   bool rebuilt = false;
   std::string error;
+  this->Pager.SetNativeAtlas(self->NativeScalarStorage);
   if (!this->Pager.SetVolumes(
         volumes, frame.BrickSize, self->AtlasBudget, this->Max3DTexture, rebuilt, error))
   {
@@ -444,7 +447,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     return false;
   }
   if (rebuilt)
-    this->Atlas.Allocate(this->Pager.GetAtlas().GetTextureSize());
+    this->Atlas.Allocate(this->Pager.GetAtlas().GetTextureSize(), this->Pager.GetAtlasType());
   frame.Hold = self->HoldCut && this->HeldValid && !rebuilt;
   if (frame.Hold)
     return true;
@@ -455,8 +458,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   {
     std::vector<uint16_t> table;
     this->Pager.BuildIndexTable(static_cast<int>(v), table);
-    this->Atlas.SetIndex(
-      frame.Volumes[v].Port, this->Pager.GetTree(static_cast<int>(v))->GetLevelBricks(0), table);
+    this->Atlas.SetIndex(frame.Volumes[v].Port,
+      this->Pager.GetTree(static_cast<int>(v))->GetLevelBricks(0),
+      frame.BrickSize,
+      table);
   }
   this->ResidentBricks = this->Pager.GetAtlas().GetNumberOfUsedSlots();
   this->HeldValid = true;
@@ -522,7 +527,11 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
   const Frame& frame)
 {
   const int B = frame.BrickSize;
+  const size_t voxels = size_t(B) * B * B;
+  const auto atlasType = this->Pager.GetAtlasType();
+  const int texel = vtkBrickAtlasFormat::GetTexelSize(atlasType);
   std::vector<float> scratch;
+  std::vector<unsigned char> texels(voxels * texel);
   this->Atlas.BeginUploads();
   this->Paging.BytesUploaded = 0;
   for (const auto& u : uploads)
@@ -531,12 +540,14 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
     if (!data)
     {
       vtkErrorWithObjectMacro(self, "Brick " << u.Node << " entered the cut without its page.");
-      scratch.assign(size_t(B) * B * B,
-        static_cast<float>(this->Inputs[frame.Volumes[u.Volume].Port].GetEmptyScalar()));
+      scratch.assign(
+        voxels, static_cast<float>(this->Inputs[frame.Volumes[u.Volume].Port].GetEmptyScalar()));
       data = scratch.data();
     }
-    this->Atlas.UploadBrick(this->Pager.GetAtlas().GetSlotPosition(u.Slot), B, data);
-    this->Paging.BytesUploaded += static_cast<long long>(size_t(B) * B * B * sizeof(float));
+    vtkBrickAtlasFormat::Encode(
+      data, voxels, atlasType, this->Pager.GetVolumeType(u.Volume), texels.data());
+    this->Atlas.UploadBrick(this->Pager.GetAtlas().GetSlotPosition(u.Slot), B, texels.data());
+    this->Paging.BytesUploaded += static_cast<long long>(voxels * texel);
   }
   this->Atlas.EndUploads();
 }
@@ -713,6 +724,21 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
   }
 }
 
+// How volume v's texels decode (vtkBrickAtlasFormat): the atlas's type or its plain texture's.
+bool vtkMultiVolumeRayCastMapper::vtkInternals::GetDecode(const Frame& frame,
+  int v,
+  float decode[2]) const
+{
+  const vtkMultiVolumeInput& input = this->Inputs.at(frame.Volumes[v].Port);
+  const auto texels = frame.Atlas ? this->Pager.GetAtlasType() : input.GetPlainTextureType();
+  const auto values = frame.Atlas ? this->Pager.GetVolumeType(v) : input.GetScalarType();
+  double scale = 1.0, offset = 0.0;
+  vtkBrickAtlasFormat::GetDecode(texels, values, scale, offset);
+  decode[0] = static_cast<float>(scale);
+  decode[1] = static_cast<float>(offset);
+  return vtkBrickAtlasFormat::IsNormalized(texels);
+}
+
 // The program's features for `volumes` (frame indices) of a fragment, or for the reduction
 // pass of volumes[0].
 vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkInternals::MakeKey(
@@ -737,6 +763,8 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
                                   self->Classification == Classifications::PostClassification &&
                                   this->Inputs.at(e.Port).HasGradientOpacity());
     key.ComponentModes.push_back(e.ComponentMode);
+    float decode[2];
+    key.Normalized.push_back(this->GetDecode(frame, v, decode));
   }
   if (!components)
     key.ComponentModes.clear(); // one key for scenes of one-component volumes
@@ -863,6 +891,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
     b.TableBricks = frame.Atlas ? this->Pager.GetTree(v)->GetLevelBricks(0) : nullptr;
+    b.BrickSize = frame.BrickSize;
+    b.Normalized = this->GetDecode(frame, v, b.Decode);
     b.Skipping = key.Skipping;
     b.ComponentMode = e.ComponentMode;
     b.Shaded = key.Shaded[i];

@@ -107,6 +107,21 @@ public:
 
   ///@{
   /**
+   * Native scalar storage (default on): 8- and 16-bit volumes keep their type on the GPU, in
+   * R8 and R16 textures normalised and decoded in the shader (vtkBrickAtlasFormat), so one
+   * AtlasBudget holds 4x (8-bit) or 2x (16-bit) the bricks of float storage. The shared atlas
+   * takes the widest type any volume of the scene needs (R8 only when all are 8-bit unsigned,
+   * float as soon as one is float); plain textures (UseBrickAtlas off) take each volume's own.
+   * Level 0 is exact either way; coarser levels of in-core volumes are rounded to the type, as
+   * page pools store them. Off: float textures, 4 bytes a voxel.
+   */
+  vtkSetMacro(NativeScalarStorage, bool);
+  vtkGetMacro(NativeScalarStorage, bool);
+  vtkBooleanMacro(NativeScalarStorage, bool);
+  ///@}
+
+  ///@{
+  /**
    * Empty-space skipping (default on), in both compositing orders and with or without the
    * atlas: each volume keeps a grid of cells of SkipCellSize voxels per axis with the
    * chessboard distance to the nearest cell the transfer function makes visible
@@ -254,6 +269,10 @@ public:
   /// Resident (non-empty) cut bricks of the volume on input port `port`, counted by level.
   std::vector<int> GetResidentBricksPerLevel(int port) const;
   int GetNumberOfAtlasSlots() const;
+  /// Bytes one brick takes in the atlas of the last frame (BrickSize^3 texels of its type), and
+  /// that type's name ("uint8", "uint16", "float32").
+  int GetAtlasBytesPerBrick() const;
+  const char* GetAtlasScalarTypeName() const;
 
   ///@{
   /**
@@ -505,6 +524,7 @@ protected:
   int PreIntegrationTableSize = 256;
   int RaysPerPixel = 1;
   bool UseBrickAtlas = true;
+  bool NativeScalarStorage = true;
   int BrickSize = 32;
   double AtlasBudget = 256.0;
   bool EmptySpaceSkipping = true;

@@ -141,6 +141,8 @@ public:
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
   bool UpdateAtlas(Self* self, vtkRenderer* ren, Frame& frame);
+  /// Whether volume v's texels are normalised, and their decode (vtkBrickAtlasFormat).
+  bool GetDecode(const Frame& frame, int v, float decode[2]) const;
   bool UpdateCut(Self* self, vtkRenderer* ren, Frame& frame);
   void UploadBricks(Self* self,
     const std::vector<vtkVolumeCut::Upload>& uploads,

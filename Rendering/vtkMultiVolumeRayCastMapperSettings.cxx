@@ -4,6 +4,8 @@
 // fixed cuts, per-input blend modes and cropping, shader sources, translucent actors (the frame
 // itself is in vtkMultiVolumeRayCastMapper.cxx).
 #include "vtkMultiVolumeRayCastMapper.h"
+
+#include "vtkBrickAtlasFormat.h"
 #include "vtkMultiVolumeRayCastMapperInternals.h"
 
 #include "vtkBrickAtlasAllocator.h"
@@ -44,6 +46,17 @@ std::vector<int> vtkMultiVolumeRayCastMapper::GetResidentBricksPerLevel(int port
 int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
 {
   return this->Internals->Pager.GetAtlas().GetNumberOfSlots();
+}
+
+int vtkMultiVolumeRayCastMapper::GetAtlasBytesPerBrick() const
+{
+  const int B = this->Internals->Pager.GetAtlas().GetBrickSize();
+  return B * B * B * vtkBrickAtlasFormat::GetTexelSize(this->Internals->Pager.GetAtlasType());
+}
+
+const char* vtkMultiVolumeRayCastMapper::GetAtlasScalarTypeName() const
+{
+  return vtkBrickAtlasFormat::GetName(this->Internals->Pager.GetAtlasType());
 }
 
 std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int port) const

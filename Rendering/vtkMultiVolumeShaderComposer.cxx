@@ -258,8 +258,16 @@ std::string FeedbackPacking(const Key& key)
 // --- The data: the lookup (atlas or plain texture), the sample at a point, shading.
 std::string Lookup(const Key& key, int n, bool first)
 {
+  const bool normalized = n < static_cast<int>(key.Normalized.size()) && key.Normalized[n];
   if (!key.Atlas)
-    return ForVolume(vtkMultiVolumePlainLookup, n);
+  {
+    std::string code = vtkMultiVolumePlainLookup;
+    Replace(code,
+      "//STRATA::Decode::Dec",
+      normalized ? "uniform vec2 uDecode@n@; // value = texel x + y (vtkBrickAtlasFormat)" : "");
+    Replace(code, "@decode@", normalized ? " * uDecode@n@.x + uDecode@n@.y" : "");
+    return ForVolume(code.c_str(), n);
+  }
   std::string code;
   if (first)
   {
@@ -269,8 +277,8 @@ std::string Lookup(const Key& key, int n, bool first)
   }
   if (key.Feedback)
     code += FeedbackVolumeUniforms(key, n);
-  return code +
-         vtkBrickAtlasTexture::GetLookupFunction(n, key.Feedback ? FeedbackFetchCheck(key, n) : "");
+  return code + vtkBrickAtlasTexture::GetLookupFunction(
+                  n, key.Feedback ? FeedbackFetchCheck(key, n) : "", normalized);
 }
 
 std::string Lights(const Key& key)
@@ -847,6 +855,7 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
            this->Reduce,
            this->Cropped,
            this->GradientOpacity,
+           this->Normalized,
            this->Surfaces) < std::tie(o.Volumes,
                                o.Shaded,
                                o.Classification,
@@ -862,6 +871,7 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
                                o.Reduce,
                                o.Cropped,
                                o.GradientOpacity,
+                               o.Normalized,
                                o.Surfaces);
 }
 
@@ -904,6 +914,8 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
             ? ", " + std::to_string(i) + " of " +
                 components[static_cast<int>(this->ComponentModes[i])]
             : std::string());
+  for (size_t i = 0; i < this->Normalized.size(); ++i)
+    s << (this->Normalized[i] ? ", normalised " + std::to_string(i) : std::string());
   if (this->Surfaces > 0)
     s << ", " << this->Surfaces << " surface layers";
   return s.str();

@@ -81,6 +81,9 @@ public:
     /// Per volume: its components (missing entries: One). A volume of several is read from its
     /// own texture, never the atlas, as a composite medium (post-classified, unshaded).
     std::vector<Components> ComponentModes;
+    /// Per volume: texels normalised, decoded by uDecode<n> (R8 or R16 storage,
+    /// vtkBrickAtlasFormat; missing entries: float).
+    std::vector<bool> Normalized;
     /// Translucent surface layers (vtkVolumeSurfaceLayers) the rays composite where they cross
     /// them (front to back across fragments, with Barrier); 0: none, no surface code.
     int Surfaces = 0;

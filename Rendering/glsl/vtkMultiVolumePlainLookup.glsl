@@ -2,7 +2,8 @@
 // of the whole volume, point (i, j, k) at index coordinates (i, j, k).
 uniform sampler3D uVolume@n@;
 uniform vec3 uDims@n@;
+//STRATA::Decode::Dec
 float strataScalarAt@n@(vec3 idx)
 {
-  return texture(uVolume@n@, (idx + 0.5) / uDims@n@).r;
+  return texture(uVolume@n@, (idx + 0.5) / uDims@n@).r@decode@;
 }

@@ -1,0 +1,62 @@
+// Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+/**
+ * @class   vtkBrickAtlasFormat
+ * @brief   How bricks are stored in the atlas texture: the texel type a scene's volumes share,
+ *          the encoding of each volume's values into it and the affine decode back.
+ *
+ * The lean atlas of issue 16: a brick costs B^3 texels of the atlas's type, not always B^3
+ * floats, so one budget holds 4x (8-bit) or 2x (16-bit) the bricks. All volumes of a frame
+ * share one atlas, so its texel type is the widest any of them needs (Choose):
+ * - UInt8 (GL R8, normalised): only when every volume is 8-bit unsigned;
+ * - UInt16 (GL R16, normalised): every volume 8- or 16-bit; int16 values are stored offset by
+ *   32768, 8-bit ones as they are;
+ * - Float32 (GL R32F): any float volume (or with native storage off), values as they are.
+ * The shader reads t in [0, 1] from a normalised texture and decodes value = t Scale + Offset
+ * (GetDecode). Filtering is linear, so the decode commutes with the trilinear interpolation and
+ * level 0 stays exact. Coarser levels of in-core volumes are float averages; their texels are
+ * rounded to the nearest integer (as page pools store them), at most half a unit off.
+ *
+ * Plain C++ (no OpenGL): vtkVolumePager sizes the atlas with it and vtkBrickAtlasTexture
+ * uploads what Encode wrote.
+ *
+ * @sa vtkBrickAtlasAllocator vtkVolumePager vtkBrickAtlasTexture
+ */
+#ifndef vtkBrickAtlasFormat_h
+#define vtkBrickAtlasFormat_h
+
+#include "StrataCoreModule.h"   // For export macro
+#include "vtkVolumeBrickTree.h" // For vtkVolumeBrickTree::ScalarType
+
+#include <cstddef> // For size_t
+#include <vector>  // For std::vector
+
+class STRATACORE_EXPORT vtkBrickAtlasFormat
+{
+public:
+  using ScalarType = vtkVolumeBrickTree::ScalarType;
+
+  /**
+   * The texel type of an atlas holding volumes of `types`: UInt8, UInt16 or Float32 (never
+   * Int16, stored as offset UInt16). `native` false: Float32 whatever the types.
+   */
+  static ScalarType Choose(const std::vector<ScalarType>& types, bool native);
+  /// Bytes per texel of an atlas type.
+  static int GetTexelSize(ScalarType atlas) { return vtkVolumeBrickTree::GetScalarSize(atlas); }
+  /// The type a VTK scalar type (VTK_UNSIGNED_CHAR, ...) is stored as: 8-bit unsigned
+  /// UInt8, signed 8-bit and int16 Int16, uint16 UInt16, anything else Float32.
+  static ScalarType FromVTKType(int vtkType);
+  /// Whether the shader decodes texels (a normalised atlas type).
+  static bool IsNormalized(ScalarType atlas) { return atlas != ScalarType::Float32; }
+  /// value = texel * scale + offset for a volume of `volume` values in an atlas of `atlas`.
+  static void GetDecode(ScalarType atlas, ScalarType volume, double& scale, double& offset);
+  /**
+   * Writes n values of a volume of type `volume` as texels of `atlas` into `out`
+   * (n * GetTexelSize(atlas) bytes): rounded to the nearest integer, offset and clamped to
+   * the type's range for integer atlases, copied for Float32.
+   */
+  static void Encode(const float* values, size_t n, ScalarType atlas, ScalarType volume, void* out);
+  /// Short names: "uint8", "uint16", "int16", "float32".
+  static const char* GetName(ScalarType type);
+};
+
+#endif
