@@ -16,6 +16,8 @@
 //                                              timed interleaved; peak RSS from `memory`
 //   BenchVolume memory <single|sparse> <data> <strata|strata-no-atlas|vtk>
 //                                           -> "<method>=<peak RSS MB>", one mapper alone
+//   BenchVolume storage <data>              -> the lean atlas: the data as uint8, uint16, int16
+//                                              and float32 under one atlas budget
 //   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
 //   BenchVolume bsp <volumes> [ring|grid]   -> ms per vtkVolumeBSPTree::Build
 //   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
@@ -73,6 +75,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -749,6 +752,85 @@ int FrameCase(const std::string& kind,
   return 0;
 }
 
+/**
+ * The lean atlas: the 8-bit `data` set stored as uint8 (R8), as uint16 (v 257, R16), as int16
+ * (v 257 - 32768, R16) and as float32 (R32F), its transfer functions mapped alike, under one
+ * atlas budget of `floatBricks` float bricks; 512 x 512, timed interleaved. Each row: bytes per
+ * brick, slots and resident bricks, and the RMS (8-bit) against the float32 rendering with room
+ * for every brick (how far the budget forces coarser levels), in the note.
+ */
+int Storage(const std::string& data, const strata_test::TestPaths& paths, int floatBricks = 40)
+{
+  const std::string name = "storage-" + data;
+  std::string why;
+  auto image = strata_test::LoadRealVolume(data, paths, why);
+  if (!image)
+    return Skipped(name, why);
+  struct Kind
+  {
+    const char* Name;
+    int VTKType;
+    double Scale, Offset;
+  };
+  const Kind kinds[] = { { "uint8", VTK_UNSIGNED_CHAR, 1.0, 0.0 },
+    { "uint16", VTK_UNSIGNED_SHORT, 257.0, 0.0 },
+    { "int16", VTK_SHORT, 257.0, -32768.0 },
+    { "float32", VTK_FLOAT, 1.0, 0.0 } };
+  std::vector<vtkSmartPointer<vtkImageData>> images;
+  std::vector<vtkSmartPointer<vtkVolumeProperty>> properties;
+  std::vector<Contender> contenders;
+  const int B = 32;
+  const double budget = floatBricks * std::pow(double(B), 3) * 4.0 / (1024.0 * 1024.0);
+  for (const Kind& k : kinds)
+  {
+    images.push_back(strata_test::CopyAsType(image, k.VTKType, k.Scale, k.Offset));
+    properties.push_back(strata_test::MakeRealVolumeProperty(data));
+    strata_test::MapTransferFunctions(properties.back(), k.Scale, k.Offset);
+    contenders.push_back(MakeSingle("strata", data, images.back(), properties.back()));
+    contenders.back().Strata->SetBrickSize(B);
+    contenders.back().Strata->SetAtlasBudget(budget);
+  }
+  // The reference image: float32 with room for every brick.
+  Contender full = MakeSingle("strata", data, images.back(), properties.back());
+  full.Strata->SetBrickSize(B);
+  WarmUp(full);
+  const auto fullImage = strata_test::ReadRGB(full.Win);
+  TimeInterleaved(contenders, TimedFrames(7));
+  const std::string load = LoadNote();
+  for (size_t k = 0; k < contenders.size(); ++k)
+  {
+    Contender& c = contenders[k];
+    Row row;
+    row.Case = name;
+    row.Method = std::string("strata-") + kinds[k].Name;
+    row.Ms = Median(c.Ms);
+    row.Classification = "post";
+    row.Order = "front-to-back";
+    row.Rays = 1;
+    row.Coherence = 0;
+    row.SampleDistance = 0.5;
+    row.Volumes = 1;
+    row.Width = row.Height = 512;
+    row.Fragments = c.Strata->GetNumberOfFragments();
+    std::ostringstream note;
+    note.precision(4);
+    note << "atlas " << c.Strata->GetAtlasScalarTypeName() << "; "
+         << c.Strata->GetAtlasBytesPerBrick() << " bytes per brick; budget " << budget
+         << " MiB holds " << c.Strata->GetNumberOfAtlasSlots() << " slots; "
+         << c.Strata->GetNumberOfResidentBricks()
+         << " bricks resident (every brick: " << full.Strata->GetNumberOfResidentBricks()
+         << "); RMS to the float32 image with room "
+         << "for every brick "
+         << strata_test::ImageError(strata_test::ReadRGB(c.Win), fullImage).Rms
+         << "; timed interleaved with the other types" << load;
+    row.Note = note.str();
+    Emit(row);
+    std::cerr << name << " " << row.Method << ": " << row.Ms << " ms, "
+              << c.Strata->GetNumberOfAtlasSlots() << " slots\n";
+  }
+  return 0;
+}
+
 /// n overlapping 96^3 analytic volumes, each turned differently, at 384 x 384: Strata and VTK's
 /// own multi-volume path, each timed and compared with the reference (which mixes the media
 /// physically where they overlap; VTK composites the volumes' samples one after the other).
@@ -1216,6 +1298,46 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
   chart.Write(png);
 }
 
+/// The lean atlas: bytes per brick, slots under one budget and the error that budget leaves,
+/// by scalar type (the `storage` rows; the figures are read back from their notes).
+void StorageTable(const std::vector<std::map<std::string, std::string>>& rows)
+{
+  const std::regex figures("atlas (\\w+); (\\d+) bytes per brick; budget ([0-9.]+) MiB holds "
+                           "(\\d+) slots; (\\d+) bricks resident \\(every brick: (\\d+)\\); RMS "
+                           "to the float32 image with room for every brick ([0-9.e-]+)");
+  bool header = false;
+  for (const auto& r : rows)
+  {
+    std::smatch m;
+    const std::string note = Get(r, "note");
+    if (Get(r, "case").rfind("storage-", 0) != 0 || !std::regex_search(note, m, figures))
+      continue;
+    if (!header)
+      std::printf("\nAtlas bytes per brick by scalar type (one budget; RMS against float32 with "
+                  "room for every brick)\n%-16s %-16s %-8s %14s %10s %6s %9s %9s %9s\n",
+        "case",
+        "method",
+        "atlas",
+        "bytes_per_brick",
+        "budget_mib",
+        "slots",
+        "resident",
+        "rms",
+        "ms");
+    header = true;
+    std::printf("%-16s %-16s %-8s %14s %10s %6s %9s %9s %9s\n",
+      Get(r, "case").c_str(),
+      Get(r, "method").c_str(),
+      m[1].str().c_str(),
+      m[2].str().c_str(),
+      m[3].str().c_str(),
+      m[4].str().c_str(),
+      (m[5].str() + "/" + m[6].str()).c_str(),
+      m[7].str().c_str(),
+      Get(r, "ms_per_frame").c_str());
+  }
+}
+
 /// The brick atlas's indirection against one plain texture (issue 16: atlas ms / no-atlas ms
 /// <= 1.05 on llvmpipe), from the `frame` rows of the single and sparse cases.
 void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
@@ -1416,6 +1538,7 @@ int Report(const std::string& csv, const std::string& png)
   }
 
   AtlasCostTable(rows, cases);
+  StorageTable(rows);
 
   // 3. BSP rebuilds.
   std::printf("\nBSP rebuild (vtkVolumeBSPTree::Build; the paper reports 0.15 to 0.29 ms)\n");
@@ -1458,6 +1581,8 @@ int main(int argc, char* argv[])
     return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "", paths);
   if (mode == "memory" && argc > 4)
     return Memory(argv[2], argv[3], argv[4], paths);
+  if (mode == "storage" && argc > 2)
+    return Storage(argv[2], paths);
   if (mode == "multi" && argc > 2)
     return Multi(std::max(2, std::min(4, std::atoi(argv[2]))));
   if (mode == "bsp" && argc > 2)
@@ -1470,7 +1595,7 @@ int main(int argc, char* argv[])
   std::cerr
     << "usage: BenchVolume header | accuracy <data> | blend <data> | frame <single|sparse> <data> "
        "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
-       "multi <2-4> | bsp <n> [ring|grid] | converge "
+       "storage <data> | multi <2-4> | bsp <n> [ring|grid] | converge "
        "<data> [1/h 1/h'] | report <csv> <png>\n";
   return 2;
 }

@@ -18,21 +18,15 @@
 
 #include "vtkMultiVolumeRayCastMapper.h"
 
-#include "vtkColorTransferFunction.h"
-#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h"
-#include "vtkPiecewiseFunction.h"
-#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkTransform.h"
 #include "vtkVolumeProperty.h"
 
-#include <array>
 #include <chrono>
-#include <cmath>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -57,44 +51,16 @@ const TypedCase Cases[] = {
   { "int16", VTK_SHORT, 250.0, -28000.0, "uint16", 2 },
 };
 
-/// The blob (values 0 .. 230) as `vtkType`, value = round(scale v + offset), which the cases
-/// keep inside the type's range (checked).
+/// The blob (values 0 .. 230) as `vtkType`, with its property mapped alike.
 vtkSmartPointer<vtkImageData> Typed(vtkImageData* blob, int vtkType, double scale, double offset)
 {
-  auto out = vtkSmartPointer<vtkImageData>::New();
-  out->CopyStructure(blob);
-  out->AllocateScalars(vtkType, 1);
-  vtkDataArray* from = blob->GetPointData()->GetScalars();
-  vtkDataArray* to = out->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; i < from->GetNumberOfTuples(); ++i)
-  {
-    const double v = std::floor(scale * from->GetTuple1(i) + offset + 0.5);
-    Check(v >= to->GetDataTypeMin() && v <= to->GetDataTypeMax(), "typed values in range");
-    to->SetTuple1(i, v);
-  }
-  return out;
+  return CopyAsType(blob, vtkType, scale, offset);
 }
 
-/// MakeVolumeProperty(variant) with its points moved by the same map as the data.
 vtkSmartPointer<vtkVolumeProperty> TypedProperty(int variant, double scale, double offset)
 {
   auto p = MakeVolumeProperty(variant);
-  // All nodes read first, then set again: moving them one by one would reorder them.
-  vtkColorTransferFunction* color = p->GetRGBTransferFunction(0);
-  std::vector<std::array<double, 6>> colors(color->GetSize());
-  for (size_t i = 0; i < colors.size(); ++i)
-    color->GetNodeValue(static_cast<int>(i), colors[i].data());
-  color->RemoveAllPoints();
-  for (const auto& n : colors)
-    color->AddRGBPoint(scale * n[0] + offset, n[1], n[2], n[3], n[4], n[5]);
-  vtkPiecewiseFunction* opacity = p->GetScalarOpacity(0);
-  std::vector<std::array<double, 4>> opacities(opacity->GetSize());
-  for (size_t i = 0; i < opacities.size(); ++i)
-    opacity->GetNodeValue(static_cast<int>(i), opacities[i].data());
-  opacity->RemoveAllPoints();
-  for (const auto& n : opacities)
-    opacity->AddPoint(scale * n[0] + offset, n[1], n[2], n[3]);
-  // Opacity per unit length is per data unit of length, unchanged: the same image.
+  MapTransferFunctions(p, scale, offset);
   return p;
 }
 

@@ -32,6 +32,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -101,6 +102,46 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDi
   p->SetScalarOpacityUnitDistance(unitDistance);
   p->SetInterpolationTypeToLinear();
   return p;
+}
+
+vtkSmartPointer<vtkImageData> CopyAsType(vtkImageData* image,
+  int vtkType,
+  double scale,
+  double offset)
+{
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->CopyStructure(image);
+  out->AllocateScalars(vtkType, 1);
+  vtkDataArray* from = image->GetPointData()->GetScalars();
+  vtkDataArray* to = out->GetPointData()->GetScalars();
+  bool inRange = true;
+  for (vtkIdType i = 0; i < from->GetNumberOfTuples(); ++i)
+  {
+    const double v = std::floor(scale * from->GetTuple1(i) + offset + 0.5);
+    inRange = inRange && v >= to->GetDataTypeMin() && v <= to->GetDataTypeMax();
+    to->SetTuple1(i, v);
+  }
+  Check(inRange, "CopyAsType: the values stay inside the type's range");
+  return out;
+}
+
+void MapTransferFunctions(vtkVolumeProperty* property, double scale, double offset)
+{
+  // All nodes read first, then set again: moving them one by one would reorder them.
+  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+  std::vector<std::array<double, 6>> colors(color->GetSize());
+  for (size_t i = 0; i < colors.size(); ++i)
+    color->GetNodeValue(static_cast<int>(i), colors[i].data());
+  color->RemoveAllPoints();
+  for (const auto& n : colors)
+    color->AddRGBPoint(scale * n[0] + offset, n[1], n[2], n[3], n[4], n[5]);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  std::vector<std::array<double, 4>> opacities(opacity->GetSize());
+  for (size_t i = 0; i < opacities.size(); ++i)
+    opacity->GetNodeValue(static_cast<int>(i), opacities[i].data());
+  opacity->RemoveAllPoints();
+  for (const auto& n : opacities)
+    opacity->AddPoint(scale * n[0] + offset, n[1], n[2], n[3]);
 }
 
 vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step)

@@ -38,6 +38,16 @@ vtkSmartPointer<vtkImageData> MakeBlobVolume(int nx,
 /// interpolation, opacity per unit distance `unitDistance`.
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(int variant, double unitDistance = 1.0);
 
+/// `image`'s scalars as `vtkType` (VTK_UNSIGNED_CHAR, ...), value = round(scale v + offset),
+/// which must stay inside the type's range (a failed check otherwise).
+vtkSmartPointer<vtkImageData> CopyAsType(vtkImageData* image,
+  int vtkType,
+  double scale,
+  double offset);
+/// Moves the nodes of `property`'s colour and scalar opacity functions (component 0) by the
+/// same map, x -> scale x + offset: CopyAsType's data then renders as the original does.
+void MapTransferFunctions(vtkVolumeProperty* property, double scale, double offset);
+
 /// Points for vtkHybridVolumeMapper: `n` points on the line y = z = 5 from x = 2 in steps of
 /// `step`, "Value" 90 and "Error" 40 each, and the field "PointSpacing" (0.25, 0.25, 0.25).
 vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step);
