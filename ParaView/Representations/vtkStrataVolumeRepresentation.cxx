@@ -157,6 +157,7 @@ void vtkStrataVolumeRepresentation::vtkScene::Apply(const Settings& s)
                          : vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
   m->SetTerminationOpacity(s.TerminationOpacity);
   m->SetUseBrickAtlas(s.UseBrickAtlas);
+  m->SetNativeScalarStorage(s.NativeScalarStorage);
   m->SetBrickSize(s.BrickSize);
   m->SetAtlasBudget(s.AtlasBudget);
   m->SetEmptySpaceSkipping(s.EmptySpaceSkipping);
@@ -411,6 +412,7 @@ STRATA_SETTING(bool, RayCoherence)
 STRATA_SETTING(int, CompositeOrder)
 STRATA_SETTING(double, TerminationOpacity)
 STRATA_SETTING(bool, UseBrickAtlas)
+STRATA_SETTING(bool, NativeScalarStorage)
 STRATA_SETTING(int, BrickSize)
 STRATA_SETTING(double, AtlasBudget)
 STRATA_SETTING(bool, EmptySpaceSkipping)

@@ -55,6 +55,7 @@ public:
     int CompositeOrder = 0; ///< 0 front to back, 1 back to front
     double TerminationOpacity = 0.999;
     bool UseBrickAtlas = true;
+    bool NativeScalarStorage = true;
     int BrickSize = 32;
     double AtlasBudget = 256.0;
     bool EmptySpaceSkipping = true;
@@ -77,6 +78,7 @@ public:
   void SetCompositeOrder(int value);
   void SetTerminationOpacity(double value);
   void SetUseBrickAtlas(bool value);
+  void SetNativeScalarStorage(bool value);
   void SetBrickSize(int value);
   void SetAtlasBudget(double value);
   void SetEmptySpaceSkipping(bool value);

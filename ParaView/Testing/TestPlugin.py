@@ -164,6 +164,8 @@ def paged_volume(args, camera):
     display.StrataVolumeSampleDistance = 0.5
     display.StrataVolumeAtlasBudget = 16
     display.StrataVolumePagesPerFrame = 8
+    check(display.StrataVolumeNativeScalarStorage == 1,
+          "native scalar storage (the tooth's R8 atlas) is on by default")
     frames = render_until_converged(view, display, "StrataVolume")
     print("paged volume settled after %d renders" % frames)
     check(frames <= 500, "the paged volume settles")
