@@ -8,7 +8,8 @@
  * for in-core and paged volumes alike, beside vtkHeightFieldPager and on the same shared piece
  * (vtkPagedPools: pools, RAM cache, requests, roots, failures):
  * - One vtkVolumeCut through the brick trees of all volumes under one atlas budget
- *   (vtkBrickAtlasAllocator slots of B^3 floats, never more than all bricks of all levels).
+ *   (vtkBrickAtlasAllocator slots of B^3 texels of the atlas's type, vtkBrickAtlasFormat, never
+ *   more than all bricks of all levels).
  *   An in-core volume brings its own tree (with data); a paged one (OpenPool) is a brick pool
  *   whose tree structure comes from the page table, nothing read.
  * - A paged brick may enter the cut only with its page in RAM: found (and held, with its

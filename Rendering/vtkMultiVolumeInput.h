@@ -6,8 +6,9 @@
  *          and its empty-space skip grid, each rebuilt only when what it depends on changed.
  *
  * Scalars are kept as float (exact for every input type) while the input image stays the
- * same; an in-core volume's brick tree (vtkVolumeBrickTree) is built from them for the atlas,
- * a paged one's comes from vtkVolumePager. The transfer table (vtkTransferFunctionTable) is
+ * same; an in-core volume's brick tree (vtkVolumeBrickTree) is built from them for the atlas
+ * (from a copy in their own type for native 8- and 16-bit storage, vtkBrickAtlasFormat), a
+ * paged one's comes from vtkVolumePager. The transfer table (vtkTransferFunctionTable) is
  * rebuilt when the volume property changes; the pre-integration table (vtkPreIntegrationTable)
  * follows it and the sample distance; the skip grid's cell ranges follow the data (or, paged,
  * the level-0 bricks' ranges from the page table) and its distances the transfer table.

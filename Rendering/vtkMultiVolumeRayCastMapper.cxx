@@ -1244,6 +1244,7 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "UseBrickAtlas: " << this->UseBrickAtlas << "\n";
+  os << indent << "NativeScalarStorage: " << this->NativeScalarStorage << "\n";
   os << indent << "BrickSize: " << this->BrickSize << "\n";
   os << indent << "AtlasBudget: " << this->AtlasBudget << " MB\n";
   os << indent << "RaysPerPixel: " << this->RaysPerPixel << "\n";

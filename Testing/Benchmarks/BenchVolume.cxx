@@ -18,6 +18,8 @@
 //                                           -> "<method>=<peak RSS MB>", one mapper alone
 //   BenchVolume storage <data>              -> the lean atlas: the data as uint8, uint16, int16
 //                                              and float32 under one atlas budget
+//   BenchVolume layers                      -> TranslucentLayers 1 .. 7 with six translucent
+//                                              planes through two volumes, against the reference
 //   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
 //   BenchVolume bsp <volumes> [ring|grid]   -> ms per vtkVolumeBSPTree::Build
 //   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
@@ -36,6 +38,7 @@
 #include "StrataBenchChart.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataImageHelpers.h"
+#include "StrataMultiVolumeCase.h"
 #include "StrataRealVolumes.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -75,6 +78,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -831,6 +835,68 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
   return 0;
 }
 
+/**
+ * The translucent-layers knob: TestMultiVolumeTranslucentGeometry's two volumes crossed by six
+ * parallel planes of opacity 0.4 (AddTranslucentActor), TranslucentLayers = 1 .. 7, each image
+ * against the reference that composites every plane at its exact depth; 128 x 128 (the cases'
+ * size). Fewer layers than planes drop the farthest ones at each pixel.
+ */
+int Layers()
+{
+  using strata_test::TranslucentPlane;
+  strata_test::VolumeScene s("");
+  strata_test::AddTwoVolumes(s);
+  s.Ren->SetBackground(Grey, Grey, Grey);
+  s.Multi->VisibilityOff();
+  s.Win->Render();
+  const auto sceneRgb = strata_test::ReadRGB(s.Win);
+  const auto depth = strata_test::ReadDepth(s.Win);
+  s.Multi->VisibilityOn();
+  const double colours[3][3] = { { 1.0, 0.2, 0.1 }, { 0.1, 0.3, 1.0 }, { 0.9, 0.9, 0.2 } };
+  std::vector<std::unique_ptr<TranslucentPlane>> planes;
+  std::vector<vtkMultiVolumeReferenceIntegrator::Surface> surfaces;
+  for (int k = 0; k < 6; ++k)
+  {
+    const double y = 2.0 + 6.0 * k;
+    const double o[3] = { -10, y, -10 }, a[3] = { 70, y + 4, -10 }, b[3] = { -10, y, 45 };
+    planes.push_back(std::make_unique<TranslucentPlane>(o, a, b, colours[k % 3]));
+    s.Mapper->AddTranslucentActor(planes.back()->Actor);
+    surfaces.push_back(planes.back()->Surface);
+  }
+  const std::vector<double> stop(depth.begin(), depth.end());
+  const auto expected = strata_test::CompositeOver(
+    strata_test::ReferenceWithSurfaces(s, surfaces, true, stop.data()), sceneRgb);
+  const int size = strata_test::MultiVolumeCaseSize;
+  for (int layers = 1; layers <= 7; ++layers)
+  {
+    s.Mapper->SetTranslucentLayers(layers);
+    WarmUp(s.Win, s.Mapper, 2);
+    Row row;
+    row.Case = "layers-blob";
+    row.Method = "strata-layers-" + std::to_string(layers);
+    row.Ms = MedianMs(s.Win, TimedFrames(5));
+    const strata_test::ChannelError e =
+      strata_test::ImageError(strata_test::ReadRGB(s.Win), expected);
+    row.Rms = e.Rms;
+    row.Classification = "post";
+    row.Order = "front-to-back";
+    row.Rays = 1;
+    row.Coherence = 0;
+    row.SampleDistance = s.Mapper->GetSampleDistance();
+    row.Volumes = 2;
+    row.Width = row.Height = size;
+    row.Fragments = s.Mapper->GetNumberOfFragments();
+    std::ostringstream note;
+    note << layers << " translucent layers for 6 overlapping planes of opacity 0.4; max error "
+         << e.Max << " of 255" << LoadNote();
+    row.Note = note.str();
+    Emit(row);
+    std::cerr << "layers " << layers << ": " << row.Ms << " ms, RMS " << e.Rms << ", max " << e.Max
+              << "\n";
+  }
+  return 0;
+}
+
 /// n overlapping 96^3 analytic volumes, each turned differently, at 384 x 384: Strata and VTK's
 /// own multi-volume path, each timed and compared with the reference (which mixes the media
 /// physically where they overlap; VTK composites the volumes' samples one after the other).
@@ -1284,6 +1350,29 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
       }
     }
   }
+  // The translucent-layers knob (triangles): K = 1 .. 7 layers for six planes.
+  std::vector<std::pair<double, double>> layerPoints;
+  for (const auto& r : rows)
+  {
+    const double ms = Number(r, "ms_per_frame"), rms = Number(r, "rms_error");
+    if (Get(r, "case") == "layers-blob" && ms > 0 && rms > 0)
+    {
+      layerPoints.emplace_back(ms, rms);
+      range[0] = std::min(range[0], ms);
+      range[1] = std::max(range[1], ms);
+      range[2] = std::min(range[2], rms);
+      range[3] = std::max(range[3], rms);
+    }
+  }
+  const unsigned char layerColour[3] = { 120, 120, 120 };
+  if (auto* points = vtkPlotPoints::SafeDownCast(chart.Add(vtkChart::POINTS,
+        "two blobs, 6 translucent planes, layers 1-7 (128^2)",
+        layerPoints,
+        layerColour)))
+  {
+    points->SetMarkerStyle(vtkPlotPoints::PLUS);
+    points->SetMarkerSize(9);
+  }
   if (range[1] > 0.0)
   {
     // Margins so that no point sits on the frame, and room above the points for the legend.
@@ -1539,6 +1628,25 @@ int Report(const std::string& csv, const std::string& png)
 
   AtlasCostTable(rows, cases);
   StorageTable(rows);
+  bool layersHeader = false;
+  for (const auto& r : rows)
+  {
+    if (Get(r, "case") != "layers-blob" || Get(r, "ms_per_frame").empty())
+      continue;
+    if (!layersHeader)
+      std::printf("\nTranslucent layers (six planes of opacity 0.4 through two volumes, "
+                  "128 x 128): ms per frame and RMS against the reference\n%-18s %9s %9s  %s\n",
+        "method",
+        "ms",
+        "rms",
+        "note");
+    layersHeader = true;
+    std::printf("%-18s %9s %9s  %s\n",
+      Get(r, "method").c_str(),
+      Get(r, "ms_per_frame").c_str(),
+      Get(r, "rms_error").c_str(),
+      Get(r, "note").c_str());
+  }
 
   // 3. BSP rebuilds.
   std::printf("\nBSP rebuild (vtkVolumeBSPTree::Build; the paper reports 0.15 to 0.29 ms)\n");
@@ -1581,6 +1689,8 @@ int main(int argc, char* argv[])
     return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "", paths);
   if (mode == "memory" && argc > 4)
     return Memory(argv[2], argv[3], argv[4], paths);
+  if (mode == "layers")
+    return Layers();
   if (mode == "storage" && argc > 2)
     return Storage(argv[2], paths);
   if (mode == "multi" && argc > 2)
@@ -1595,7 +1705,7 @@ int main(int argc, char* argv[])
   std::cerr
     << "usage: BenchVolume header | accuracy <data> | blend <data> | frame <single|sparse> <data> "
        "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
-       "storage <data> | multi <2-4> | bsp <n> [ring|grid] | converge "
+       "storage <data> | layers | multi <2-4> | bsp <n> [ring|grid] | converge "
        "<data> [1/h 1/h'] | report <csv> <png>\n";
   return 2;
 }

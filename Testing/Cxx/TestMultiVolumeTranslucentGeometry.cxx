@@ -25,16 +25,13 @@
 
 #include "vtkActor.h"
 #include "vtkImageData.h"
-#include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
-#include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
-#include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -49,49 +46,7 @@ namespace
 using namespace strata_test;
 using Ref = vtkMultiVolumeReferenceIntegrator;
 
-/// A plane actor of constant colour (ambient light alone) and opacity 0.4, and its reference.
-struct Plane
-{
-  vtkNew<vtkPlaneSource> Source;
-  vtkNew<vtkPolyDataMapper> Mapper;
-  vtkNew<vtkActor> Actor;
-  Ref::Surface Surface;
-  Plane(const double o[3], const double p1[3], const double p2[3], const double rgb[3])
-  {
-    this->Source->SetOrigin(o[0], o[1], o[2]);
-    this->Source->SetPoint1(p1[0], p1[1], p1[2]);
-    this->Source->SetPoint2(p2[0], p2[1], p2[2]);
-    this->Mapper->SetInputConnection(this->Source->GetOutputPort());
-    this->Actor->SetMapper(this->Mapper);
-    vtkProperty* p = this->Actor->GetProperty();
-    p->SetColor(rgb[0], rgb[1], rgb[2]);
-    p->SetAmbient(1.0);
-    p->SetDiffuse(0.0);
-    p->SetSpecular(0.0);
-    p->SetOpacity(0.4);
-    for (int i = 0; i < 3; ++i)
-    {
-      this->Surface.Corner[i] = o[i];
-      this->Surface.Edge1[i] = p1[i] - o[i];
-      this->Surface.Edge2[i] = p2[i] - o[i];
-      this->Surface.Color[i] = 0.4 * rgb[i];
-    }
-    this->Surface.Color[3] = 0.4;
-  }
-};
-
-/// The two overlapping volumes of TestMultiVolumeTwo (the second turned 30 degrees about z).
-void AddTwoVolumes(VolumeScene& s)
-{
-  s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, 0, 0, 0, 1), MakeVolumeProperty(0));
-  vtkNew<vtkTransform> t;
-  t->Translate(30, 10, 4);
-  t->RotateZ(30);
-  s.Add(Blob(24, 20, 18, 1.6, 1.5, 1.4, 0, 0, 0, 2), MakeVolumeProperty(1), t);
-  s.UseMultiVolume();
-  const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
-  s.Camera(pos, foc);
-}
+using Plane = TranslucentPlane;
 
 struct Images
 {
@@ -101,50 +56,6 @@ struct Images
   /// peeled once per pixel, at its centre, so there several rays per pixel do not anti-alias.
   std::vector<bool> Edges;
 };
-
-/// Reference of the scene's volumes with `surfaces` (and, with `volumes` false, a fully
-/// transparent volume only), stopped at `stop` (window depths) when given; the mean of the
-/// mapper's sub-pixel rays.
-std::vector<double> Reference(VolumeScene& s,
-  const std::vector<Ref::Surface>& surfaces,
-  bool volumes,
-  const double* stop,
-  std::vector<bool>* edges = nullptr)
-{
-  const int rays = s.Mapper->GetRaysPerPixel(), n = MultiVolumeCaseSize;
-  Ref ref;
-  ref.SetStepFraction(1.0 / 16.0);
-  for (size_t i = 0; i < s.Images.size(); ++i)
-  {
-    Ref::Volume v = ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i));
-    if (!volumes)
-      std::fill(v.Classification.Opacity.begin(), v.Classification.Opacity.end(), 0.0);
-    ref.AddVolume(std::move(v));
-  }
-  for (const Ref::Surface& surface : surfaces)
-    ref.AddSurface(surface);
-  std::vector<double> rgba(4 * size_t(n) * n, 0.0), one, first;
-  for (int ray = 0; ray < rays; ++ray)
-  {
-    double offset[2];
-    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, rays, offset);
-    vtkNew<vtkMatrix4x4> shift, shifted;
-    shift->SetElement(0, 3, 2.0 * offset[0] / n);
-    shift->SetElement(1, 3, 2.0 * offset[1] / n);
-    vtkMatrix4x4::Multiply4x4(ClipToWorld(s.Ren), shift, shifted);
-    ref.IntegrateImage(shifted->GetData(), n, n, one, nullptr, stop);
-    for (size_t i = 0; i < one.size(); ++i)
-      rgba[i] += one[i] / rays;
-    if (ray == 0)
-      first = one;
-    if (edges && ray == 0)
-      edges->assign(size_t(n) * n, false);
-    for (size_t i = 0; edges && i < edges->size(); ++i)
-      for (int c = 0; c < 4; ++c)
-        (*edges)[i] = (*edges)[i] || std::abs(one[4 * i + c] - first[4 * i + c]) > 1e-9;
-  }
-  return rgba;
-}
 
 /// Renders the scene with `planes` given to the mapper; the expected image is the reference
 /// with the planes' surfaces over the scene rendered without the volumes (grey, plus any opaque
@@ -168,11 +79,11 @@ Images Render(VolumeScene& s, const std::vector<Plane*>& planes, const std::stri
   Images r;
   r.Gpu = ReadRGB(s.Win);
   const std::vector<double> stop(depth.begin(), depth.end());
-  r.Expected = CompositeOver(Reference(s, surfaces, true, stop.data()), sceneRgb);
-  const std::vector<double> volumesOnly = Reference(s, {}, true, stop.data());
+  r.Expected = CompositeOver(ReferenceWithSurfaces(s, surfaces, true, stop.data()), sceneRgb);
+  const std::vector<double> volumesOnly = ReferenceWithSurfaces(s, {}, true, stop.data());
   r.NoSurfaces = CompositeOver(volumesOnly, sceneRgb);
   // The surfaces blended over the volumes' composite: S + (1 - S.a) V.
-  std::vector<double> over = Reference(s, surfaces, false, stop.data(), &r.Edges);
+  std::vector<double> over = ReferenceWithSurfaces(s, surfaces, false, stop.data(), &r.Edges);
   r.SurfacesOver = CompositeOver(Over(over, volumesOnly), sceneRgb);
   WriteComparisonImages(
     s.ImageDirectory, name, r.Gpu, r.Expected, MultiVolumeCaseSize, MultiVolumeCaseSize);

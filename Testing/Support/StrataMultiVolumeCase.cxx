@@ -10,6 +10,7 @@
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTransform.h"
@@ -129,12 +130,8 @@ vtkSmartPointer<vtkImageData> Blob(int nx,
   return MakeBlobVolume(nx, ny, nz, s, o, seed);
 }
 
-VolumeComparison RenderTwoVolumes(double ox,
-  double oy,
-  const std::string& tag,
-  const std::string& imageDirectory)
+void AddTwoVolumes(VolumeScene& s, double ox, double oy)
 {
-  VolumeScene s(imageDirectory);
   s.Add(Blob(40, 36, 32, 1.0, 1.0, 1.0, ox, oy, 0, 1), MakeVolumeProperty(0));
   vtkNew<vtkTransform> t;
   t->Translate(ox + 30, oy + 10, 4);
@@ -144,9 +141,86 @@ VolumeComparison RenderTwoVolumes(double ox,
   s.UseMultiVolume();
   const double pos[3] = { ox - 50, oy - 70, 80 }, foc[3] = { ox + 30, oy + 25, 14 };
   s.Camera(pos, foc);
+}
+
+VolumeComparison RenderTwoVolumes(double ox,
+  double oy,
+  const std::string& tag,
+  const std::string& imageDirectory)
+{
+  VolumeScene s(imageDirectory);
+  AddTwoVolumes(s, ox, oy);
   auto r = s.Compare(tag);
   std::cout << tag << ": " << s.Mapper->GetNumberOfFragments() << " fragments\n";
   return r;
+}
+
+TranslucentPlane::TranslucentPlane(const double o[3],
+  const double p1[3],
+  const double p2[3],
+  const double rgb[3])
+{
+  this->Source->SetOrigin(o[0], o[1], o[2]);
+  this->Source->SetPoint1(p1[0], p1[1], p1[2]);
+  this->Source->SetPoint2(p2[0], p2[1], p2[2]);
+  this->Mapper->SetInputConnection(this->Source->GetOutputPort());
+  this->Actor->SetMapper(this->Mapper);
+  vtkProperty* p = this->Actor->GetProperty();
+  p->SetColor(rgb[0], rgb[1], rgb[2]);
+  p->SetAmbient(1.0);
+  p->SetDiffuse(0.0);
+  p->SetSpecular(0.0);
+  p->SetOpacity(0.4);
+  for (int i = 0; i < 3; ++i)
+  {
+    this->Surface.Corner[i] = o[i];
+    this->Surface.Edge1[i] = p1[i] - o[i];
+    this->Surface.Edge2[i] = p2[i] - o[i];
+    this->Surface.Color[i] = 0.4 * rgb[i];
+  }
+  this->Surface.Color[3] = 0.4;
+}
+
+std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
+  const std::vector<vtkMultiVolumeReferenceIntegrator::Surface>& surfaces,
+  bool volumes,
+  const double* stop,
+  std::vector<bool>* edges)
+{
+  using Ref = vtkMultiVolumeReferenceIntegrator;
+  const int rays = s.Mapper->GetRaysPerPixel(), n = MultiVolumeCaseSize;
+  Ref ref;
+  ref.SetStepFraction(1.0 / 16.0);
+  for (size_t i = 0; i < s.Images.size(); ++i)
+  {
+    Ref::Volume v = ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i));
+    if (!volumes)
+      std::fill(v.Classification.Opacity.begin(), v.Classification.Opacity.end(), 0.0);
+    ref.AddVolume(std::move(v));
+  }
+  for (const Ref::Surface& surface : surfaces)
+    ref.AddSurface(surface);
+  std::vector<double> rgba(4 * size_t(n) * n, 0.0), one, first;
+  for (int ray = 0; ray < rays; ++ray)
+  {
+    double offset[2];
+    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, rays, offset);
+    vtkNew<vtkMatrix4x4> shift, shifted;
+    shift->SetElement(0, 3, 2.0 * offset[0] / n);
+    shift->SetElement(1, 3, 2.0 * offset[1] / n);
+    vtkMatrix4x4::Multiply4x4(ClipToWorld(s.Ren), shift, shifted);
+    ref.IntegrateImage(shifted->GetData(), n, n, one, nullptr, stop);
+    for (size_t i = 0; i < one.size(); ++i)
+      rgba[i] += one[i] / rays;
+    if (ray == 0)
+      first = one;
+    if (edges && ray == 0)
+      edges->assign(size_t(n) * n, false);
+    for (size_t i = 0; edges && i < edges->size(); ++i)
+      for (int c = 0; c < 4; ++c)
+        (*edges)[i] = (*edges)[i] || std::abs(one[4 * i + c] - first[4 * i + c]) > 1e-9;
+  }
+  return rgba;
 }
 
 int CaseResult(bool ok, const CapturingOutputWindow* output)

@@ -15,9 +15,13 @@
 
 #include "StrataVolumeScenes.h" // For VolumeComparison
 
-#include "vtkMultiVolume.h"              // For vtkNew<vtkMultiVolume>
-#include "vtkMultiVolumeRayCastMapper.h" // For vtkNew<vtkMultiVolumeRayCastMapper>
+#include "vtkActor.h"                          // For vtkActor
+#include "vtkMultiVolume.h"                    // For vtkNew<vtkMultiVolume>
+#include "vtkMultiVolumeRayCastMapper.h"       // For vtkNew<vtkMultiVolumeRayCastMapper>
+#include "vtkMultiVolumeReferenceIntegrator.h" // For Surface
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"    // For vtkPlaneSource
+#include "vtkPolyDataMapper.h" // For vtkPolyDataMapper
 #include "vtkSmartPointer.h"
 
 #include <functional>
@@ -78,9 +82,13 @@ vtkSmartPointer<vtkImageData> Blob(int nx,
   double o2,
   int seed);
 
-/// The scene of TestMultiVolumeTwo and TestMultiVolumeUTM: two overlapping volumes of different
-/// resolution and spacing, the second turned 30 degrees about z, shifted by (ox, oy); prints
-/// its fragment count under `tag`; images go to `imageDirectory`.
+/// The scene of TestMultiVolumeTwo and TestMultiVolumeUTM into `s`: two overlapping volumes of
+/// different resolution and spacing, the second turned 30 degrees about z, shifted by (ox, oy),
+/// and the camera on them.
+void AddTwoVolumes(VolumeScene& s, double ox = 0.0, double oy = 0.0);
+
+/// AddTwoVolumes against the reference; prints its fragment count under `tag`; images go to
+/// `imageDirectory`.
 VolumeComparison RenderTwoVolumes(double ox,
   double oy,
   const std::string& tag,
@@ -103,6 +111,28 @@ void CheckAgainstVtkGPUMapper(const std::vector<unsigned char>& ours,
   const std::vector<unsigned char>& theirs,
   const std::string& name,
   const std::string& directory);
+
+/// A plane actor of constant colour (ambient light alone) and opacity 0.4 for
+/// vtkMultiVolumeRayCastMapper::AddTranslucentActor, and the reference's surface of it.
+struct TranslucentPlane
+{
+  vtkNew<vtkPlaneSource> Source;
+  vtkNew<vtkPolyDataMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+  vtkMultiVolumeReferenceIntegrator::Surface Surface;
+  TranslucentPlane(const double o[3], const double p1[3], const double p2[3], const double rgb[3]);
+};
+
+/**
+ * The reference of `s`'s volumes with `surfaces` (with `volumes` false: every volume fully
+ * transparent), stopped at `stop` (window depths) when given; the mean of the mapper's sub-pixel
+ * rays. `edges`: pixels whose sub-pixel rays differ (a surface's edge).
+ */
+std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
+  const std::vector<vtkMultiVolumeReferenceIntegrator::Surface>& surfaces,
+  bool volumes,
+  const double* stop,
+  std::vector<bool>* edges = nullptr);
 
 /// A case's exit code: failure when `ok` is false or VTK printed errors or warnings (said so).
 int CaseResult(bool ok, const CapturingOutputWindow* output);
