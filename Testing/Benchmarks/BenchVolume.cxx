@@ -858,7 +858,8 @@ int Layers()
   for (int k = 0; k < 6; ++k)
   {
     const double y = 2.0 + 6.0 * k;
-    const double o[3] = { -10, y, -10 }, a[3] = { 70, y + 4, -10 }, b[3] = { -10, y, 45 };
+    // Wider than the view: no plane edge on screen (a rasterised edge is off by a pixel).
+    const double o[3] = { -60, y, -60 }, a[3] = { 120, y + 9, -60 }, b[3] = { -60, y, 100 };
     planes.push_back(std::make_unique<TranslucentPlane>(o, a, b, colours[k % 3]));
     s.Mapper->AddTranslucentActor(planes.back()->Actor);
     surfaces.push_back(planes.back()->Surface);
