@@ -178,7 +178,7 @@ public:
     std::string& error);
   ///@{
   /**
-   * Native storage (default on): the atlas holds bricks in the volumes' own type
+   * Native storage (default off): the atlas holds bricks in the volumes' own type
    * (vtkBrickAtlasFormat::Choose: R8 for 8-bit scenes, R16 for 16-bit ones); off: float.
    * Takes effect at the next SetVolumes (which then rebuilds).
    */
@@ -254,7 +254,7 @@ private:
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   bool CutValid = false;
-  bool NativeAtlas = true;
+  bool NativeAtlas = false;
 };
 
 #endif

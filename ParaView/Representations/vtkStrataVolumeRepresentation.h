@@ -55,7 +55,7 @@ public:
     int CompositeOrder = 0; ///< 0 front to back, 1 back to front
     double TerminationOpacity = 0.999;
     bool UseBrickAtlas = true;
-    bool NativeScalarStorage = true;
+    bool NativeScalarStorage = false;
     int BrickSize = 32;
     double AtlasBudget = 256.0;
     bool EmptySpaceSkipping = true;

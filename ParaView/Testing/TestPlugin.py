@@ -164,8 +164,8 @@ def paged_volume(args, camera):
     display.StrataVolumeSampleDistance = 0.5
     display.StrataVolumeAtlasBudget = 16
     display.StrataVolumePagesPerFrame = 8
-    check(display.StrataVolumeNativeScalarStorage == 1,
-          "native scalar storage (the tooth's R8 atlas) is on by default")
+    check(display.StrataVolumeNativeScalarStorage == 0,
+          "native scalar storage (an R8 atlas for the tooth) is off by default")
     frames = render_until_converged(view, display, "StrataVolume")
     print("paged volume settled after %d renders" % frames)
     check(frames <= 500, "the paged volume settles")

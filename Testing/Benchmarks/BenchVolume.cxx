@@ -793,6 +793,7 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
     contenders.push_back(MakeSingle("strata", data, images.back(), properties.back()));
     contenders.back().Strata->SetBrickSize(B);
     contenders.back().Strata->SetAtlasBudget(budget);
+    contenders.back().Strata->NativeScalarStorageOn();
   }
   // The reference image: float32 with room for every brick.
   Contender full = MakeSingle("strata", data, images.back(), properties.back());

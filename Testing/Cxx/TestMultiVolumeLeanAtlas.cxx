@@ -183,6 +183,7 @@ void MixedTypes(const TestPaths& paths, bool& ok)
   const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
   s.Camera(pos, foc);
   s.Mapper->SetBrickSize(16);
+  s.Mapper->NativeScalarStorageOn();
   s.Win->Render();
   const auto native = ReadRGB(s.Win);
   const std::string type = s.Mapper->GetAtlasScalarTypeName();
@@ -208,6 +209,7 @@ void MixedTypes(const TestPaths& paths, bool& ok)
   f.UseMultiVolume();
   f.Camera(pos, foc);
   f.Mapper->SetBrickSize(16);
+  f.Mapper->NativeScalarStorageOn();
   f.Win->Render();
   std::cout << "LeanAtlas-mixed: float and uint8 in a " << f.Mapper->GetAtlasScalarTypeName()
             << " atlas\n";
