@@ -106,14 +106,7 @@ std::vector<double> Reference(VolumeScene& s,
   const double* stop)
 {
   Ref ref;
-  ref.SetStepFraction(1.0 / 16.0);
-  for (size_t i = 0; i < s.Images.size(); ++i)
-  {
-    Ref::Volume v = ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i));
-    if (!volumes)
-      std::fill(v.Classification.Opacity.begin(), v.Classification.Opacity.end(), 0.0);
-    ref.AddVolume(std::move(v));
-  }
+  AddSceneVolumes(s, ref, volumes);
   if (horizons)
     ref.AddSurfaceCrossings(HorizonCrossings(hf,
       { { Colors[0][0], Colors[0][1], Colors[0][2] },

@@ -181,6 +181,18 @@ TranslucentPlane::TranslucentPlane(const double o[3],
   this->Surface.Color[3] = 0.4;
 }
 
+void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, bool volumes)
+{
+  ref.SetStepFraction(1.0 / 16.0);
+  for (size_t i = 0; i < s.Images.size(); ++i)
+  {
+    auto v = ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i));
+    if (!volumes)
+      std::fill(v.Classification.Opacity.begin(), v.Classification.Opacity.end(), 0.0);
+    ref.AddVolume(std::move(v));
+  }
+}
+
 std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
   const std::vector<vtkMultiVolumeReferenceIntegrator::Surface>& surfaces,
   bool volumes,
@@ -190,14 +202,7 @@ std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
   using Ref = vtkMultiVolumeReferenceIntegrator;
   const int rays = s.Mapper->GetRaysPerPixel(), n = MultiVolumeCaseSize;
   Ref ref;
-  ref.SetStepFraction(1.0 / 16.0);
-  for (size_t i = 0; i < s.Images.size(); ++i)
-  {
-    Ref::Volume v = ToReferenceVolume(s.Images[i], s.Volumes[i], s.Mapper, static_cast<int>(i));
-    if (!volumes)
-      std::fill(v.Classification.Opacity.begin(), v.Classification.Opacity.end(), 0.0);
-    ref.AddVolume(std::move(v));
-  }
+  AddSceneVolumes(s, ref, volumes);
   for (const Ref::Surface& surface : surfaces)
     ref.AddSurface(surface);
   std::vector<double> rgba(4 * size_t(n) * n, 0.0), one, first;

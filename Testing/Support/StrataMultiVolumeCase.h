@@ -123,6 +123,10 @@ struct TranslucentPlane
   TranslucentPlane(const double o[3], const double p1[3], const double p2[3], const double rgb[3]);
 };
 
+/// `s`'s volumes into the reference `ref` (step 1/16 of the sample distance); with `volumes`
+/// false every one fully transparent (for the surfaces alone).
+void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, bool volumes = true);
+
 /**
  * The reference of `s`'s volumes with `surfaces` (with `volumes` false: every volume fully
  * transparent), stopped at `stop` (window depths) when given; the mean of the mapper's sub-pixel
