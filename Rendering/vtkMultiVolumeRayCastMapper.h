@@ -114,7 +114,7 @@ public:
    * float as soon as one is float); plain textures (UseBrickAtlas off) take each volume's own.
    * Level 0 is exact either way; coarser levels of in-core volumes are rounded to the type, as
    * page pools store them. Off: float textures, 4 bytes a voxel. Off by default: the texture
-   * unit filters R8 texels at lower precision than float ones (Mesa llvmpipe here), so 8-bit
+   * unit seems to filter R8 texels at lower precision than float ones (Mesa llvmpipe here): 8-bit
    * volumes render up to 2 of 255 away from float storage (the tooth CT of the examples'
    * volumes scene: 3867 of 57600 pixels differ, 5 by more than 1), and through ParaView's
    * build its native images differ from the standalone ones by up to 3 where float storage
