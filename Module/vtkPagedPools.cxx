@@ -130,6 +130,25 @@ void vtkPagedPools::Close()
   this->LastWarning.clear();
 }
 
+namespace
+{
+// The brick tree's name for a pool's scalar type.
+vtkVolumeBrickTree::ScalarType TreeType(const vtkPagePoolFile& pool)
+{
+  switch (pool.GetScalarType())
+  {
+    case vtkPagePoolFormat::ScalarType::UInt8:
+      return vtkVolumeBrickTree::ScalarType::UInt8;
+    case vtkPagePoolFormat::ScalarType::UInt16:
+      return vtkVolumeBrickTree::ScalarType::UInt16;
+    case vtkPagePoolFormat::ScalarType::Int16:
+      return vtkVolumeBrickTree::ScalarType::Int16;
+    default:
+      return vtkVolumeBrickTree::ScalarType::Float32;
+  }
+}
+}
+
 bool vtkPagedPools::BuildTree(const vtkPagePoolFile& pool, vtkVolumeBrickTree& tree)
 {
   const uint64_t pages = pool.GetNumberOfPages();
@@ -144,7 +163,7 @@ bool vtkPagedPools::BuildTree(const vtkPagePoolFile& pool, vtkVolumeBrickTree& t
   const int dims[3] = {
     d[0], d[1], pool.GetKind() == vtkPagePoolFormat::Kind::TilePool ? 1 : d[2]
   };
-  return tree.BuildStructure(dims, pool.GetPageSize(), lo.data(), hi.data()) &&
+  return tree.BuildStructure(dims, pool.GetPageSize(), lo.data(), hi.data(), TreeType(pool)) &&
          static_cast<uint64_t>(tree.GetNumberOfNodes()) == pages;
 }
 

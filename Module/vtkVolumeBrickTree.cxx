@@ -191,7 +191,8 @@ bool vtkVolumeBrickTree::BuildLevels(const int dims[3], int brickSize)
 bool vtkVolumeBrickTree::BuildStructure(const int dims[3],
   int brickSize,
   const float* minima,
-  const float* maxima)
+  const float* maxima,
+  ScalarType type)
 {
   this->Levels.clear();
   this->Nodes.clear();
@@ -204,7 +205,7 @@ bool vtkVolumeBrickTree::BuildStructure(const int dims[3],
       this->ErrorMessage = "no brick ranges";
     return false;
   }
-  this->Type = ScalarType::Float32;
+  this->Type = type;
   // Finest level first, so every child's subtree range is known before its parent's.
   for (size_t id = 0; id < this->Nodes.size(); ++id)
   {

@@ -103,9 +103,14 @@ public:
   /**
    * The structure alone, for a volume that stays on disk (a page pool, whose pages are this
    * tree's bricks in node order): levels, nodes and ranges from `minima`/`maxima` per node
-   * id, no voxels. GetLevelData, GetVoxel and ExtractBrick must not be called on it.
+   * id, no voxels; `type`, that of its voxels on disk (GetScalarType). GetLevelData, GetVoxel
+   * and ExtractBrick must not be called on it.
    */
-  bool BuildStructure(const int dims[3], int brickSize, const float* minima, const float* maxima);
+  bool BuildStructure(const int dims[3],
+    int brickSize,
+    const float* minima,
+    const float* maxima,
+    ScalarType type = ScalarType::Float32);
   /// False for a structure-only tree.
   bool HasData() const { return this->Input != nullptr; }
 

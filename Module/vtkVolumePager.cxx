@@ -290,21 +290,6 @@ vtkVolumePager::~vtkVolumePager() = default;
 
 namespace
 {
-// The brick tree's name for a pool's scalar type.
-vtkVolumeBrickTree::ScalarType PoolType(vtkPagePoolFormat::ScalarType type)
-{
-  switch (type)
-  {
-    case vtkPagePoolFormat::ScalarType::UInt8:
-      return vtkVolumeBrickTree::ScalarType::UInt8;
-    case vtkPagePoolFormat::ScalarType::UInt16:
-      return vtkVolumeBrickTree::ScalarType::UInt16;
-    case vtkPagePoolFormat::ScalarType::Int16:
-      return vtkVolumeBrickTree::ScalarType::Int16;
-    default:
-      return vtkVolumeBrickTree::ScalarType::Float32;
-  }
-}
 /// Two trees of the same levels, level dimensions and brick size: one cut fits both.
 bool SameStructure(const vtkVolumeBrickTree& a, const vtkVolumeBrickTree& b)
 {
@@ -453,18 +438,14 @@ bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
   for (Volume& v : resolved)
   {
     if (const vtkVolumeBrickTree* tree = this->GetPoolTree(v.Port))
-    {
       v.Tree = tree;
-      v.Type = PoolType(this->GetPool(v.Port)->GetScalarType());
-    }
-    types.push_back(v.Type);
+    types.push_back(v.Tree->GetScalarType());
   }
   const auto atlasType = vtkBrickAtlasFormat::Choose(types, this->NativeAtlas);
   bool same = this->CutValid && resolved.size() == in.Volumes.size() && brickSize == in.BrickSize &&
               budgetMiB == in.Budget && atlasType == in.AtlasType;
   for (size_t v = 0; same && v < resolved.size(); ++v)
-    same = resolved[v].Port == in.Volumes[v].Port && resolved[v].Tree == in.Volumes[v].Tree &&
-           resolved[v].Type == in.Volumes[v].Type;
+    same = resolved[v].Port == in.Volumes[v].Port && resolved[v].Tree == in.Volumes[v].Tree;
   in.Volumes = std::move(resolved);
   rebuilt = !same;
   if (same)
@@ -677,7 +658,7 @@ vtkVolumeBrickTree::ScalarType vtkVolumePager::GetAtlasType() const
 
 vtkVolumeBrickTree::ScalarType vtkVolumePager::GetVolumeType(int volume) const
 {
-  return this->Internals->Volumes[volume].Type;
+  return this->Internals->Volumes[volume].Tree->GetScalarType();
 }
 
 const vtkBrickAtlasAllocator& vtkVolumePager::GetAtlas() const

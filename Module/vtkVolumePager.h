@@ -69,9 +69,6 @@ public:
     vtkVolumeCut::OpacityRangeFunction Opacity; ///< highest opacity over a value range
     /// Store the bricks next to visible ones too (pre-integration, vtkVolumeCut::SetVolumeHalo).
     bool Halo = false;
-    /// In core: the type of the caller's values (the atlas's texels, vtkBrickAtlasFormat).
-    /// Paged: ignored, the pool's type.
-    vtkVolumeBrickTree::ScalarType Type = vtkVolumeBrickTree::ScalarType::Float32;
     /**
      * Paged: the reader's coarsest level as floats (x fastest) and its dimensions, asked for
      * only while the root page is not held; empty (or no function): read the root here.
@@ -185,7 +182,8 @@ public:
   void SetNativeAtlas(bool native) { this->NativeAtlas = native; }
   bool GetNativeAtlas() const { return this->NativeAtlas; }
   ///@}
-  /// The atlas's texel type and the values' type of the frame's volume `volume`.
+  /// The atlas's texel type, and the values' type of the frame's volume `volume` (its tree's:
+  /// the in-core tree's, or the pool's for a paged one).
   vtkVolumeBrickTree::ScalarType GetAtlasType() const;
   vtkVolumeBrickTree::ScalarType GetVolumeType(int volume) const;
   /// Forces the next SetVolumes to rebuild (a caller's tree was rebuilt, or its atlas lost).

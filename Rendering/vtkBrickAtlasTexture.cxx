@@ -19,13 +19,13 @@ std::string vtkBrickAtlasTexture::GetLookupFunction(int n,
   bool normalized)
 {
   std::string code = vtkMultiVolumeAtlasLookup;
-  // Feedback wants the level-0 brick and the node's level back from the resolved entry.
+  // Feedback wants the level-0 brick and how coarse its node is (2^level; a transparent brick
+  // as coarse as can be, a slotless one 0).
   const std::string feedback =
     feedbackCheck.empty()
       ? std::string()
       : "ivec3 b = min(ivec3(x / (uBrickSize - 1.0)), ivec3(uTableDims@n@) - 1);\n"
-        "  uvec4 e = uvec4(0u, 0u, 0u, f.w > 0.0 ? uint(-log2(f.w) + 0.5) : "
-        "(f.w > -1.5 ? 65534u : 65535u));\n  " +
+        "  float coarse = f.w > 0.0 ? 1.0 / f.w : (f.w > -1.5 ? 3.0e38 : 0.0);\n  " +
           feedbackCheck;
   vtkShaderProgram::Substitute(code, "//STRATA::FeedbackCheck::Impl", feedback, true);
   vtkShaderProgram::Substitute(code,

@@ -39,7 +39,7 @@ public:
   /**
    * `float strataScalarAt<n>(vec3 idx)`: volume n's scalar at index coordinates through its
    * index texture uIndex<n> (level-0 bricks uTableDims<n>) and the atlas; `feedbackCheck` is
-   * inserted where the level-0 brick b and the level e.w of the node covering it are known
+   * inserted where the level-0 brick b and `coarse`, 2^level of the node covering it, are known
    * (empty: none, and neither is computed). `normalized`: the atlas's texels are decoded,
    * value = t uDecode<n>.x + uDecode<n>.y (vtkBrickAtlasFormat::GetDecode).
    */

@@ -408,7 +408,6 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     vtkVolumePager::Volume v;
     v.Port = e.Port;
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree() : nullptr;
-    v.Type = v.Tree ? v.Tree->GetScalarType() : vtkVolumeBrickTree::ScalarType::Float32;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
     v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
@@ -531,7 +530,9 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
   const auto atlasType = this->Pager.GetAtlasType();
   const int texel = vtkBrickAtlasFormat::GetTexelSize(atlasType);
   std::vector<float> scratch;
-  std::vector<unsigned char> texels(voxels * texel);
+  // Float atlases take the values as they are; normalised ones their encoding.
+  const bool encode = vtkBrickAtlasFormat::IsNormalized(atlasType);
+  std::vector<unsigned char> texels(encode ? voxels * texel : 0);
   this->Atlas.BeginUploads();
   this->Paging.BytesUploaded = 0;
   for (const auto& u : uploads)
@@ -544,9 +545,12 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
         voxels, static_cast<float>(this->Inputs[frame.Volumes[u.Volume].Port].GetEmptyScalar()));
       data = scratch.data();
     }
-    vtkBrickAtlasFormat::Encode(
-      data, voxels, atlasType, this->Pager.GetVolumeType(u.Volume), texels.data());
-    this->Atlas.UploadBrick(this->Pager.GetAtlas().GetSlotPosition(u.Slot), B, texels.data());
+    if (encode)
+      vtkBrickAtlasFormat::Encode(
+        data, voxels, atlasType, this->Pager.GetVolumeType(u.Volume), texels.data());
+    this->Atlas.UploadBrick(this->Pager.GetAtlas().GetSlotPosition(u.Slot),
+      B,
+      encode ? static_cast<const void*>(texels.data()) : data);
     this->Paging.BytesUploaded += static_cast<long long>(voxels * texel);
   }
   this->Atlas.EndUploads();

@@ -208,13 +208,12 @@ std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
   std::vector<double> rgba(4 * size_t(n) * n, 0.0), one, first;
   for (int ray = 0; ray < rays; ++ray)
   {
-    double offset[2];
-    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, rays, offset);
-    vtkNew<vtkMatrix4x4> shift, shifted;
-    shift->SetElement(0, 3, 2.0 * offset[0] / n);
-    shift->SetElement(1, 3, 2.0 * offset[1] / n);
-    vtkMatrix4x4::Multiply4x4(ClipToWorld(s.Ren), shift, shifted);
-    ref.IntegrateImage(shifted->GetData(), n, n, one, nullptr, stop);
+    ref.IntegrateImage(SubPixelClipToWorld(ClipToWorld(s.Ren), ray, rays, n, n)->GetData(),
+      n,
+      n,
+      one,
+      nullptr,
+      stop);
     for (size_t i = 0; i < one.size(); ++i)
       rgba[i] += one[i] / rays;
     if (ray == 0)

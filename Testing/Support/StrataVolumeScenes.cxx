@@ -300,14 +300,9 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   r.Reference.assign(4 * size_t(w) * h, 0.0);
   for (int ray = 0; ray < raysPerPixel; ++ray)
   {
-    double offset[2];
-    vtkMultiVolumeRayCastMapper::GetRayOffset(ray, raysPerPixel, offset);
-    vtkNew<vtkMatrix4x4> shift, shifted;
-    shift->SetElement(0, 3, 2.0 * offset[0] / w);
-    shift->SetElement(1, 3, 2.0 * offset[1] / h);
-    vtkMatrix4x4::Multiply4x4(clipToWorld, shift, shifted);
     std::vector<double> one;
-    ref.IntegrateImage(shifted->GetData(), w, h, one);
+    ref.IntegrateImage(
+      SubPixelClipToWorld(clipToWorld, ray, raysPerPixel, w, h)->GetData(), w, h, one);
     for (size_t i = 0; i < one.size(); ++i)
       r.Reference[i] += one[i] / raysPerPixel;
   }
@@ -344,6 +339,22 @@ void WriteComparisonImages(const std::string& directory,
     refImage[i] = static_cast<unsigned char>(std::lround(expected[i]));
   WritePNG(directory + "/" + name + "-gpu.png", gpu, width, height);
   WritePNG(directory + "/" + name + "-ref.png", refImage, width, height);
+}
+
+vtkSmartPointer<vtkMatrix4x4> SubPixelClipToWorld(vtkMatrix4x4* clipToWorld,
+  int ray,
+  int rays,
+  int width,
+  int height)
+{
+  double offset[2];
+  vtkMultiVolumeRayCastMapper::GetRayOffset(ray, rays, offset);
+  vtkNew<vtkMatrix4x4> shift;
+  shift->SetElement(0, 3, 2.0 * offset[0] / width);
+  shift->SetElement(1, 3, 2.0 * offset[1] / height);
+  auto shifted = vtkSmartPointer<vtkMatrix4x4>::New();
+  vtkMatrix4x4::Multiply4x4(clipToWorld, shift, shifted);
+  return shifted;
 }
 
 vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren)

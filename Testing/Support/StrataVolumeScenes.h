@@ -72,6 +72,13 @@ struct VolumeComparison
 
 /// The active camera's clip -> world matrix for `ren` (what the reference's rays go through).
 vtkSmartPointer<vtkMatrix4x4> ClipToWorld(vtkRenderer* ren);
+/// `clipToWorld` shifted to sub-pixel ray `ray` of `rays` (the mapper's GetRayOffset) in a
+/// viewport of `width` x `height` pixels.
+vtkSmartPointer<vtkMatrix4x4> SubPixelClipToWorld(vtkMatrix4x4* clipToWorld,
+  int ray,
+  int rays,
+  int width,
+  int height);
 
 /// The reference's premultiplied RGBA composited over `background` (RGB bytes, same pixel
 /// layout), in 8-bit units (not rounded).
