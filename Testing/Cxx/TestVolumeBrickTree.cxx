@@ -24,9 +24,12 @@ void Check(bool ok, const std::string& what)
   failures += ok ? 0 : 1;
 }
 
+// In unsigned arithmetic: the products wrap (in int they overflow, which is undefined).
 uint16_t Hash(int x, int y, int z)
 {
-  return static_cast<uint16_t>(((x * 73856093) ^ (y * 19349663) ^ (z * 83492791)) & 0xFFFF);
+  const uint32_t h =
+    (uint32_t(x) * 73856093u) ^ (uint32_t(y) * 19349663u) ^ (uint32_t(z) * 83492791u);
+  return static_cast<uint16_t>(h & 0xFFFF);
 }
 
 std::string Dims(const int* d)
