@@ -90,6 +90,8 @@ int PageOf(int p, int stride, int pages)
 //------------------------------------------------------------------------------
 const char* const vtkPagePoolReader::PoolFileNameArray = "PagePoolFileName";
 const char* const vtkPagePoolReader::PoolLayerArray = "PagePoolLayer";
+const char* const vtkPagePoolReader::PoolSeriesArray = "PagePoolSeries";
+const char* const vtkPagePoolReader::PoolTimeStepArray = "PagePoolTimeStep";
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_FILE_NAME, String);
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_LAYER, Integer);
 vtkInformationKeyMacro(vtkPagePoolReader, POOL_TIME_STEP, Integer);
@@ -246,8 +248,19 @@ void vtkPagePoolReader::MarkPool(vtkImageData* output, const std::string& name)
   output->GetFieldData()->AddArray(file);
   output->GetFieldData()->AddArray(layer);
   if (this->TimeStepRead >= 0 && this->TimeStepRead < this->GetNumberOfTimeSteps())
+  {
     output->GetInformation()->Set(
       vtkDataObject::DATA_TIME_STEP(), this->StepTimes[this->TimeStepRead]);
+    vtkNew<vtkStringArray> series;
+    series->SetName(PoolSeriesArray);
+    for (const std::string& step : this->StepFiles)
+      series->InsertNextValue(step);
+    vtkNew<vtkIntArray> shown;
+    shown->SetName(PoolTimeStepArray);
+    shown->InsertNextValue(this->TimeStepRead);
+    output->GetFieldData()->AddArray(series);
+    output->GetFieldData()->AddArray(shown);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -266,6 +279,25 @@ int vtkPagePoolReader::GetPoolLayer(vtkDataObject* data)
   vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
   auto* layer = fd ? vtkIntArray::SafeDownCast(fd->GetAbstractArray(PoolLayerArray)) : nullptr;
   return layer && layer->GetNumberOfValues() == 1 ? layer->GetValue(0) : 0;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> vtkPagePoolReader::GetPoolSeries(vtkDataObject* data)
+{
+  vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
+  auto* series = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(PoolSeriesArray)) : nullptr;
+  std::vector<std::string> files;
+  for (vtkIdType i = 0; series && i < series->GetNumberOfValues(); ++i)
+    files.push_back(series->GetValue(i));
+  return files;
+}
+
+//------------------------------------------------------------------------------
+int vtkPagePoolReader::GetPoolTimeStep(vtkDataObject* data)
+{
+  vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
+  auto* step = fd ? vtkIntArray::SafeDownCast(fd->GetAbstractArray(PoolTimeStepArray)) : nullptr;
+  return step && step->GetNumberOfValues() == 1 ? step->GetValue(0) : 0;
 }
 
 //------------------------------------------------------------------------------

@@ -154,11 +154,18 @@ public:
    * GetPoolFileName returns null when `data` names no pool; GetPoolLayer returns 0 then. A
    * consumer that pages from the named pool must only do so when the data is the reader's
    * output unchanged (the ParaView representations take it straight from the reader).
+   * A time series travels the same way: every step's pool in time order (PoolSeriesArray, as
+   * POOL_SERIES) and the step shown (PoolTimeStepArray, as POOL_TIME_STEP); GetPoolSeries is
+   * empty and GetPoolTimeStep 0 without a series.
    */
   static const char* GetPoolFileName(vtkDataObject* data);
   static int GetPoolLayer(vtkDataObject* data);
+  static std::vector<std::string> GetPoolSeries(vtkDataObject* data);
+  static int GetPoolTimeStep(vtkDataObject* data);
   static const char* const PoolFileNameArray;
   static const char* const PoolLayerArray;
+  static const char* const PoolSeriesArray;
+  static const char* const PoolTimeStepArray;
   ///@}
 
   /// Level that resolution `r` selects in a pool of `levels` levels.

@@ -6,6 +6,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationStringKey.h"
+#include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPagePoolReader.h"
@@ -18,6 +19,8 @@ void vtkStrataPooledProducer::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "PoolFileName: " << this->PoolFileName << "\n";
   os << indent << "PoolLayer: " << this->PoolLayer << "\n";
+  os << indent << "PoolTimeStep: " << this->PoolTimeStep << " of " << this->PoolSeries.size()
+     << "\n";
 }
 
 //------------------------------------------------------------------------------
@@ -26,10 +29,15 @@ void vtkStrataPooledProducer::SetOutput(vtkDataObject* output)
   const char* pool = vtkPagePoolReader::GetPoolFileName(output);
   const std::string name = pool ? pool : "";
   const int layer = vtkPagePoolReader::GetPoolLayer(output);
-  if (name != this->PoolFileName || layer != this->PoolLayer)
+  const int step = vtkPagePoolReader::GetPoolTimeStep(output);
+  std::vector<std::string> series = vtkPagePoolReader::GetPoolSeries(output);
+  if (name != this->PoolFileName || layer != this->PoolLayer || step != this->PoolTimeStep ||
+      series != this->PoolSeries)
   {
     this->PoolFileName = name;
     this->PoolLayer = layer;
+    this->PoolTimeStep = step;
+    this->PoolSeries = std::move(series);
     this->Modified();
   }
   this->Superclass::SetOutput(output);
@@ -53,6 +61,14 @@ vtkTypeBool vtkStrataPooledProducer::ProcessRequest(vtkInformation* request,
     {
       info->Set(vtkPagePoolReader::POOL_FILE_NAME(), this->PoolFileName.c_str());
       info->Set(vtkPagePoolReader::POOL_LAYER(), this->PoolLayer);
+    }
+    info->Remove(vtkPagePoolReader::POOL_TIME_STEP());
+    info->Remove(vtkPagePoolReader::POOL_SERIES());
+    if (!this->PoolFileName.empty() && !this->PoolSeries.empty())
+    {
+      info->Set(vtkPagePoolReader::POOL_TIME_STEP(), this->PoolTimeStep);
+      for (const std::string& file : this->PoolSeries)
+        info->Append(vtkPagePoolReader::POOL_SERIES(), file.c_str());
     }
   }
   return result;

@@ -9,7 +9,9 @@
  * pool travels in the data's field data instead (vtkPagePoolReader::GetPoolFileName). The
  * representations hand their mappers the data through this producer, which puts the keys back
  * on its output information at every information pass, so a pool opened in ParaView is paged
- * by the mapper and never read whole.
+ * by the mapper and never read whole. A time series travels alike (the step shown and every
+ * step's pool, vtkPagePoolReader::GetPoolSeries), so that the mapper pages the step ParaView's
+ * time selects and prefetches the next one in playback order.
  */
 #ifndef vtkStrataPooledProducer_h
 #define vtkStrataPooledProducer_h
@@ -18,6 +20,7 @@
 #include "vtkTrivialProducer.h"
 
 #include <string> // For std::string
+#include <vector> // For std::vector
 
 class STRATAPARAVIEW_EXPORT vtkStrataPooledProducer : public vtkTrivialProducer
 {
@@ -32,6 +35,9 @@ public:
   /// The pool behind the output ("" when none) and its layer.
   const char* GetPoolFileName() const { return this->PoolFileName.c_str(); }
   int GetPoolLayer() const { return this->PoolLayer; }
+  /// Of a time series: the step shown (0 without one) and every step's pool (empty without).
+  int GetPoolTimeStep() const { return this->PoolTimeStep; }
+  const std::vector<std::string>& GetPoolSeries() const { return this->PoolSeries; }
 
   vtkTypeBool ProcessRequest(vtkInformation* request,
     vtkInformationVector** inInfo,
@@ -47,6 +53,8 @@ private:
 
   std::string PoolFileName;
   int PoolLayer = 0;
+  int PoolTimeStep = 0;
+  std::vector<std::string> PoolSeries;
 };
 
 #endif

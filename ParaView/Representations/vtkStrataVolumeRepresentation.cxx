@@ -354,6 +354,30 @@ int vtkStrataVolumeRepresentation::GetPaged()
 }
 
 //------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetTimeStep()
+{
+  return this->Producer->GetPoolTimeStep();
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetIoWaitFrames()
+{
+  return this->Scene ? this->Scene->Mapper->GetPagingStatistics().IoWaitFrames : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetNextStepPagesResident()
+{
+  return this->Scene ? this->Scene->Mapper->GetPagingStatistics().NextStepPagesResident : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetNextStepPagesWanted()
+{
+  return this->Scene ? this->Scene->Mapper->GetPagingStatistics().NextStepPagesWanted : 0;
+}
+
+//------------------------------------------------------------------------------
 void vtkStrataVolumeRepresentation::SetStatisticsFile(const char* name)
 {
   const std::string value = name ? name : "";

@@ -102,6 +102,20 @@ public:
 
   ///@{
   /**
+   * After a render, for a paged time series (vtkPagePoolReader's TimeStepFiles): the step the
+   * volume shows (0 without a series); the frames the render thread waited on the disk, in all
+   * (a step switch whose pages were not prefetched in time); and, of the pages the last frame
+   * held, how many of the next step's in playback order are in RAM, against how many it held.
+   * Of the view's whole scene, like PagingConverged.
+   */
+  int GetTimeStep();
+  int GetIoWaitFrames();
+  int GetNextStepPagesResident();
+  int GetNextStepPagesWanted();
+  ///@}
+
+  ///@{
+  /**
    * Benchmarks (default empty: off): when set on the view's first visible Strata Volume, every
    * process appends to `<StatisticsFile>.<rank>` one CSV line per render, before it, about the
    * render before: rank, ray-cast milliseconds (the mapper's MeasureRenderTime: GPU finished),

@@ -1,10 +1,10 @@
 # Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 """pvbatch (or pvpython) test of Strata's ParaView plugin.
 
-    pvbatch TestPlugin.py --plugin Strata.so --scene <paged_volume|paged_horizons|proxies>
+    pvbatch TestPlugin.py --plugin Strata.so --scene <paged_volume|paged_horizons|time_series|...>
                           [--work <folder>] [--tolerance <max channel difference>]
 
-paged_volume, paged_horizons, horizons, volumes and hybrid: the folder holds what `StrataExamples <scene>
+paged_volume, paged_horizons, horizons, volumes, hybrid and time_series: the folder holds what `StrataExamples <scene>
 <folder>/cxx_<scene>.png --work <folder> --camera <folder>/<scene>.json --keep-pools` wrote: the
 standalone C++ rendering, its view and the page pools. The script opens the pools with the
 plugin's reader, shows them through Strata's representations from the same view, renders until
@@ -178,6 +178,59 @@ def paged_volume(args, camera):
     compare(view, camera, args.work, "paged_volume", args.tolerance)
 
 
+def time_series(args, camera):
+    """A paged time series (StrataExamples time_series: the tooth fading over four steps at
+    uneven times): the reader's TimeStepFiles give ParaView the steps' times, the animation
+    plays them, and the representation pages the step the view's time selects. Asserted per
+    step: the step shown, its image against the C++ one, and that the step after it in
+    playback order was prefetched while it was shown, so that the switch to it waited on the
+    disk in no frame (I/O-wait frames stay at their count after the first step)."""
+    with open(os.path.join(args.work, "time_series_steps.json")) as f:
+        steps = json.load(f)
+    times = [s["time"] for s in steps]
+    reader = StrataPagePool(TimeStepFiles=[v for s in steps for v in (s["file"], repr(s["time"]))])
+    reader.UpdatePipelineInformation()
+    check(list(reader.TimestepValues) == times,
+          "the reader reports the series' times %s (%s)" % (times, list(reader.TimestepValues)))
+    scene = GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+    check(list(GetTimeKeeper().TimestepValues) == times, "the animation has the series' times")
+    view = setup_view(camera)
+    display = show_volume(reader, view, TOOTH_COLORS, TOOTH_OPACITIES)
+    display.StrataVolumeSampleDistance = 0.5
+    display.StrataVolumeAtlasBudget = 16
+    display.StrataVolumePagesPerFrame = 8
+    waits = None
+    for k, t in enumerate(times):
+        scene.AnimationTime = t
+        frames = render_until_converged(view, display, "StrataVolume")
+        display.UpdatePropertyInformation()
+        shown = display.GetPropertyValue("StrataVolumeTimeStep")
+        io_waits = display.GetPropertyValue("StrataVolumeIoWaitFrames")
+        print("time %g: step %d shown, settled after %d renders, %d I/O-wait frames in all"
+              % (t, shown, frames, io_waits))
+        check(frames <= 500 and shown == k, "time %g shows step %d, settled" % (t, k))
+        check(display.GetPropertyValue("StrataVolumePaged") == 1, "step %d is paged" % k)
+        if waits is not None:
+            check(io_waits == waits, "the switch to step %d waited on the disk in no frame "
+                  "(%d I/O-wait frames, %d before)" % (k, io_waits, waits))
+        waits = io_waits
+        compare(view, camera, args.work, "time_series_%d" % k, args.tolerance)
+        if k + 1 < len(times):
+            # The workers prefetch the next step's pages of every brick held between renders.
+            for _ in range(500):
+                display.UpdatePropertyInformation()
+                resident = display.GetPropertyValue("StrataVolumeNextStepPagesResident")
+                wanted = display.GetPropertyValue("StrataVolumeNextStepPagesWanted")
+                if wanted > 0 and resident == wanted:
+                    break
+                time.sleep(0.02)
+                Render(view)
+            print("step %d: %d of the %d pages held prefetched for step %d"
+                  % (k, resident, wanted, k + 1))
+            check(wanted > 0 and resident == wanted, "step %d prefetched" % (k + 1))
+
+
 def show_volume(reader, view, colors, opacities):
     """A Strata Volume of `reader` with its own transfer functions ((value, r, g, b) and
     (value, opacity) points, linear), as the C++ scenes' VolumeProperty builds them."""
@@ -300,7 +353,7 @@ def main():
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--scene", required=True,
                         choices=["paged_volume", "paged_horizons", "horizons", "volumes", "hybrid",
-                                 "proxies"])
+                                 "time_series", "proxies"])
     parser.add_argument("--work", default=".")
     parser.add_argument("--data", default=".", help="Testing/Data (the volumes scene)")
     parser.add_argument("--tolerance", type=int, default=0)
