@@ -4,6 +4,7 @@ llvmpipe; the bound is `--max-difference`), and not empty (at least `--min-cover
 pixels differ from the background).
 
     TestExample.py --example NAME --cxx StrataExamples --examples DIR --out DIR [--data DIR]
+                   [--steps N]
 """
 import argparse
 import os
@@ -22,6 +23,8 @@ parser.add_argument("--out", required=True)
 parser.add_argument("--data")
 parser.add_argument("--max-difference", type=int, default=0)
 parser.add_argument("--min-covered", type=float, default=0.15)
+parser.add_argument("--steps", type=int, default=0,
+                    help="a time series: compare OUT_k.png for k < STEPS instead of OUT.png")
 args = parser.parse_args()
 
 
@@ -54,18 +57,30 @@ os.makedirs(work, exist_ok=True)
 run([sys.executable, os.path.join(args.examples, f"{args.example}.py"), python_png] + data)
 run([args.cxx, args.example, cxx_png, "--work", work] + data)
 
-python_image, cxx_image = read_png(python_png), read_png(cxx_png)
-if python_image.shape != cxx_image.shape:
-    sys.exit(f"FAIL: image sizes differ: Python {python_image.shape}, C++ {cxx_image.shape}")
-difference = np.abs(python_image - cxx_image)
-background = cxx_image[0, 0]
-covered = np.any(cxx_image != background, axis=2).mean()
-print(f"{args.example}: Python against C++: max channel difference {difference.max()} of 255, "
-      f"{int(np.any(difference > 0, axis=2).sum())} of {difference.shape[0] * difference.shape[1]} "
-      f"pixels differ; {100 * covered:.1f} % of the pixels covered")
-if covered < args.min_covered:
-    sys.exit(f"FAIL: only {100 * covered:.1f} % of the pixels show the scene "
-             f"(at least {100 * args.min_covered:.0f} % expected)")
-if difference.max() > args.max_difference:
-    sys.exit(f"FAIL: max channel difference {difference.max()} > {args.max_difference}")
+
+
+def compare(python_png, cxx_png, label):
+    python_image, cxx_image = read_png(python_png), read_png(cxx_png)
+    if python_image.shape != cxx_image.shape:
+        sys.exit(f"FAIL: image sizes differ: Python {python_image.shape}, C++ {cxx_image.shape}")
+    difference = np.abs(python_image - cxx_image)
+    background = cxx_image[0, 0]
+    covered = np.any(cxx_image != background, axis=2).mean()
+    print(f"{label}: Python against C++: max channel difference {difference.max()} of 255, "
+          f"{int(np.any(difference > 0, axis=2).sum())} of {difference.shape[0] * difference.shape[1]} "
+          f"pixels differ; {100 * covered:.1f} % of the pixels covered")
+    if covered < args.min_covered:
+        sys.exit(f"FAIL: only {100 * covered:.1f} % of the pixels show the scene "
+                 f"(at least {100 * args.min_covered:.0f} % expected)")
+    if difference.max() > args.max_difference:
+        sys.exit(f"FAIL: max channel difference {difference.max()} > {args.max_difference}")
+
+
+if args.steps:
+    # A time series writes one image per step: OUT_0.png, OUT_1.png, ...
+    for k in range(args.steps):
+        compare(python_png[:-4] + f"_{k}.png", cxx_png[:-4] + f"_{k}.png",
+                f"{args.example} step {k}")
+else:
+    compare(python_png, cxx_png, args.example)
 print(f"{args.example}: ok")
