@@ -447,7 +447,9 @@ public:
    * (vtkVolumeSurfaceLayers, a vtkOpenGLRenderPass on each actor's property keys); a ray
    * splits its lattice step at each layer it crosses and composites the layer there; layers in
    * front of, between or behind the volumes' fragments are composited in ray order too. Where
-   * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. Layers are
+   * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. A MIP,
+   * MinIP, average or additive volume's layer (see SetInputBlendMode) and an isosurface are
+   * composited with the surfaces in the order of their depths. Layers are
    * peeled once per pixel (at its centre): with several rays per pixel the surfaces' edges are
    * not anti-aliased. Needs the
    * front-to-back order and texture barriers (else the actors are not drawn, with a warning).

@@ -775,8 +775,16 @@ std::string Composite(const Key& key)
   const std::string layersAfter =
     ftb ? "strataLayersBefore(3.0e38, acc);" : "strataLayersBehind(-1.0e38, acc);";
   if (CountIf(key, Sampled) == 0) // nothing to sample: the layers alone
-    return LayerStart(key) + layersAfter +
-           (key.Surfaces > 0 ? "\n  strataSurfacesBefore(tExit, acc);" : "");
+  {
+    if (key.Surfaces == 0 || !ftb)
+      return LayerStart(key) + layersAfter;
+    // With surface layers (front to back only), the two kinds in the order of their depths:
+    // before each pending surface (up to the fragment's exit), the layers in front of it.
+    return LayerStart(key) + "for (int k = 0; k <= " + std::to_string(key.Surfaces) +
+           "; ++k)\n  {\n    float ts = min(strataSurfaceNext(), tExit);\n"
+           "    strataLayersBefore(ts, acc);\n    strataSurfacesBefore(ts, acc);\n  }\n  " +
+           layersAfter;
+  }
   const bool pre = PreIntegrated(key);
   const std::string K = std::to_string(key.Volumes);
   const char* end = ftb ? "tEnter" : "tExit";

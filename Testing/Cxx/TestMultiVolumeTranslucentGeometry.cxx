@@ -3,13 +3,24 @@
 // Translucent geometry among the volumes (vtkMultiVolumeRayCastMapper::AddTranslucentActor):
 // planes of opacity 0.4 crossing two overlapping volumes, in front of them, behind them, and
 // with opaque geometry, compared pixel by pixel with the reference integrator, whose surfaces
-// are composited at their exact depths (vtkMultiVolumeReferenceIntegrator::Surface).
+// are composited at their exact depths (vtkMultiVolumeReferenceIntegrator::Surface); and the
+// two crossing planes with the first volume drawn in each other blend mode (MIP, MinIP,
+// average, additive: its reduced layer composited at its own depth in ray order with the
+// surfaces; isosurface).
 //
 // Bounds, in 8-bit units over all pixels (grey background): those of the volume cases, RMS 0.4
 // and max 2 (StrataMultiVolumeCase.h: 8-bit output, quarter-voxel midpoint samples). The
 // surfaces add no discretisation of their own: the reference composites them at their exact
 // crossing and the ray caster splits its step there, with the layer's depth from the
-// rasteriser in float (measured RMS 0.22-0.30, max 1.27 in all five cases). With two rays per
+// rasteriser in float (measured RMS 0.22-0.30, max 1.27 in all five cases). A reduced volume's
+// layer and a surface at nearly the same depth (the average's and the additive's layer lie on
+// the box's face, which the planes cross; a MIP extreme near a plane) may be composited in the
+// other order than the reference's, a pixel along that line off by up to 102 (opaque grey
+// over or under the plane): at most 16 pixels (0.1 %) may be off by more than 2, measured
+// 8 / 0 / 10 / 10 / 0 (MIP, MinIP, average, additive, isosurface); the rest RMS 0.21-0.29,
+// max 1.35. Before the fix that orders the two kinds where a fragment has only layers, the
+// average and the additive cases were RMS 21.5 off: all of their layers went in before the
+// surfaces in front of them. With two rays per
 // pixel the layers are still peeled once per pixel, at its centre, so pixels whose sub-pixel
 // rays cross different surfaces (146 edge pixels of 16384 here, off by up to 34) are left out
 // of that case's comparison: surfaces are not anti-aliased. The test can fail:
@@ -24,6 +35,7 @@
 #include "StrataVolumeScenes.h"
 
 #include "vtkActor.h"
+#include "vtkContourValues.h"
 #include "vtkImageData.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
@@ -33,8 +45,10 @@
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkVolume.h"
+#include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -92,17 +106,27 @@ Images Render(VolumeScene& s, const std::vector<Plane*>& planes, const std::stri
 
 /// Asserts the rendering within RMS 0.4 and max `maxBound`, and that the wrong models asked for
 /// are off by more than 2 RMS (for a plane in front of every volume, "over the volumes" is the
-/// right model).
-void CheckCase(const Images& r, const std::string& name, bool checkOver, double maxBound = 2.0)
+/// right model). Up to `outliers` pixels off by more than `maxBound` are counted and left out
+/// of the RMS (a reduced volume's layer and a surface at nearly the same depth).
+void CheckCase(const Images& r,
+  const std::string& name,
+  bool checkOver,
+  double maxBound = 2.0,
+  long outliers = 0)
 {
   // Edge pixels (only with several rays per pixel) left out of the comparison with the reference.
   std::vector<unsigned char> gpu;
   std::vector<double> expected;
-  long edges = 0;
+  long edges = 0, off = 0;
   for (size_t i = 0; i < r.Edges.size(); ++i)
   {
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(r.Gpu[3 * i + c] - r.Expected[3 * i + c]));
+    const bool outlier = !r.Edges[i] && worst > maxBound;
     edges += r.Edges[i];
-    for (int c = 0; c < 3 && !r.Edges[i]; ++c)
+    off += outlier;
+    for (int c = 0; c < 3 && !r.Edges[i] && !outlier; ++c)
     {
       gpu.push_back(r.Gpu[3 * i + c]);
       expected.push_back(r.Expected[3 * i + c]);
@@ -112,10 +136,12 @@ void CheckCase(const Images& r, const std::string& name, bool checkOver, double 
   const ChannelError none = ImageError(r.Gpu, r.NoSurfaces);
   const ChannelError over = ImageError(r.Gpu, r.SurfacesOver);
   std::cout << name << ": RMS " << e.Rms << ", max " << e.Max << " of 255 (" << edges
-            << " edge pixels left out); without surfaces RMS " << none.Rms
-            << "; surfaces over the volumes RMS " << over.Rms << "\n";
-  Check(e.Rms <= 0.4 && e.Max <= maxBound,
-    name + ": within RMS 0.4 / max " + std::to_string(maxBound) + " of the reference");
+            << " edge pixels left out, " << off << " pixels off by more than " << maxBound
+            << "); without surfaces RMS " << none.Rms << "; surfaces over the volumes RMS "
+            << over.Rms << "\n";
+  Check(e.Rms <= 0.4 && e.Max <= maxBound && off <= outliers,
+    name + ": within RMS 0.4 / max " + std::to_string(maxBound) + " of the reference (at most " +
+      std::to_string(outliers) + " pixels more)");
   Check(none.Rms > 2.0, name + ": differs from the volumes without the surfaces by > 2 RMS");
   if (checkOver)
     Check(over.Rms > 2.0, name + ": differs from the surfaces blended over the volumes by > 2 RMS");
@@ -144,6 +170,26 @@ int TestMultiVolumeTranslucentGeometry(int argc, char* argv[])
   const std::string source = s.Mapper->GetFragmentShaderSource(2);
   Check(source.find("strataSurfacesBefore") != std::string::npos,
     "with translucent actors the two-volume fragment composites surface layers");
+
+  // The other blend modes under the same planes: volume 0 reduced (its result one layer at its
+  // own depth) or an isosurface, volume 1 composite; the surfaces are composited in ray order
+  // with that layer and the media of volume 1.
+  const std::pair<int, const char*> modes[] = {
+    { vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, "Maximum" },
+    { vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "Minimum" },
+    { vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "Average" },
+    { vtkVolumeMapper::ADDITIVE_BLEND, "Additive" },
+    { vtkVolumeMapper::ISOSURFACE_BLEND, "Isosurface" },
+  };
+  s.Volumes[0]->GetProperty()->GetIsoSurfaceValues()->SetValue(0, 120.0);
+  for (const auto& [mode, label] : modes)
+  {
+    s.Mapper->SetInputBlendMode(0, mode);
+    const std::string name = std::string("Translucent") + label;
+    const bool reduced = mode != vtkVolumeMapper::ISOSURFACE_BLEND;
+    CheckCase(Render(s, { &vertical, &tilted }, name), name, true, 2.0, reduced ? 16 : 0);
+  }
+  s.Mapper->SetInputBlendMode(0, -1);
 
   // Two rays per pixel with pre-integration: ray 1's progress is the second 3 bits.
   s.Mapper->SetRaysPerPixel(2);
