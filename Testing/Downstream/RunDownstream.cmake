@@ -39,6 +39,13 @@ endforeach ()
 step("configure" "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${WORK}/build" -G Ninja
   -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${WORK}/install")
 step("build" "${CMAKE_COMMAND}" --build "${WORK}/build")
-step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 "${WORK}/build/StrataDownstream"
-  "${WORK}/reek.spp")
+# Under scripts/asan the consumer (built here by the system compiler, not instrumented) loads the
+# instrumented libraries: the sanitizer runtime they need must be loaded before anything else
+# (STRATA_DOWNSTREAM_PRELOAD names it), or static constructors run before it is initialised.
+set(preload)
+if (DEFINED ENV{STRATA_DOWNSTREAM_PRELOAD})
+  set(preload "LD_PRELOAD=$ENV{STRATA_DOWNSTREAM_PRELOAD}")
+endif ()
+step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 ${preload}
+  "${WORK}/build/StrataDownstream" "${WORK}/reek.spp")
 message("${step_output}")
