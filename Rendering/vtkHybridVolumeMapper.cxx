@@ -43,6 +43,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -77,7 +78,7 @@ void BuildPointShaders(const PointKey& key, std::string& vs, std::string& fs)
 
 // Points sorted far to near by depth along the view direction, in S slabs of SubBuckets
 // buckets each (a counting sort): slab s (0 nearest) is order[start[(S - 1 - s) * SubBuckets]
-// .. start[(S - s) * SubBuckets]).
+// .. start[(S - s) * SubBuckets]). Points of depth NaN are left out.
 constexpr int SubBuckets = 64;
 void SortPoints(const std::vector<double>& depth,
   double lo,
@@ -92,6 +93,11 @@ void SortPoints(const std::vector<double>& depth,
   start.assign(buckets + 1, 0);
   for (size_t i = 0; i < count; ++i)
   {
+    if (std::isnan(depth[i]))
+    {
+      bucketOf[i] = static_cast<unsigned int>(buckets); // outside the region: not drawn
+      continue;
+    }
     const int nearToFar =
       std::min(buckets - 1, std::max(0, int((depth[i] - lo) / width * buckets)));
     bucketOf[i] = static_cast<unsigned int>(buckets - 1 - nearToFar);
@@ -99,10 +105,11 @@ void SortPoints(const std::vector<double>& depth,
   }
   for (int k = 0; k < buckets; ++k)
     start[k + 1] += start[k];
-  order.resize(count);
+  order.resize(start[buckets]);
   std::vector<size_t> fill(start.begin(), start.end() - 1);
   for (size_t i = 0; i < count; ++i)
-    order[fill[bucketOf[i]]++] = static_cast<unsigned int>(i);
+    if (bucketOf[i] < static_cast<unsigned int>(buckets))
+      order[fill[bucketOf[i]]++] = static_cast<unsigned int>(i);
 }
 }
 
@@ -252,17 +259,25 @@ void vtkHybridVolumeMapper::vtkInternals::Sort(Self* self,
     frame.Hi = std::max(frame.Hi, d);
   }
   std::vector<double> depth(static_cast<size_t>(this->Count));
+  const double* box = self->HasRegion ? self->Region : nullptr;
   for (vtkIdType i = 0; i < this->Count; ++i)
   {
     // local (relative to the points' origin) -> world by the prop's matrix -> depth.
     const double* local = &this->Positions[3 * size_t(i)];
     double d = 0.0;
+    bool outside = false;
     for (int r = 0; r < 3; ++r)
     {
       double w = m[4 * r + 3];
       for (int c = 0; c < 3; ++c)
         w += m[4 * r + c] * (local[c] + this->Origin[c]);
       d += (w - eye[r]) * dir[r];
+      outside = outside || (box && (w < box[2 * r] || w > box[2 * r + 1]));
+    }
+    if (outside)
+    {
+      depth[i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
     }
     depth[i] = d;
     frame.Lo = std::min(frame.Lo, d);
@@ -483,6 +498,32 @@ void vtkHybridVolumeMapper::SetPointsInputData(vtkPolyData* points)
 void vtkHybridVolumeMapper::SetPointsInputConnection(vtkAlgorithmOutput* output)
 {
   this->SetInputConnection(1, output);
+}
+
+void vtkHybridVolumeMapper::SetRegion(const double bounds[6])
+{
+  if (this->HasRegion && std::equal(bounds, bounds + 6, this->Region))
+    return;
+  std::copy(bounds, bounds + 6, this->Region);
+  this->HasRegion = true;
+  this->Internals->Volume->SetRegion(bounds);
+  this->Modified();
+}
+
+void vtkHybridVolumeMapper::RemoveRegion()
+{
+  if (!this->HasRegion)
+    return;
+  this->HasRegion = false;
+  this->Internals->Volume->RemoveRegion();
+  this->Modified();
+}
+
+bool vtkHybridVolumeMapper::GetRegion(double bounds[6]) const
+{
+  if (this->HasRegion)
+    std::copy(this->Region, this->Region + 6, bounds);
+  return this->HasRegion;
 }
 
 vtkMultiVolumeRayCastMapper* vtkHybridVolumeMapper::GetVolumeMapper()

@@ -80,6 +80,22 @@ public:
   void SetPointsInputData(vtkPolyData* points);
   void SetPointsInputConnection(vtkAlgorithmOutput* output);
 
+  ///@{
+  /**
+   * Draw only what lies in the world box `bounds` (xmin, xmax, ymin, ymax, zmin, zmax), for
+   * sort-last parallel rendering as vtkMultiVolumeRayCastMapper::SetRegion describes: the volume
+   * is clipped to the box by its ray caster (bricks outside it never paged), and the points
+   * whose centres lie outside it are not drawn, so that the boxes of a partition together draw
+   * every point once. A point's footprint is drawn whole by the box of its centre, at its depth:
+   * next to a face that the view sees obliquely, it is blended over the other box's volume
+   * where that lies in front of the point within its footprint.
+   */
+  void SetRegion(const double bounds[6]);
+  void RemoveRegion();
+  /// False when no region is set.
+  bool GetRegion(double bounds[6]) const;
+  ///@}
+
   /// The ray caster of the low-resolution volume, for its settings (sample distance, ...).
   vtkMultiVolumeRayCastMapper* GetVolumeMapper();
 
@@ -114,6 +130,8 @@ protected:
   PointShapes PointShape = PointShapes::Squares;
   int NumberOfSlabs = 8;
   double PointSpacing = 0.0;
+  bool HasRegion = false;
+  double Region[6] = { 0, 0, 0, 0, 0, 0 };
 
 private:
   vtkHybridVolumeMapper(const vtkHybridVolumeMapper&) = delete;

@@ -4,12 +4,14 @@
 pvbatch under mpirun -np N, each rank drawing its box of the scene (sort-last, IceT).
 
     mpirun -np N pvbatch BenchDistributed.py --plugin Strata.so --data <pools> --csv <file>
-        [--cache MB] [--atlas MB] [--split] [--png <file>]
+        [--cache MB] [--atlas MB] [--split] [--still] [--png <file>]
 
 The same fly-through as BenchPaging flythrough (48 moving frames, then still until every
 rank's cut has settled, at most 100 more), 256 x 256, sample distance 2, feedback at 1/4, the same
 transfer function. Budgets are per rank: --split divides the given page cache and atlas by N
-(the 1-rank memory spread over the ranks), otherwise every rank has them whole. Each rank
+(the 1-rank memory spread over the ranks), otherwise every rank has them whole. --still: no
+fly-through, the last pose from the first frame until every rank has settled (one view's I/O,
+without the refinement and eviction a moving camera adds). Each rank
 writes its own figures through the representation's StatisticsFile; rank 0 then appends one
 row to --csv: frame ms (rank 0's wall clock around Render, compositing included: median and
 p99), the slowest rank's ray cast per frame (its mapper, GPU finished), compositing (frame minus
@@ -69,6 +71,8 @@ def main():
     parser.add_argument("--cache", type=float, default=256.0)
     parser.add_argument("--atlas", type=float, default=128.0)
     parser.add_argument("--split", action="store_true")
+    parser.add_argument("--still", action="store_true",
+                        help="no fly-through: the last pose from the first frame until settled")
     parser.add_argument("--png")
     args = parser.parse_args()
     LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -85,7 +89,8 @@ def main():
     view.CameraViewAngle = 35
     view.CameraViewUp = [0, 0, 1]
     paraview.simple._DisableFirstRenderCameraReset()
-    stats = args.csv + ".ranks%d%s" % (ranks, "-split" if args.split else "")
+    stats = args.csv + ".ranks%d%s%s" % (ranks, "-split" if args.split else "",
+                                          "-still" if args.still else "")
     for rank in range(ranks):
         if os.path.exists("%s.%d" % (stats, rank)):
             os.remove("%s.%d" % (stats, rank))
@@ -117,11 +122,11 @@ def main():
     first.StrataVolumeLevelOfDetailFeedback = 1
     first.StrataVolumeStatisticsFile = stats
 
-    moving = 48
+    moving = 1 if args.still else 48
     frame_ms = []
     converged = -1
     for f in range(moving + 100):
-        pose(view, min(1.0, f / float(moving - 1)))
+        pose(view, 1.0 if args.still else min(1.0, f / float(moving - 1)))
         t0 = time.perf_counter()
         Render(view)
         frame_ms.append(1000.0 * (time.perf_counter() - t0))
@@ -149,19 +154,21 @@ def main():
     header = ("ranks,budgets,cache_mb_per_rank,atlas_mb_per_rank,frames,frames_to_converge,"
               "ms_per_frame_median,ms_per_frame_p99,raycast_ms_slowest_rank_median,"
               "compositing_ms_median,peak_rss_mb_per_rank,rss_growth_mb_per_rank,"
-              "mb_paged_per_rank,peak_rss_mb_max,rss_growth_mb_max,mb_paged_max,mb_paged_total\n")
+              "mb_paged_per_rank,peak_rss_mb_max,rss_growth_mb_max,mb_paged_max,mb_paged_total,"
+              "camera\n")
+    camera = "still" if args.still else "flythrough"
     new = not os.path.exists(args.csv)
     with open(args.csv, "a") as out:
         if new:
             out.write(header)
-        out.write("%d,%s,%g,%g,%d,%d,%.1f,%.1f,%.1f,%.1f,%s,%s,%s,%.0f,%.0f,%.1f,%.1f\n" % (
+        out.write("%d,%s,%g,%g,%d,%d,%.1f,%.1f,%.1f,%.1f,%s,%s,%s,%.0f,%.0f,%.1f,%.1f,%s\n" % (
             ranks, "split" if args.split else "per-rank", cache, atlas, frames, converged,
             percentile(frame_ms, 0.5), percentile(frame_ms, 0.99), percentile(cast, 0.5),
             percentile(composite, 0.5), ";".join("%.0f" % v for v in rss),
             ";".join("%.0f" % v for v in growth), ";".join("%.1f" % v for v in paged),
-            max(rss), max(growth), max(paged), sum(paged)))
-    print("%d ranks (%s budgets): %d frames, median %.0f ms, compositing %.0f ms, MB paged %s, "
-          "peak RSS %s" % (ranks, "split" if args.split else "per-rank", frames,
+            max(rss), max(growth), max(paged), sum(paged), camera))
+    print("%d ranks (%s budgets, %s): %d frames, median %.0f ms, compositing %.0f ms, MB paged %s, "
+          "peak RSS %s" % (ranks, "split" if args.split else "per-rank", camera, frames,
                            percentile(frame_ms, 0.5), percentile(composite, 0.5),
                            ["%.1f" % v for v in paged], ["%.0f" % v for v in rss]))
 

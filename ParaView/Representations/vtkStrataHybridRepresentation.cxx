@@ -8,6 +8,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
@@ -43,6 +44,20 @@ int vtkStrataHybridRepresentation::FillInputPortInformation(int, vtkInformation*
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStrataHybridRepresentation::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // All of it on every process: each draws its box of the view's scene.
+  vtkStrataParaViewUtilities::RequestWholeData(inputVector[0]);
   return 1;
 }
 
@@ -106,6 +121,14 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   {
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
+    // A box of the view's scene per process (ordered compositing), in the frame of the prop.
+    vtkNew<vtkMatrix4x4> matrix;
+    this->Actor->GetMatrix(matrix);
+    double world[6];
+    vtkMath::UninitializeBounds(world);
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
+    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -114,6 +137,12 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   else if (request == vtkPVView::REQUEST_RENDER())
   {
     vtkStrataParaViewUtilities::CopyTransform(this->Actor, this->Member);
+    // In parallel: this process's box of the scene (the points and volume inside it).
+    double box[6];
+    if (vtkStrataParaViewUtilities::GetProcessBox(this->GetView(), box))
+      this->Mapper->SetRegion(box);
+    else
+      this->Mapper->RemoveRegion();
   }
   return 1;
 }
@@ -128,6 +157,7 @@ bool vtkStrataHybridRepresentation::AddToView(vtkView* view)
 //------------------------------------------------------------------------------
 bool vtkStrataHybridRepresentation::RemoveFromView(vtkView* view)
 {
+  vtkStrataParaViewUtilities::ForgetSceneBounds(this);
   return vtkStrataParaViewUtilities::RemoveProp(view, this->Member) &&
          this->Superclass::RemoveFromView(view);
 }
@@ -137,6 +167,8 @@ void vtkStrataHybridRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
   this->Member->SetVisibility(visible);
+  if (!visible)
+    vtkStrataParaViewUtilities::ForgetSceneBounds(this);
 }
 
 void vtkStrataHybridRepresentation::SetPointShape(int shape)

@@ -7,7 +7,9 @@
  * The first image block is the low-resolution volume, the first polydata block its points
  * (vtkStrataHybridVolumeSource's layout). The volume property is ParaView's colour map and
  * opacity of the volume's array (as for its own volume representation); the mapper's point shape,
- * slabs and sample distance are properties.
+ * slabs and sample distance are properties. In parallel every process reads the whole data set
+ * and draws the box of the view's scene that vtkStrataParaViewUtilities gives it
+ * (vtkHybridVolumeMapper::SetRegion: the volume clipped to it, the points inside it).
  */
 #ifndef vtkStrataHybridRepresentation_h
 #define vtkStrataHybridRepresentation_h
@@ -50,6 +52,9 @@ protected:
   ~vtkStrataHybridRepresentation() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

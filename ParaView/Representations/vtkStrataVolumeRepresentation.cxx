@@ -119,7 +119,9 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
       member->Member->SetMapper(nullptr);
     for (int port = 0; port < n; ++port)
     {
-      if (this->Multi->GetVolume(port) != shown[port]->Member.GetPointer())
+      // (GetVolume reports an error for a port not set yet.)
+      if (port >= this->MultiPorts ||
+          this->Multi->GetVolume(port) != shown[port]->Member.GetPointer())
         this->Multi->SetVolume(shown[port]->Member, port);
     }
     for (int port = n; port < this->MultiPorts; ++port)
@@ -408,7 +410,13 @@ void vtkStrataVolumeRepresentation::WriteStatistics()
   const auto st = mapper->GetPagingStatistics();
   out << rank << "," << st.RenderMilliseconds << "," << st.BytesRead / 1048576.0 << ","
       << usage.ru_maxrss / 1024.0 << "," << mapper->GetNumberOfResidentBricks() << ","
-      << (st.Converged ? 1 : 0) << "\n";
+      << (st.Converged ? 1 : 0);
+  double box[6];
+  const bool parallel = vtkStrataParaViewUtilities::GetProcessBox(this->GetView(), box);
+  out.precision(17);
+  for (int i = 0; i < 6; ++i)
+    out << "," << (parallel ? box[i] : vtkMath::Nan());
+  out << "\n";
 }
 
 //------------------------------------------------------------------------------

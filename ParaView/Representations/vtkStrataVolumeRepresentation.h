@@ -119,7 +119,8 @@ public:
    * Benchmarks (default empty: off): when set on the view's first visible Strata Volume, every
    * process appends to `<StatisticsFile>.<rank>` one CSV line per render, before it, about the
    * render before: rank, ray-cast milliseconds (the mapper's MeasureRenderTime: GPU finished),
-   * MB paged from the pools so far, peak RSS in MB, resident bricks, settled (0/1). In
+   * MB paged from the pools so far, peak RSS in MB, resident bricks, settled (0/1), and the box
+   * the process draws (xmin, xmax, ymin, ymax, zmin, zmax: GetProcessBox; nan in one process). In
    * parallel that is the only way to see every rank's figures (ParaView's information
    * properties come from rank 0).
    */

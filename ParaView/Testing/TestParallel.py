@@ -199,6 +199,38 @@ def paged_megabytes(work, ranks, label):
     return paged
 
 
+def process_boxes(work, ranks, label):
+    """Each rank's box at its last render (the last six fields of its statistics)."""
+    boxes = []
+    for rank in range(ranks):
+        with open(os.path.join(work, "stats_%d%s.%d" % (ranks, label, rank))) as f:
+            boxes.append([float(v) for v in f.read().split()[-1].split(",")[6:12]])
+    return boxes
+
+
+def check_cut(work, n, label):
+    """The ranks' boxes (each rank's own statistics): the cut every rank found alike, a tiling of
+    space (each of 29^3 points, off the faces, in exactly one rank's box), with its inner faces
+    where the bisection puts them (x = 32, and y = 24 with 4 ranks)."""
+    import numpy
+    boxes = process_boxes(work, n, label)
+    print("%d ranks: boxes %s" % (n, boxes))
+    lo = numpy.array([min(b[2 * a] for b in boxes) for a in range(3)])
+    hi = numpy.array([max(b[2 * a + 1] for b in boxes) for a in range(3)])
+    t = (numpy.arange(29) + 0.5 / numpy.pi) / 29.0
+    points = numpy.stack(numpy.meshgrid(*[lo[a] + (hi[a] - lo[a]) * t for a in range(3)],
+                                        indexing="ij"), axis=-1).reshape(-1, 3)
+    holders = numpy.zeros(len(points), dtype=int)
+    for b in boxes:
+        holders += numpy.all((points >= b[0::2]) & (points <= b[1::2]), axis=1)
+    check(numpy.all(holders == 1), "%d ranks: the boxes tile the scene (%d of %d points in "
+          "exactly one)" % (n, int(numpy.count_nonzero(holders == 1)), len(points)))
+    inner = sorted({v for b in boxes for a in range(3) for v in b[2 * a:2 * a + 2]
+                    if lo[a] < v < hi[a]})
+    check(inner == ([32.0] if n == 2 else [24.0, 32.0]), "%d ranks: inner faces at %s"
+          % (n, inner))
+
+
 def load(path):
     from vtkmodules.vtkIOImage import vtkPNGReader
     from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -228,6 +260,7 @@ def compare(args):
         check(max(paged) <= bound * whole and min(paged) > 0.0,
               "each of %d ranks paged only its share (at most %.2f of 1 rank's MB, none idle)"
               % (n, bound))
+        check_cut(args.work, n, args.label)
     for name in VIEWS:
         dims1, one = load(os.path.join(args.work, "parallel_1_%s.png" % name))
         covered = numpy.count_nonzero(one.max(axis=1) > 2)

@@ -13,11 +13,11 @@
 // Measured: identical (max 0); the wrong order 1978 pixels.
 #include "StrataDemoScene.h"
 #include "StrataHeightFieldScenes.h"
+#include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -28,44 +28,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <vector>
-
-namespace
-{
-std::vector<float> RenderRGBA(vtkRenderWindow* win)
-{
-  win->Render();
-  const int* size = win->GetSize();
-  vtkNew<vtkFloatArray> pixels;
-  win->GetRGBAPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
-  const float* data = pixels->GetPointer(0);
-  return std::vector<float>(data, data + size_t(size[0]) * size[1] * 4);
-}
-
-struct Difference
-{
-  double Max = 0.0; ///< of 255
-  long Off = 0;     ///< pixels off by more than 1 of 255
-};
-
-Difference Blend(const std::vector<float>& front,
-  const std::vector<float>& back,
-  const std::vector<float>& whole)
-{
-  Difference d;
-  for (size_t p = 0; p < whole.size(); p += 4)
-  {
-    double worst = 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double over = front[p + c] + (1.0 - front[p + 3]) * back[p + c];
-      worst = std::max(worst, 255.0 * std::abs(over - whole[p + c]));
-    }
-    d.Max = std::max(d.Max, worst);
-    d.Off += worst > 1.01 ? 1 : 0;
-  }
-  return d;
-}
-}
 
 int TestHeightFieldRegion(int, char*[])
 {
@@ -105,8 +67,8 @@ int TestHeightFieldRegion(int, char*[])
             << coveredEast << "; the " << (westInFront ? "west" : "east") << " box is in front\n";
   Check(coveredWest > 1000 && coveredEast > 1000 && coveredWest < covered && coveredEast < covered,
     "both boxes draw part of the stack");
-  const Difference right = westInFront ? Blend(w, e, whole) : Blend(e, w, whole);
-  const Difference wrong = westInFront ? Blend(e, w, whole) : Blend(w, e, whole);
+  const OverDifference right = westInFront ? CompareOver(w, e, whole) : CompareOver(e, w, whole);
+  const OverDifference wrong = westInFront ? CompareOver(e, w, whole) : CompareOver(w, e, whole);
   std::cout << "in order: max " << right.Max << " of 255, " << right.Off
             << " pixels off by more than 1; wrong order: " << wrong.Off << " pixels\n";
   Check(right.Max <= 2.0 && right.Off <= covered / 200,

@@ -9,12 +9,12 @@
 // crosses the face, split there in two (as one rendering splits steps at every BSP face; at a
 // sample distance of 1/4 voxel far less). Measured: 1.56. Blended in the wrong order the two
 // boxes are off by far more (asserted above 10 of 255: 39), so the bound can fail.
+#include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkRenderWindow.h"
@@ -28,31 +28,6 @@
 
 namespace
 {
-std::vector<float> RenderRGBA(strata_test::VolumeScene& s)
-{
-  s.Win->Render();
-  const int* size = s.Win->GetSize();
-  vtkNew<vtkFloatArray> pixels;
-  s.Win->GetRGBAPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
-  const float* data = pixels->GetPointer(0);
-  return std::vector<float>(data, data + size_t(size[0]) * size[1] * 4);
-}
-
-// The largest channel difference (of 255) between `whole` and `front` over `back`.
-double Blended(const std::vector<float>& front,
-  const std::vector<float>& back,
-  const std::vector<float>& whole)
-{
-  double worst = 0.0;
-  for (size_t p = 0; p < whole.size(); p += 4)
-    for (int c = 0; c < 3; ++c)
-    {
-      const double over = front[p + c] + (1.0 - front[p + 3]) * back[p + c];
-      worst = std::max(worst, 255.0 * std::abs(over - whole[p + c]));
-    }
-  return worst;
-}
-
 long Covered(const std::vector<float>& rgba)
 {
   long n = 0;
@@ -75,22 +50,23 @@ int TestMultiVolumeRegion(int argc, char* argv[])
   s.UseMultiVolume();
   const double pos[3] = { -30, -70, 60 }, foc[3] = { 29, 15, 15 };
   s.Camera(pos, foc); // the eye at x < 20: the box x <= 20 is in front
-  const std::vector<float> whole = RenderRGBA(s);
+  const std::vector<float> whole = RenderRGBA(s.Win);
   const double near[6] = { -1e3, 20.0, -1e3, 1e3, -1e3, 1e3 };
   const double far[6] = { 20.0, 1e3, -1e3, 1e3, -1e3, 1e3 };
   s.Mapper->SetRegion(near);
-  const std::vector<float> front = RenderRGBA(s);
+  const std::vector<float> front = RenderRGBA(s.Win);
   const int frontFragments = s.Mapper->GetNumberOfFragments();
   s.Mapper->SetRegion(far);
-  const std::vector<float> back = RenderRGBA(s);
+  const std::vector<float> back = RenderRGBA(s.Win);
   s.Mapper->RemoveRegion();
-  const int allFragments = (RenderRGBA(s), s.Mapper->GetNumberOfFragments());
+  const int allFragments = (RenderRGBA(s.Win), s.Mapper->GetNumberOfFragments());
 
   const long cw = Covered(whole), cf = Covered(front), cb = Covered(back);
   std::cout << "covered pixels: whole " << cw << ", front box " << cf << ", back box " << cb
             << "; fragments drawn: " << frontFragments << " of " << allFragments << "\n";
   Check(cf > 1000 && cb > 1000 && cf < cw && cb < cw, "both boxes draw part of the scene");
-  const double error = Blended(front, back, whole), wrong = Blended(back, front, whole);
+  const double error = CompareOver(front, back, whole).Max,
+               wrong = CompareOver(back, front, whole).Max;
   std::cout << "front over back vs whole: max " << error << " of 255; back over front: max "
             << wrong << "\n";
   Check(error <= 2.5, "the two boxes blended in order equal the whole scene (2.5 of 255)");

@@ -1,12 +1,14 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataImageHelpers.h"
 
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkRenderWindow.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace strata_test
 {
@@ -18,6 +20,35 @@ std::vector<unsigned char> ReadRGB(vtkRenderWindow* win)
   std::copy(data, data + rgb.size(), rgb.begin());
   delete[] data;
   return rgb;
+}
+
+std::vector<float> RenderRGBA(vtkRenderWindow* win)
+{
+  win->Render();
+  const int* size = win->GetSize();
+  vtkNew<vtkFloatArray> pixels;
+  win->GetRGBAPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
+  const float* data = pixels->GetPointer(0);
+  return std::vector<float>(data, data + size_t(size[0]) * size[1] * 4);
+}
+
+OverDifference CompareOver(const std::vector<float>& front,
+  const std::vector<float>& back,
+  const std::vector<float>& whole)
+{
+  OverDifference d;
+  for (size_t p = 0; p < whole.size(); p += 4)
+  {
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double over = front[p + c] + (1.0 - front[p + 3]) * back[p + c];
+      worst = std::max(worst, 255.0 * std::abs(over - whole[p + c]));
+    }
+    d.Max = std::max(d.Max, worst);
+    d.Off += worst > 1.01 ? 1 : 0;
+  }
+  return d;
 }
 
 std::vector<float> ReadDepth(vtkRenderWindow* win)

@@ -16,6 +16,21 @@ namespace strata_test
 std::vector<unsigned char> ReadRGB(vtkRenderWindow* win);
 /// Window-space depth in [0,1] of the last rendered frame, bottom row first.
 std::vector<float> ReadDepth(vtkRenderWindow* win);
+/// Renders `win` and reads its RGBA back as floats in [0,1], bottom row first (premultiplied
+/// over transparent black where the window has alpha planes and a background alpha of 0).
+std::vector<float> RenderRGBA(vtkRenderWindow* win);
+
+/// How far `front` blended over `back` (premultiplied RGBA, C = Cf + (1 - Af) Cb) is from
+/// `whole`: the largest channel difference of any pixel, of 255, and the pixels off by more
+/// than 1 of 255. Sort-last parallel rendering's check: two boxes' images against one.
+struct OverDifference
+{
+  double Max = 0.0;
+  long Off = 0;
+};
+OverDifference CompareOver(const std::vector<float>& front,
+  const std::vector<float>& back,
+  const std::vector<float>& whole);
 
 /// Ids drawn as flat colours id+1 packed in 24-bit RGB (0 = background). See
 /// vtkStackedHeightFieldMapper's HorizonId output.
