@@ -272,7 +272,8 @@ void vtkHybridVolumeMapper::vtkInternals::Sort(Self* self,
       for (int c = 0; c < 3; ++c)
         w += m[4 * r + c] * (local[c] + this->Origin[c]);
       d += (w - eye[r]) * dir[r];
-      outside = outside || (box && (w < box[2 * r] || w > box[2 * r + 1]));
+      // (Half open, lo <= w < hi: boxes sharing a face draw a point on it once.)
+      outside = outside || (box && (w < box[2 * r] || w >= box[2 * r + 1]));
     }
     if (outside)
     {
