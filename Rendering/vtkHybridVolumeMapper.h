@@ -86,9 +86,9 @@ public:
    * sort-last parallel rendering as vtkMultiVolumeRayCastMapper::SetRegion describes: the volume
    * is clipped to the box by its ray caster (bricks outside it never paged), and only the points
    * whose centres lie in it (min <= x < max per axis) are drawn, so that the boxes of a partition
-   * together draw every point once. A point's footprint is drawn whole by the box of its centre, at its depth:
-   * next to a face that the view sees obliquely, it is blended over the other box's volume
-   * where that lies in front of the point within its footprint.
+   * together draw every point once. A point's footprint is drawn whole by the box of its centre, at
+   * its depth: next to a face that the view sees obliquely, it is blended over the other box's
+   * volume where that lies in front of the point within its footprint.
    */
   void SetRegion(const double bounds[6]);
   void RemoveRegion();
