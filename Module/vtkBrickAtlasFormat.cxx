@@ -19,30 +19,37 @@ double StoredOffset(ScalarType atlas, ScalarType volume)
   return atlas == ScalarType::UInt16 && volume == ScalarType::Int16 ? 32768.0 : 0.0;
 }
 
+// The factor they get (8-bit in uint16: 257, 255 to 65535; exact in float).
+double StoredScale(ScalarType atlas, ScalarType volume)
+{
+  return atlas == ScalarType::UInt16 && volume == ScalarType::UInt8 ? 257.0 : 1.0;
+}
+
 template<typename T>
-void EncodeAs(const float* values, size_t n, double offset, T* out)
+void EncodeAs(const float* values, size_t n, double scale, double offset, T* out)
 {
   const float lo = 0.0f, hi = static_cast<float>(std::numeric_limits<T>::max());
+  const float s = static_cast<float>(scale);
   const float o = static_cast<float>(offset);
   for (size_t i = 0; i < n; ++i)
   {
-    const float v = values[i] + o;
+    const float v = values[i] * s + o;
     // NaN (which integer data never has) stores as 0.
     out[i] = static_cast<T>(v >= lo ? std::floor(std::min(v, hi) + 0.5f) : 0.0f);
   }
 }
 }
 
-ScalarType vtkBrickAtlasFormat::Choose(const std::vector<ScalarType>& types, bool native)
+ScalarType vtkBrickAtlasFormat::Choose(const std::vector<ScalarType>& types, Storage storage)
 {
-  if (!native || types.empty())
+  if (storage == Storage::Float32 || types.empty())
     return ScalarType::Float32;
   ScalarType widest = ScalarType::UInt8;
   for (ScalarType t : types)
   {
     if (t == ScalarType::Float32)
       return ScalarType::Float32;
-    if (t != ScalarType::UInt8)
+    if (t != ScalarType::UInt8 || storage == Storage::Normalized16)
       widest = ScalarType::UInt16;
   }
   return widest;
@@ -81,6 +88,7 @@ void vtkBrickAtlasFormat::GetDecode(ScalarType atlas,
     default:
       scale = 1.0;
   }
+  scale /= StoredScale(atlas, volume);
   offset = -StoredOffset(atlas, volume);
 }
 
@@ -93,11 +101,15 @@ void vtkBrickAtlasFormat::Encode(const float* values,
   switch (atlas)
   {
     case ScalarType::UInt8:
-      EncodeAs(values, n, 0.0, static_cast<uint8_t*>(out));
+      EncodeAs(values, n, 1.0, 0.0, static_cast<uint8_t*>(out));
       return;
     case ScalarType::UInt16:
     case ScalarType::Int16:
-      EncodeAs(values, n, StoredOffset(ScalarType::UInt16, volume), static_cast<uint16_t*>(out));
+      EncodeAs(values,
+        n,
+        StoredScale(ScalarType::UInt16, volume),
+        StoredOffset(ScalarType::UInt16, volume),
+        static_cast<uint16_t*>(out));
       return;
     case ScalarType::Float32:
       std::memcpy(out, values, n * sizeof(float));

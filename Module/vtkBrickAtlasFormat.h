@@ -6,11 +6,14 @@
  *
  * The lean atlas of issue 16: a brick costs B^3 texels of the atlas's type, not always B^3
  * floats, so one budget holds 4x (8-bit) or 2x (16-bit) the bricks. All volumes of a frame
- * share one atlas, so its texel type is the widest any of them needs (Choose):
- * - UInt8 (GL R8, normalised): only when every volume is 8-bit unsigned;
- * - UInt16 (GL R16, normalised): every volume 8- or 16-bit; int16 values are stored offset by
- *   32768, 8-bit ones as they are;
- * - Float32 (GL R32F): any float volume (or with native storage off), values as they are.
+ * share one atlas, so its texel type is the widest any of them needs and the storage allows
+ * (Choose):
+ * - UInt8 (GL R8, normalised): Native storage, every volume 8-bit unsigned;
+ * - UInt16 (GL R16, normalised): every volume 8- or 16-bit (Normalized16, or Native with one
+ *   16-bit volume); int16 values are stored offset by 32768, 8-bit ones times 257 (filling the
+ *   16 bits: R16 filtered the 8-bit blob exactly here without it too, the factor is margin for
+ *   filtering of 16-bit precision);
+ * - Float32 (GL R32F): any float volume, or Float32 storage; values as they are.
  * The shader reads t in [0, 1] from a normalised texture and decodes value = t Scale + Offset
  * (GetDecode). Filtering is linear, so the decode commutes with the trilinear interpolation and
  * level 0 stays exact. Coarser levels of in-core volumes are float averages; their texels are
@@ -35,11 +38,19 @@ class STRATACORE_EXPORT vtkBrickAtlasFormat
 public:
   using ScalarType = vtkVolumeBrickTree::ScalarType;
 
+  /// How 8- and 16-bit volumes are stored (float volumes always as Float32).
+  enum class Storage
+  {
+    Float32,      ///< as float, 4 bytes a voxel
+    Normalized16, ///< R16, 2 bytes a voxel (8-bit data too)
+    Native        ///< R8 when every volume is 8-bit, else R16
+  };
+
   /**
-   * The texel type of an atlas holding volumes of `types`: UInt8, UInt16 or Float32 (never
-   * Int16, stored as offset UInt16). `native` false: Float32 whatever the types.
+   * The texel type of an atlas holding volumes of `types` under `storage`: UInt8, UInt16 or
+   * Float32 (never Int16, stored as offset UInt16).
    */
-  static ScalarType Choose(const std::vector<ScalarType>& types, bool native);
+  static ScalarType Choose(const std::vector<ScalarType>& types, Storage storage);
   /// Bytes per texel of an atlas type.
   static int GetTexelSize(ScalarType atlas) { return vtkVolumeBrickTree::GetScalarSize(atlas); }
   /// The type a VTK scalar type (VTK_UNSIGNED_CHAR, ...) is stored as: 8-bit unsigned

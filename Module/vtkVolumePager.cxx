@@ -441,7 +441,7 @@ bool vtkVolumePager::SetVolumes(const std::vector<Volume>& volumes,
       v.Tree = tree;
     types.push_back(v.Tree->GetScalarType());
   }
-  const auto atlasType = vtkBrickAtlasFormat::Choose(types, this->NativeAtlas);
+  const auto atlasType = vtkBrickAtlasFormat::Choose(types, this->AtlasStorage);
   bool same = this->CutValid && resolved.size() == in.Volumes.size() && brickSize == in.BrickSize &&
               budgetMiB == in.Budget && atlasType == in.AtlasType;
   for (size_t v = 0; same && v < resolved.size(); ++v)

@@ -42,6 +42,7 @@
 #define vtkVolumePager_h
 
 #include "StrataCoreModule.h"     // For export macro
+#include "vtkBrickAtlasFormat.h"  // For vtkBrickAtlasFormat::Storage
 #include "vtkFeedbackReduction.h" // For vtkFeedbackReduction::Entry
 #include "vtkPagedPools.h"        // For vtkPagedPools::Statistics
 #include "vtkVolumeBrickTree.h"   // For vtkVolumeBrickTree::ScalarType
@@ -175,12 +176,11 @@ public:
     std::string& error);
   ///@{
   /**
-   * Native storage (default off): the atlas holds bricks in the volumes' own type
-   * (vtkBrickAtlasFormat::Choose: R8 for 8-bit scenes, R16 for 16-bit ones); off: float.
-   * Takes effect at the next SetVolumes (which then rebuilds).
+   * How the atlas stores 8- and 16-bit volumes (vtkBrickAtlasFormat::Choose; default
+   * Float32). Takes effect at the next SetVolumes (which then rebuilds).
    */
-  void SetNativeAtlas(bool native) { this->NativeAtlas = native; }
-  bool GetNativeAtlas() const { return this->NativeAtlas; }
+  void SetAtlasStorage(vtkBrickAtlasFormat::Storage storage) { this->AtlasStorage = storage; }
+  vtkBrickAtlasFormat::Storage GetAtlasStorage() const { return this->AtlasStorage; }
   ///@}
   /// The atlas's texel type, and the values' type of the frame's volume `volume` (its tree's:
   /// the in-core tree's, or the pool's for a paged one).
@@ -252,7 +252,7 @@ private:
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
   bool CutValid = false;
-  bool NativeAtlas = false;
+  vtkBrickAtlasFormat::Storage AtlasStorage = vtkBrickAtlasFormat::Storage::Float32;
 };
 
 #endif

@@ -216,11 +216,12 @@ int vtkMultiVolumeInput::UpdateTree(const int dims[3],
 
 void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window,
   const int dims[3],
-  bool native)
+  vtkBrickAtlasFormat::Storage storage)
 {
   const int nc = this->NumberOfComponents;
-  // One component stores natively like the atlas (R8, R16); several stay float.
-  const auto type = vtkBrickAtlasFormat::Choose({ this->ScalarType }, native && nc == 1);
+  // One component stores like the atlas (R8, R16); several stay float.
+  const auto type = vtkBrickAtlasFormat::Choose(
+    { this->ScalarType }, nc == 1 ? storage : vtkBrickAtlasFormat::Storage::Float32);
   if (this->Data && this->DataType == type)
     return;
   if (this->Data)

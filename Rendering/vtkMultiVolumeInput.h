@@ -23,6 +23,7 @@
 #define vtkMultiVolumeInput_h
 
 #include "StrataRenderingModule.h"        // For export macro
+#include "vtkBrickAtlasFormat.h"          // For vtkBrickAtlasFormat::Storage
 #include "vtkMultiVolumeRayCastMapper.h"  // For Classifications
 #include "vtkMultiVolumeShaderComposer.h" // For Components
 #include "vtkPreIntegrationTable.h"       // For vtkPreIntegrationTable
@@ -121,10 +122,12 @@ public:
   /// The in-core tree, null if none (paged volumes use vtkVolumePager's).
   const vtkVolumeBrickTree* GetTree() const { return this->Tree.get(); }
 
-  /// The whole volume as one 3-D texture (no atlas): `native`, R8 or R16 for 8- and 16-bit
-  /// scalars (vtkBrickAtlasFormat), else R32F or a float channel per component; made once per
-  /// scalars and storage.
-  void UpdatePlainTexture(vtkOpenGLRenderWindow* window, const int dims[3], bool native);
+  /// The whole volume as one 3-D texture (no atlas): R8 or R16 for 8- and 16-bit scalars as
+  /// `storage` says (vtkBrickAtlasFormat::Choose), else R32F or a float channel per component;
+  /// made once per scalars and storage.
+  void UpdatePlainTexture(vtkOpenGLRenderWindow* window,
+    const int dims[3],
+    vtkBrickAtlasFormat::Storage storage);
   /// The type the one-component scalars are stored as natively (vtkBrickAtlasFormat).
   vtkVolumeBrickTree::ScalarType GetScalarType() const { return this->ScalarType; }
   /// The plain texture's texel type (Float32 until UpdatePlainTexture).

@@ -61,6 +61,20 @@ namespace
 constexpr int MaxPlanes = 64;
 constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
 
+// The mapper's ScalarStorage in the atlas format's terms.
+vtkBrickAtlasFormat::Storage AtlasStorage(vtkMultiVolumeRayCastMapper::ScalarStorages storage)
+{
+  switch (storage)
+  {
+    case vtkMultiVolumeRayCastMapper::ScalarStorages::Normalized16:
+      return vtkBrickAtlasFormat::Storage::Normalized16;
+    case vtkMultiVolumeRayCastMapper::ScalarStorages::Native:
+      return vtkBrickAtlasFormat::Storage::Native;
+    default:
+      return vtkBrickAtlasFormat::Storage::Float32;
+  }
+}
+
 bool IsReduced(int mode)
 {
   return mode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
@@ -302,7 +316,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (e.Pool.empty() && frame.Atlas)
     {
       std::string error;
-      const int built = input.UpdateTree(e.Dims, frame.BrickSize, self->NativeScalarStorage, error);
+      const int built = input.UpdateTree(
+        e.Dims, frame.BrickSize, self->ScalarStorage != Self::ScalarStorages::Float32, error);
       if (built < 0)
       {
         vtkErrorWithObjectMacro(
@@ -313,7 +328,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
         this->Pager.InvalidateCut(); // the cut must be rebuilt with this tree
     }
     if (!frame.Atlas)
-      input.UpdatePlainTexture(renWin, e.Dims, self->NativeScalarStorage);
+      input.UpdatePlainTexture(renWin, e.Dims, AtlasStorage(self->ScalarStorage));
     input.UpdateTransfer(renWin, e.Property);
     input.UpdateComponentTables(renWin, e.Property, e.ComponentMode);
     std::vector<double> iso;
@@ -438,7 +453,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   }
   bool rebuilt = false;
   std::string error;
-  this->Pager.SetNativeAtlas(self->NativeScalarStorage);
+  this->Pager.SetAtlasStorage(AtlasStorage(self->ScalarStorage));
   if (!this->Pager.SetVolumes(
         volumes, frame.BrickSize, self->AtlasBudget, this->Max3DTexture, rebuilt, error))
   {
@@ -1248,7 +1263,7 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Classification: " << static_cast<int>(this->Classification) << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "UseBrickAtlas: " << this->UseBrickAtlas << "\n";
-  os << indent << "NativeScalarStorage: " << this->NativeScalarStorage << "\n";
+  os << indent << "ScalarStorage: " << static_cast<int>(this->ScalarStorage) << "\n";
   os << indent << "BrickSize: " << this->BrickSize << "\n";
   os << indent << "AtlasBudget: " << this->AtlasBudget << " MB\n";
   os << indent << "RaysPerPixel: " << this->RaysPerPixel << "\n";

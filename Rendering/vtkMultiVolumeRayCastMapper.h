@@ -107,22 +107,25 @@ public:
 
   ///@{
   /**
-   * Native scalar storage (default off): 8- and 16-bit volumes keep their type on the GPU, in
-   * R8 and R16 textures normalised and decoded in the shader (vtkBrickAtlasFormat), so one
-   * AtlasBudget holds 4x (8-bit) or 2x (16-bit) the bricks of float storage. The shared atlas
-   * takes the widest type any volume of the scene needs (R8 only when all are 8-bit unsigned,
-   * float as soon as one is float); plain textures (UseBrickAtlas off) take each volume's own.
-   * Level 0 is exact either way; coarser levels of in-core volumes are rounded to the type, as
-   * page pools store them. Off: float textures, 4 bytes a voxel. Off by default: the texture
-   * unit seems to filter R8 texels at lower precision than float ones (Mesa llvmpipe here): 8-bit
-   * volumes render up to 2 of 255 away from float storage (the tooth CT of the examples'
-   * volumes scene: 3867 of 57600 pixels differ, 5 by more than 1), and through ParaView's
-   * build its native images differ from the standalone ones by up to 3 where float storage
-   * matches within 1. R16 matched float exactly in TestMultiVolumeLeanAtlas.
+   * How 8- and 16-bit volumes are stored on the GPU (vtkBrickAtlasFormat): Float32, 4 bytes a
+   * voxel; Normalized16 (default), R16 textures normalised and decoded in the shader, 2 bytes a
+   * voxel, so one AtlasBudget holds 2x the bricks of float; Native, R8 as well when every volume
+   * is 8-bit unsigned, 4x. Float volumes stay float. The shared atlas takes the widest type a
+   * scene's volumes need; plain textures (UseBrickAtlas off) take each volume's own. Level 0 is
+   * exact in every storage; coarser levels of in-core volumes are rounded to integers, as page
+   * pools store them. The texture unit filters R8 texels at lower precision than R16 and float ones
+   * (Mesa llvmpipe here): on the tooth CT of the examples' volumes scene R8 renders up to 2 of
+   * 255 from float storage (3867 of 57600 pixels differ, 5 by more than 1), R16 (8-bit values
+   * times 257) 1 on one pixel; hence the default.
    */
-  vtkSetMacro(NativeScalarStorage, bool);
-  vtkGetMacro(NativeScalarStorage, bool);
-  vtkBooleanMacro(NativeScalarStorage, bool);
+  enum class ScalarStorages
+  {
+    Float32,
+    Normalized16,
+    Native
+  };
+  void SetScalarStorage(ScalarStorages storage);
+  ScalarStorages GetScalarStorage() const { return this->ScalarStorage; }
   ///@}
 
   ///@{
@@ -531,7 +534,7 @@ protected:
   int PreIntegrationTableSize = 256;
   int RaysPerPixel = 1;
   bool UseBrickAtlas = true;
-  bool NativeScalarStorage = false;
+  ScalarStorages ScalarStorage = ScalarStorages::Normalized16;
   int BrickSize = 32;
   double AtlasBudget = 256.0;
   bool EmptySpaceSkipping = true;

@@ -33,6 +33,15 @@ void vtkMultiVolumeRayCastMapper::SetCompositeOrder(CompositeOrders order)
   }
 }
 
+void vtkMultiVolumeRayCastMapper::SetScalarStorage(ScalarStorages storage)
+{
+  if (storage != this->ScalarStorage)
+  {
+    this->ScalarStorage = storage;
+    this->Modified();
+  }
+}
+
 int vtkMultiVolumeRayCastMapper::GetNumberOfResidentBricks() const
 {
   return this->Internals->ResidentBricks;

@@ -159,7 +159,8 @@ void vtkStrataVolumeRepresentation::vtkScene::Apply(const Settings& s)
                          : vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
   m->SetTerminationOpacity(s.TerminationOpacity);
   m->SetUseBrickAtlas(s.UseBrickAtlas);
-  m->SetNativeScalarStorage(s.NativeScalarStorage);
+  m->SetScalarStorage(static_cast<vtkMultiVolumeRayCastMapper::ScalarStorages>(
+    std::min(2, std::max(0, s.ScalarStorage))));
   m->SetBrickSize(s.BrickSize);
   m->SetAtlasBudget(s.AtlasBudget);
   m->SetEmptySpaceSkipping(s.EmptySpaceSkipping);
@@ -444,7 +445,7 @@ STRATA_SETTING(bool, RayCoherence)
 STRATA_SETTING(int, CompositeOrder)
 STRATA_SETTING(double, TerminationOpacity)
 STRATA_SETTING(bool, UseBrickAtlas)
-STRATA_SETTING(bool, NativeScalarStorage)
+STRATA_SETTING(int, ScalarStorage)
 STRATA_SETTING(int, BrickSize)
 STRATA_SETTING(double, AtlasBudget)
 STRATA_SETTING(bool, EmptySpaceSkipping)

@@ -55,7 +55,7 @@ public:
     int CompositeOrder = 0; ///< 0 front to back, 1 back to front
     double TerminationOpacity = 0.999;
     bool UseBrickAtlas = true;
-    bool NativeScalarStorage = false;
+    int ScalarStorage = 1; ///< 0 float, 1 R16 for 8- and 16-bit data, 2 R8 for 8-bit (native)
     int BrickSize = 32;
     double AtlasBudget = 256.0;
     bool EmptySpaceSkipping = true;
@@ -78,7 +78,7 @@ public:
   void SetCompositeOrder(int value);
   void SetTerminationOpacity(double value);
   void SetUseBrickAtlas(bool value);
-  void SetNativeScalarStorage(bool value);
+  void SetScalarStorage(int value);
   void SetBrickSize(int value);
   void SetAtlasBudget(double value);
   void SetEmptySpaceSkipping(bool value);

@@ -164,8 +164,8 @@ def paged_volume(args, camera):
     display.StrataVolumeSampleDistance = 0.5
     display.StrataVolumeAtlasBudget = 16
     display.StrataVolumePagesPerFrame = 8
-    check(display.StrataVolumeNativeScalarStorage == 0,
-          "native scalar storage (an R8 atlas for the tooth) is off by default")
+    check(display.StrataVolumeScalarStorage == "16-bit",
+          "the default storage is 16-bit (the tooth in R16, as the C++ mapper's default)")
     frames = render_until_converged(view, display, "StrataVolume")
     print("paged volume settled after %d renders" % frames)
     check(frames <= 500, "the paged volume settles")

@@ -757,7 +757,8 @@ int FrameCase(const std::string& kind,
 }
 
 /**
- * The lean atlas: the 8-bit `data` set stored as uint8 (R8), as uint16 (v 257, R16), as int16
+ * The lean atlas: the 8-bit `data` set stored as uint8 (R8; and in R16, the default storage), as
+ * uint16 (v 257, R16), as int16
  * (v 257 - 32768, R16) and as float32 (R32F), its transfer functions mapped alike, under one
  * atlas budget of `floatBricks` float bricks; 512 x 512, timed interleaved. Each row: bytes per
  * brick, slots and resident bricks, and the RMS (8-bit) against the float32 rendering with room
@@ -770,16 +771,19 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
   auto image = strata_test::LoadRealVolume(data, paths, why);
   if (!image)
     return Skipped(name, why);
+  using Storages = vtkMultiVolumeRayCastMapper::ScalarStorages;
   struct Kind
   {
     const char* Name;
     int VTKType;
     double Scale, Offset;
+    Storages Storage;
   };
-  const Kind kinds[] = { { "uint8", VTK_UNSIGNED_CHAR, 1.0, 0.0 },
-    { "uint16", VTK_UNSIGNED_SHORT, 257.0, 0.0 },
-    { "int16", VTK_SHORT, 257.0, -32768.0 },
-    { "float32", VTK_FLOAT, 1.0, 0.0 } };
+  const Kind kinds[] = { { "uint8", VTK_UNSIGNED_CHAR, 1.0, 0.0, Storages::Native },
+    { "uint8-r16", VTK_UNSIGNED_CHAR, 1.0, 0.0, Storages::Normalized16 },
+    { "uint16", VTK_UNSIGNED_SHORT, 257.0, 0.0, Storages::Native },
+    { "int16", VTK_SHORT, 257.0, -32768.0, Storages::Native },
+    { "float32", VTK_FLOAT, 1.0, 0.0, Storages::Native } };
   std::vector<vtkSmartPointer<vtkImageData>> images;
   std::vector<vtkSmartPointer<vtkVolumeProperty>> properties;
   std::vector<Contender> contenders;
@@ -793,7 +797,7 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
     contenders.push_back(MakeSingle("strata", data, images.back(), properties.back()));
     contenders.back().Strata->SetBrickSize(B);
     contenders.back().Strata->SetAtlasBudget(budget);
-    contenders.back().Strata->NativeScalarStorageOn();
+    contenders.back().Strata->SetScalarStorage(k.Storage);
   }
   // The reference image: float32 with room for every brick.
   Contender full = MakeSingle("strata", data, images.back(), properties.back());
