@@ -276,6 +276,19 @@ def volumes(args, camera):
     first.UpdatePropertyInformation()
     check(first.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 1,
           "hiding the shell leaves the tooth alone")
+    # ParaView's own Transforming properties move a Strata Volume (they once reached only
+    # StrataVolumePosition, and display.Position left it where it was).
+    before = [0.0] * 6
+    view.GetRenderer().ComputeVisiblePropBounds(before)
+    first.Position = [40.0, 0.0, 0.0]
+    first.Scale = [1.0, 2.0, 1.0]
+    Render(view)
+    after = [0.0] * 6
+    view.GetRenderer().ComputeVisiblePropBounds(after)
+    print("tooth bounds %s, moved by Position and Scale: %s" % (before, after))
+    check(abs(after[0] - before[0] - 40.0) < 1e-6 and abs(after[1] - before[1] - 40.0) < 1e-6 and
+          abs((after[3] - after[2]) - 2.0 * (before[3] - before[2])) < 1e-6,
+          "display.Position and display.Scale move and scale the Strata Volume")
 
 
 def hybrid(args, camera):
