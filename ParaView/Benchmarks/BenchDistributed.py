@@ -4,12 +4,13 @@
 pvbatch under mpirun -np N, each rank drawing its box of the scene (sort-last, IceT).
 
     mpirun -np N pvbatch BenchDistributed.py --plugin Strata.so --data <pools> --csv <file>
-        [--cache MB] [--atlas MB] [--split] [--still] [--png <file>]
+        [--cache MB] [--atlas MB] [--pages N] [--split] [--still] [--png <file>]
 
 The same fly-through as BenchPaging flythrough (48 moving frames, then still until every
 rank's cut has settled, at most 100 more), 256 x 256, sample distance 2, feedback at 1/4, the same
-transfer function. Budgets are per rank: --split divides the given page cache and atlas by N
-(the 1-rank memory spread over the ranks), otherwise every rank has them whole. --still: no
+transfer function. Budgets are per rank: --split divides the given page cache, atlas and pages
+per frame by N (the 1-rank memory and I/O rate spread over the ranks), otherwise every rank has
+them whole. --still: no
 fly-through, the last pose from the first frame until every rank has settled (one view's I/O,
 without the refinement and eviction a moving camera adds). Each rank
 writes its own figures through the representation's StatisticsFile; rank 0 then appends one
@@ -70,6 +71,7 @@ def main():
     parser.add_argument("--csv", required=True)
     parser.add_argument("--cache", type=float, default=256.0)
     parser.add_argument("--atlas", type=float, default=128.0)
+    parser.add_argument("--pages", type=int, default=64, help="pages per frame (1 rank)")
     parser.add_argument("--split", action="store_true")
     parser.add_argument("--still", action="store_true",
                         help="no fly-through: the last pose from the first frame until settled")
@@ -79,6 +81,8 @@ def main():
     ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
     cache = args.cache / ranks if args.split else args.cache
     atlas = args.atlas / ranks if args.split else args.atlas
+    # The pages a frame may read and upload: the I/O rate, split like the memory.
+    pages = max(1, args.pages // ranks) if args.split else args.pages
 
     view = CreateView("RenderView")
     view.ViewSize = SIZE
@@ -118,7 +122,7 @@ def main():
     first.StrataVolumeBrickSize = 32
     first.StrataVolumeAtlasBudget = atlas
     first.StrataVolumePageCacheBudget = cache
-    first.StrataVolumePagesPerFrame = 64
+    first.StrataVolumePagesPerFrame = pages
     first.StrataVolumeLevelOfDetailFeedback = 1
     first.StrataVolumeStatisticsFile = stats
 
@@ -155,18 +159,18 @@ def main():
               "ms_per_frame_median,ms_per_frame_p99,raycast_ms_slowest_rank_median,"
               "compositing_ms_median,peak_rss_mb_per_rank,rss_growth_mb_per_rank,"
               "mb_paged_per_rank,peak_rss_mb_max,rss_growth_mb_max,mb_paged_max,mb_paged_total,"
-              "camera\n")
+              "camera,pages_per_frame_per_rank\n")
     camera = "still" if args.still else "flythrough"
     new = not os.path.exists(args.csv)
     with open(args.csv, "a") as out:
         if new:
             out.write(header)
-        out.write("%d,%s,%g,%g,%d,%d,%.1f,%.1f,%.1f,%.1f,%s,%s,%s,%.0f,%.0f,%.1f,%.1f,%s\n" % (
+        out.write("%d,%s,%g,%g,%d,%d,%.1f,%.1f,%.1f,%.1f,%s,%s,%s,%.0f,%.0f,%.1f,%.1f,%s,%d\n" % (
             ranks, "split" if args.split else "per-rank", cache, atlas, frames, converged,
             percentile(frame_ms, 0.5), percentile(frame_ms, 0.99), percentile(cast, 0.5),
             percentile(composite, 0.5), ";".join("%.0f" % v for v in rss),
             ";".join("%.0f" % v for v in growth), ";".join("%.1f" % v for v in paged),
-            max(rss), max(growth), max(paged), sum(paged), camera))
+            max(rss), max(growth), max(paged), sum(paged), camera, pages))
     print("%d ranks (%s budgets, %s): %d frames, median %.0f ms, compositing %.0f ms, MB paged %s, "
           "peak RSS %s" % (ranks, "split" if args.split else "per-rank", camera, frames,
                            percentile(frame_ms, 0.5), percentile(composite, 0.5),
