@@ -46,11 +46,9 @@
 #include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
-#include "vtkImageToPagePoolWriter.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
-#include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
@@ -359,13 +357,7 @@ void Paged(const TestPaths& paths)
   auto blob = Blob(24, 20, 20, 1.0, 1.0, 1.0, 0, 0, 0, 1);
   s.Add(blob, MakeVolumeProperty(0));
   const std::string pool = paths.Output + "/components-paged.spp";
-  vtkNew<vtkImageToPagePoolWriter> writer;
-  writer->SetInputData(blob);
-  writer->SetFileName(pool.c_str());
-  writer->SetPageSize(8);
-  Check(writer->Write() != 0, "the pool is written");
-  vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool.c_str());
+  auto reader = WritePagedTwin(blob, pool, 8);
   s.Mapper->SetInputConnection(1, reader->GetOutputPort());
   s.UseMultiVolume();
   s.Camera(Pos, Focal);

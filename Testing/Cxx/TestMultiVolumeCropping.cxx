@@ -27,10 +27,8 @@
 #include "vtkContourValues.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
-#include "vtkImageToPagePoolWriter.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPagePoolReader.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
@@ -125,25 +123,12 @@ void Paged(const TestPaths& paths)
   VolumeScene s(paths.Output);
   SingleScene(s);
   const std::string pool = paths.Output + "/crop-paged.spp";
-  vtkNew<vtkImageToPagePoolWriter> writer;
-  writer->SetInputData(s.Images[0]);
-  writer->SetFileName(pool.c_str());
-  writer->SetPageSize(8);
-  Check(writer->Write() != 0, "the pool is written");
-  vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool.c_str());
+  auto reader = WritePagedTwin(s.Images[0], pool, 8);
   s.Mapper->SetInputConnection(0, reader->GetOutputPort());
   s.Mapper->CroppingOn();
   s.Mapper->SetCroppingRegionPlanes(Planes);
   s.Mapper->SetCroppingRegionFlagsToInvertedCross();
-  bool converged = false;
-  for (int f = 0; f < 60 && !converged; ++f)
-  {
-    s.Win->Render();
-    s.Mapper->WaitForPages(5.0);
-    converged = s.Mapper->GetPagingStatistics().Converged;
-  }
-  Check(converged, "the paged volume converges");
+  Check(RenderUntilConverged(s, 60) > 0, "the paged volume converges");
   Check(CheckVolumeComparison(s.Compare("CropPaged"), "CropPaged", 0.6, 12, 1500),
     "a paged cropped volume matches the reference");
 }

@@ -19,10 +19,8 @@
 #include "StrataVolumeScenes.h"
 
 #include "vtkImageData.h"
-#include "vtkImageToPagePoolWriter.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -88,23 +86,10 @@ void Paged(const TestPaths& paths)
   s.Win->Render();
   const auto inCore = ReadRGB(s.Win);
   const std::string pool = paths.Output + "/gradient-opacity-paged.spp";
-  vtkNew<vtkImageToPagePoolWriter> writer;
-  writer->SetInputData(s.Images[0]);
-  writer->SetFileName(pool.c_str());
-  writer->SetPageSize(8);
-  Check(writer->Write() != 0, "the pool is written");
-  vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool.c_str());
+  auto reader = WritePagedTwin(s.Images[0], pool, 8);
   s.Mapper->SetInputConnection(0, reader->GetOutputPort());
-  bool converged = false;
-  int frames = 0;
-  for (; frames < 100 && !converged; ++frames)
-  {
-    s.Win->Render();
-    s.Mapper->WaitForPages(5.0);
-    converged = s.Mapper->GetPagingStatistics().Converged;
-  }
-  s.Win->Render();
+  const int frames = RenderUntilConverged(s, 100);
+  const bool converged = frames > 0;
   const double mx = ImageError(ReadRGB(s.Win), inCore).Max;
   std::cout << "GradientOpacityPaged: converged " << converged << " after " << frames
             << " frames; max difference to in core " << mx << "\n";

@@ -20,17 +20,13 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "vtkImageData.h"
-#include "vtkImageToPagePoolWriter.h"
 #include "vtkNew.h"
-#include "vtkPagePoolReader.h"
 #include "vtkRenderWindow.h"
 #include "vtkTransform.h"
 #include "vtkVolumeProperty.h"
 
-#include <chrono>
 #include <iostream>
 #include <string>
-#include <thread>
 
 namespace
 {
@@ -74,20 +70,6 @@ vtkSmartPointer<vtkVolumeProperty> TypedProperty(int variant, double scale, doub
 int MaxDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
 {
   return static_cast<int>(ImageError(a, b).Max);
-}
-
-/// Renders until the paged mapper's cut settles; false if it never does.
-bool RenderUntilConverged(VolumeScene& s)
-{
-  for (int f = 0; f < 200; ++f)
-  {
-    s.Win->Render();
-    if (s.Mapper->GetPagingStatistics().Converged)
-      return true;
-    s.Mapper->WaitForPages(1.0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return false;
 }
 
 void TypedVolume(const TypedCase& c, const TestPaths& paths, bool& ok)
@@ -160,15 +142,9 @@ void TypedVolume(const TypedCase& c, const TestPaths& paths, bool& ok)
 
   // Paged from a pool of the same type.
   const std::string pool = paths.Output + "/lean-atlas-" + c.Name + ".spp";
-  vtkNew<vtkImageToPagePoolWriter> writer;
-  writer->SetInputData(image);
-  writer->SetFileName(pool.c_str());
-  writer->SetPageSize(16);
-  Check(writer->Write(), tag + ": pool written");
-  vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool.c_str());
+  auto reader = WritePagedTwin(image, pool, 16);
   s.Mapper->SetInputConnection(0, reader->GetOutputPort());
-  const bool converged = RenderUntilConverged(s);
+  const bool converged = RenderUntilConverged(s) > 0;
   const auto paged = ReadRGB(s.Win);
   const int pagedMax = MaxDifference(paged, native);
   std::cout << tag << ": paged, atlas " << s.Mapper->GetAtlasScalarTypeName() << ", converged "

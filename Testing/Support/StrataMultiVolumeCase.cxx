@@ -8,8 +8,10 @@
 #include "vtkCamera.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
+#include "vtkImageToPagePoolWriter.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPagePoolReader.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -279,5 +281,31 @@ void CheckAgainstVtkGPUMapper(const std::vector<unsigned char>& ours,
     name + " matches vtkGPUVolumeRayCastMapper within RMS 0.6 / max 6");
   Check(PixelsOff(ours, std::vector<unsigned char>(ours.size(), 128), 2) > 2000,
     name + " draws something (over 2000 pixels not background)");
+}
+
+vtkSmartPointer<vtkPagePoolReader> WritePagedTwin(vtkImageData* image,
+  const std::string& path,
+  int pageSize)
+{
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->SetPageSize(pageSize);
+  Check(writer->Write() != 0, "the pool " + path + " is written");
+  auto reader = vtkSmartPointer<vtkPagePoolReader>::New();
+  reader->SetFileName(path.c_str());
+  return reader;
+}
+
+int RenderUntilConverged(VolumeScene& s, int maxFrames)
+{
+  for (int f = 1; f <= maxFrames; ++f)
+  {
+    s.Win->Render();
+    if (s.Mapper->GetPagingStatistics().Converged)
+      return f;
+    s.Mapper->WaitForPages(1.0);
+  }
+  return -1;
 }
 }

@@ -20,6 +20,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"       // For vtkNew<vtkMultiVolumeRayCastMapper>
 #include "vtkMultiVolumeReferenceIntegrator.h" // For Surface
 #include "vtkNew.h"
+#include "vtkPagePoolReader.h" // For WritePagedTwin's reader
 #include "vtkPlaneSource.h"    // For vtkPlaneSource
 #include "vtkPolyDataMapper.h" // For vtkPolyDataMapper
 #include "vtkSmartPointer.h"
@@ -69,6 +70,17 @@ struct VolumeScene
   /// The rendering against the reference (step 1/16 of the sample distance).
   VolumeComparison Compare(const std::string& name, int raysPerPixel = 1);
 };
+
+/**
+ * A paged twin of an in-core volume: `image` written as a page pool of `pageSize` pages at
+ * `path` (a failed check when it cannot be) and a reader of it, to connect to the mapper.
+ */
+vtkSmartPointer<vtkPagePoolReader> WritePagedTwin(vtkImageData* image,
+  const std::string& path,
+  int pageSize);
+/// Renders `s` until its mapper's cut has settled, waiting for the pages between frames, at most
+/// `maxFrames` times: the frames rendered, or -1 when it never settled.
+int RenderUntilConverged(VolumeScene& s, int maxFrames = 200);
 
 /// MakeBlobVolume with spacing (s0, s1, s2) and origin (o0, o1, o2).
 vtkSmartPointer<vtkImageData> Blob(int nx,
