@@ -131,11 +131,7 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds, matrix);
     // The whole scene's box cut into one per process (ordered compositing).
-    double world[6];
-    vtkMath::UninitializeBounds(world);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
-    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
+    vtkStrataParaViewUtilities::DeclarePropInScene(this, inInfo, this->DataBounds, this->Actor);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -144,11 +140,7 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
   else if (request == vtkPVView::REQUEST_RENDER())
   {
     // In parallel: this process's box of the scene (all volumes and horizons of the view).
-    double box[6];
-    if (vtkStrataParaViewUtilities::GetProcessBox(this->GetView(), box))
-      this->Mapper->SetRegion(box);
-    else
-      this->Mapper->RemoveRegion();
+    vtkStrataParaViewUtilities::UseProcessBox(this->GetView(), this->Mapper.GetPointer());
   }
   return 1;
 }

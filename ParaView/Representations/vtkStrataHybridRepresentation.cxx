@@ -8,7 +8,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
@@ -121,14 +120,8 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   {
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
-    // A box of the view's scene per process (ordered compositing), in the frame of the prop.
-    vtkNew<vtkMatrix4x4> matrix;
-    this->Actor->GetMatrix(matrix);
-    double world[6];
-    vtkMath::UninitializeBounds(world);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
-    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
+    // A box of the view's scene per process (ordered compositing).
+    vtkStrataParaViewUtilities::DeclarePropInScene(this, inInfo, this->DataBounds, this->Actor);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -138,11 +131,7 @@ int vtkStrataHybridRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
   {
     vtkStrataParaViewUtilities::CopyTransform(this->Actor, this->Member);
     // In parallel: this process's box of the scene (the points and volume inside it).
-    double box[6];
-    if (vtkStrataParaViewUtilities::GetProcessBox(this->GetView(), box))
-      this->Mapper->SetRegion(box);
-    else
-      this->Mapper->RemoveRegion();
+    vtkStrataParaViewUtilities::UseProcessBox(this->GetView(), this->Mapper.GetPointer());
   }
   return 1;
 }

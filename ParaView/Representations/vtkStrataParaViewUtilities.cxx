@@ -7,6 +7,7 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkPVDataRepresentation.h"
 #include "vtkPVRenderView.h"
 #include "vtkPagePoolReader.h"
@@ -168,6 +169,20 @@ void vtkStrataParaViewUtilities::DeclareSceneBounds(vtkPVDataRepresentation* rep
     vtkPVRenderView::SetOrderedCompositingConfiguration(
       inInfo, entry.first, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION);
   }
+}
+
+void vtkStrataParaViewUtilities::DeclarePropInScene(vtkPVDataRepresentation* representation,
+  vtkInformation* inInfo,
+  const double dataBounds[6],
+  vtkProp3D* prop)
+{
+  vtkNew<vtkMatrix4x4> matrix;
+  prop->GetMatrix(matrix);
+  double world[6];
+  vtkMath::UninitializeBounds(world);
+  if (vtkMath::AreBoundsInitialized(dataBounds))
+    TransformBounds(dataBounds, matrix, world);
+  DeclareSceneBounds(representation, inInfo, world);
 }
 
 void vtkStrataParaViewUtilities::ForgetSceneBounds(vtkPVDataRepresentation* representation)

@@ -62,6 +62,12 @@ void DeclareSceneBounds(vtkPVDataRepresentation* representation,
   vtkInformation* inInfo,
   const double worldBounds[6]);
 void ForgetSceneBounds(vtkPVDataRepresentation* representation);
+/// DeclareSceneBounds of `dataBounds` moved by `prop`'s matrix (ParaView's Position,
+/// Orientation, Scale and Origin); uninitialised bounds drop the representation.
+void DeclarePropInScene(vtkPVDataRepresentation* representation,
+  vtkInformation* inInfo,
+  const double dataBounds[6],
+  vtkProp3D* prop);
 /**
  * The box the mappers of this process draw (SetRegion): its cell of the cut, with the faces on
  * the scene's box pushed out by the scene's size (nothing outside the scene is cut off, and an
@@ -69,6 +75,16 @@ void ForgetSceneBounds(vtkPVDataRepresentation* representation);
  * everything.
  */
 bool GetProcessBox(vtkView* view, double box[6]);
+/// A mapper with SetRegion / RemoveRegion draws this process's box of `view` (none: all).
+template<typename Mapper>
+void UseProcessBox(vtkView* view, Mapper* mapper)
+{
+  double box[6];
+  if (view && GetProcessBox(view, box))
+    mapper->SetRegion(box);
+  else
+    mapper->RemoveRegion();
+}
 /// Cell `index` of `count` of the recursive bisection of `bounds` (see DeclareSceneBounds).
 void PartitionBox(const double bounds[6], int count, int index, double cell[6]);
 /// The world bounds of `bounds` moved by `transform` (its 8 corners' box); a copy when null.

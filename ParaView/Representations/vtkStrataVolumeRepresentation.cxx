@@ -7,7 +7,6 @@
 #include "vtkInformationDoubleKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
@@ -137,11 +136,8 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
   if (n > 0)
     this->Apply(shown[0]->Options);
   // In parallel: this process's box of the scene (all volumes and horizons of the view).
-  double box[6];
-  if (n > 0 && vtkStrataParaViewUtilities::GetProcessBox(shown[0]->GetView(), box))
-    this->Mapper->SetRegion(box);
-  else
-    this->Mapper->RemoveRegion();
+  vtkStrataParaViewUtilities::UseProcessBox(
+    n > 0 ? shown[0]->GetView() : nullptr, this->Mapper.GetPointer());
 }
 
 //------------------------------------------------------------------------------
@@ -258,14 +254,7 @@ int vtkStrataVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* 
     vtkStrataParaViewUtilities::DeclareLocalPiece(
       this, inInfo, outInfo, this->Cache, this->DataSize, this->DataBounds);
     // The whole scene's box cut into one per process (ordered compositing).
-    // (In the frame of the prop: ParaView's Position, Orientation and Scale move the volume.)
-    vtkNew<vtkMatrix4x4> matrix;
-    this->Actor->GetMatrix(matrix);
-    double world[6];
-    vtkMath::UninitializeBounds(world);
-    if (vtkMath::AreBoundsInitialized(this->DataBounds))
-      vtkStrataParaViewUtilities::TransformBounds(this->DataBounds, matrix, world);
-    vtkStrataParaViewUtilities::DeclareSceneBounds(this, inInfo, world);
+    vtkStrataParaViewUtilities::DeclarePropInScene(this, inInfo, this->DataBounds, this->Actor);
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
