@@ -259,7 +259,8 @@ void vtkHybridVolumeMapper::vtkInternals::Sort(Self* self,
     frame.Hi = std::max(frame.Hi, d);
   }
   std::vector<double> depth(static_cast<size_t>(this->Count));
-  const double* box = self->HasRegion ? self->Region : nullptr;
+  double region[6];
+  const double* box = this->Volume->GetRegion(region) ? region : nullptr;
   for (vtkIdType i = 0; i < this->Count; ++i)
   {
     // local (relative to the points' origin) -> world by the prop's matrix -> depth.
@@ -501,30 +502,28 @@ void vtkHybridVolumeMapper::SetPointsInputConnection(vtkAlgorithmOutput* output)
   this->SetInputConnection(1, output);
 }
 
+// The region is the ray caster's (one box for the volume and the points).
 void vtkHybridVolumeMapper::SetRegion(const double bounds[6])
 {
-  if (this->HasRegion && std::equal(bounds, bounds + 6, this->Region))
+  double current[6];
+  if (this->Internals->Volume->GetRegion(current) && std::equal(bounds, bounds + 6, current))
     return;
-  std::copy(bounds, bounds + 6, this->Region);
-  this->HasRegion = true;
   this->Internals->Volume->SetRegion(bounds);
   this->Modified();
 }
 
 void vtkHybridVolumeMapper::RemoveRegion()
 {
-  if (!this->HasRegion)
+  double current[6];
+  if (!this->Internals->Volume->GetRegion(current))
     return;
-  this->HasRegion = false;
   this->Internals->Volume->RemoveRegion();
   this->Modified();
 }
 
 bool vtkHybridVolumeMapper::GetRegion(double bounds[6]) const
 {
-  if (this->HasRegion)
-    std::copy(this->Region, this->Region + 6, bounds);
-  return this->HasRegion;
+  return this->Internals->Volume->GetRegion(bounds);
 }
 
 vtkMultiVolumeRayCastMapper* vtkHybridVolumeMapper::GetVolumeMapper()

@@ -130,8 +130,6 @@ protected:
   PointShapes PointShape = PointShapes::Squares;
   int NumberOfSlabs = 8;
   double PointSpacing = 0.0;
-  bool HasRegion = false;
-  double Region[6] = { 0, 0, 0, 0, 0, 0 };
 
 private:
   vtkHybridVolumeMapper(const vtkHybridVolumeMapper&) = delete;
