@@ -18,10 +18,13 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkImageToPagePoolWriter);
 
@@ -63,11 +66,11 @@ Format::ScalarType PoolType(int vtkType)
   }
 }
 
-/// Copies component 0 of `n` tuples starting at tuple `first` into `out`, converting.
+/// Copies component `c` of `n` tuples starting at tuple `first` into `out`, converting.
 template<typename In, typename Out>
-void CopyRow(const In* in, int components, vtkIdType first, vtkIdType n, Out* out)
+void CopyRow(const In* in, int components, int c, vtkIdType first, vtkIdType n, Out* out)
 {
-  const In* p = in + first * components;
+  const In* p = in + first * components + c;
   for (vtkIdType i = 0; i < n; ++i)
   {
     out[i] = static_cast<Out>(p[i * components]);
@@ -75,17 +78,18 @@ void CopyRow(const In* in, int components, vtkIdType first, vtkIdType n, Out* ou
 }
 
 template<typename Out>
-void CopyRowAny(vtkDataArray* array, vtkIdType first, vtkIdType n, Out* out)
+void CopyRowAny(vtkDataArray* array, int c, vtkIdType first, vtkIdType n, Out* out)
 {
   void* data = array->GetVoidPointer(0);
   const int nc = array->GetNumberOfComponents();
   switch (array->GetDataType())
   {
-    vtkTemplateMacro(CopyRow(static_cast<const VTK_TT*>(data), nc, first, n, out));
+    vtkTemplateMacro(CopyRow(static_cast<const VTK_TT*>(data), nc, c, first, n, out));
   }
 }
 
 void CopySlab(vtkDataArray* array,
+  int c,
   const int dataExtent[6],
   const int slab[6],
   Format::ScalarType type,
@@ -104,16 +108,16 @@ void CopySlab(vtkDataArray* array,
       switch (type)
       {
         case Format::ScalarType::UInt8:
-          CopyRowAny(array, first, nx, static_cast<uint8_t*>(buffer) + row * nx);
+          CopyRowAny(array, c, first, nx, static_cast<uint8_t*>(buffer) + row * nx);
           break;
         case Format::ScalarType::UInt16:
-          CopyRowAny(array, first, nx, static_cast<uint16_t*>(buffer) + row * nx);
+          CopyRowAny(array, c, first, nx, static_cast<uint16_t*>(buffer) + row * nx);
           break;
         case Format::ScalarType::Int16:
-          CopyRowAny(array, first, nx, static_cast<int16_t*>(buffer) + row * nx);
+          CopyRowAny(array, c, first, nx, static_cast<int16_t*>(buffer) + row * nx);
           break;
         case Format::ScalarType::Float32:
-          CopyRowAny(array, first, nx, static_cast<float*>(buffer) + row * nx);
+          CopyRowAny(array, c, first, nx, static_cast<float*>(buffer) + row * nx);
           break;
       }
     }
@@ -307,71 +311,103 @@ bool vtkImageToPagePoolWriter::Write()
   }
   vtkDataArray* probeArray = PickScalars(probe);
   const Format::ScalarType type = PoolType(probeArray->GetDataType());
-  if (probeArray->GetNumberOfComponents() > 1)
+  const int arrayComponents = probeArray->GetNumberOfComponents();
+  if (arrayComponents > Format::MaxComponents || (tiles && arrayComponents > 1))
   {
-    vtkWarningMacro("Input array \"" << (probeArray->GetName() ? probeArray->GetName() : "")
-                                     << "\" has " << probeArray->GetNumberOfComponents()
-                                     << " components; only the first is converted.");
+    vtkWarningMacro("Input array \""
+                    << (probeArray->GetName() ? probeArray->GetName() : "") << "\" has "
+                    << arrayComponents << " components; only the first "
+                    << (tiles ? "is converted (a tile pool holds one)." : "4 are converted."));
   }
-
-  vtkPagePoolWriter writer;
-  writer.SetFileName(name);
-  writer.SetKind(tiles ? Format::Kind::TilePool : Format::Kind::BrickPool);
-  writer.SetScalarType(type);
-  writer.SetDimensions(dims[0], dims[1], dims[2]);
-  writer.SetSpacing(spacing[0], spacing[1], spacing[2]);
-  writer.SetOrigin(first[0], first[1], first[2]);
-  writer.SetDirection(direction);
-  writer.SetPageSize(this->PageSize);
-  writer.SetCompression(this->Compression);
-  writer.SetMemoryLimit(this->MemoryLimit);
-  // No no-data value: the page writer always leaves NaN (float holes) out of min/max.
-  std::string sourceError;
-  writer.SetSource(
-    [&](int firstSlab, int count, void* buffer)
-    {
-      int ext[6];
-      std::copy(whole, whole + 6, ext);
-      ext[2 * axis] = whole[2 * axis] + firstSlab;
-      ext[2 * axis + 1] = whole[2 * axis] + firstSlab + count - 1;
-      vtkImageData* data = request(ext, sourceError);
-      if (!data)
-      {
-        return false;
-      }
-      int have[6];
-      data->GetExtent(have);
-      CopySlab(PickScalars(data), have, ext, type, buffer);
-      return true;
-    });
+  const int components =
+    tiles ? 1 : std::min(std::max(arrayComponents, 1), int(Format::MaxComponents));
+  // One write's tag in every file of a set, so that a reader refuses a set mixed from two.
+  const uint32_t setTag =
+    std::random_device{}() ^
+    static_cast<uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
   double last = 0.0;
   this->UpdateProgress(0.0);
-  writer.SetProgressCallback(
-    [&](double fraction)
-    {
-      // Kept strictly non-decreasing and short of 1 until the file is in place.
-      fraction = std::min(std::max(fraction, last), 0.999);
-      if (fraction > last)
+  // Component k of `components` into `file`; progress over the set's files.
+  auto writeComponent = [&](const std::string& file, int k, int done, std::string& error)
+  {
+    vtkPagePoolWriter writer;
+    writer.SetFileName(file);
+    writer.SetKind(tiles ? Format::Kind::TilePool : Format::Kind::BrickPool);
+    writer.SetScalarType(type);
+    writer.SetDimensions(dims[0], dims[1], dims[2]);
+    writer.SetSpacing(spacing[0], spacing[1], spacing[2]);
+    writer.SetOrigin(first[0], first[1], first[2]);
+    writer.SetDirection(direction);
+    writer.SetPageSize(this->PageSize);
+    writer.SetCompression(this->Compression);
+    writer.SetMemoryLimit(this->MemoryLimit);
+    writer.SetComponent(k, components, setTag);
+    // No no-data value: the page writer always leaves NaN (float holes) out of min/max.
+    std::string sourceError;
+    writer.SetSource(
+      [&](int firstSlab, int count, void* buffer)
       {
-        last = fraction;
-        this->UpdateProgress(fraction);
-      }
-    });
-  const bool ok = writer.Write();
-  // Let go of the last slab: the conversion must not leave a slab of the input in memory. A
-  // trivial producer's output is the caller's own data set, which is left alone.
-  vtkDataObject* data = producer->GetOutputDataObject(port);
-  if (data && !producer->IsA("vtkTrivialProducer"))
+        int ext[6];
+        std::copy(whole, whole + 6, ext);
+        ext[2 * axis] = whole[2 * axis] + firstSlab;
+        ext[2 * axis + 1] = whole[2 * axis] + firstSlab + count - 1;
+        vtkImageData* data = request(ext, sourceError);
+        if (!data)
+        {
+          return false;
+        }
+        int have[6];
+        data->GetExtent(have);
+        CopySlab(PickScalars(data), k, have, ext, type, buffer);
+        return true;
+      });
+    writer.SetProgressCallback(
+      [&](double fraction)
+      {
+        // Kept strictly non-decreasing and short of 1 until the last file is in place.
+        fraction = std::min(std::max((done + fraction) / components, last), 0.999);
+        if (fraction > last)
+        {
+          last = fraction;
+          this->UpdateProgress(fraction);
+        }
+      });
+    const bool ok = writer.Write();
+    // Let go of the last slab: the conversion must not leave a slab of the input in memory. A
+    // trivial producer's output is the caller's own data set, which is left alone.
+    vtkDataObject* data = producer->GetOutputDataObject(port);
+    if (data && !producer->IsA("vtkTrivialProducer"))
+    {
+      data->Initialize();
+    }
+    if (!ok)
+    {
+      error = sourceError.empty() ? writer.GetErrorMessage()
+                                  : sourceError + " (" + writer.GetErrorMessage() + ")";
+      if (components > 1)
+        error = "component " + std::to_string(k) + ": " + error;
+      return false;
+    }
+    this->NumberOfPages += static_cast<vtkIdType>(writer.GetStatistics().NumberOfPages);
+    this->FileSize += static_cast<vtkTypeInt64>(writer.GetStatistics().FileSize);
+    return true;
+  };
+  // The files of components 1, 2, ... first: the set appears under `name` only when complete,
+  // and a failure removes the components already written.
+  std::vector<std::string> written;
+  for (int k = components - 1; k >= 0; --k)
   {
-    data->Initialize();
+    const std::string file = Format::GetComponentFileName(name, k);
+    const int done = components - 1 - k;
+    std::string error;
+    if (!writeComponent(file, k, done, error))
+    {
+      for (const std::string& w : written)
+        vtksys::SystemTools::RemoveFile(w);
+      return fail(error);
+    }
+    written.push_back(file);
   }
-  if (!ok)
-  {
-    return fail(sourceError.empty() ? writer.GetErrorMessage()
-                                    : sourceError + " (" + writer.GetErrorMessage() + ")");
-  }
-  this->NumberOfPages = static_cast<vtkIdType>(writer.GetStatistics().NumberOfPages);
-  this->FileSize = static_cast<vtkTypeInt64>(writer.GetStatistics().FileSize);
   this->UpdateProgress(1.0);
   return true;
 }

@@ -10,13 +10,18 @@
  * upstream (vtkImageReader2, vtkXMLImageDataReader, vtkPagePoolReader) never holds the whole
  * data set either. Memory is therefore the writer's bounded buffers plus one slab of the input.
  *
- * Scalars: the input's active point scalars (else its first point-data array), component 0.
+ * Scalars: the input's active point scalars (else its first point-data array). A 3-D input of
+ * 2 to 4 components (RGBA colour, independent channels) becomes a set of brick pools, one per
+ * component (vtkPagePoolFormat, Components): component 0 in FileName, component c in
+ * vtkPagePoolFormat::GetComponentFileName(FileName, c), each written as a pass over the input;
+ * components beyond 4 (and of a 2-D input, beyond 1) are dropped with a warning.
  * uint8, uint16, int16 and float are stored as they are; every other type is converted to
  * float (with the usual loss beyond 24 bits of mantissa). The geometry (spacing, origin,
  * direction) comes from the input's pipeline information.
  *
  * Write() returns true on success. Errors (no input, no scalars, an upstream failure, a file
- * that cannot be written) are reported with vtkErrorMacro, and nothing is left under FileName:
+ * that cannot be written) are reported with vtkErrorMacro, and nothing is left under FileName
+ * (nor the component files of a set that failed):
  * vtkPagePoolWriter writes to a temporary file renamed only when complete. Progress events
  * report the fraction of pages written, non-decreasing, ending at 1 on success.
  *
@@ -66,8 +71,8 @@ public:
   bool Write();
 
   ///@{
-  /// What the last successful Write() produced: pages, file size, and the number of slab
-  /// requests made to the upstream pipeline.
+  /// What the last successful Write() produced: pages and bytes (over a set's files), and the
+  /// number of slab requests made to the upstream pipeline.
   vtkGetMacro(NumberOfPages, vtkIdType);
   vtkGetMacro(FileSize, vtkTypeInt64);
   vtkGetMacro(NumberOfSlabRequests, vtkIdType);

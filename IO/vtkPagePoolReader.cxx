@@ -80,6 +80,85 @@ int ToVTKType(Format::ScalarType type)
 
 /// First page whose points include level index p (pages share their last point with the next
 /// page's first, so p = i S belongs to page i - 1 as well; the lower one is taken).
+// The files of the set of components whose component 0 is `name` (one file for a pool of one
+// component); false, with `error`, when one is missing, foreign, or `name` is not component 0.
+bool OpenSet(const std::string& name,
+  std::vector<std::unique_ptr<vtkPagePoolFile>>& files,
+  std::string& error)
+{
+  files.clear();
+  files.push_back(std::make_unique<vtkPagePoolFile>());
+  if (!files[0]->Open(name))
+  {
+    error = files[0]->GetErrorMessage();
+    return false;
+  }
+  const Format::Header& h = files[0]->GetHeader();
+  if (h.Component != 0)
+  {
+    error = "the file is component " + std::to_string(h.Component) + " of a set of " +
+            std::to_string(h.Components) + ": open its component 0 (the name without \".c" +
+            std::to_string(h.Component) + "\")";
+    return false;
+  }
+  for (int c = 1; c < h.Components; ++c)
+  {
+    files.push_back(std::make_unique<vtkPagePoolFile>());
+    if (!files.back()->OpenComponent(*files[0], c))
+    {
+      error = files.back()->GetErrorMessage();
+      return false;
+    }
+  }
+  return true;
+}
+
+// The part of page `at` (page indices; B values a side) inside the output `extent` (level
+// indices) into component `c` of `nc` of `dst`. Tile pages are x, y, layer (`layer` >= 0),
+// brick pages x, y, z.
+void CopyPage(const unsigned char* page,
+  const int at[3],
+  int B,
+  int layer,
+  const int extent[6],
+  int c,
+  int nc,
+  int valueSize,
+  unsigned char* dst)
+{
+  const bool tiles = layer >= 0;
+  const int S = B - 1;
+  const int base[3] = { at[0] * S, at[1] * S, tiles ? 0 : at[2] * S };
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int pageHi = a < (tiles ? 2 : 3) ? base[a] + B - 1 : 0;
+    lo[a] = std::max(extent[2 * a], base[a]);
+    hi[a] = std::min(extent[2 * a + 1], pageHi);
+  }
+  const vtkIdType ox = extent[1] - extent[0] + 1;
+  const vtkIdType oy = extent[3] - extent[2] + 1;
+  const int n = hi[0] - lo[0] + 1;
+  for (int z = lo[2]; z <= hi[2]; ++z)
+  {
+    for (int y = lo[1]; y <= hi[1]; ++y)
+    {
+      const size_t pz = tiles ? static_cast<size_t>(layer) : size_t(z - base[2]);
+      const size_t src = ((pz * B + size_t(y - base[1])) * B + size_t(lo[0] - base[0]));
+      const vtkIdType out =
+        ((vtkIdType(z - extent[4]) * oy + (y - extent[2])) * ox + (lo[0] - extent[0]));
+      if (nc == 1)
+      {
+        std::memcpy(dst + out * valueSize, page + src * valueSize, size_t(n) * valueSize);
+        continue;
+      }
+      for (int i = 0; i < n; ++i)
+        std::memcpy(
+          dst + ((out + i) * nc + c) * valueSize, page + (src + i) * valueSize, valueSize);
+    }
+  }
+}
+
 int PageOf(int p, int stride, int pages)
 {
   const int i = p <= 0 ? 0 : (p - 1) / stride;
@@ -164,12 +243,13 @@ bool vtkPagePoolReader::CheckSeries(std::string& error) const
               std::to_string(this->StepTimes[i - 1]) + ")";
       return false;
     }
-    vtkPagePoolFile file;
-    if (!file.Open(this->StepFiles[i]))
+    std::vector<std::unique_ptr<vtkPagePoolFile>> set;
+    if (!OpenSet(this->StepFiles[i], set, error))
     {
-      error = step + ": " + file.GetErrorMessage();
+      error = step + ": " + error;
       return false;
     }
+    const vtkPagePoolFile& file = *set[0];
     const Format::Header& h = file.GetHeader();
     if (i == 0)
     {
@@ -179,8 +259,8 @@ bool vtkPagePoolReader::CheckSeries(std::string& error) const
     }
     std::ostringstream msg;
     if (h.PoolKind != first.PoolKind || h.Type != first.Type || h.PageSize != first.PageSize ||
-        file.GetNumberOfLevels() != firstLevels)
-      msg << "its kind, scalar type, page size or levels differ from step 0's";
+        file.GetNumberOfLevels() != firstLevels || h.Components != first.Components)
+      msg << "its kind, scalar type, page size, levels or components differ from step 0's";
     for (int a = 0; a < 3 && msg.str().empty(); ++a)
       if (h.Dimensions[a] != first.Dimensions[a])
         msg << "dimensions " << h.Dimensions[0] << " x " << h.Dimensions[1] << " x "
@@ -371,15 +451,15 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   this->NumberOfLevels = 0;
   this->NumberOfLayers = 0;
   this->IsTilePool = false;
-  vtkPagePoolFile file;
+  std::vector<std::unique_ptr<vtkPagePoolFile>> set;
   int step = 0;
   const std::string name = this->SelectPool(outInfo, step);
   std::string error;
   const bool series = !this->StepFiles.empty();
-  if (series ? !this->CheckSeries(error) : (name.empty() || !file.Open(name)))
+  if (series ? !this->CheckSeries(error) : (name.empty() || !OpenSet(name, set, error)))
   {
-    if (!series)
-      error = name.empty() ? std::string("no file name set") : file.GetErrorMessage();
+    if (!series && name.empty())
+      error = "no file name set";
     ClearOutput(outInfo);
     outInfo->Remove(POOL_FILE_NAME());
     outInfo->Remove(POOL_LAYER());
@@ -391,11 +471,12 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
       "Cannot read page pool " << (series ? "series" : "\"" + name + "\"") << ": " << error);
     return 0;
   }
-  if (series && !file.Open(name))
+  if (series && !OpenSet(name, set, error))
   {
-    vtkErrorMacro("Cannot read page pool \"" << name << "\": " << file.GetErrorMessage());
+    vtkErrorMacro("Cannot read page pool \"" << name << "\": " << error);
     return 0;
   }
+  const vtkPagePoolFile& file = *set[0];
   if (series)
   {
     const double range[2] = { this->StepTimes.front(), this->StepTimes.back() };
@@ -422,7 +503,7 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   outInfo->Set(POOL_FILE_NAME(), name.c_str());
   outInfo->Set(POOL_LAYER(), this->IsTilePool ? this->Layer : 0);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, ToVTKType(h.Type), h.Components);
   return 1;
 }
 
@@ -484,12 +565,15 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
 
   // Opened again rather than kept from the information pass: the object holds a descriptor,
   // and a reader that sits in a pipeline for hours should not pin a file that may be replaced.
-  vtkPagePoolFile file;
-  if (!file.Open(name))
+  std::vector<std::unique_ptr<vtkPagePoolFile>> set;
+  std::string openError;
+  if (!OpenSet(name, set, openError))
   {
-    return fail(file.GetErrorMessage());
+    return fail(openError);
   }
+  const vtkPagePoolFile& file = *set[0];
   const Format::Header& h = file.GetHeader();
+  const int nc = h.Components;
   const bool tiles = h.PoolKind == Format::Kind::TilePool;
   const int layers = tiles ? h.Dimensions[2] : 1;
   if (tiles && (this->Layer < 0 || this->Layer >= layers))
@@ -544,7 +628,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   }
 
   // Before allocating: the output of this level and extent must fit the memory limit.
-  double outputMB = Format::GetScalarSize(h.Type) / 1048576.0;
+  double outputMB = double(nc) * Format::GetScalarSize(h.Type) / 1048576.0;
   for (int a = 0; a < 3; ++a)
   {
     outputMB *= extent[2 * a + 1] - extent[2 * a] + 1;
@@ -574,7 +658,7 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   output->SetOrigin(h.Origin);
   output->SetDirectionMatrix(h.Direction);
   const int vtkType = ToVTKType(h.Type);
-  output->AllocateScalars(vtkType, 1);
+  output->AllocateScalars(vtkType, nc);
   vtkDataArray* scalars = output->GetPointData()->GetScalars();
   if (!scalars || scalars->GetNumberOfTuples() != output->GetNumberOfPoints())
   {
@@ -583,8 +667,6 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   scalars->SetName(this->ArrayName);
   const int valueSize = Format::GetScalarSize(h.Type);
   auto* dst = static_cast<unsigned char*>(scalars->GetVoidPointer(0));
-  const vtkIdType ox = extent[1] - extent[0] + 1;
-  const vtkIdType oy = extent[3] - extent[2] + 1;
 
   const int B = h.PageSize;
   const int S = B - 1;
@@ -601,7 +683,8 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
       p0[a] = p1[a] = 0;
     }
   }
-  const vtkIdType total = vtkIdType(p1[0] - p0[0] + 1) * (p1[1] - p0[1] + 1) * (p1[2] - p0[2] + 1);
+  const vtkIdType total =
+    vtkIdType(p1[0] - p0[0] + 1) * (p1[1] - p0[1] + 1) * (p1[2] - p0[2] + 1) * nc;
   std::vector<unsigned char> page(file.GetPageBytes());
   this->LevelRead = level;
   this->UpdateProgress(0.0);
@@ -614,34 +697,17 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
       {
         const uint64_t index =
           uint64_t(pi) + uint64_t(lv.Pages[0]) * (uint64_t(pj) + uint64_t(lv.Pages[1]) * pk);
-        if (!file.ReadPageNative(level, index, page.data(), &error))
+        for (int c = 0; c < nc; ++c)
         {
-          return fail(error);
-        }
-        ++this->NumberOfPagesRead;
-        // The part of the page inside the output extent, in level indices.
-        const int base[3] = { pi * S, pj * S, tiles ? 0 : pk * S };
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          const int pageHi = a < axes ? base[a] + B - 1 : 0;
-          lo[a] = std::max(extent[2 * a], base[a]);
-          hi[a] = std::min(extent[2 * a + 1], pageHi);
-        }
-        const size_t run = static_cast<size_t>(hi[0] - lo[0] + 1) * valueSize;
-        for (int z = lo[2]; z <= hi[2]; ++z)
-        {
-          for (int y = lo[1]; y <= hi[1]; ++y)
+          if (!set[c]->ReadPageNative(level, index, page.data(), &error))
           {
-            // Tile pages are x, y, layer; brick pages x, y, z.
-            const size_t pz = tiles ? static_cast<size_t>(this->Layer) : size_t(z - base[2]);
-            const size_t src = ((pz * B + size_t(y - base[1])) * B + size_t(lo[0] - base[0]));
-            const vtkIdType out =
-              ((vtkIdType(z - extent[4]) * oy + (y - extent[2])) * ox + (lo[0] - extent[0]));
-            std::memcpy(dst + out * valueSize, page.data() + src * valueSize, run);
+            return fail(error);
           }
+          ++this->NumberOfPagesRead;
+          const int pageAt[3] = { pi, pj, pk };
+          CopyPage(page.data(), pageAt, B, tiles ? this->Layer : -1, extent, c, nc, valueSize, dst);
+          this->UpdateProgress(static_cast<double>(this->NumberOfPagesRead) / total);
         }
-        this->UpdateProgress(static_cast<double>(this->NumberOfPagesRead) / total);
       }
     }
   }

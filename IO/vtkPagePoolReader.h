@@ -42,6 +42,12 @@
  * the step shown and can prefetch the next one. Steps share one geometry: the first step's
  * spacing, origin and direction.
  *
+ * Components. A set of brick pools, one per component (vtkPagePoolFormat, Components), is one
+ * image of 2 to 4 components: FileName names component 0 and the reader opens and checks the
+ * others (each must belong to the same write and have the same structure; a missing or foreign
+ * one is an error, never a volume of fewer components); every page is read once per component.
+ * Naming a file of component c > 0 is an error that names component 0's file.
+ *
  * Pages read are counted (GetNumberOfPagesRead, reset at every RequestData) so tests and
  * benchmarks can verify that a sub-extent reads only what it needs. Errors (missing file,
  * corrupt header, table or page) are reported with vtkErrorMacro and leave the output empty.

@@ -73,6 +73,21 @@ void vtkPagePoolFile::Close()
   this->PoolHeader = Header();
 }
 
+bool vtkPagePoolFile::OpenComponent(const vtkPagePoolFile& first, int c)
+{
+  const std::string path = vtkPagePoolFormat::GetComponentFileName(first.Path, c);
+  if (!this->Open(path))
+    return false;
+  std::string error;
+  if (!vtkPagePoolFormat::CheckComponent(first.PoolHeader, this->PoolHeader, c, error))
+  {
+    this->Close();
+    this->ErrorMessage = "page pool '" + path + "': " + error;
+    return false;
+  }
+  return true;
+}
+
 bool vtkPagePoolFile::Open(const std::string& path)
 {
   this->Close();

@@ -43,7 +43,14 @@ public:
    * values), leaving the object closed. Not to be called concurrently with reads.
    */
   bool Open(const std::string& path);
+  /**
+   * Opens component `c` of the set of components `first` heads (its component 0;
+   * vtkPagePoolFormat, Components) and checks that it belongs to it (CheckComponent); false,
+   * with GetErrorMessage() naming the file and what differs, otherwise.
+   */
+  bool OpenComponent(const vtkPagePoolFile& first, int c);
   void Close();
+  const std::string& GetPath() const { return this->Path; }
   bool IsOpen() const { return this->Fd >= 0; }
 
   const Header& GetHeader() const { return this->PoolHeader; }

@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkPagePoolFormat.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -253,6 +254,12 @@ void vtkPagePoolFormat::EncodeHeader(const Header& h, unsigned char out[HeaderSi
   PutF64(out + 216, h.NoDataValue);
   PutU32(out + 224, h.HasNoDataValue ? 1u : 0u);
   PutU32(out + 232, h.TableChecksum);
+  if (h.Version >= ComponentsVersion)
+  {
+    PutU32(out + 228, static_cast<uint32_t>(h.Components));
+    PutU32(out + 236, static_cast<uint32_t>(h.Component));
+    PutU32(out + 240, h.ComponentsTag);
+  }
   PutU32(out + HeaderCrcOffset, Crc32(out, HeaderCrcOffset));
 }
 
@@ -286,6 +293,10 @@ void vtkPagePoolFormat::DecodeHeader(const unsigned char in[HeaderSize], Header&
   h.NoDataValue = GetF64(in + 216);
   h.HasNoDataValue = GetU32(in + 224) != 0;
   h.TableChecksum = GetU32(in + 232);
+  const bool set = h.Version >= ComponentsVersion;
+  h.Components = set ? static_cast<int>(std::min<uint32_t>(GetU32(in + 228), 1u << 30)) : 1;
+  h.Component = set ? static_cast<int>(std::min<uint32_t>(GetU32(in + 236), 1u << 30)) : 0;
+  h.ComponentsTag = set ? GetU32(in + 240) : 0;
 }
 
 void vtkPagePoolFormat::EncodeEntry(const PageEntry& e, unsigned char out[EntrySize])
@@ -323,10 +334,10 @@ bool vtkPagePoolFormat::ValidateHeaderBytes(const unsigned char in[HeaderSize],
     return false;
   }
   const uint32_t version = GetU32(in + 8);
-  if (version != Version)
+  if (version != Version && version != ComponentsVersion)
   {
     error = "unsupported page pool version " + std::to_string(version) + " (this reader reads " +
-            std::to_string(Version) + ")";
+            std::to_string(Version) + " and " + std::to_string(ComponentsVersion) + ")";
     return false;
   }
   if (GetU32(in + 12) != HeaderSize)
@@ -348,9 +359,22 @@ bool vtkPagePoolFormat::ValidateHeaderBytes(const unsigned char in[HeaderSize],
 
 bool vtkPagePoolFormat::ValidateHeader(const Header& h, uint64_t fileSize, std::string& error)
 {
-  if (h.Version != Version)
+  if (h.Version != Version && h.Version != ComponentsVersion)
   {
     error = "unsupported page pool version " + std::to_string(h.Version);
+    return false;
+  }
+  if (h.Version == ComponentsVersion &&
+      (h.Components < 2 || h.Components > MaxComponents || h.Component < 0 ||
+        h.Component >= h.Components || h.PoolKind != Kind::BrickPool))
+  {
+    error = "component " + std::to_string(h.Component) + " of " + std::to_string(h.Components) +
+            ": a set of components has 2 to " + std::to_string(MaxComponents) + " brick pools";
+    return false;
+  }
+  if (h.Version == Version && (h.Components != 1 || h.Component != 0))
+  {
+    error = "a version 1 pool has one component";
     return false;
   }
   if (h.PoolKind != Kind::BrickPool && h.PoolKind != Kind::TilePool)
@@ -422,6 +446,40 @@ bool vtkPagePoolFormat::ValidateHeader(const Header& h, uint64_t fileSize, std::
     }
   }
   return true;
+}
+
+std::string vtkPagePoolFormat::GetComponentFileName(const std::string& name, int c)
+{
+  if (c == 0)
+    return name;
+  const std::string suffix = ".c" + std::to_string(c);
+  const size_t n = name.size();
+  return n > 4 && name.compare(n - 4, 4, ".spp") == 0 ? name.substr(0, n - 4) + suffix + ".spp"
+                                                      : name + suffix;
+}
+
+bool vtkPagePoolFormat::CheckComponent(const Header& first,
+  const Header& other,
+  int c,
+  std::string& error)
+{
+  const bool sameGeometry = std::equal(first.Spacing, first.Spacing + 3, other.Spacing) &&
+                            std::equal(first.Origin, first.Origin + 3, other.Origin) &&
+                            std::equal(first.Direction, first.Direction + 9, other.Direction);
+  const std::string what = other.Components != first.Components         ? "the number of components"
+                           : other.Component != c                       ? "the component it holds"
+                           : other.ComponentsTag != first.ComponentsTag ? "the write (its tag)"
+                           : other.PoolKind != first.PoolKind           ? "the kind"
+                           : other.Type != first.Type                   ? "the scalar type"
+                           : !std::equal(first.Dimensions, first.Dimensions + 3, other.Dimensions)
+                             ? "the dimensions"
+                           : other.PageSize != first.PageSize ? "the page size"
+                           : !sameGeometry ? "the geometry (spacing, origin, direction)"
+                                           : "";
+  if (what.empty())
+    return true;
+  error = "component " + std::to_string(c) + " differs from component 0 in " + what;
+  return false;
 }
 
 bool vtkPagePoolFormat::ValidateTable(const Header& h,

@@ -25,8 +25,17 @@
  * Pages are numbered as vtkVolumeBrickTree's nodes: level by level from level 0, within a
  * level x fastest (tiles: index = ty * tilesX + tx); the root is the last page.
  *
- * Byte layout, version 1. Everything little-endian; every offset and every page start is a
- * multiple of 8.
+ * Components. A volume of n > 1 components (RGBA colour, independent channels) is n brick
+ * pools, one per component, each a complete pool of one scalar (so every component pages,
+ * caches and enters the atlas like any volume): component 0 in the file the user names,
+ * component c in GetComponentFileName(name, c) ("x.spp" -> "x.c1.spp"). Such files are
+ * version 2: the header adds the number of components, the file's component and a tag that
+ * one write gives all its files, so that a set mixed from two writes is refused
+ * (CheckComponent). One-component pools stay version 1 (an old reader cannot read only the
+ * first component of a set and take it for the volume).
+ *
+ * Byte layout, version 1 (2: the fields at 228, 236 and 240). Everything little-endian; every
+ * offset and every page start is a multiple of 8.
  * @verbatim
  * Header, 256 bytes at offset 0:
  *   0  char[8]  magic "STRATAPP"
@@ -48,9 +57,11 @@
  * 200  f64[2]   value range of level 0 (NaN and no-data values excluded; min > max if none)
  * 216  f64      no-data value (meaningful only if the flag below is 1)
  * 224  u32      has no-data value: 0 or 1
- * 228  u32      reserved, 0
+ * 228  u32      version 2: number of components n, in [2, 4] (version 1: reserved, 0)
  * 232  u32      CRC-32 of the page table bytes
- * 236  u8[16]   reserved, 0
+ * 236  u32      version 2: this file's component, in [0, n) (version 1: reserved, 0)
+ * 240  u32      version 2: the write's tag, the same in every file of the set
+ * 244  u8[8]    reserved, 0
  * 252  u32      CRC-32 of header bytes [0, 252)
  * Page table, 40 bytes per page, in page-number order, at the table offset:
  *   0  u32      level
@@ -87,7 +98,9 @@
 class STRATACORE_EXPORT vtkPagePoolFormat
 {
 public:
-  static constexpr uint32_t Version = 1;
+  static constexpr uint32_t Version = 1;           ///< one component
+  static constexpr uint32_t ComponentsVersion = 2; ///< a file of a set of components
+  static constexpr int MaxComponents = 4;
   static constexpr size_t HeaderSize = 256;
   static constexpr size_t EntrySize = 40;
   static constexpr int MaxDimension = 1 << 20;
@@ -139,6 +152,9 @@ public:
     double NoDataValue = 0;
     bool HasNoDataValue = false;
     uint32_t TableChecksum = 0;
+    int Components = 1; ///< the set's (version 2 when > 1)
+    int Component = 0;  ///< this file's
+    uint32_t ComponentsTag = 0;
   };
 
   struct PageEntry
@@ -178,6 +194,15 @@ public:
   static uint64_t GetPageValues(Kind kind, const int dims[3], int pageSize);
   /// Total page count of a level list.
   static uint64_t GetNumberOfPages(const std::vector<Level>& levels);
+
+  /// The file of component `c` of the set whose component 0 is `name` (see the class doc).
+  static std::string GetComponentFileName(const std::string& name, int c);
+  /**
+   * Whether `other` is component `c` of the set `first` (component 0) heads: the same number
+   * of components and tag, kind, scalar type, dimensions, page size, levels and geometry.
+   * False with `error` naming what differs.
+   */
+  static bool CheckComponent(const Header& first, const Header& other, int c, std::string& error);
 
   /// CRC-32 (IEEE), continuing from `crc` (start with 0).
   static uint32_t Crc32(const void* data, size_t size, uint32_t crc = 0);

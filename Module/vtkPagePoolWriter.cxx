@@ -581,8 +581,21 @@ bool vtkPagePoolWriter::MakeHeader(Format::Header& header, std::vector<Format::L
   {
     return false;
   }
+  if (this->Components < 1 || this->Components > Format::MaxComponents || this->Component < 0 ||
+      this->Component >= this->Components ||
+      (this->Components > 1 && this->PoolKind != Kind::BrickPool))
+  {
+    this->ErrorMessage = "component " + std::to_string(this->Component) + " of " +
+                         std::to_string(this->Components) + ": a set has 1 to " +
+                         std::to_string(Format::MaxComponents) + " brick pools";
+    return false;
+  }
   header.PoolKind = this->PoolKind;
   header.Type = this->Type;
+  header.Version = this->Components > 1 ? Format::ComponentsVersion : Format::Version;
+  header.Components = this->Components;
+  header.Component = this->Component;
+  header.ComponentsTag = this->ComponentsTag;
   std::copy(this->Dimensions, this->Dimensions + 3, header.Dimensions);
   header.PageSize = this->PageSize;
   header.NumberOfLevels = static_cast<int>(levels.size());

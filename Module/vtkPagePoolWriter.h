@@ -123,6 +123,16 @@ public:
   void SetNoDataValue(double value);
   void ClearNoDataValue() { this->HasNoData = false; }
   ///@}
+  /**
+   * The file written is component `component` of a set of `components` brick pools, all
+   * written with the same `tag` (vtkPagePoolFormat, Components); default: one component.
+   */
+  void SetComponent(int component, int components, uint32_t tag)
+  {
+    this->Component = component;
+    this->Components = components;
+    this->ComponentsTag = tag;
+  }
   void SetSource(SourceCallback source) { this->Source = std::move(source); }
   void SetProgressCallback(ProgressCallback progress) { this->Progress = std::move(progress); }
 
@@ -150,6 +160,9 @@ private:
   double MemoryLimitMB = 512;
   bool HasNoData = false;
   double NoDataValue = 0;
+  int Component = 0;
+  int Components = 1;
+  uint32_t ComponentsTag = 0;
   SourceCallback Source;
   ProgressCallback Progress;
   std::string ErrorMessage;
