@@ -16,9 +16,11 @@
 
 namespace
 {
-constexpr int DatasetBits = 16;
+// Pages within a level are below 2^31 (pool page ids are 32-bit); data sets are pools of
+// (component) channels times time steps (vtkVolumePager::GetPoolId).
+constexpr int DatasetBits = 24;
 constexpr int LevelBits = 8;
-constexpr int PageBits = 40;
+constexpr int PageBits = 32;
 
 std::string Describe(const vtkPageCache::Key& k)
 {

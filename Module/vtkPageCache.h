@@ -66,9 +66,9 @@ public:
    */
   struct Key
   {
-    int Dataset = 0;  ///< [0, 65535]
+    int Dataset = 0;  ///< [0, 2^24)
     int Level = 0;    ///< [0, 255]
-    int64_t Page = 0; ///< [0, 2^40)
+    int64_t Page = 0; ///< [0, 2^32)
     bool operator==(const Key& o) const
     {
       return this->Dataset == o.Dataset && this->Level == o.Level && this->Page == o.Page;

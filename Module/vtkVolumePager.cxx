@@ -309,11 +309,12 @@ const vtkPagePoolFile* vtkVolumePager::OpenPool(int port,
   int step)
 {
   vtkInternals& in = *this->Internals;
-  if (port < 0 || port >= MaxPorts || step < 0 || step >= MaxSteps)
+  if (port < 0 || port >= MaxChannels || step < 0 || step >= MaxSteps)
   {
     error = "port " + std::to_string(port) + " or time step " + std::to_string(step) +
-            " out of range (at most " + std::to_string(MaxPorts) + " ports and " +
-            std::to_string(MaxSteps) + " steps)";
+            " out of range (at most " + std::to_string(MaxPorts) + " ports of " +
+            std::to_string(MaxComponents) + " components and " + std::to_string(MaxSteps) +
+            " steps)";
     return nullptr;
   }
   const int id = GetPoolId(port, step);
@@ -725,10 +726,12 @@ std::vector<std::string> vtkVolumePager::TakeNewFailures()
   std::vector<std::string> messages;
   for (const auto& f : this->Internals->Pools.TakeNewFailures())
   {
-    const int port = f.PageKey.Dataset % MaxPorts, step = f.PageKey.Dataset / MaxPorts;
+    const int channel = f.PageKey.Dataset % MaxChannels, step = f.PageKey.Dataset / MaxChannels;
+    const int port = channel % MaxPorts, component = channel / MaxPorts;
     messages.push_back("Page " + std::to_string(f.PageKey.Level) + "/" +
                        std::to_string(f.PageKey.Page) + " of the volume on port " +
                        std::to_string(port) +
+                       (component ? " (component " + std::to_string(component) + ")" : "") +
                        (step ? " (time step " + std::to_string(step) + ")" : std::string()) +
                        " failed to load (" + f.Error + ")");
   }

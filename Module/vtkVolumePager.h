@@ -63,7 +63,9 @@ public:
   /// One volume of a frame; its place in the list is its number in the cut, atlas and ids.
   struct Volume
   {
-    int Port = 0; ///< the caller's id (its input port); a paged volume's pool is kept by it
+    /// The caller's id (its input port, or a component's channel, GetChannel); a paged
+    /// volume's pool is kept by it.
+    int Port = 0;
     /// In core: the caller's tree, with data. Paged (an open pool on Port): null.
     const vtkVolumeBrickTree* Tree = nullptr;
     double IndexToWorld[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
@@ -127,11 +129,20 @@ public:
   vtkVolumePager(const vtkVolumePager&) = delete;
   vtkVolumePager& operator=(const vtkVolumePager&) = delete;
 
-  /// Ports and time steps a pool id (a cache data set, 16 bits) can name.
+  /// Ports, components and time steps a pool id (a cache data set, 24 bits) can name.
   static constexpr int MaxPorts = 64;
+  static constexpr int MaxComponents = 4;
+  static constexpr int MaxChannels = MaxPorts * MaxComponents;
   static constexpr int MaxSteps = 1024;
-  /// The pool id of step `step` of the volume on `port`: port + MaxPorts step.
-  static int GetPoolId(int port, int step) { return port + MaxPorts * step; }
+  /**
+   * The channel of component `component` of the volume on `port`: port + MaxPorts component.
+   * Every method below that takes a port takes a channel: a volume of several components is
+   * paged as one single-scalar volume per component (vtkPagePoolFormat, Components), the
+   * component c > 0 under its channel (component 0's channel is the port).
+   */
+  static int GetChannel(int port, int component) { return port + MaxPorts * component; }
+  /// The pool id of step `step` of `channel`: channel + MaxChannels step.
+  static int GetPoolId(int channel, int step) { return channel + MaxChannels * step; }
 
   /**
    * Pages the volume of `port` from the brick pool `fileName`, time step `step` of its series

@@ -18,6 +18,13 @@ std::string vtkBrickAtlasTexture::GetLookupFunction(int n,
   const std::string& feedbackCheck,
   bool normalized)
 {
+  return GetLookupFunction(std::to_string(n), feedbackCheck, normalized);
+}
+
+std::string vtkBrickAtlasTexture::GetLookupFunction(const std::string& n,
+  const std::string& feedbackCheck,
+  bool normalized)
+{
   std::string code = vtkMultiVolumeAtlasLookup;
   // Feedback wants the level-0 brick and how coarse its node is (2^level; a transparent brick
   // as coarse as can be, a slotless one 0).
@@ -34,7 +41,7 @@ std::string vtkBrickAtlasTexture::GetLookupFunction(int n,
     true);
   vtkShaderProgram::Substitute(
     code, "@decode@", normalized ? " * uDecode@n@.x + uDecode@n@.y" : "", true);
-  vtkShaderProgram::Substitute(code, "@n@", std::to_string(n), true);
+  vtkShaderProgram::Substitute(code, "@n@", n, true);
   return code;
 }
 

@@ -44,6 +44,10 @@ public:
    * value = t uDecode<n>.x + uDecode<n>.y (vtkBrickAtlasFormat::GetDecode).
    */
   static std::string GetLookupFunction(int n, const std::string& feedbackCheck, bool normalized);
+  /// The same for the volume named `n` (component c > 0 of volume v is "<v>c<c>").
+  static std::string GetLookupFunction(const std::string& n,
+    const std::string& feedbackCheck,
+    bool normalized);
 
   vtkBrickAtlasTexture() = default;
   vtkBrickAtlasTexture(const vtkBrickAtlasTexture&) = delete;

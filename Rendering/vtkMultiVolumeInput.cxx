@@ -156,17 +156,24 @@ bool vtkMultiVolumeInput::UpdateScalars(vtkImageData* image,
   for (int c = 0; nc > 1 && c < nc; ++c)
     for (vtkIdType i = 0; i < n; ++i)
       this->ComponentScalars[size_t(i) * nc + c] = static_cast<float>(scalars->GetComponent(i, c));
-  for (int c = 0; nc == 4 && c < 3; ++c)
-    GetColorRange(scalars, c, this->ColorRanges[c]);
+  this->UpdateColorRanges(scalars);
   this->DataTime = image->GetMTime();
   this->DataInput = image;
   this->Tree.reset();
+  for (ComponentTree& t : this->ComponentTrees)
+    t = ComponentTree();
   if (this->Data)
   {
     this->Data->ReleaseGraphicsResources(window);
     this->Data = nullptr;
   }
   return true;
+}
+
+void vtkMultiVolumeInput::UpdateColorRanges(vtkDataArray* scalars)
+{
+  for (int c = 0; scalars && scalars->GetNumberOfComponents() == 4 && c < 3; ++c)
+    GetColorRange(scalars, c, this->ColorRanges[c]);
 }
 
 namespace
@@ -181,6 +188,43 @@ void StoreAs(const std::vector<float>& values, std::vector<unsigned char>& stora
 }
 }
 
+namespace
+{
+// A tree of `values` in `type` (Float32: borrowing `values`; else stored in `native`, which
+// it borrows).
+bool BuildTree(const std::vector<float>& values,
+  vtkVolumeBrickTree::ScalarType type,
+  const int dims[3],
+  int brickSize,
+  std::vector<unsigned char>& native,
+  std::unique_ptr<vtkVolumeBrickTree>& tree,
+  std::string& error)
+{
+  using Type = vtkVolumeBrickTree::ScalarType;
+  tree.reset(new vtkVolumeBrickTree);
+  const void* scalars = values.data();
+  if (type == Type::Float32)
+    native.clear();
+  else
+  {
+    if (type == Type::UInt8)
+      StoreAs<uint8_t>(values, native);
+    else if (type == Type::UInt16)
+      StoreAs<uint16_t>(values, native);
+    else
+      StoreAs<int16_t>(values, native);
+    scalars = native.data();
+  }
+  if (!tree->Build(scalars, type, dims, brickSize))
+  {
+    error = tree->GetErrorMessage();
+    tree.reset();
+    return false;
+  }
+  return true;
+}
+}
+
 int vtkMultiVolumeInput::UpdateTree(const int dims[3],
   int brickSize,
   bool native,
@@ -191,25 +235,20 @@ int vtkMultiVolumeInput::UpdateTree(const int dims[3],
   const Type type = native ? this->ScalarType : Type::Float32;
   if (this->Tree && this->Tree->GetBrickSize() == brickSize && this->Tree->GetScalarType() == type)
     return 0;
-  this->Tree.reset(new vtkVolumeBrickTree);
-  const void* scalars = this->Scalars.data();
-  if (type == Type::Float32)
-    this->NativeScalars.clear();
-  else
-  {
-    if (type == Type::UInt8)
-      StoreAs<uint8_t>(this->Scalars, this->NativeScalars);
-    else if (type == Type::UInt16)
-      StoreAs<uint16_t>(this->Scalars, this->NativeScalars);
-    else
-      StoreAs<int16_t>(this->Scalars, this->NativeScalars);
-    scalars = this->NativeScalars.data();
-  }
-  if (!this->Tree->Build(scalars, type, dims, brickSize))
-  {
-    error = this->Tree->GetErrorMessage();
-    this->Tree.reset();
+  if (!BuildTree(this->Scalars, type, dims, brickSize, this->NativeScalars, this->Tree, error))
     return -1;
+  const int nc = this->NumberOfComponents;
+  for (int c = 1; c < nc; ++c)
+  {
+    ComponentTree& t = this->ComponentTrees[c - 1];
+    t.Values.resize(this->Scalars.size());
+    for (size_t i = 0; i < t.Values.size(); ++i)
+      t.Values[i] = this->ComponentScalars[i * nc + c];
+    if (!BuildTree(t.Values, type, dims, brickSize, t.Native, t.Tree, error))
+    {
+      this->Tree.reset();
+      return -1;
+    }
   }
   return 1;
 }
@@ -257,13 +296,50 @@ void vtkMultiVolumeInput::UpdatePlainTexture(vtkOpenGLRenderWindow* window,
   this->Data->SetMagnificationFilter(vtkTextureObject::Linear);
 }
 
+namespace
+{
+// The largest opacity `table` reaches for scalars in [lo, hi]: the entries whose interpolation
+// intervals meet it (clamped at the ends, as the texture is).
+double TableMaxOpacity(const vtkTransferFunctionTable& table, double lo, double hi)
+{
+  const std::vector<float>& alpha = table.GetOpacity();
+  const int n = static_cast<int>(alpha.size());
+  if (n == 0)
+    return 1.0;
+  const double* range = table.GetScalarRange();
+  const double scale = (n - 1) / (range[1] - range[0]);
+  const double x0 = std::floor((lo - range[0]) * scale);
+  const double x1 = std::ceil((hi - range[0]) * scale);
+  const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
+  const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
+  return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
+}
+
+// What empty bricks read: the first scalar of zero opacity (the first scalar if none).
+double TableEmptyScalar(const vtkTransferFunctionTable& table)
+{
+  const double* range = table.GetScalarRange();
+  const std::vector<float>& alpha = table.GetOpacity();
+  const int n = static_cast<int>(alpha.size());
+  for (int i = 0; i < n; ++i)
+    if (alpha[i] <= 0.0f)
+      return range[0] + (range[1] - range[0]) * i / (n - 1.0);
+  return range[0];
+}
+
+bool IsIndependent(vtkMultiVolumeInput::Components mode)
+{
+  using C = vtkMultiVolumeInput::Components;
+  return mode == C::Independent2 || mode == C::Independent3 || mode == C::Independent4;
+}
+}
+
 void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property)
 {
   if (!this->Table.Update(window, property))
     return;
   const double* range = this->Table.GetScalarRange();
   const std::vector<float>& table = this->Table.GetRGBTau();
-  const std::vector<float>& alpha = this->Table.GetOpacity();
   std::vector<double> rgb(3 * TableSize), tau(TableSize);
   for (int i = 0; i < TableSize; ++i)
   {
@@ -272,16 +348,7 @@ void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolum
     tau[i] = table[4 * i + 3];
   }
   this->PreIntegration.SetTransferFunction(range[0], range[1], TableSize, rgb.data(), tau.data());
-  // What empty bricks read: the first scalar of zero opacity.
-  this->EmptyScalar = range[0];
-  for (int i = 0; i < TableSize; ++i)
-  {
-    if (alpha[i] <= 0.0f)
-    {
-      this->EmptyScalar = range[0] + (range[1] - range[0]) * i / (TableSize - 1.0);
-      break;
-    }
-  }
+  this->EmptyScalar = TableEmptyScalar(this->Table);
 }
 
 void vtkMultiVolumeInput::UpdateComponentTables(vtkOpenGLRenderWindow* window,
@@ -323,19 +390,21 @@ void vtkMultiVolumeInput::UpdateGradientOpacity(vtkOpenGLRenderWindow* window,
 
 double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
 {
-  // The entries whose interpolation intervals meet [lo, hi] (clamped at the ends, as the
-  // texture is).
-  const std::vector<float>& alpha = this->Table.GetOpacity();
-  const int n = static_cast<int>(alpha.size());
-  if (n == 0)
-    return 1.0;
-  const double* range = this->Table.GetScalarRange();
-  const double scale = (n - 1) / (range[1] - range[0]);
-  const double x0 = std::floor((lo - range[0]) * scale);
-  const double x1 = std::ceil((hi - range[0]) * scale);
-  const int i0 = static_cast<int>(std::min(std::max(x0, 0.0), n - 1.0));
-  const int i1 = static_cast<int>(std::min(std::max(x1, 0.0), n - 1.0));
-  return *std::max_element(alpha.begin() + i0, alpha.begin() + i1 + 1);
+  return TableMaxOpacity(this->Table, lo, hi);
+}
+
+double vtkMultiVolumeInput::ComponentVisibility(Components mode, int c, double lo, double hi) const
+{
+  if (IsIndependent(mode))
+    return TableMaxOpacity(c == 0 ? this->Table : this->ComponentTables[c - 1], lo, hi);
+  return c == GetOpacityComponent(mode) ? this->MaxOpacity(lo, hi) : 1.0;
+}
+
+double vtkMultiVolumeInput::GetComponentEmptyScalar(Components mode, int c) const
+{
+  if (IsIndependent(mode) && c > 0)
+    return TableEmptyScalar(this->ComponentTables[c - 1]);
+  return this->EmptyScalar;
 }
 
 void vtkMultiVolumeInput::SetBlendMode(int mode, const std::vector<double>& isoValues)
@@ -516,21 +585,31 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
     property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? 1.0f : 0.0f);
   if (b.Normalized)
     program->SetUniform2f(("uDecode" + N).c_str(), b.Decode);
-  if (b.Atlas)
+  // Several components in the atlas: component c > 0 is volume N "c" c of one scalar, read by
+  // its own lookup (vtkMultiVolumeShaderComposer).
+  const int lookups =
+    b.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(b.ComponentMode) : 0;
+  for (int c = 0; c < lookups; ++c)
   {
-    bindRaw(b.IndexTexture, "uIndex" + N);
+    const std::string L = c == 0 ? N : N + "c" + std::to_string(c);
+    bindRaw(c == 0 ? b.IndexTexture : b.ComponentIndexTextures[c - 1], "uIndex" + L);
     const float tableDims[3] = {
       float(b.TableBricks[0]), float(b.TableBricks[1]), float(b.TableBricks[2])
     };
-    program->SetUniform3f(("uTableDims" + N).c_str(), tableDims);
+    program->SetUniform3f(("uTableDims" + L).c_str(), tableDims);
     const float S = static_cast<float>(b.BrickSize - 1);
     const float extent[3] = { tableDims[0] * S, tableDims[1] * S, tableDims[2] * S };
     const float scale[3] = { 1.0f / extent[0], 1.0f / extent[1], 1.0f / extent[2] };
-    program->SetUniform3f(("uIndexExtent" + N).c_str(), extent);
-    program->SetUniform3f(("uIndexScale" + N).c_str(), scale);
-    program->SetUniformf(("uEmptyScalar" + N).c_str(), static_cast<float>(this->GetEmptyScalar()));
+    program->SetUniform3f(("uIndexExtent" + L).c_str(), extent);
+    program->SetUniform3f(("uIndexScale" + L).c_str(), scale);
+    const double empty = b.ComponentMode == Components::One
+                           ? this->GetEmptyScalar()
+                           : this->GetComponentEmptyScalar(b.ComponentMode, c);
+    program->SetUniformf(("uEmptyScalar" + L).c_str(), static_cast<float>(empty));
+    if (b.Normalized && c > 0)
+      program->SetUniform2f(("uDecode" + L).c_str(), b.Decode);
   }
-  else
+  if (!b.Atlas)
   {
     this->Data->Activate();
     program->SetUniformi(("uVolume" + N).c_str(), this->Data->GetTextureUnit());

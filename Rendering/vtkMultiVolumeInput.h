@@ -101,6 +101,9 @@ public:
    * [0, 65535] unsigned short, [0, 32767] short, [0, 1] float, else the finite range.
    */
   static void GetColorRange(vtkDataArray* scalars, int c, double range[2]);
+  /// RGBA: the colour ranges of `scalars`' type (GetColorRange), for a paged volume (whose
+  /// scalars are not kept: `scalars` are its reader's coarse level, of the pool's type).
+  void UpdateColorRanges(vtkDataArray* scalars);
 
   /**
    * The transfer tables of components 1, 2, ... of independent components (component 0's is
@@ -119,8 +122,17 @@ public:
    * cannot be built, 1 when it was (re)built, 0 otherwise.
    */
   int UpdateTree(const int dims[3], int brickSize, bool native, std::string& error);
-  /// The in-core tree, null if none (paged volumes use vtkVolumePager's).
-  const vtkVolumeBrickTree* GetTree() const { return this->Tree.get(); }
+  /**
+   * The in-core tree of `component`, null if none (paged volumes use vtkVolumePager's). A volume
+   * of several components has one tree per component (UpdateTree builds them all): each is a
+   * volume of one scalar in the atlas, as a paged set of components is.
+   */
+  const vtkVolumeBrickTree* GetTree(int component = 0) const
+  {
+    return component == 0                         ? this->Tree.get()
+           : component < this->NumberOfComponents ? this->ComponentTrees[component - 1].Tree.get()
+                                                  : nullptr;
+  }
 
   /// The whole volume as one 3-D texture (no atlas): R8 or R16 for 8- and 16-bit scalars as
   /// `storage` says (vtkBrickAtlasFormat::Choose), else R32F or a float channel per component;
@@ -161,6 +173,14 @@ public:
   double CellVisibility(double lo, double hi) const;
   /// The scalar left-out bricks read under the blend mode (see SetBlendMode).
   double GetEmptyScalar() const;
+  /**
+   * Of component `c` of a volume of several components in the atlas (composite): what a brick
+   * of its values in [lo, hi] may show, and the value left-out bricks read. Independent: its
+   * own table's opacity; dependent: the opacity component's (the main table), and the colour
+   * components always count (their bricks are kept wherever the volume is).
+   */
+  double ComponentVisibility(Components mode, int c, double lo, double hi) const;
+  double GetComponentEmptyScalar(Components mode, int c) const;
 
   /**
    * The skip grid: cell ranges from the scalars (`cellSize` voxels) or, for a paged volume,
@@ -208,6 +228,8 @@ public:
     int CropFlags = 0;
     bool GradientOpacity = false; ///< composite: opacity times the gradient opacity function
     Components ComponentMode = Components::One; ///< several: read from the plain texture
+    /// Several in the atlas: the index textures of components 1, 2, 3 (each its own volume).
+    unsigned int ComponentIndexTextures[3] = { 0, 0, 0 };
   };
   /**
    * Sets volume n's uniforms on `program` and binds its textures: vtkTextureObjects on their
@@ -246,6 +268,14 @@ private:
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
   std::unique_ptr<vtkVolumeBrickTree> Tree;
+  /// Components 1, 2, 3 (several): their values (float, or native) and trees, which borrow them.
+  struct ComponentTree
+  {
+    std::vector<float> Values;
+    std::vector<unsigned char> Native;
+    std::unique_ptr<vtkVolumeBrickTree> Tree;
+  };
+  ComponentTree ComponentTrees[3];
   vtkSmartPointer<vtkTextureObject> Data; ///< plain texture (no atlas)
   vtkTransferFunctionTable Table;
   double EmptyScalar = 0.0;

@@ -85,7 +85,7 @@ bool IsReduced(int mode)
 
 // The volume's coarsest level as floats when the image the reader produced is one page (the
 // pager pads it into the root page).
-std::vector<float> RootValues(vtkImageData* image, int brickSize, int dims[3])
+std::vector<float> RootValues(vtkImageData* image, int brickSize, int component, int dims[3])
 {
   image->GetDimensions(dims);
   vtkDataArray* scalars = image->GetPointData() ? image->GetPointData()->GetScalars() : nullptr;
@@ -96,7 +96,7 @@ std::vector<float> RootValues(vtkImageData* image, int brickSize, int dims[3])
   }
   std::vector<float> values(static_cast<size_t>(scalars->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-    values[i] = static_cast<float>(scalars->GetComponent(i, 0));
+    values[i] = static_cast<float>(scalars->GetComponent(i, component));
   return values;
 }
 
@@ -177,11 +177,13 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     const char* pool = portInfo ? portInfo->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
     if (pool && *pool)
     {
-      const vtkPagePoolFile* file = this->OpenPool(self, port, pool);
+      const vtkPagePoolFile* file = this->OpenPool(self, port, 0, pool);
       if (!file)
         continue;
       const vtkPagePoolFile::Header& h = file->GetHeader();
-      e.Pool = pool;
+      e.Pool = e.ComponentPools[0] = pool;
+      if (!this->OpenComponentPools(self, *file, e))
+        continue;
       std::copy(h.Dimensions, h.Dimensions + 3, e.Dims);
       o = h.Origin;
       s = h.Spacing;
@@ -220,49 +222,94 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
   }
   if (!frame.AnyPooled)
     frame.BrickSize = self->BrickSize;
-  // Volumes of several components are read from plain textures: the atlas holds one scalar.
+  // Volumes of several components in core are read from plain textures (of a float channel
+  // each) unless a paged volume needs the atlas; there, each component is a volume of one
+  // scalar (paged from its pool, or with its own in-core tree).
   const bool anyComponents = std::any_of(frame.Volumes.begin(),
     frame.Volumes.end(),
     [](const FrameVolume& e) { return e.ComponentMode != Components::One; });
-  if (anyComponents && frame.AnyPooled)
-  {
-    vtkErrorWithObjectMacro(self,
-      "Volumes of several components are drawn in core: neither paged "
-      "nor beside paged volumes (pools and atlas hold one).");
-    return false;
-  }
   frame.Atlas = (self->UseBrickAtlas && !anyComponents) || frame.AnyPooled;
+  frame.PagerFrameVolume.resize(frame.Volumes.size());
+  for (size_t v = 0; v < frame.Volumes.size(); ++v)
+  {
+    FrameVolume& e = frame.Volumes[v];
+    frame.PagerFrameVolume[v] = static_cast<int>(v);
+    e.Channels =
+      frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
+    e.PagerVolumes[0] = static_cast<int>(v);
+  }
+  for (size_t v = 0; v < frame.Volumes.size(); ++v)
+    for (int c = 1; c < frame.Volumes[v].Channels; ++c)
+    {
+      frame.Volumes[v].PagerVolumes[c] = static_cast<int>(frame.PagerFrameVolume.size());
+      frame.PagerFrameVolume.push_back(static_cast<int>(v));
+    }
   return !frame.Volumes.empty();
 }
 
-// The pool of a paged port: the step of its series the input shows (POOL_TIME_STEP), and the
-// next step in the direction of playback prefetched (vtkVolumePager::FollowPlayback).
+// The pool of component `component` of a paged port (`pool` names component 0's): the step of
+// its series the input shows (POOL_TIME_STEP), and the next step in the direction of playback
+// prefetched (vtkVolumePager::FollowPlayback).
 const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
   int port,
+  int component,
   const char* pool)
 {
   using Reader = vtkPagePoolReader;
   vtkInformation* info = self->GetInputInformation(port, 0);
   const int step = info->Has(Reader::POOL_TIME_STEP()) ? info->Get(Reader::POOL_TIME_STEP()) : 0;
   const int steps = info->Has(Reader::POOL_SERIES()) ? info->Length(Reader::POOL_SERIES()) : 0;
+  const int channel = vtkVolumePager::GetChannel(port, component);
+  const std::string name = vtkPagePoolFormat::GetComponentFileName(pool, component);
   std::string error;
-  const vtkPagePoolFile* file = this->Pager.OpenPool(port, pool, error, step);
+  const vtkPagePoolFile* file = this->Pager.OpenPool(channel, name, error, step);
   if (!file)
   {
     vtkErrorWithObjectMacro(
-      self, "Cannot page the volume on port " << port << " from \"" << pool << "\": " << error);
+      self, "Cannot page the volume on port " << port << " from \"" << name << "\": " << error);
     return nullptr;
   }
-  auto& [shown, warned] = this->ShownPools[port];
-  this->HeldValid = this->HeldValid && shown == pool;
-  shown = pool;
-  const int followed = this->Pager.FollowPlayback(port, step, steps);
+  auto& [shown, warned] = this->ShownPools[channel];
+  this->HeldValid = this->HeldValid && shown == name;
+  shown = name;
+  const int followed = this->Pager.FollowPlayback(channel, step, steps);
   const int next = self->PrefetchTimeSteps ? followed : -1;
   const char* nextPool = next >= 0 ? info->Get(Reader::POOL_SERIES(), next) : "";
-  if (!this->Pager.SetNextStep(port, next, nextPool ? nextPool : "", error) && error != warned)
+  const std::string nextName =
+    nextPool && *nextPool ? vtkPagePoolFormat::GetComponentFileName(nextPool, component) : "";
+  if (!this->Pager.SetNextStep(channel, next, nextName, error) && error != warned)
     vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
   warned = error;
   return file;
+}
+
+// The pools of components 1, 2, 3 of a paged volume whose component 0 is `first`: as many as
+// its input has components, each a member of `first`'s set (vtkPagePoolFormat::CheckComponent).
+bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
+  const vtkPagePoolFile& first,
+  FrameVolume& e)
+{
+  const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+  if (first.GetHeader().Components != count)
+  {
+    vtkErrorWithObjectMacro(self,
+      "The volume on port " << e.Port << " has " << count << " components and its pool \"" << e.Pool
+                            << "\" " << first.GetHeader().Components << ".");
+    return false;
+  }
+  for (int c = 1; c < count; ++c)
+  {
+    const vtkPagePoolFile* file = this->OpenPool(self, e.Port, c, e.Pool.c_str());
+    std::string error;
+    if (!file || !vtkPagePoolFormat::CheckComponent(first.GetHeader(), file->GetHeader(), c, error))
+    {
+      if (file)
+        vtkErrorWithObjectMacro(self, "Cannot page the volume on port " << e.Port << ": " << error);
+      return false;
+    }
+    e.ComponentPools[c] = vtkPagePoolFormat::GetComponentFileName(e.Pool, c);
+  }
+  return true;
 }
 
 // Feedback ranks the bricks of every volume while any is paged. It needs image load/store, and
@@ -271,7 +318,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::SupportsFeedback(Self* self, con
 {
   if (!frame.AnyPooled || !self->LevelOfDetailFeedback)
     return false;
-  bool idsFit = static_cast<int>(frame.Volumes.size()) <= vtkFeedbackReduction::MaxDataSets;
+  bool idsFit =
+    static_cast<int>(frame.PagerFrameVolume.size()) <= vtkFeedbackReduction::MaxDataSets;
   const int B = frame.BrickSize;
   for (const auto& e : frame.Volumes)
   {
@@ -313,6 +361,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
       }
       input.UpdateScalars(e.Input, scalars, renWin);
     }
+    else if (!e.Pool.empty() && e.ComponentMode == Components::RGBA)
+      input.UpdateColorRanges(e.Input->GetPointData()->GetScalars());
     if (e.Pool.empty() && frame.Atlas)
     {
       std::string error;
@@ -345,10 +395,16 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
   }
   for (const FrameVolume& e : frame.Volumes)
   {
+    // Of a paged set of components, the ranges of the opacity component's pool.
     const int opacity = vtkMultiVolumeInput::GetOpacityComponent(e.ComponentMode);
+    const int pool = std::max(opacity, 0);
     if (self->EmptySpaceSkipping && opacity >= 0)
       this->Inputs[e.Port].UpdateSkipGrid(
-        this->Pager.GetPoolTree(e.Port), e.Pool, e.Dims, self->SkipCellSize, opacity);
+        this->Pager.GetPoolTree(vtkVolumePager::GetChannel(e.Port, pool)),
+        e.ComponentPools[pool],
+        e.Dims,
+        self->SkipCellSize,
+        opacity);
   }
   return true;
 }
@@ -418,14 +474,22 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   Frame& frame)
 {
   std::vector<vtkVolumePager::Volume> volumes;
-  for (const FrameVolume& e : frame.Volumes)
+  for (int pv = 0; pv < static_cast<int>(frame.PagerFrameVolume.size()); ++pv)
   {
+    const FrameVolume& e = frame.Volumes[frame.PagerFrameVolume[pv]];
+    const int c =
+      static_cast<int>(std::find(e.PagerVolumes, e.PagerVolumes + 4, pv) - e.PagerVolumes);
     vtkVolumePager::Volume v;
-    v.Port = e.Port;
-    v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree() : nullptr;
+    v.Port = vtkVolumePager::GetChannel(e.Port, c);
+    v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree(c) : nullptr;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
-    v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
+    const Components mode = e.ComponentMode;
+    if (mode == Components::One)
+      v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
+    else
+      v.Opacity = [input, mode, c](double lo, double hi)
+      { return input->ComponentVisibility(mode, c, lo, hi); };
     // Pre-integrated segments read both ends: no end may fall on an empty brick's stand-in
     // next to visible data.
     v.Halo = self->Classification != Classifications::PostClassification;
@@ -434,7 +498,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
       // The reader's coarsest level is the root page: the pager takes it without a read.
       vtkImageData* image = e.Input;
       const int B = frame.BrickSize;
-      v.RootValues = [image, B](int dims[3]) { return RootValues(image, B, dims); };
+      v.RootValues = [image, B, c](int dims[3]) { return RootValues(image, B, c, dims); };
     }
     volumes.push_back(v);
   }
@@ -468,11 +532,11 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   this->HeldValid = false;
   if (!this->UpdateCut(self, ren, frame))
     return false;
-  for (size_t v = 0; v < frame.Volumes.size(); ++v)
+  for (size_t v = 0; v < volumes.size(); ++v)
   {
     std::vector<uint16_t> table;
     this->Pager.BuildIndexTable(static_cast<int>(v), table);
-    this->Atlas.SetIndex(frame.Volumes[v].Port,
+    this->Atlas.SetIndex(volumes[v].Port,
       this->Pager.GetTree(static_cast<int>(v))->GetLevelBricks(0),
       frame.BrickSize,
       table);
@@ -556,8 +620,9 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
     if (!data)
     {
       vtkErrorWithObjectMacro(self, "Brick " << u.Node << " entered the cut without its page.");
-      scratch.assign(
-        voxels, static_cast<float>(this->Inputs[frame.Volumes[u.Volume].Port].GetEmptyScalar()));
+      scratch.assign(voxels,
+        static_cast<float>(
+          this->Inputs[frame.Volumes[frame.PagerFrameVolume[u.Volume]].Port].GetEmptyScalar()));
       data = scratch.data();
     }
     if (encode)
@@ -909,6 +974,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.AverageRange = self->GetAverageIPScalarRange();
     b.Atlas = frame.Atlas;
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
+    for (int c = 1; c < e.Channels; ++c)
+      b.ComponentIndexTextures[c - 1] =
+        this->Atlas.GetIndexName(vtkVolumePager::GetChannel(e.Port, c));
     b.TableBricks = frame.Atlas ? this->Pager.GetTree(v)->GetLevelBricks(0) : nullptr;
     b.BrickSize = frame.BrickSize;
     b.Normalized = this->GetDecode(frame, v, b.Decode);
@@ -986,6 +1054,9 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
       const int v = volumes[i];
       const std::string n = std::to_string(i);
       program->SetUniformi(("uFeedbackSet" + n).c_str(), v);
+      for (int c = 1; c < frame.Volumes[v].Channels; ++c)
+        program->SetUniformi(
+          ("uFeedbackSet" + n + "c" + std::to_string(c)).c_str(), frame.Volumes[v].PagerVolumes[c]);
       program->SetUniform1iv(
         ("uLevelBricks" + n).c_str(), 3 * FeedbackLevels, frame.LevelBricks[v].data());
       program->SetUniform2f(("uFeedbackLod" + n).c_str(), frame.FeedbackLod[v].data());

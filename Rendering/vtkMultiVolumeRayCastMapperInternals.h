@@ -57,14 +57,23 @@ struct FrameVolume
   bool Cropped = false;
   float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
   int CropFlags = 0;
-  /// Several components: a composite medium from a plain texture (vtkMultiVolumeInput).
+  /// Several components: a composite medium (vtkMultiVolumeInput), from a plain texture or,
+  /// when the frame uses the atlas, from a volume of one scalar per component there.
   Components ComponentMode = Components::One;
+  /// In the atlas: that many volumes of the pager, component c's PagerVolumes[c] (component
+  /// 0's is the frame's number of the volume), paged from ComponentPools[c] (the set's files).
+  int Channels = 1;
+  int PagerVolumes[4] = { 0, 0, 0, 0 };
+  std::string ComponentPools[4];
 };
 
 // What one frame draws and how, gathered once and read by every step.
 struct Frame
 {
   std::vector<FrameVolume> Volumes;
+  /// The pager's volumes: the frame's, then the components 1, 2, 3 of those that have several
+  /// in the atlas; the frame volume of each.
+  std::vector<int> PagerFrameVolume;
   int BrickSize = 32;
   bool AnyPooled = false;
   bool Atlas = true;
@@ -98,6 +107,7 @@ class vtkMultiVolumeRayCastMapper::vtkInternals
 {
 public:
   using Frame = vtkMultiVolumeRayCastMapperFrame::Frame;
+  using FrameVolume = vtkMultiVolumeRayCastMapperFrame::FrameVolume;
   using ViewKey = vtkMultiVolumeRayCastMapperFrame::ViewKey;
   using Self = vtkMultiVolumeRayCastMapper;
   explicit vtkInternals(Self* self)
@@ -136,7 +146,8 @@ public:
   std::map<int, std::array<std::string, 2>> ShownPools;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
-  const vtkPagePoolFile* OpenPool(Self* self, int port, const char* pool);
+  const vtkPagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
+  bool OpenComponentPools(Self* self, const vtkPagePoolFile& first, FrameVolume& e);
   bool SupportsFeedback(Self* self, const Frame& frame);
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);

@@ -76,7 +76,9 @@ std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int po
 void vtkMultiVolumeRayCastMapper::SetFixedCut(int port,
   const std::vector<std::array<int, 2>>& bricks)
 {
-  this->Internals->Pager.SetFixedCut(port, bricks);
+  // A volume of several components in the atlas is a volume per component: the same cut each.
+  for (int c = 0; c < vtkVolumePager::MaxComponents; ++c)
+    this->Internals->Pager.SetFixedCut(vtkVolumePager::GetChannel(port, c), bricks);
   this->Modified();
 }
 

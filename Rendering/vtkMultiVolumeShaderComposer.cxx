@@ -6,6 +6,7 @@
 #include "vtkStrataShaderCache.h"
 
 #include "vtkMultiVolumeBackToFront.h"
+#include "vtkMultiVolumeComponentsAtlasLookup.h"
 #include "vtkMultiVolumeComponentsColorOpacity.h"
 #include "vtkMultiVolumeComponentsIndependent.h"
 #include "vtkMultiVolumeComponentsIndependentTable.h"
@@ -160,10 +161,45 @@ std::string IndependentMedium(int n, int count)
   return ForVolume(code.c_str(), n);
 }
 
-/// Volumes::Dec of a volume of several components: its lookup, cropping and medium.
-std::string ComponentVolume(const Key& key, int n)
+std::string Lookup(const Key& key, int n, bool first);
+std::string FeedbackFetchCheck(const Key& key, int n, int component = 0);
+
+/// The feedback rays' number of component c of fragment volume n (gLackVolume).
+int LackId(int n, int c)
 {
-  std::string code = ForVolume(vtkMultiVolumeComponentsLookup, n);
+  return n + 64 * c;
+}
+
+/// Several components in the atlas: a lookup per component, each reporting its own lacking
+/// bricks to feedback (data set uFeedbackSet<n>c<c>, the component's volume in the pager), and
+/// their vector.
+std::string ComponentAtlasLookups(const Key& key, int n, bool first)
+{
+  const bool normalized = n < static_cast<int>(key.Normalized.size()) && key.Normalized[n];
+  std::string code = Lookup(key, n, first);
+  std::string fetches = ForVolume("strataScalarAt@n@(idx)", n);
+  const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(ComponentMode(key, n));
+  for (int c = 1; c < 4; ++c)
+  {
+    const std::string name = std::to_string(n) + "c" + std::to_string(c);
+    if (c < count && key.Feedback)
+      code += "uniform int uFeedbackSet" + name + ";\n";
+    if (c < count)
+      code += vtkBrickAtlasTexture::GetLookupFunction(
+        name, key.Feedback ? FeedbackFetchCheck(key, n, c) : "", normalized);
+    fetches += c < count ? ", strataScalarAt" + name + "(idx)" : std::string(", 0.0");
+  }
+  std::string vector = ForVolume(vtkMultiVolumeComponentsAtlasLookup, n);
+  Replace(vector, "//STRATA::ComponentFetches::Impl", fetches);
+  return code + vector;
+}
+
+/// Volumes::Dec of a volume of several components: its lookup (plain texture or atlas),
+/// cropping and medium.
+std::string ComponentVolume(const Key& key, int n, bool first)
+{
+  std::string code =
+    key.Atlas ? ComponentAtlasLookups(key, n, first) : ForVolume(vtkMultiVolumeComponentsLookup, n);
   if (Cropped(key, n))
     code += ForVolume(vtkMultiVolumeCrop, n);
   const Comps mode = ComponentMode(key, n);
@@ -221,9 +257,11 @@ std::string FeedbackVolumeUniforms(const Key& key, int n)
 
 // Inside the atlas lookup, after the index entry e of level-0 brick b was fetched. Among equal
 // costs the nearer brick wins: the first one front to back, the last one back to front.
-std::string FeedbackFetchCheck(const Key& key, int n)
+std::string FeedbackFetchCheck(const Key& key, int n, int component)
 {
-  std::string code = ForVolume(vtkMultiVolumeFeedbackCheck, n);
+  std::string code = vtkMultiVolumeFeedbackCheck;
+  Replace(code, "better ? @n@ :", "better ? " + std::to_string(LackId(n, component)) + " :");
+  code = ForVolume(code.c_str(), n);
   Replace(code, "@better@", key.FrontToBack ? ">" : ">=");
   Replace(code,
     "//STRATA::Want::Impl",
@@ -243,13 +281,20 @@ std::string FeedbackPacking(const Key& key)
       << "  int g = 3 * gLack.w;\n";
   for (int i = 0; i < key.Volumes; ++i)
   {
-    if (!Sampled(key, i) || HasComponents(key, i))
+    if (!Sampled(key, i))
       continue;
-    dec << ForVolume(
-      "  if (gLackVolume == @n@)\n  {\n    return strataPackPage(uint(uFeedbackSet@n@), "
-      "uint(gLack.w), uint((w.z * uLevelBricks@n@[g + 1] + w.y) * "
-      "uLevelBricks@n@[g] + w.x));\n  }\n",
-      i);
+    const int count =
+      key.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(ComponentMode(key, i)) : 1;
+    for (int c = 0; c < count; ++c)
+    {
+      std::string branch =
+        "  if (gLackVolume == @id@)\n  {\n    return strataPackPage(uint(uFeedbackSet@set@), "
+        "uint(gLack.w), uint((w.z * uLevelBricks@n@[g + 1] + w.y) * "
+        "uLevelBricks@n@[g] + w.x));\n  }\n";
+      Replace(branch, "@id@", std::to_string(LackId(i, c)));
+      Replace(branch, "@set@", c == 0 ? "@n@" : "@n@c" + std::to_string(c));
+      dec << ForVolume(branch.c_str(), i);
+    }
   }
   dec << "  return 0u;\n}\n";
   return dec.str();
@@ -372,7 +417,8 @@ std::string Volumes(const Key& key)
     }
     if (HasComponents(key, i))
     {
-      code += ComponentVolume(key, i);
+      code += ComponentVolume(key, i, first);
+      first = first && !key.Atlas;
       continue;
     }
     code += Lookup(key, i, first);

@@ -120,16 +120,16 @@ window.Render()
 check(len(seen.errors) >= 1 and "grid" in " ".join(seen.errors),
       "horizons on different grids: an ErrorEvent at render time", repr(seen.errors[:1]))
 
-# 6. A warning: a writer given an array of another type than it stores (converted to float).
+# 6. A warning: a writer given more components than a set of pools holds (the first 4 written).
 doubles = vtkImageData()
 doubles.SetDimensions(8, 8, 8)
-doubles.AllocateScalars(11, 2)  # VTK_DOUBLE, 2 components: component 0 is written
+doubles.AllocateScalars(11, 5)  # VTK_DOUBLE, 5 components: components 0 to 3 are written
 writer = strata.vtkImageToPagePoolWriter()
 writer.SetInputData(doubles)
 writer.SetFileName(os.path.join(args.out, "doubles.spp"))
 seen = Messages(writer)
 written = writer.Write()
-check(written and len(seen.warnings) >= 1, "a two-component input: a WarningEvent",
+check(written and len(seen.warnings) >= 1, "a five-component input: a WarningEvent",
       repr(seen.warnings[:1]))
 
 if failures:
