@@ -13,8 +13,9 @@
  * follows it and the sample distance; the skip grid's cell ranges follow the data (or, paged,
  * the level-0 bricks' ranges from the page table) and its distances the transfer table.
  * Scalars of several components (vtkVolumeProperty's IndependentComponents) are kept as one
- * texture with a channel each, with a transfer table per independent component; they never go
- * to the atlas (its bricks hold one scalar).
+ * texture with a channel each, with a transfer table per independent component; when the frame
+ * uses the atlas (a paged volume is in it) each component has its own brick tree instead and
+ * is a volume of one scalar there (ComponentVisibility, GetComponentEmptyScalar).
  * Bind() sets the volume's uniforms for volume n of a fragment's program.
  *
  * The owner calls ReleaseGraphicsResources() from its own, with the context current.

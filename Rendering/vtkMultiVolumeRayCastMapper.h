@@ -19,8 +19,9 @@
  * physically: extinctions add and emission is weighted by extinction, with extinction
  * tau = -ln(1 - opacity) / ScalarOpacityUnitDistance from each volume's transfer functions.
  * Point scalars of several components follow the property's IndependentComponents (2-4
- * independent, 2 colour + opacity, 4 RGBA; vtkMultiVolumeInput), in core, post-classified and
- * unshaded; InterpolationType and the unit distances are each volume's (and component's).
+ * independent, 2 colour + opacity, 4 RGBA; vtkMultiVolumeInput), in core or paged (a set of
+ * component pools, vtkPagePoolFormat: a volume of one scalar per component in the atlas),
+ * post-classified and unshaded; InterpolationType and the unit distances are each volume's (and component's).
  * All geometry is composed in double on the CPU relative to a local origin, so volumes at UTM
  * coordinates render like volumes at the origin.
  *
