@@ -21,9 +21,9 @@
  * Point scalars of several components follow the property's IndependentComponents (2-4
  * independent, 2 colour + opacity, 4 RGBA; vtkMultiVolumeInput), in core or paged (a set of
  * component pools, vtkPagePoolFormat: a volume of one scalar per component in the atlas),
- * post-classified and unshaded; InterpolationType and the unit distances are each volume's (and component's).
- * All geometry is composed in double on the CPU relative to a local origin, so volumes at UTM
- * coordinates render like volumes at the origin.
+ * post-classified and unshaded; InterpolationType and the unit distances are each volume's (and
+ * component's). All geometry is composed in double on the CPU relative to a local origin, so
+ * volumes at UTM coordinates render like volumes at the origin.
  *
  * vtkGPUVolumeRayCastMapper is the superclass because vtkMultiVolume accepts no other mapper; none
  * of its OpenGL implementation is used.

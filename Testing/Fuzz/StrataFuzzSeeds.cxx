@@ -19,10 +19,16 @@ using Kind = vtkPagePoolWriter::Kind;
 using ScalarType = vtkPagePoolWriter::ScalarType;
 
 /// A pool of `dims` (x fastest) of a smooth pattern in `type`; NaN holes in float tiles.
-bool WritePool(const std::string& path, Kind kind, ScalarType type, const int dims[3], bool zstd)
+bool WritePool(const std::string& path,
+  Kind kind,
+  ScalarType type,
+  const int dims[3],
+  bool zstd,
+  int components = 1)
 {
   vtkPagePoolWriter writer;
   writer.SetFileName(path);
+  writer.SetComponent(0, components, 0x5eedu); // a set's component 0: a version 2 header
   writer.SetKind(kind);
   writer.SetScalarType(type);
   writer.SetDimensions(dims[0], dims[1], dims[2]);
@@ -141,6 +147,8 @@ int main(int argc, char* argv[])
   ok &=
     WritePool(pools + "tiles_float_holes.spp", Kind::TilePool, ScalarType::Float32, tile, false);
   ok &= WritePool(pools + "tiles_float_zstd.spp", Kind::TilePool, ScalarType::Float32, tile1, true);
+  ok &= WritePool(
+    pools + "bricks_uint8_component0of2.spp", Kind::BrickPool, ScalarType::UInt8, brick, false, 2);
   ok &= WriteHybrid(hybrids + "points5.shv", 5);
   ok &= WriteHybrid(hybrids + "no_points.shv", 0);
   return ok ? 0 : 1;
