@@ -615,6 +615,33 @@ void HeaderFaults(const std::string& dir)
   msg =
     OpenEdited(good, bad, [](Format::Header& h, std::vector<unsigned char>&) { h.Version = 7; });
   Check(Contains(msg, "version 7"), "wrong version: " + msg);
+  // Sets of components (version 2): 2 to 4 brick pools, the file's component among them.
+  auto set = [](int components, int component)
+  {
+    return [=](Format::Header& h, std::vector<unsigned char>&)
+    {
+      h.Version = Format::ComponentsVersion;
+      h.Components = components;
+      h.Component = component;
+    };
+  };
+  msg = OpenEdited(good, bad, set(1, 0));
+  Check(Contains(msg, "2 to 4"), "version 2 of one component: " + msg);
+  msg = OpenEdited(good, bad, set(5, 0));
+  Check(Contains(msg, "2 to 4"), "5 components: " + msg);
+  msg = OpenEdited(good, bad, set(3, 3));
+  Check(Contains(msg, "component 3 of 3"), "component 3 of 3: " + msg);
+  {
+    vtkPagePoolFile edited;
+    OpenEdited(good, bad, set(3, 2));
+    Check(
+      edited.Open(bad) && edited.GetHeader().Components == 3 && edited.GetHeader().Component == 2,
+      "component 2 of 3 opens (version 2)");
+    vtkPagePoolFile plain;
+    Check(plain.Open(good) && plain.GetHeader().Version == 1 && plain.GetHeader().Components == 1 &&
+            plain.GetHeader().Component == 0,
+      "a version 1 pool is one component");
+  }
   msg = OpenEdited(
     good, bad, [](Format::Header&, std::vector<unsigned char>& b) { b[30] ^= 1; }, false);
   Check(Contains(msg, "header checksum"), "corrupt header bytes: " + msg);

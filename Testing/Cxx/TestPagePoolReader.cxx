@@ -406,6 +406,24 @@ void Components(const std::string& out)
   vtksys::SystemTools::RemoveFile(c2);
   Check(readError(path, "a missing component").find(".c2.spp") != std::string::npos,
     "a missing component is named");
+
+  // Component 0 is written last; when it fails, the components written before are removed.
+  const std::string blocked = out + "/blocked.spp";
+  vtksys::SystemTools::MakeDirectory(blocked); // no file can take its name
+  vtkNew<vtkImageToPagePoolWriter> writer;
+  vtkNew<ErrorCounter> werrors;
+  writer->AddObserver(vtkCommand::ErrorEvent, werrors);
+  writer->SetInputData(vol);
+  writer->SetPageSize(16);
+  writer->SetFileName(blocked.c_str());
+  const bool wrote = writer->Write();
+  bool left = false;
+  for (int c = 1; c < 4; ++c)
+    left =
+      left || vtksys::SystemTools::FileExists(vtkPagePoolFormat::GetComponentFileName(blocked, c));
+  std::cout << "component 0 unwritable: \"" << werrors->First << "\"\n";
+  Check(!wrote && werrors->Errors > 0 && !left,
+    "a set whose component 0 cannot be written: an error, and no component left behind");
 }
 
 void Errors(const std::string& out, vtkImageData* vol, const std::string& volPath)
