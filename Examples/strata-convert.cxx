@@ -21,6 +21,7 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
+#include "vtkPagePoolFile.h"
 #include "vtkSegyVolumeReader.h"
 #include "vtkStreamingMetaImageReader.h"
 
@@ -49,7 +50,8 @@ void Usage(std::ostream& os)
         "inputs: .vti, .mhd/.mha, .nrrd/.nhdr, raw (with --raw), .sgy/.segy -> brick pool;\n"
         "        .npy, .gri, Irap classic ASCII, ZMAP+, ESRI ASCII (.asc), columns or a\n"
         "        whitespace matrix (.txt, .dat, .xyz, .csv), and any input one point thick\n"
-        "        along z -> tile pool\n"
+        "        along z -> tile pool; a volume of 2-4 components (RGBA, independent\n"
+        "        channels) -> a brick pool per component (output.spp, output.c1.spp, ...)\n"
         "SEG-Y: inline and crossline numbers at trace-header bytes 189 and 193 unless given;\n"
         "       --segy-format overrides the binary header's sample format (1, 2, 3, 5, 8);\n"
         "       placed by the trace coordinates (CDP X/Y at 181/185, scalar at 71 unless\n"
@@ -388,5 +390,13 @@ int main(int argc, char* argv[])
     static_cast<long long>(writer->GetNumberOfPages()),
     compress ? "zstd" : "raw",
     seconds);
+  // A volume of several components is a set of pools, one per component.
+  vtkPagePoolFile written;
+  const int components = written.Open(output) ? written.GetHeader().Components : 1;
+  for (int c = 1; c < components; ++c)
+    std::printf("  component %d of %d: %s\n",
+      c,
+      components,
+      vtkPagePoolFormat::GetComponentFileName(output, c).c_str());
   return 0;
 }
