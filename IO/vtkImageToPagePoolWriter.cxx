@@ -124,6 +124,48 @@ void CopySlab(vtkDataArray* array,
   }
 }
 
+/// What a pool takes from its input's information: the whole extent, its dimensions, the
+/// spacing and direction, and the world position of the extent's first point (the origin).
+struct InputGeometry
+{
+  int Whole[6] = { 0, -1, 0, -1, 0, -1 };
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  double First[3] = { 0, 0, 0 };
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+};
+
+bool ReadGeometry(vtkInformation* info, InputGeometry& g, std::string& error)
+{
+  if (!info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    error = "the input reports no whole extent (did its reader fail?)";
+    return false;
+  }
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), g.Whole);
+  for (int a = 0; a < 3; ++a)
+    g.Dims[a] = g.Whole[2 * a + 1] - g.Whole[2 * a] + 1;
+  if (g.Dims[0] <= 0 || g.Dims[1] <= 0 || g.Dims[2] <= 0)
+  {
+    error = "the input is empty (did its reader fail?)";
+    return false;
+  }
+  double origin[3] = { 0, 0, 0 };
+  if (info->Has(vtkDataObject::SPACING()))
+    info->Get(vtkDataObject::SPACING(), g.Spacing);
+  if (info->Has(vtkDataObject::ORIGIN()))
+    info->Get(vtkDataObject::ORIGIN(), origin);
+  if (info->Has(vtkDataObject::DIRECTION()))
+    info->Get(vtkDataObject::DIRECTION(), g.Direction);
+  for (int r = 0; r < 3; ++r)
+  {
+    g.First[r] = origin[r];
+    for (int c = 0; c < 3; ++c)
+      g.First[r] += g.Direction[3 * r + c] * g.Whole[2 * c] * g.Spacing[c];
+  }
+  return true;
+}
+
 /// Counts the errors an upstream algorithm reports: several VTK readers report a missing or
 /// short file with vtkErrorMacro and still let the request succeed, with garbage data.
 void CountError(vtkObject*, unsigned long, void* clientData, void*)
@@ -206,43 +248,17 @@ bool vtkImageToPagePoolWriter::Write()
 
   // Information only: extent and geometry, no data.
   producer->UpdateInformation();
-  vtkInformation* inInfo = producer->GetOutputInformation(port);
-  int whole[6] = { 0, -1, 0, -1, 0, -1 };
-  if (!inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  InputGeometry geometry;
+  std::string geometryError;
+  if (!ReadGeometry(producer->GetOutputInformation(port), geometry, geometryError))
   {
-    return fail("the input reports no whole extent (did its reader fail?)");
+    return fail(geometryError);
   }
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  const int dims[3] = { whole[1] - whole[0] + 1, whole[3] - whole[2] + 1, whole[5] - whole[4] + 1 };
-  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0)
-  {
-    return fail("the input is empty (did its reader fail?)");
-  }
-  double spacing[3] = { 1, 1, 1 };
-  double origin[3] = { 0, 0, 0 };
-  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  if (inInfo->Has(vtkDataObject::SPACING()))
-  {
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-  }
-  if (inInfo->Has(vtkDataObject::ORIGIN()))
-  {
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
-  }
-  if (inInfo->Has(vtkDataObject::DIRECTION()))
-  {
-    inInfo->Get(vtkDataObject::DIRECTION(), direction);
-  }
-  // The origin of the pool is the world position of the whole extent's first point.
-  double first[3];
-  for (int r = 0; r < 3; ++r)
-  {
-    first[r] = origin[r];
-    for (int c = 0; c < 3; ++c)
-    {
-      first[r] += direction[3 * r + c] * whole[2 * c] * spacing[c];
-    }
-  }
+  const int* whole = geometry.Whole;
+  const int* dims = geometry.Dims;
+  const double* spacing = geometry.Spacing;
+  const double* first = geometry.First;
+  const double* direction = geometry.Direction;
 
   const bool tiles = dims[2] == 1;
   const int axis = tiles ? 1 : 2; // the streaming axis
