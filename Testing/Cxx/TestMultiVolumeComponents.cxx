@@ -255,10 +255,10 @@ void Single(const TestPaths& paths, Mode mode)
   Check(wrong.Rms > 1.6, name + ": the wrong rule differs by more than 4 times the RMS bound");
 }
 
-// Overlapping a one-component volume (turned 30 degrees, coarser) in a vtkMultiVolume.
-void Overlapping(const TestPaths& paths, Mode mode)
+// A volume of `mode` and a one-component volume (turned 30 degrees, coarser) overlapping in a
+// vtkMultiVolume, and the camera on both.
+void AddOverlappingScene(VolumeScene& s, Mode mode)
 {
-  VolumeScene s(paths.Output);
   auto image = ComponentVolume(Count(mode), mode == Mode::RGBAFloat);
   s.Add(image, ComponentProperty(mode, image));
   vtkNew<vtkTransform> t;
@@ -268,6 +268,13 @@ void Overlapping(const TestPaths& paths, Mode mode)
   s.UseMultiVolume();
   const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
   s.Camera(pos, foc);
+}
+
+// Overlapping a one-component volume in a vtkMultiVolume.
+void Overlapping(const TestPaths& paths, Mode mode)
+{
+  VolumeScene s(paths.Output);
+  AddOverlappingScene(s, mode);
   const std::string name = std::string("ComponentsOverlap") + Name(mode);
   Check(CheckVolumeComparison(s.Compare(name), name, 0.4, 2, 2500),
     name + " overlapping a one-component volume matches the reference");
@@ -389,15 +396,7 @@ void Paged(const TestPaths& paths, Mode mode)
 void PagedOverlapping(const TestPaths& paths, Mode mode, bool pageComponents)
 {
   VolumeScene s(paths.Output);
-  auto image = ComponentVolume(Count(mode), mode == Mode::RGBAFloat);
-  s.Add(image, ComponentProperty(mode, image));
-  vtkNew<vtkTransform> t;
-  t->Translate(30, 10, 4);
-  t->RotateZ(30);
-  s.Add(Blob(24, 20, 18, 1.6, 1.5, 1.4, 0, 0, 0, 2), MakeVolumeProperty(2), t);
-  s.UseMultiVolume();
-  const double pos[3] = { -50, -70, 80 }, foc[3] = { 30, 25, 14 };
-  s.Camera(pos, foc);
+  AddOverlappingScene(s, mode);
   const std::string name =
     std::string(pageComponents ? "ComponentsPagedOverlap" : "ComponentsBesidePaged") + Name(mode);
   const int port = pageComponents ? 0 : 1;
