@@ -229,20 +229,17 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     frame.Volumes.end(),
     [](const FrameVolume& e) { return e.ComponentMode != Components::One; });
   frame.Atlas = (self->UseBrickAtlas && !anyComponents) || frame.AnyPooled;
-  frame.PagerFrameVolume.resize(frame.Volumes.size());
-  for (size_t v = 0; v < frame.Volumes.size(); ++v)
-  {
-    FrameVolume& e = frame.Volumes[v];
-    frame.PagerFrameVolume[v] = static_cast<int>(v);
-    e.Channels =
-      frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
-    e.PagerVolumes[0] = static_cast<int>(v);
-  }
-  for (size_t v = 0; v < frame.Volumes.size(); ++v)
-    for (int c = 1; c < frame.Volumes[v].Channels; ++c)
+  // The pager's volumes: the frame's (component 0), then their components 1, 2, 3.
+  for (int c = 0; c < 4; ++c)
+    for (size_t v = 0; v < frame.Volumes.size(); ++v)
     {
-      frame.Volumes[v].PagerVolumes[c] = static_cast<int>(frame.PagerFrameVolume.size());
-      frame.PagerFrameVolume.push_back(static_cast<int>(v));
+      FrameVolume& e = frame.Volumes[v];
+      e.Channels =
+        frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
+      if (c > 0 && c >= e.Channels)
+        continue;
+      e.PagerVolumes[c] = static_cast<int>(frame.PagerVolumes.size());
+      frame.PagerVolumes.push_back({ static_cast<int>(v), c });
     }
   return !frame.Volumes.empty();
 }
@@ -318,8 +315,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::SupportsFeedback(Self* self, con
 {
   if (!frame.AnyPooled || !self->LevelOfDetailFeedback)
     return false;
-  bool idsFit =
-    static_cast<int>(frame.PagerFrameVolume.size()) <= vtkFeedbackReduction::MaxDataSets;
+  bool idsFit = static_cast<int>(frame.PagerVolumes.size()) <= vtkFeedbackReduction::MaxDataSets;
   const int B = frame.BrickSize;
   for (const auto& e : frame.Volumes)
   {
@@ -474,11 +470,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   Frame& frame)
 {
   std::vector<vtkVolumePager::Volume> volumes;
-  for (int pv = 0; pv < static_cast<int>(frame.PagerFrameVolume.size()); ++pv)
+  for (const auto& [frameVolume, c] : frame.PagerVolumes)
   {
-    const FrameVolume& e = frame.Volumes[frame.PagerFrameVolume[pv]];
-    const int c =
-      static_cast<int>(std::find(e.PagerVolumes, e.PagerVolumes + 4, pv) - e.PagerVolumes);
+    const FrameVolume& e = frame.Volumes[frameVolume];
     vtkVolumePager::Volume v;
     v.Port = vtkVolumePager::GetChannel(e.Port, c);
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree(c) : nullptr;
@@ -622,7 +616,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
       vtkErrorWithObjectMacro(self, "Brick " << u.Node << " entered the cut without its page.");
       scratch.assign(voxels,
         static_cast<float>(
-          this->Inputs[frame.Volumes[frame.PagerFrameVolume[u.Volume]].Port].GetEmptyScalar()));
+          this->Inputs[frame.Volumes[frame.PagerVolumes[u.Volume][0]].Port].GetEmptyScalar()));
       data = scratch.data();
     }
     if (encode)

@@ -72,8 +72,8 @@ struct Frame
 {
   std::vector<FrameVolume> Volumes;
   /// The pager's volumes: the frame's, then the components 1, 2, 3 of those that have several
-  /// in the atlas; the frame volume of each.
-  std::vector<int> PagerFrameVolume;
+  /// in the atlas; the frame volume and component of each.
+  std::vector<std::array<int, 2>> PagerVolumes;
   int BrickSize = 32;
   bool AnyPooled = false;
   bool Atlas = true;
