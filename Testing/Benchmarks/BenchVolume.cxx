@@ -18,6 +18,8 @@
 //                                           -> "<method>=<peak RSS MB>", one mapper alone
 //   BenchVolume storage <data>              -> the lean atlas: the data as uint8, uint16, int16
 //                                              and float32 under one atlas budget
+//   BenchVolume components <data>           -> two independent components and RGBA, in core
+//                                              and paged from component pools
 //   BenchVolume layers                      -> TranslucentLayers 1 .. 7 with six translucent
 //                                              planes through two volumes, against the reference
 //   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
@@ -53,11 +55,13 @@
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
+#include "vtkImageToPagePoolWriter.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNrrdReader.h"
+#include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlotPoints.h"
 #include "vtkPointData.h"
@@ -68,6 +72,8 @@
 #include "vtkVolumeBSPTree.h"
 #include "vtkVolumeProperty.h"
 #include "vtkXMLImageDataReader.h"
+
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <chrono>
@@ -84,6 +90,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h> // For getpid
 
 using strata_test::PeakRssMB;
 
@@ -841,6 +849,148 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
 }
 
 /**
+ * What components cost, in core and paged: `data` as two independent components (the data, and
+ * the data moved 6 voxels along x through its own functions, weight 0.5) and as RGBA (colours
+ * from the data, opacity the data), each drawn in core (one texture of a float channel per
+ * component) and paged from a set of component pools of 32^3 pages (a volume of one scalar per
+ * component in the atlas, its own index fetch each), converged before timing; 512 x 512, timed
+ * interleaved. Each paged row's note: its RMS (8-bit) against the in-core image, resident
+ * bricks and the pools' MB.
+ */
+int ComponentsCost(const std::string& data, const strata_test::TestPaths& paths)
+{
+  const std::string name = "components-" + data;
+  std::string why;
+  auto image = strata_test::LoadRealVolume(data, paths, why);
+  if (!image)
+    return Skipped(name, why);
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  int dims[3];
+  image->GetDimensions(dims);
+  double range[2];
+  s->GetRange(range);
+  auto make = [&](int components, bool rgba)
+  {
+    auto out = vtkSmartPointer<vtkImageData>::New();
+    out->CopyStructure(image);
+    vtkSmartPointer<vtkDataArray> values;
+    values.TakeReference(s->NewInstance());
+    values->SetNumberOfComponents(components);
+    values->SetNumberOfTuples(s->GetNumberOfTuples());
+    const double scale = 255.0 / std::max(range[1] - range[0], 1e-30);
+    for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
+    {
+      const double v = s->GetComponent(i, 0);
+      const vtkIdType x = i % dims[0];
+      const double moved = s->GetComponent(i - x + std::max<vtkIdType>(x - 6, 0), 0);
+      if (!rgba)
+      {
+        values->SetComponent(i, 0, v);
+        values->SetComponent(i, 1, moved);
+        continue;
+      }
+      const double g = (v - range[0]) * scale;
+      values->SetComponent(i, 0, range[0] + (255.0 - g) / scale);
+      values->SetComponent(i, 1, range[0] + (0.5 * g + 64.0) / scale);
+      values->SetComponent(i, 2, range[0] + g / scale);
+      values->SetComponent(i, 3, v);
+    }
+    out->GetPointData()->SetScalars(values);
+    return out;
+  };
+  struct Mode
+  {
+    const char* Name;
+    vtkSmartPointer<vtkImageData> Image;
+    vtkSmartPointer<vtkVolumeProperty> Property;
+  };
+  std::vector<Mode> modes = { { "independent2", make(2, false), nullptr },
+    { "rgba", make(4, true), nullptr } };
+  for (Mode& m : modes)
+  {
+    m.Property = strata_test::MakeRealVolumeProperty(data);
+    if (std::string(m.Name) == "rgba")
+      m.Property->IndependentComponentsOff();
+    else
+    {
+      m.Property->SetColor(1, m.Property->GetRGBTransferFunction(0));
+      m.Property->SetScalarOpacity(1, m.Property->GetScalarOpacity(0));
+      m.Property->SetComponentWeight(1, 0.5);
+    }
+  }
+  const std::string dir = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/strata-bench-" +
+                          std::to_string(static_cast<long>(getpid()));
+  vtksys::SystemTools::MakeDirectory(dir);
+  std::vector<Contender> contenders;
+  std::vector<vtkSmartPointer<vtkPagePoolReader>> readers;
+  std::vector<double> poolMB;
+  for (Mode& m : modes)
+  {
+    contenders.push_back(MakeSingle("strata", data, m.Image, m.Property));
+    contenders.back().Method = std::string("strata-") + m.Name + "-in-core";
+    const std::string pool = dir + "/" + m.Name + ".spp";
+    vtkNew<vtkImageToPagePoolWriter> writer;
+    writer->SetInputData(m.Image);
+    writer->SetFileName(pool.c_str());
+    writer->SetPageSize(32);
+    if (!writer->Write())
+      return Skipped(name, "the component pools could not be written to " + dir);
+    poolMB.push_back(writer->GetFileSize() / (1024.0 * 1024.0));
+    readers.push_back(vtkSmartPointer<vtkPagePoolReader>::New());
+    readers.back()->SetFileName(pool.c_str());
+    contenders.push_back(MakeSingle("strata", data, m.Image, m.Property));
+    contenders.back().Method = std::string("strata-") + m.Name + "-paged";
+    contenders.back().Strata->SetInputConnection(readers.back()->GetOutputPort());
+    int frames = 0;
+    for (; frames < 300; ++frames)
+    {
+      contenders.back().Win->Render();
+      if (contenders.back().Strata->GetPagingStatistics().Converged)
+        break;
+      contenders.back().Strata->WaitForPages(30.0);
+    }
+    std::cerr << name << " " << m.Name << " paged: converged after " << frames << " frames\n";
+  }
+  TimeInterleaved(contenders, TimedFrames(7));
+  const std::string load = LoadNote();
+  for (size_t k = 0; k < contenders.size(); ++k)
+  {
+    Contender& c = contenders[k];
+    Row row;
+    row.Case = name;
+    row.Method = c.Method;
+    row.Ms = Median(c.Ms);
+    row.Classification = "post";
+    row.Order = "front-to-back";
+    row.Rays = 1;
+    row.Coherence = 0;
+    row.SampleDistance = 0.5;
+    row.Volumes = 1;
+    row.Width = row.Height = 512;
+    row.Fragments = c.Strata->GetNumberOfFragments();
+    std::ostringstream note;
+    note.precision(4);
+    if (k % 2 == 1)
+      note << "paged, RMS to the in-core image "
+           << strata_test::ImageError(
+                strata_test::ReadRGB(c.Win), strata_test::ReadRGB(contenders[k - 1].Win))
+                .Rms
+           << "; " << c.Strata->GetNumberOfResidentBricks() << " bricks resident; pools "
+           << poolMB[k / 2] << " MB; ";
+    else
+      note << "in core (a float channel per component); ";
+    note << "timed interleaved with the others" << load;
+    row.Note = note.str();
+    Emit(row);
+    std::cerr << name << " " << row.Method << ": " << row.Ms << " ms\n";
+  }
+  contenders.clear();
+  readers.clear();
+  vtksys::SystemTools::RemoveADirectory(dir);
+  return 0;
+}
+
+/**
  * The translucent-layers knob: TestMultiVolumeTranslucentGeometry's two volumes crossed by six
  * parallel planes of opacity 0.4 (AddTranslucentActor), TranslucentLayers = 1 .. 7, each image
  * against the reference that composites every plane at its exact depth; 128 x 128 (the cases'
@@ -1393,6 +1543,49 @@ void Plot(const std::vector<std::map<std::string, std::string>>& rows, const std
   chart.Write(png);
 }
 
+/// The `components` rows: ms in core and paged per mode, their ratio and the paged image's RMS.
+void ComponentsTable(const std::vector<std::map<std::string, std::string>>& rows)
+{
+  const std::regex rms("RMS to the in-core image ([0-9.e-]+); (\\d+) bricks resident");
+  bool header = false;
+  for (const auto& paged : rows)
+  {
+    const std::string method = Get(paged, "method");
+    const size_t at = method.rfind("-paged");
+    if (Get(paged, "case").rfind("components-", 0) != 0 || at == std::string::npos)
+      continue;
+    const std::string base = method.substr(0, at);
+    const std::map<std::string, std::string>* inCore = nullptr;
+    for (const auto& r : rows)
+      if (Get(r, "case") == Get(paged, "case") && Get(r, "method") == base + "-in-core")
+        inCore = &r;
+    std::smatch m;
+    const std::string note = Get(paged, "note");
+    const bool figures = std::regex_search(note, m, rms);
+    if (!header)
+      std::printf("\nComponents in core (float channels) and paged (a volume of one scalar per "
+                  "component in the atlas)\n%-18s %-22s %10s %10s %8s %10s %9s\n",
+        "case",
+        "mode",
+        "in_core_ms",
+        "paged_ms",
+        "ratio",
+        "paged_rms",
+        "resident");
+    header = true;
+    const double a = inCore ? Number(*inCore, "ms_per_frame") : NaN,
+                 b = Number(paged, "ms_per_frame");
+    std::printf("%-18s %-22s %10.1f %10.1f %8.2f %10s %9s\n",
+      Get(paged, "case").c_str(),
+      base.c_str(),
+      a,
+      b,
+      b / a,
+      figures ? m[1].str().c_str() : "-",
+      figures ? m[2].str().c_str() : "-");
+  }
+}
+
 /// The lean atlas: bytes per brick, slots under one budget and the error that budget leaves,
 /// by scalar type (the `storage` rows; the figures are read back from their notes).
 void StorageTable(const std::vector<std::map<std::string, std::string>>& rows)
@@ -1634,6 +1827,7 @@ int Report(const std::string& csv, const std::string& png)
 
   AtlasCostTable(rows, cases);
   StorageTable(rows);
+  ComponentsTable(rows);
   bool layersHeader = false;
   for (const auto& r : rows)
   {
@@ -1699,6 +1893,8 @@ int main(int argc, char* argv[])
     return Layers();
   if (mode == "storage" && argc > 2)
     return Storage(argv[2], paths);
+  if (mode == "components" && argc > 2)
+    return ComponentsCost(argv[2], paths);
   if (mode == "multi" && argc > 2)
     return Multi(std::max(2, std::min(4, std::atoi(argv[2]))));
   if (mode == "bsp" && argc > 2)
@@ -1711,7 +1907,7 @@ int main(int argc, char* argv[])
   std::cerr
     << "usage: BenchVolume header | accuracy <data> | blend <data> | frame <single|sparse> <data> "
        "[<method>=<MB>,...] | memory <single|sparse> <data> <strata|strata-no-atlas|vtk> | "
-       "storage <data> | layers | multi <2-4> | bsp <n> [ring|grid] | converge "
+       "storage <data> | components <data> | layers | multi <2-4> | bsp <n> [ring|grid] | converge "
        "<data> [1/h 1/h'] | report <csv> <png>\n";
   return 2;
 }
