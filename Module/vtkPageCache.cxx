@@ -127,6 +127,7 @@ public:
   std::unordered_map<uint64_t, QueueEntry> QueueMap;
   std::unordered_map<uint64_t, Loading> InFlight;
   std::unordered_set<uint64_t> DeferredKeys; ///< cleared by BeginFrame()
+  std::unordered_set<uint64_t> Discard;      ///< in flight when their data set was forgotten
   std::unordered_map<uint64_t, FailureState> Failed;
   std::unordered_map<uint64_t, int> Attempts; ///< failed loads since the last success/Retry
   std::vector<uint64_t> NewFailures;
@@ -229,7 +230,7 @@ public:
   {
     const Loading loading = this->InFlight[key];
     this->InFlight.erase(key);
-    if (this->Stopping)
+    if (this->Stopping || this->Discard.erase(key) > 0)
     {
       return;
     }
@@ -482,6 +483,7 @@ void vtkPageCache::Stop()
   std::lock_guard<std::mutex> lock(in.Mutex);
   in.Workers.clear();
   in.InFlight.clear();
+  in.Discard.clear();
   in.Running = false;
   in.Stopping = false;
   in.IdleCv.notify_all();
@@ -745,6 +747,46 @@ size_t vtkPageCache::EvictAll()
     }
     it = next;
   }
+  return n;
+}
+
+size_t vtkPageCache::Forget(int dataset)
+{
+  vtkInternals& in = *this->Internals;
+  std::lock_guard<std::mutex> lock(in.Mutex);
+  auto of = [dataset](uint64_t key) { return Key::Unpack(key).Dataset == dataset; };
+  size_t n = 0;
+  for (auto it = in.Lru.begin(); it != in.Lru.end();)
+  {
+    auto next = std::next(it);
+    if (of(it->Key))
+    {
+      in.CurrentBytes -= it->Data->size();
+      in.ResidentMap.erase(it->Key);
+      in.Lru.erase(it);
+      ++n;
+    }
+    it = next;
+  }
+  for (auto it = in.Queue.begin(); it != in.Queue.end();)
+  {
+    auto next = std::next(it);
+    if (of(it->Key))
+    {
+      in.QueueMap.erase(it->Key);
+      in.Queue.erase(it);
+    }
+    it = next;
+  }
+  for (const auto& loading : in.InFlight)
+    if (of(loading.first))
+      in.Discard.insert(loading.first);
+  for (auto it = in.Failed.begin(); it != in.Failed.end();)
+    it = of(it->first) ? in.Failed.erase(it) : std::next(it);
+  for (auto it = in.Attempts.begin(); it != in.Attempts.end();)
+    it = of(it->first) ? in.Attempts.erase(it) : std::next(it);
+  for (auto it = in.DeferredKeys.begin(); it != in.DeferredKeys.end();)
+    it = of(*it) ? in.DeferredKeys.erase(it) : std::next(it);
   return n;
 }
 

@@ -229,6 +229,13 @@ public:
 
   /// Drops every evictable page (pinned and referenced pages stay); returns how many.
   size_t EvictAll();
+  /**
+   * Forgets data set `dataset` (its file was replaced under the same keys): its pages leave the
+   * cache pinned or not (whoever holds one keeps it alive, but no Find returns it again), its
+   * queued requests and failures are dropped, and its loads in flight are discarded when they
+   * finish. Returns the pages dropped.
+   */
+  size_t Forget(int dataset);
 
   Statistics GetStatistics() const;
   void ResetStatistics();

@@ -99,7 +99,7 @@ std::shared_ptr<vtkPagePoolFile> vtkPagedPools::OpenPool(int id,
   }
   if (replaced)
   {
-    in.Cache.EvictAll(); // pages of the old file under the same keys
+    in.Cache.Forget(id); // pages of the old file under the same keys, pinned ones too
   }
   return file;
 }

@@ -101,9 +101,15 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
     this->Mapper->RemoveInputConnection(port, 0);
   this->Ports = n;
 
-  // Each volume carries its representation's transform.
+  // Each volume carries its representation's transform, and its components the mapping
+  // ParaView's Map Scalars and Multi Components Mapping choose (as its own volume
+  // representation sets them: dependent when either says so).
   for (auto* member : shown)
+  {
     vtkStrataParaViewUtilities::CopyTransform(member->Actor, member->Member);
+    member->Property->SetIndependentComponents(
+      member->MapScalars && !member->MultiComponentsMapping ? 1 : 0);
+  }
   if (n == 1)
   {
     for (int port = 0; port < this->MultiPorts; ++port)

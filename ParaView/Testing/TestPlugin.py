@@ -13,6 +13,9 @@ each), the data are paged by the representation, overlapping volumes share one r
 render window is ParaView's own, and the image matches the C++ one (max channel difference and
 number of differing pixels printed; the maximum asserted).
 
+components: volumes of several components (written here) through Strata Volume and ParaView's
+own Volume representation, with Map Scalars and Multi Components Mapping.
+
 proxies: loads the plugin and lists its proxies (sources, filters, representations), asserting
 that each is there.
 """
@@ -367,21 +370,157 @@ def paged_horizons(args, camera):
     compare(view, camera, args.work, "paged_horizons", args.tolerance)
 
 
+def write_component_images(work):
+    """rgba.vti: 40^3 unsigned char RGBA (colour ramps along x, y and z, opacity a ball) and
+    two.vti: two float components (a colour scalar, and the ball as opacity)."""
+    import numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    n = 40
+    z, y, x = numpy.mgrid[0:n, 0:n, 0:n].astype(numpy.float64)
+    ball = numpy.clip(1.0 - numpy.sqrt((x - 19.5) ** 2 + (y - 19.5) ** 2 + (z - 19.5) ** 2) / 18.0,
+                      0.0, 1.0)
+    rgba = numpy.stack([x * 6.5, y * 6.5, 255.0 - z * 6.5, ball * 255.0], axis=-1)
+    two = numpy.stack([x * 6.5, ball * 255.0], axis=-1)
+    for name, values, kind in (("rgba", rgba, numpy.uint8), ("two", two, numpy.float32)):
+        image = vtkImageData()
+        image.SetDimensions(n, n, n)
+        array = numpy_to_vtk(values.reshape(-1, values.shape[-1]).astype(kind), deep=1)
+        array.SetName(name)
+        image.GetPointData().SetScalars(array)
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(os.path.join(work, name + ".vti"))
+        writer.Write()
+
+
+def screenshot(view, path):
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    SaveScreenshot(path, view, ImageResolution=view.ViewSize, TransparentBackground=0)
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    values = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+    return values[:, :3].astype("int32")
+
+
+def set_component_functions(display, array, map_scalars, multi):
+    """The components scene's colour map and opacity (over [0, 255]) on `display`, shared and
+    separate (Multi Components Mapping makes ParaView use a separate colour map), and the
+    component mapping."""
+    ColorBy(display, ("POINTS", array))
+    display.MapScalars = map_scalars
+    display.MultiComponentsMapping = multi
+    display.InterpolationType = "Linear"
+    display.ScalarOpacityUnitDistance = 1.0
+    for separate in (False, True):
+        lut = GetColorTransferFunction(array, display, separate=separate)
+        lut.AutomaticRescaleRangeMode = "Never"
+        lut.VectorMode = "Component"
+        lut.VectorComponent = 0
+        lut.RGBPoints = [0.0, 0.1, 0.2, 0.9, 128.0, 0.9, 0.9, 0.3, 255.0, 0.9, 0.1, 0.1]
+        opacity = GetOpacityTransferFunction(array, display, separate=separate)
+        opacity.Points = [0.0, 0.0, 0.5, 0.0, 255.0, 0.15, 0.5, 0.0]
+
+
+def components(args, camera=None):
+    """Volumes of several components follow ParaView's Map Scalars and Multi Components
+    Mapping (shared with its own Volume representation): off / on, RGBA and colour + opacity
+    (VTK's dependent components), drawn as ParaView's Volume draws them; on / off, the
+    components independent."""
+    import numpy
+    write_component_images(args.work)
+    view = CreateRenderView()
+    view.ViewSize = [160, 160]
+    view.OrientationAxesVisibility = 0
+    view.Background = [0.5, 0.5, 0.5]
+    view.UseColorPaletteForBackground = 0
+    view.CameraPosition = [-45.0, -70.0, 80.0]
+    view.CameraFocalPoint = [19.5, 19.5, 19.5]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    view.CameraViewAngle = 30.0
+    for name, map_scalars, multi in (("rgba", 0, 0), ("two", 1, 1)):
+        reader = OpenDataFile(os.path.join(args.work, name + ".vti"))
+        display = Show(reader, view)
+        set_component_functions(display, name, map_scalars, multi)
+        images = {}
+        for representation in ("Volume", "Strata Volume"):
+            display.SetRepresentationType(representation)
+            if representation == "Strata Volume":
+                display.StrataVolumeSampleDistance = 0.25
+            Render(view)
+            images[representation] = screenshot(
+                view, os.path.join(args.work, "%s_%s.png" % (name, representation.replace(" ", ""))))
+        difference = numpy.abs(images["Volume"] - images["Strata Volume"])
+        rms = float(numpy.sqrt(numpy.mean(difference.astype(numpy.float64) ** 2)))
+        covered = numpy.count_nonzero(numpy.any(numpy.abs(images["Volume"] - 128) > 2, axis=1))
+        print("%s (MapScalars %d, MultiComponentsMapping %d): Strata Volume against ParaView's "
+              "Volume: RMS %.3f, max %d of 255, %d pixels covered"
+              % (name, map_scalars, multi, rms, difference.max(), covered))
+        check(covered > len(difference) // 10, name + ": the volume covers more than a tenth")
+        check(difference.max() <= args.tolerance and rms <= 1.0,
+              "%s: Strata Volume draws the dependent components as ParaView's Volume does "
+              "(max %d, RMS 1)" % (name, args.tolerance))
+        # The property reaches Strata: the components drawn independent are another image.
+        display.MapScalars = 1
+        display.MultiComponentsMapping = 0
+        Render(view)
+        independent = screenshot(view, os.path.join(args.work, name + "_independent.png"))
+        apart = float(numpy.sqrt(numpy.mean((independent - images["Strata Volume"]) ** 2.0)))
+        print("%s drawn as independent components: RMS %.2f from the dependent image" % (name, apart))
+        check(apart > 5.0, name + ": Map Scalars and Multi Components Mapping reach Strata Volume")
+        display.MapScalars = map_scalars
+        display.MultiComponentsMapping = multi
+        Hide(reader, view)
+        if args.convert:
+            paged_components(args, view, name, map_scalars, multi, images["Strata Volume"])
+
+
+def paged_components(args, view, name, map_scalars, multi, in_core):
+    """The same volume converted by strata-convert to a set of component pools and paged by
+    Strata Volume: the in-core image once settled."""
+    import subprocess
+    import numpy
+    pool = os.path.join(args.work, name + ".spp")
+    subprocess.run([args.convert, os.path.join(args.work, name + ".vti"), pool, "--page-size",
+                    "16"], check=True, stdout=subprocess.DEVNULL)
+    reader = StrataPagePool(FileName=pool)
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Volume")
+    set_component_functions(display, reader.PointData.keys()[0], map_scalars, multi)
+    display.StrataVolumeSampleDistance = 0.25
+    frames = render_until_converged(view, display, "StrataVolume")
+    display.UpdatePropertyInformation()
+    paged = screenshot(view, os.path.join(args.work, name + "_paged.png"))
+    difference = numpy.abs(paged - in_core)
+    print("%s paged from %s and its components' pools: settled after %d renders, against in "
+          "core max %d of 255" % (name, pool, frames, difference.max()))
+    check(display.GetPropertyValue("StrataVolumePaged") == 1 and frames <= 500,
+          name + ": the component pools are paged and settle")
+    check(difference.max() <= 1, name + ": paged, the in-core image within 1 of 255")
+    Hide(reader, view)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--plugin", required=True)
     parser.add_argument("--scene", required=True,
                         choices=["paged_volume", "paged_horizons", "horizons", "volumes", "hybrid",
-                                 "time_series", "proxies"])
+                                 "time_series", "proxies", "components"])
     parser.add_argument("--work", default=".")
     parser.add_argument("--data", default=".", help="Testing/Data (the volumes scene)")
     parser.add_argument("--tolerance", type=int, default=0)
+    parser.add_argument("--convert", default="", help="strata-convert (the components scene)")
     args = parser.parse_args()
     LoadPlugin(args.plugin, remote=False, ns=globals())
     print("ParaView %d.%d, plugin %s" % (GetParaViewVersion().major,
                                          GetParaViewVersion().minor, args.plugin))
     if args.scene == "proxies":
         list_proxies()
+    elif args.scene == "components":
+        components(args)
     else:
         with open(os.path.join(args.work, args.scene + ".json")) as f:
             camera = json.load(f)

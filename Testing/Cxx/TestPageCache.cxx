@@ -361,6 +361,55 @@ void TestReferencedAndPinned()
     "EvictAll() empties an unpinned, unreferenced cache");
 }
 
+/// A data set whose file was replaced under the same keys: Forget drops its pages, pinned and
+/// held ones too (the holder's copy stays intact), its queue and its loads in flight.
+void TestForget()
+{
+  std::cout << "Forget a data set\n";
+  const size_t pageBytes = 1000;
+  vtkPageCache cache;
+  cache.SetNumberOfThreads(1);
+  cache.SetBudgetBytes(16 * pageBytes);
+  std::atomic<int> generation{ 0 };
+  std::atomic<bool> slow{ false };
+  cache.SetLoadFunction(
+    [&](const Key& k, std::vector<uint8_t>& out, std::string&)
+    {
+      if (slow && k.Page == 7)
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      Fill(k, pageBytes, out);
+      out[0] = static_cast<uint8_t>(generation.load());
+      return true;
+    });
+  cache.Start();
+  for (int64_t p = 0; p < 3; ++p)
+  {
+    cache.Request(K(4, 0, p), 1);
+    cache.Request(K(5, 0, p), 1);
+  }
+  cache.WaitForIdle(10);
+  vtkPageCache::Page held = cache.Find(K(4, 0, 0)); // pinned this frame and held
+  slow = true;
+  cache.Request(K(4, 0, 7), 1); // in flight when forgotten
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const size_t dropped = cache.Forget(4);
+  generation = 1;
+  cache.WaitForIdle(10);
+  Check(dropped == 3 && !cache.IsResident(K(4, 0, 0)) && !cache.IsResident(K(4, 0, 7)) &&
+          cache.IsResident(K(5, 0, 0)),
+    "Forget(4): its 3 pages leave (a pinned, held one too), the load in flight is discarded, "
+    "data set 5 stays");
+  bool intact = held && held->size() == pageBytes && (*held)[0] == 0;
+  for (size_t i = 1; intact && i < pageBytes; ++i)
+    intact = (*held)[i] == PatternByte(K(4, 0, 0), i);
+  Check(intact, "the holder's copy of a forgotten page is intact");
+  cache.BeginFrame();
+  cache.Request(K(4, 0, 0), 1);
+  cache.WaitForIdle(10);
+  vtkPageCache::Page again = cache.Find(K(4, 0, 0));
+  Check(again && (*again)[0] == 1, "asked again, the page is loaded from the new file");
+}
+
 void TestPriorityOrder()
 {
   std::cout << "Priority order of loads (1 worker held busy while the queue fills)\n";
@@ -707,6 +756,7 @@ int TestPageCache(int, char*[])
       { "GridNeighbours", TestGridNeighbours },
       { "AgainstReference", TestAgainstReference },
       { "ReferencedAndPinned", TestReferencedAndPinned },
+      { "Forget", TestForget },
       { "PriorityOrder", TestPriorityOrder },
       { "CancelStale", TestCancelStale },
       { "Failures", TestFailures },
