@@ -120,11 +120,17 @@ void vtkPagedPools::Close()
 {
   vtkInternals& in = *this->Internals;
   in.Cache.Stop();
-  in.Cache.EvictAll();
+  std::vector<int> ids;
   {
     std::lock_guard<std::mutex> lock(in.Mutex);
+    for (const auto& pool : in.Pools)
+      ids.push_back(pool.first);
     in.Pools.clear();
   }
+  // Pinned and held pages too: a pool opened later under one of these ids is another file.
+  for (int id : ids)
+    in.Cache.Forget(id);
+  in.Cache.EvictAll();
   this->Stats = Statistics();
   this->Warning.clear();
   this->LastWarning.clear();
