@@ -470,9 +470,11 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   Frame& frame)
 {
   std::vector<vtkVolumePager::Volume> volumes;
-  for (const auto& [frameVolume, c] : frame.PagerVolumes)
+  for (const std::array<int, 2>& pagerVolume : frame.PagerVolumes)
   {
-    const FrameVolume& e = frame.Volumes[frameVolume];
+    // (Not a structured binding: C++17 lambdas cannot capture one, clang says so.)
+    const FrameVolume& e = frame.Volumes[pagerVolume[0]];
+    const int c = pagerVolume[1];
     vtkVolumePager::Volume v;
     v.Port = vtkVolumePager::GetChannel(e.Port, c);
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree(c) : nullptr;
