@@ -6,10 +6,12 @@
  *
  * vtkVolumePager (bricks) and vtkHeightFieldPager (tiles) differ in their cuts, page tables
  * and feedback; everything between a pool on disk and a page in RAM is this one piece:
- * - Pools are kept by id, the cache key's data set (the volume's input port, or the horizon
- *   stack's pool index). The cache's workers read them (vtkPagePoolFile::ReadPage, as floats)
- *   and, with prefetch on, queue a loaded page's face neighbours and parent (vtkPageCache::
- *   AddGridNeighbours on the pool's level grids); the map of pools is guarded for them.
+ * - Pools are kept by id, the cache key's data set (vtkVolumePager::GetPoolId of a volume's
+ *   port, component and time step, or the horizon stack's pool index); an id opened again for
+ *   another file forgets the old file's pages (vtkPageCache::Forget). The cache's workers
+ *   read them (vtkPagePoolFile::ReadPage, as floats) and, with prefetch on, queue a loaded
+ *   page's face neighbours and parent (vtkPageCache::AddGridNeighbours on the pool's level
+ *   grids); the map of pools is guarded for them.
  * - Acquire() is the cut's availability answer: the page if it is in RAM, else a request at
  *   the node's priority. Requests per frame are capped at four frames' worth of uploads
  *   (4 x PagesPerFrame): a longer queue would load pages the cache evicts again before the cut
