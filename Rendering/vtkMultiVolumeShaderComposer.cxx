@@ -164,7 +164,8 @@ std::string IndependentMedium(int n, int count)
 std::string Lookup(const Key& key, int n, bool first);
 std::string FeedbackFetchCheck(const Key& key, int n, int component = 0);
 
-/// The feedback rays' number of component c of fragment volume n (gLackVolume).
+/// The feedback rays' number of component c of fragment volume n (gLackVolume); n < 64, as a
+/// fragment has at most the 62 volumes feedback can name (vtkFeedbackReduction::MaxDataSets).
 int LackId(int n, int c)
 {
   return n + 64 * c;
