@@ -605,6 +605,31 @@ void WarmUp(Contender& c)
 }
 
 /**
+ * A row of the one-volume scenes at 512 x 512 (post-classified, sample distance 0.5): case,
+ * method and, from the contender when it ran, its median frame time and Strata's settings.
+ */
+Row SingleVolumeRow(const std::string& name, const std::string& method, const Contender* c)
+{
+  Row row;
+  row.Case = name;
+  row.Method = method;
+  row.Classification = "post";
+  row.SampleDistance = 0.5;
+  row.Volumes = 1;
+  row.Width = row.Height = 512;
+  if (c)
+    row.Ms = Median(c->Ms);
+  if (c && c->Strata)
+  {
+    row.Order = "front-to-back";
+    row.Rays = 1;
+    row.Coherence = 0;
+    row.Fragments = c->Strata->GetNumberOfFragments();
+  }
+  return row;
+}
+
+/**
  * Times the contenders' frames interleaved: round after round, one frame of each, the order
  * rotating. This machine's two cores are shared, and a neighbour's burst of work then slows all
  * contenders alike instead of whichever happened to be measured at the time.
@@ -712,14 +737,9 @@ int FrameCase(const std::string& kind,
   const std::string load = LoadNote();
   for (size_t k = 0; k < 3; ++k)
   {
-    Row row;
-    row.Case = name;
-    row.Method =
-      SingleMethods[k] == std::string("vtk") ? "vtkGPUVolumeRayCastMapper" : SingleMethods[k];
-    row.Classification = "post";
-    row.SampleDistance = 0.5;
-    row.Volumes = 1;
-    row.Width = row.Height = 512;
+    Row row = SingleVolumeRow(name,
+      SingleMethods[k] == std::string("vtk") ? "vtkGPUVolumeRayCastMapper" : SingleMethods[k],
+      image ? &contenders[k] : nullptr);
     if (!image)
     {
       row.Note = "skipped: " + why;
@@ -727,14 +747,6 @@ int FrameCase(const std::string& kind,
       continue;
     }
     Contender& c = contenders[k];
-    row.Ms = Median(c.Ms);
-    if (c.Strata)
-    {
-      row.Order = "front-to-back";
-      row.Rays = 1;
-      row.Coherence = 0;
-      row.Fragments = c.Strata->GetNumberOfFragments();
-    }
     if (rss.count(SingleMethods[k]) && !rss[SingleMethods[k]].empty())
       row.PeakRss = std::atof(rss[SingleMethods[k]].c_str());
     std::ostringstream note;
@@ -817,18 +829,7 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
   for (size_t k = 0; k < contenders.size(); ++k)
   {
     Contender& c = contenders[k];
-    Row row;
-    row.Case = name;
-    row.Method = std::string("strata-") + kinds[k].Name;
-    row.Ms = Median(c.Ms);
-    row.Classification = "post";
-    row.Order = "front-to-back";
-    row.Rays = 1;
-    row.Coherence = 0;
-    row.SampleDistance = 0.5;
-    row.Volumes = 1;
-    row.Width = row.Height = 512;
-    row.Fragments = c.Strata->GetNumberOfFragments();
+    Row row = SingleVolumeRow(name, std::string("strata-") + kinds[k].Name, &c);
     std::ostringstream note;
     note.precision(4);
     note << "atlas " << c.Strata->GetAtlasScalarTypeName() << "; "
@@ -956,18 +957,7 @@ int ComponentsCost(const std::string& data, const strata_test::TestPaths& paths)
   for (size_t k = 0; k < contenders.size(); ++k)
   {
     Contender& c = contenders[k];
-    Row row;
-    row.Case = name;
-    row.Method = c.Method;
-    row.Ms = Median(c.Ms);
-    row.Classification = "post";
-    row.Order = "front-to-back";
-    row.Rays = 1;
-    row.Coherence = 0;
-    row.SampleDistance = 0.5;
-    row.Volumes = 1;
-    row.Width = row.Height = 512;
-    row.Fragments = c.Strata->GetNumberOfFragments();
+    Row row = SingleVolumeRow(name, c.Method, &c);
     std::ostringstream note;
     note.precision(4);
     if (k % 2 == 1)
