@@ -249,6 +249,8 @@ int vtkMultiVolumeInput::UpdateTree(const int dims[3],
       this->Tree.reset();
       return -1;
     }
+    if (type != Type::Float32)
+      std::vector<float>().swap(t.Values); // the native tree borrows t.Native alone
   }
   return 1;
 }
@@ -395,6 +397,8 @@ double vtkMultiVolumeInput::MaxOpacity(double lo, double hi) const
 
 double vtkMultiVolumeInput::ComponentVisibility(Components mode, int c, double lo, double hi) const
 {
+  if (mode == Components::One)
+    return this->BrickVisibility(lo, hi);
   if (IsIndependent(mode))
     return TableMaxOpacity(c == 0 ? this->Table : this->ComponentTables[c - 1], lo, hi);
   return c == GetOpacityComponent(mode) ? this->MaxOpacity(lo, hi) : 1.0;
@@ -402,6 +406,8 @@ double vtkMultiVolumeInput::ComponentVisibility(Components mode, int c, double l
 
 double vtkMultiVolumeInput::GetComponentEmptyScalar(Components mode, int c) const
 {
+  if (mode == Components::One)
+    return this->GetEmptyScalar();
   if (IsIndependent(mode) && c > 0)
     return TableEmptyScalar(this->ComponentTables[c - 1]);
   return this->EmptyScalar;
@@ -602,10 +608,8 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
     const float scale[3] = { 1.0f / extent[0], 1.0f / extent[1], 1.0f / extent[2] };
     program->SetUniform3f(("uIndexExtent" + L).c_str(), extent);
     program->SetUniform3f(("uIndexScale" + L).c_str(), scale);
-    const double empty = b.ComponentMode == Components::One
-                           ? this->GetEmptyScalar()
-                           : this->GetComponentEmptyScalar(b.ComponentMode, c);
-    program->SetUniformf(("uEmptyScalar" + L).c_str(), static_cast<float>(empty));
+    program->SetUniformf(("uEmptyScalar" + L).c_str(),
+      static_cast<float>(this->GetComponentEmptyScalar(b.ComponentMode, c)));
     if (b.Normalized && c > 0)
       program->SetUniform2f(("uDecode" + L).c_str(), b.Decode);
   }

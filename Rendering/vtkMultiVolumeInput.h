@@ -175,10 +175,11 @@ public:
   /// The scalar left-out bricks read under the blend mode (see SetBlendMode).
   double GetEmptyScalar() const;
   /**
-   * Of component `c` of a volume of several components in the atlas (composite): what a brick
-   * of its values in [lo, hi] may show, and the value left-out bricks read. Independent: its
-   * own table's opacity; dependent: the opacity component's (the main table), and the colour
-   * components always count (their bricks are kept wherever the volume is).
+   * Of component `c` of a volume in the atlas: what a brick of its values in [lo, hi] may show,
+   * and the value left-out bricks read. One component: BrickVisibility and GetEmptyScalar.
+   * Several (composite): independent, its own table's opacity; dependent, the opacity
+   * component's (the main table), and the colour components always count (their bricks are
+   * kept wherever the volume is).
    */
   double ComponentVisibility(Components mode, int c, double lo, double hi) const;
   double GetComponentEmptyScalar(Components mode, int c) const;
@@ -269,7 +270,8 @@ private:
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
   std::unique_ptr<vtkVolumeBrickTree> Tree;
-  /// Components 1, 2, 3 (several): their values (float, or native) and trees, which borrow them.
+  /// Components 1, 2, 3 (several): their values (float; kept only while a float tree borrows
+  /// them) or native copies, and trees.
   struct ComponentTree
   {
     std::vector<float> Values;

@@ -181,7 +181,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
       if (!file)
         continue;
       const vtkPagePoolFile::Header& h = file->GetHeader();
-      e.Pool = e.ComponentPools[0] = pool;
+      e.Pool = pool;
       if (!this->OpenComponentPools(self, *file, e))
         continue;
       std::copy(h.Dimensions, h.Dimensions + 3, e.Dims);
@@ -230,17 +230,16 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     [](const FrameVolume& e) { return e.ComponentMode != Components::One; });
   frame.Atlas = (self->UseBrickAtlas && !anyComponents) || frame.AnyPooled;
   // The pager's volumes: the frame's (component 0), then their components 1, 2, 3.
+  for (FrameVolume& e : frame.Volumes)
+    e.Channels =
+      frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
   for (int c = 0; c < 4; ++c)
     for (size_t v = 0; v < frame.Volumes.size(); ++v)
-    {
-      FrameVolume& e = frame.Volumes[v];
-      e.Channels =
-        frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
-      if (c > 0 && c >= e.Channels)
-        continue;
-      e.PagerVolumes[c] = static_cast<int>(frame.PagerVolumes.size());
-      frame.PagerVolumes.push_back({ static_cast<int>(v), c });
-    }
+      if (c < frame.Volumes[v].Channels)
+      {
+        frame.Volumes[v].PagerVolumes[c] = static_cast<int>(frame.PagerVolumes.size());
+        frame.PagerVolumes.push_back({ static_cast<int>(v), c });
+      }
   return !frame.Volumes.empty();
 }
 
@@ -284,7 +283,7 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
 // its input has components, each a member of `first`'s set (vtkPagePoolFormat::CheckComponent).
 bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
   const vtkPagePoolFile& first,
-  FrameVolume& e)
+  const FrameVolume& e)
 {
   const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
   if (first.GetHeader().Components != count)
@@ -304,7 +303,6 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
         vtkErrorWithObjectMacro(self, "Cannot page the volume on port " << e.Port << ": " << error);
       return false;
     }
-    e.ComponentPools[c] = vtkPagePoolFormat::GetComponentFileName(e.Pool, c);
   }
   return true;
 }
@@ -397,7 +395,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (self->EmptySpaceSkipping && opacity >= 0)
       this->Inputs[e.Port].UpdateSkipGrid(
         this->Pager.GetPoolTree(vtkVolumePager::GetChannel(e.Port, pool)),
-        e.ComponentPools[pool],
+        e.Pool.empty() ? e.Pool : vtkPagePoolFormat::GetComponentFileName(e.Pool, pool),
         e.Dims,
         self->SkipCellSize,
         opacity);
@@ -481,11 +479,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
     const Components mode = e.ComponentMode;
-    if (mode == Components::One)
-      v.Opacity = [input](double lo, double hi) { return input->BrickVisibility(lo, hi); };
-    else
-      v.Opacity = [input, mode, c](double lo, double hi)
-      { return input->ComponentVisibility(mode, c, lo, hi); };
+    v.Opacity = [input, mode, c](double lo, double hi)
+    { return input->ComponentVisibility(mode, c, lo, hi); };
     // Pre-integrated segments read both ends: no end may fall on an empty brick's stand-in
     // next to visible data.
     v.Halo = self->Classification != Classifications::PostClassification;
@@ -616,9 +611,10 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
     if (!data)
     {
       vtkErrorWithObjectMacro(self, "Brick " << u.Node << " entered the cut without its page.");
+      const FrameVolume& e = frame.Volumes[frame.PagerVolumes[u.Volume][0]];
       scratch.assign(voxels,
-        static_cast<float>(
-          this->Inputs[frame.Volumes[frame.PagerVolumes[u.Volume][0]].Port].GetEmptyScalar()));
+        static_cast<float>(this->Inputs[e.Port].GetComponentEmptyScalar(
+          e.ComponentMode, frame.PagerVolumes[u.Volume][1])));
       data = scratch.data();
     }
     if (encode)

@@ -61,10 +61,10 @@ struct FrameVolume
   /// when the frame uses the atlas, from a volume of one scalar per component there.
   Components ComponentMode = Components::One;
   /// In the atlas: that many volumes of the pager, component c's PagerVolumes[c] (component
-  /// 0's is the frame's number of the volume), paged from ComponentPools[c] (the set's files).
+  /// 0's is the frame's number of the volume), paged from the set's file of component c
+  /// (vtkPagePoolFormat::GetComponentFileName of Pool).
   int Channels = 1;
   int PagerVolumes[4] = { 0, 0, 0, 0 };
-  std::string ComponentPools[4];
 };
 
 // What one frame draws and how, gathered once and read by every step.
@@ -147,7 +147,7 @@ public:
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
   const vtkPagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
-  bool OpenComponentPools(Self* self, const vtkPagePoolFile& first, FrameVolume& e);
+  bool OpenComponentPools(Self* self, const vtkPagePoolFile& first, const FrameVolume& e);
   bool SupportsFeedback(Self* self, const Frame& frame);
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
