@@ -758,25 +758,21 @@ size_t vtkPageCache::Forget(int dataset)
   size_t n = 0;
   for (auto it = in.Lru.begin(); it != in.Lru.end();)
   {
-    auto next = std::next(it);
-    if (of(it->Key))
+    if (!of(it->Key))
     {
-      in.CurrentBytes -= it->Data->size();
-      in.ResidentMap.erase(it->Key);
-      in.Lru.erase(it);
-      ++n;
+      ++it;
+      continue;
     }
-    it = next;
+    in.CurrentBytes -= it->Data->size(); // not an eviction: holders keep their copies
+    in.ResidentMap.erase(it->Key);
+    it = in.Lru.erase(it);
+    ++n;
   }
   for (auto it = in.Queue.begin(); it != in.Queue.end();)
   {
-    auto next = std::next(it);
     if (of(it->Key))
-    {
       in.QueueMap.erase(it->Key);
-      in.Queue.erase(it);
-    }
-    it = next;
+    it = of(it->Key) ? in.Queue.erase(it) : std::next(it);
   }
   for (const auto& loading : in.InFlight)
     if (of(loading.first))
