@@ -95,6 +95,18 @@ def render_until_converged(view, display, prefix, frames=500):
     return frames + 1
 
 
+def load_png(path):
+    """A PNG's dimensions and its RGB pixels as int32, one row a pixel."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    values = vtk_to_numpy(image.GetPointData().GetScalars())
+    return image.GetDimensions(), values[:, :3].astype("int32")
+
+
 def compare(view, camera, work, scene, tolerance):
     # The camera as the C++ view had it (ParaView resets the clipping range on render).
     view.CameraPosition = camera["position"]
@@ -118,23 +130,11 @@ def compare(view, camera, work, scene, tolerance):
     check(window.GetClassName() != "vtkStrataEGLRenderWindow",
           "ParaView keeps its own render window (%s)" % window.GetClassName())
 
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
     import numpy
     out = os.path.join(work, "pv_%s.png" % scene)
     SaveScreenshot(out, view, ImageResolution=view.ViewSize, TransparentBackground=0)
-
-    def load(path):
-        reader = vtkPNGReader()
-        reader.SetFileName(path)
-        reader.Update()
-        image = reader.GetOutput()
-        dims = image.GetDimensions()
-        values = vtk_to_numpy(image.GetPointData().GetScalars())
-        return dims, values[:, :3].astype(numpy.int32)
-
-    dims_pv, pv = load(out)
-    dims_cxx, cxx = load(os.path.join(work, "cxx_%s.png" % scene))
+    dims_pv, pv = load_png(out)
+    dims_cxx, cxx = load_png(os.path.join(work, "cxx_%s.png" % scene))
     check(dims_pv == dims_cxx, "image sizes match (%s, %s)" % (dims_pv[:2], dims_cxx[:2]))
     if dims_pv != dims_cxx:
         return
@@ -396,14 +396,9 @@ def write_component_images(work):
 
 
 def screenshot(view, path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
+    """Saves the view as `path` and returns its RGB pixels (load_png)."""
     SaveScreenshot(path, view, ImageResolution=view.ViewSize, TransparentBackground=0)
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    values = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-    return values[:, :3].astype("int32")
+    return load_png(path)[1]
 
 
 def set_component_functions(display, array, map_scalars, multi):
