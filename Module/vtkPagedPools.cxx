@@ -116,6 +116,18 @@ std::string vtkPagedPools::GetPoolName(int id) const
   return it == this->Internals->Pools.end() ? std::string() : it->second.Name;
 }
 
+bool vtkPagedPools::ClosePool(int id)
+{
+  vtkInternals& in = *this->Internals;
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    if (in.Pools.erase(id) == 0)
+      return false;
+  }
+  in.Cache.Forget(id);
+  return true;
+}
+
 void vtkPagedPools::Close()
 {
   vtkInternals& in = *this->Internals;

@@ -83,6 +83,9 @@ public:
   vtkPagePoolFile* GetPool(int id) const;
   /// The file name pool `id` was opened from (empty if none).
   std::string GetPoolName(int id) const;
+  /// Forgets pool `id` and its pages (pinned ones too; holders keep their copies). False if no
+  /// pool was open under `id`.
+  bool ClosePool(int id);
   /// Stops the workers, drops every page and forgets every pool and statistic.
   void Close();
 

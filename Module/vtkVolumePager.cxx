@@ -413,6 +413,17 @@ int vtkVolumePager::FollowPlayback(int port, int step, int steps)
   return ((step + paged->Direction) % steps + steps) % steps;
 }
 
+void vtkVolumePager::ClosePool(int port)
+{
+  vtkInternals& in = *this->Internals;
+  if (port < 0 || port >= MaxChannels)
+    return;
+  for (int step = 0; step < MaxSteps; ++step)
+    in.Pools.ClosePool(GetPoolId(port, step));
+  if (in.Ports.erase(port) > 0)
+    this->CutValid = false;
+}
+
 const vtkPagePoolFile* vtkVolumePager::GetPool(int port) const
 {
   auto it = this->Internals->Ports.find(port);

@@ -168,6 +168,12 @@ public:
    * of fewer than two steps or a port that is not paged.
    */
   int FollowPlayback(int port, int step, int steps);
+  /**
+   * Stops paging `port`: its pools (every step opened) and their pages are forgotten, and the
+   * next SetVolumes starts a new cut. A port that goes on in core, or with fewer components,
+   * must be closed so: SetVolumes takes a paged port's tree over the one it is given.
+   */
+  void ClosePool(int port);
   /// The pool of a paged port and its tree (structure only); null when `port` is not paged.
   const vtkPagePoolFile* GetPool(int port) const;
   const vtkVolumeBrickTree* GetPoolTree(int port) const;

@@ -53,6 +53,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 
 using namespace vtkMultiVolumeRayCastMapperFrame;
 
@@ -220,6 +221,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     vtkMatrix4x4::Multiply4x4(member->GetMatrix(), imageMatrix, e.IndexToWorld);
     frame.Volumes.push_back(e);
   }
+  this->CloseUnusedPools(frame);
   if (!frame.AnyPooled)
     frame.BrickSize = self->BrickSize;
   // Volumes of several components in core are read from plain textures (of a float channel
@@ -241,6 +243,29 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
         frame.PagerVolumes.push_back({ static_cast<int>(v), c });
       }
   return !frame.Volumes.empty();
+}
+
+// A channel paged before and not in this frame (its port in core now, or with fewer components,
+// or its pool failed) is closed, or the pager would go on drawing the old pool there.
+void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& frame)
+{
+  std::set<int> paged;
+  for (const FrameVolume& e : frame.Volumes)
+    for (int c = 0; !e.Pool.empty() &&
+                    c < vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+         ++c)
+      paged.insert(vtkVolumePager::GetChannel(e.Port, c));
+  for (auto it = this->ShownPools.begin(); it != this->ShownPools.end();)
+  {
+    if (paged.count(it->first))
+    {
+      ++it;
+      continue;
+    }
+    this->Pager.ClosePool(it->first);
+    this->HeldValid = false;
+    it = this->ShownPools.erase(it);
+  }
 }
 
 // The pool of component `component` of a paged port (`pool` names component 0's): the step of

@@ -148,6 +148,8 @@ public:
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
   const vtkPagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
   bool OpenComponentPools(Self* self, const vtkPagePoolFile& first, const FrameVolume& e);
+  /// Closes the pools of the channels the frame does not page (vtkVolumePager::ClosePool).
+  void CloseUnusedPools(const Frame& frame);
   bool SupportsFeedback(Self* self, const Frame& frame);
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);

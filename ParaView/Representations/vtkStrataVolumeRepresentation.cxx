@@ -2,6 +2,11 @@
 #include "vtkStrataVolumeRepresentation.h"
 
 #include "vtkAlgorithmOutput.h"
+#include "vtkArrayDispatch.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
@@ -14,7 +19,10 @@
 #include "vtkPVLODVolume.h"
 #include "vtkPVRenderView.h"
 #include "vtkPagePoolReader.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
 #include "vtkVolume.h"
@@ -23,6 +31,7 @@
 #include <sys/resource.h> // For getrusage (peak RSS in the statistics)
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <vector>
@@ -60,6 +69,44 @@ public:
 namespace
 {
 std::map<vtkView*, vtkStrataVolumeRepresentation::vtkScene*> Scenes;
+
+/// Fills a float array with the Euclidean norm of each tuple of an array of any type.
+struct MagnitudeWorker
+{
+  template<typename Array>
+  void operator()(Array* in, vtkFloatArray* out)
+  {
+    const auto tuples = vtk::DataArrayTupleRange(in);
+    float* values = out->GetPointer(0);
+    vtkSMPTools::For(0,
+      tuples.size(),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          double sum = 0.0;
+          for (const auto v : tuples[i])
+            sum += static_cast<double>(v) * static_cast<double>(v);
+          values[i] = static_cast<float>(std::sqrt(sum));
+        }
+      });
+  }
+};
+
+/// `image`'s geometry with one float scalar: the norm of the components of `scalars`.
+vtkSmartPointer<vtkImageData> MakeMagnitude(vtkImageData* image, vtkDataArray* scalars)
+{
+  vtkNew<vtkFloatArray> norm;
+  norm->SetName((std::string(scalars->GetName() ? scalars->GetName() : "") + "_Magnitude").c_str());
+  norm->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  MagnitudeWorker worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(scalars, worker, norm.GetPointer()))
+    worker(scalars, norm.GetPointer());
+  auto magnitude = vtkSmartPointer<vtkImageData>::New();
+  magnitude->CopyStructure(image);
+  magnitude->GetPointData()->SetScalars(norm);
+  return magnitude;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -102,13 +149,11 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
   this->Ports = n;
 
   // Each volume carries its representation's transform, and its components the mapping
-  // ParaView's Map Scalars and Multi Components Mapping choose (as its own volume
-  // representation sets them: dependent when either says so).
+  // ParaView's Map Scalars, Multi Components Mapping and vector mode choose.
   for (auto* member : shown)
   {
     vtkStrataParaViewUtilities::CopyTransform(member->Actor, member->Member);
-    member->Property->SetIndependentComponents(
-      member->MapScalars && !member->MultiComponentsMapping ? 1 : 0);
+    member->MapComponents();
   }
   if (n == 1)
   {
@@ -343,6 +388,55 @@ int vtkStrataVolumeRepresentation::GetPagingConverged()
 int vtkStrataVolumeRepresentation::GetNumberOfVolumesInScene()
 {
   return this->Scene ? static_cast<int>(this->Scene->Visible().size()) : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::MapComponents()
+{
+  // As vtkImageVolumeRepresentation::UpdateMapperParameters: dependent when either says so.
+  const bool independent = this->MapScalars && !this->MultiComponentsMapping;
+  vtkVolumeProperty* property = this->Property;
+  property->SetIndependentComponents(independent ? 1 : 0);
+  auto* image = vtkImageData::SafeDownCast(this->Cache);
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  const int components = scalars ? std::min(4, scalars->GetNumberOfComponents()) : 1;
+  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  const int chosen = color ? std::min(std::max(color->GetVectorComponent(), 0), components - 1) : 0;
+  bool magnitude = independent && components > 1 && color &&
+                   color->GetVectorMode() == vtkScalarsToColors::MAGNITUDE;
+  if (magnitude && this->GetPaged())
+  {
+    if (!this->MagnitudeWarned)
+      vtkWarningMacro("Strata Volume draws no magnitude of a paged volume of several components "
+                      "(each pages from its own pool): component "
+                      << chosen << " is drawn.");
+    this->MagnitudeWarned = true;
+    magnitude = false;
+  }
+  // Component mode (as vtkSmartVolumeMapper::SetupVectorMode): the chosen component alone,
+  // through the colour map and opacity function.
+  for (int c = 0; c < components; ++c)
+  {
+    if (independent && c > 0)
+    {
+      property->SetColor(c, color);
+      property->SetScalarOpacity(c, opacity);
+    }
+    property->SetComponentWeight(c, !independent || magnitude || c == chosen ? 1.0 : 0.0);
+  }
+  vtkDataObject* shown = this->Cache;
+  if (magnitude)
+  {
+    if (this->MagnitudeOf != this->Cache.GetPointer() || !this->Magnitude)
+    {
+      this->Magnitude = MakeMagnitude(image, scalars);
+      this->MagnitudeOf = this->Cache;
+    }
+    shown = this->Magnitude;
+  }
+  if (this->Producer->GetOutputDataObject(0) != shown)
+    this->Producer->SetOutput(shown);
 }
 
 //------------------------------------------------------------------------------

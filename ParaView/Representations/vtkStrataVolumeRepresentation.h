@@ -17,6 +17,15 @@
  * A volume read from a page pool (vtkPagePoolReader, whose ParaView source reads only the
  * coarsest level) is paged by the mapper from the pool; PagingConverged says when the cut has
  * settled. The data stays where it was read (never delivered to the client).
+ *
+ * An array of several components is drawn as ParaView's own volume representation draws it
+ * (vtkImageVolumeRepresentation with vtkSmartVolumeMapper): Map Scalars off or Multi Components
+ * Mapping on make the components dependent (RGBA, colour + opacity); otherwise the colour map's
+ * vector mode chooses. Component k: that component alone, through the colour map and opacity
+ * function (the others weigh 0, VTK's component weights). Magnitude: a float volume of the
+ * components' Euclidean norm, made here from an in-core volume; a paged volume's components
+ * page from separate pools, so its magnitude is not made: its chosen component is drawn, with
+ * a warning.
  */
 #ifndef vtkStrataVolumeRepresentation_h
 #define vtkStrataVolumeRepresentation_h
@@ -157,11 +166,17 @@ private:
 
   void SettingsChanged();
   void WriteStatistics();
+  /// The property's component mapping and the image the mapper reads, from Map Scalars, Multi
+  /// Components Mapping and the colour map's vector mode (see the class comment).
+  void MapComponents();
 
   Settings Options;
   vtkNew<vtkVolume> Member;
   vtkNew<vtkStrataPooledProducer> Producer;
   vtkSmartPointer<vtkDataObject> Cache;
+  vtkSmartPointer<vtkImageData> Magnitude; // the norm of Cache's components, made on demand
+  vtkDataObject* MagnitudeOf = nullptr;    // the Cache it was made from
+  bool MagnitudeWarned = false;
   bool HasData = false;
   std::string StatisticsFile;
   vtkScene* Scene = nullptr; // shared with the view's other Strata volumes; owned by them all

@@ -57,6 +57,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTransform.h"
+#include "vtkTrivialProducer.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -439,6 +440,45 @@ void PagedAfterPaged(const TestPaths& paths)
     "a port paged from four components, then from two: the in-core image within 1 of 255");
 }
 
+// One port from components to one (ParaView's Strata Volume does so when the colour map's vector
+// mode turns to magnitude): in core from two components, and paged from four component pools;
+// each the one-component image of a mapper of its own.
+void OneAfterComponents(const TestPaths& paths, bool paged)
+{
+  auto one = Blob(40, 36, 32, 1.0, 1.1, 0.9, 0, 0, 0, 1);
+  VolumeScene fresh(paths.Output);
+  fresh.Add(one, MakeVolumeProperty(0));
+  fresh.UseSingleVolume();
+  fresh.Camera(Pos, Focal);
+  fresh.Win->Render();
+  const auto expected = ReadRGB(fresh.Win);
+
+  VolumeScene s(paths.Output);
+  const Mode mode = paged ? Mode::RGBA : Mode::Independent;
+  auto before = ComponentVolume(Count(mode));
+  s.Add(before, ComponentProperty(mode, before));
+  s.UseSingleVolume();
+  s.Camera(Pos, Focal);
+  vtkNew<vtkTrivialProducer> producer; // one output port, as in ParaView
+  producer->SetOutput(before);
+  vtkSmartPointer<vtkAlgorithm> pool;
+  if (paged)
+    pool = WritePagedTwin(before, paths.Output + "/ComponentsThenOne.spp", 8);
+  s.Mapper->SetInputConnection(0, paged ? pool->GetOutputPort() : producer->GetOutputPort());
+  if (paged)
+    Check(RenderUntilConverged(s, 100) > 0, "the paged components converge");
+  else
+    s.Win->Render();
+  producer->SetOutput(one);
+  s.Mapper->SetInputConnection(0, producer->GetOutputPort());
+  s.Volumes[0]->SetProperty(MakeVolumeProperty(0));
+  s.Win->Render();
+  const ChannelError e = ImageError(ReadRGB(s.Win), expected);
+  const std::string name = paged ? "ComponentsPagedThenOne" : "ComponentsThenOne";
+  std::cout << name << ": against a mapper of its own RMS " << e.Rms << ", max " << e.Max << "\n";
+  Check(e.Max == 0.0, name + ": the one-component image");
+}
+
 // The reference's own model: a second component of weight 0 leaves the first; two equal
 // dependent components are the one-component volume (the same scalars in every component, so
 // that the pieces are cut at the same kinks).
@@ -496,6 +536,9 @@ int TestMultiVolumeComponents(int argc, char* argv[])
         { std::string("overlapping ") + Name(m), [&paths, m] { Overlapping(paths, m); } });
   }
   parts.push_back({ "paged after paged", [&paths] { PagedAfterPaged(paths); } });
+  parts.push_back({ "one component after two", [&paths] { OneAfterComponents(paths, false); } });
+  parts.push_back(
+    { "one component after paged four", [&paths] { OneAfterComponents(paths, true); } });
   parts.push_back({ "shader source", [&paths] { ShaderSource(paths); } });
   parts.push_back({ "undefined components", [&paths] { Undefined(paths); } });
   for (Mode m : { Mode::Independent, Mode::ColorOpacity, Mode::RGBA, Mode::Independent4 })
