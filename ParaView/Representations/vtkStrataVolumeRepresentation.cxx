@@ -428,11 +428,9 @@ void vtkStrataVolumeRepresentation::MapComponents()
   vtkDataObject* shown = this->Cache;
   if (magnitude)
   {
-    if (this->MagnitudeOf != this->Cache.GetPointer() || !this->Magnitude)
-    {
+    // (Made after the Cache it is of: older than the Cache, it is of another.)
+    if (!this->Magnitude || this->Magnitude->GetMTime() < this->Cache->GetMTime())
       this->Magnitude = MakeMagnitude(image, scalars);
-      this->MagnitudeOf = this->Cache;
-    }
     shown = this->Magnitude;
   }
   if (this->Producer->GetOutputDataObject(0) != shown)

@@ -175,7 +175,6 @@ private:
   vtkNew<vtkStrataPooledProducer> Producer;
   vtkSmartPointer<vtkDataObject> Cache;
   vtkSmartPointer<vtkImageData> Magnitude; // the norm of Cache's components, made on demand
-  vtkDataObject* MagnitudeOf = nullptr;    // the Cache it was made from
   bool MagnitudeWarned = false;
   bool HasData = false;
   std::string StatisticsFile;
