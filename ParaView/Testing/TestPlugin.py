@@ -488,6 +488,8 @@ def components(args, camera=None):
         vector_modes(args, view, name)
         if args.convert:
             paged_components(args, view, name, map_scalars, multi, images["Strata Volume"])
+    if args.convert:
+        paged_magnitude(args, view, "two")
 
 
 def vector_modes(args, view, name):
@@ -507,6 +509,32 @@ def vector_modes(args, view, name):
         set_vector_mode(display, name, "Component", 0)
         Hide(reader, view)
         Delete(reader)
+
+
+def paged_magnitude(args, view, name):
+    """A paged volume of several components has no magnitude (its components page from pools
+    of their own): Strata Volume draws the chosen component instead (and warns), the image of
+    that component mode."""
+    import numpy
+    reader = StrataPagePool(FileName=os.path.join(args.work, name + ".spp"))
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Volume")
+    array = reader.PointData.keys()[0]
+    set_component_functions(display, array, 1, 0)
+    display.StrataVolumeSampleDistance = 0.25
+    shown = {}
+    for mode in ("Component", "Magnitude"):
+        set_vector_mode(display, array, mode, 1)
+        frames = render_until_converged(view, display, "StrataVolume")
+        shown[mode] = screenshot(view, os.path.join(args.work, "%s_paged_%s.png" % (name, mode)))
+        check(frames <= 500, "%s paged, %s: settles" % (name, mode))
+    difference = numpy.abs(shown["Magnitude"] - shown["Component"])
+    print("%s paged under Magnitude (component 1 drawn instead): max %d of 255 from the "
+          "component 1 image" % (name, difference.max()))
+    check(difference.max() == 0, name + " paged: Magnitude draws the chosen component")
+    set_vector_mode(display, array, "Component", 0)
+    Hide(reader, view)
+    Delete(reader)
 
 
 def paged_components(args, view, name, map_scalars, multi, in_core):
