@@ -362,6 +362,8 @@ void vtkMultiVolumeInput::UpdateComponentTables(vtkOpenGLRenderWindow* window,
   const int count = independent ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode) : 1;
   for (int c = 1; c < count; ++c)
     this->ComponentTables[c - 1].Update(window, property, c);
+  for (int c = 0; c < 4; ++c)
+    this->ComponentWeights[c] = independent ? property->GetComponentWeight(c) : 1.0;
 }
 
 void vtkMultiVolumeInput::UpdateGradientOpacity(vtkOpenGLRenderWindow* window,
@@ -400,7 +402,9 @@ double vtkMultiVolumeInput::ComponentVisibility(Components mode, int c, double l
   if (mode == Components::One)
     return this->BrickVisibility(lo, hi);
   if (IsIndependent(mode))
-    return TableMaxOpacity(c == 0 ? this->Table : this->ComponentTables[c - 1], lo, hi);
+    return this->ComponentWeights[c] > 0.0
+             ? TableMaxOpacity(c == 0 ? this->Table : this->ComponentTables[c - 1], lo, hi)
+             : 0.0;
   return c == GetOpacityComponent(mode) ? this->MaxOpacity(lo, hi) : 1.0;
 }
 

@@ -177,9 +177,10 @@ public:
   /**
    * Of component `c` of a volume in the atlas: what a brick of its values in [lo, hi] may show,
    * and the value left-out bricks read. One component: BrickVisibility and GetEmptyScalar.
-   * Several (composite): independent, its own table's opacity; dependent, the opacity
-   * component's (the main table), and the colour components always count (their bricks are
-   * kept wherever the volume is).
+   * Several (composite): independent, its own table's opacity, and nothing for a component of
+   * weight 0 (vtkVolumeProperty::GetComponentWeight: it shows nothing, so none of its bricks is
+   * paged); dependent, the opacity component's (the main table), and the colour components
+   * always count (their bricks are kept wherever the volume is).
    */
   double ComponentVisibility(Components mode, int c, double lo, double hi) const;
   double GetComponentEmptyScalar(Components mode, int c) const;
@@ -267,6 +268,7 @@ private:
   std::vector<float> ComponentScalars; ///< several components: all, interleaved
   double ColorRanges[3][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 } }; ///< RGBA: GetColorRange
   vtkTransferFunctionTable ComponentTables[3];                 ///< independent components 1, 2, 3
+  double ComponentWeights[4] = { 1.0, 1.0, 1.0, 1.0 };         ///< UpdateComponentTables's
   vtkImageData* DataInput = nullptr;
   vtkMTimeType DataTime = 0;
   std::unique_ptr<vtkVolumeBrickTree> Tree;

@@ -219,6 +219,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     }
     e.IndexToWorld = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(member->GetMatrix(), imageMatrix, e.IndexToWorld);
+    frame.Classification = std::max(frame.Classification, e.Property->GetMTime());
     frame.Volumes.push_back(e);
   }
   this->CloseUnusedPools(frame);
@@ -573,7 +574,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
     this->Feedback.Drop(); // written for another cut
   if (frame.Feedback && this->Feedback.IsPending())
   {
-    const bool sameView = this->FeedbackView == frame.View;
+    // Feedback of another view, or of other transfer functions or weights (which may have
+    // shown bricks it never saw), is used but is not current: the cut has not converged.
+    const bool sameView =
+      this->FeedbackView == frame.View && this->FeedbackClassification == frame.Classification;
     const auto start = std::chrono::steady_clock::now();
     std::vector<vtkFeedbackReduction::Entry> asked;
     this->Feedback.SetUseOpenCL(self->FeedbackOpenCL);
@@ -792,6 +796,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
     this->Feedback.UnbindImages();
     this->Feedback.Queue(renWin);
     this->FeedbackView = frame.View;
+    this->FeedbackClassification = frame.Classification;
   }
 }
 

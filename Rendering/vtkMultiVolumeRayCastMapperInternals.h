@@ -85,6 +85,7 @@ struct Frame
   std::vector<float> ClipPlanes;   ///< inside: dot(n, p) + w <= 0, local frame
   std::vector<float> RegionPlanes; ///< the region's six faces (SetRegion), same convention
   ViewKey View{};
+  vtkMTimeType Classification = 0; ///< the newest change of the volumes' properties
   bool Moved = false;
   double SampleDistance = 1.0;
   int Rays = 1;
@@ -133,8 +134,9 @@ public:
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
   bool ComponentLimitsWarned = false;
-  ViewKey FeedbackView{}; ///< the view the queued feedback was rendered from
-  ViewKey LastView{};     ///< the view of the last frame
+  ViewKey FeedbackView{};                  ///< the view the queued feedback was rendered from
+  vtkMTimeType FeedbackClassification = 0; ///< and the properties' (Frame::Classification)
+  ViewKey LastView{};                      ///< the view of the last frame
   /// What decides which bricks are empty besides the transfer functions: the halo
   /// (pre-integration) and the region. When it changes the cut starts again from the roots:
   /// a brick that turns non-empty under a node already split has no page yet.

@@ -390,6 +390,16 @@ void Paged(const TestPaths& paths, Mode mode)
                            (c < count);
   Check(lookups,
     name + ": the source has one atlas lookup per component (" + std::to_string(count) + ")");
+  if (mode != Mode::Independent4)
+    return;
+  // Component 3 weighs 0 (ComponentProperty): it shows nothing, so none of its bricks is paged.
+  const int without = s.Mapper->GetNumberOfResidentBricks();
+  s.Volumes[0]->GetProperty()->SetComponentWeight(3, 0.3);
+  RenderUntilConverged(s, 100);
+  const int with = s.Mapper->GetNumberOfResidentBricks();
+  std::cout << name << ": " << without << " bricks resident with component 3 of weight 0, " << with
+            << " with weight 0.3\n";
+  Check(with > without, name + ": a component of weight 0 pages no brick");
 }
 
 // Components paged, overlapping an in-core volume of one component; and components in core
