@@ -202,6 +202,22 @@ Outcome RunVolumes(const std::string& pool, double atlasMiB, double cacheMiB)
 }
 }
 
+// ClosePool forgets a paged port (its pool and tree: an in-core volume may take the port), and
+// the port opens again as new.
+void ClosePool(const std::string& pool)
+{
+  vtkVolumePager pager;
+  std::string error;
+  Check(pager.OpenPool(0, pool, error) != nullptr && pager.GetPoolTree(0) != nullptr,
+    "the pool opens " + error);
+  pager.ClosePool(0);
+  pager.ClosePool(5); // never opened: nothing to do
+  Check(pager.GetPool(0) == nullptr && pager.GetPoolTree(0) == nullptr,
+    "ClosePool forgets the port's pool and tree");
+  Check(pager.OpenPool(0, pool, error) != nullptr && pager.GetPoolTree(0) != nullptr,
+    "the port opens again " + error);
+}
+
 int TestPagingBudgets(int argc, char* argv[])
 {
   const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
@@ -216,6 +232,7 @@ int TestPagingBudgets(int argc, char* argv[])
 
   const int result = strata_test::RunSubTests(
     {
+      { "ClosePool", [&] { ClosePool(bricks); } },
       { "HorizonsAtlasAtCache",
         [&]
         {
