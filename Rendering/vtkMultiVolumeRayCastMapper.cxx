@@ -869,11 +869,22 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
                                   self->Classification == Classifications::PostClassification &&
                                   this->Inputs.at(e.Port).HasGradientOpacity());
     key.ComponentModes.push_back(e.ComponentMode);
+    int silent = 0;
+    const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+    const bool independent = e.ComponentMode == Components::Independent2 ||
+                             e.ComponentMode == Components::Independent3 ||
+                             e.ComponentMode == Components::Independent4;
+    for (int c = 1; independent && c < count; ++c)
+      silent |= e.Property->GetComponentWeight(c) <= 0.0 ? 1 << c : 0;
+    key.SilentComponents.push_back(silent);
     float decode[2];
     key.Normalized.push_back(this->GetDecode(frame, v, decode));
   }
   if (!components)
+  {
     key.ComponentModes.clear(); // one key for scenes of one-component volumes
+    key.SilentComponents.clear();
+  }
   key.Reduce = reduce;
   key.Surfaces = reduce ? 0 : frame.Surfaces;
   // A fragment with a volume of several components is post-classified (its components have no

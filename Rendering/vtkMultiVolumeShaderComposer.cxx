@@ -142,12 +142,22 @@ bool HasComponents(const Key& key, int n)
   return ComponentMode(key, n) != Comps::One;
 }
 
-/// Independent components: a table per component (component 0's is the volume's uTransfer@n@).
-std::string IndependentMedium(int n, int count)
+/// Whether component c of volume n is read: not an independent component of weight 0.
+bool Heard(const Key& key, int n, int c)
+{
+  return n >= static_cast<int>(key.SilentComponents.size()) ||
+         !(key.SilentComponents[n] & (1 << c));
+}
+
+/// Independent components: a table per component (component 0's is the volume's uTransfer@n@);
+/// a component of weight 0 has none.
+std::string IndependentMedium(const Key& key, int n, int count)
 {
   std::string dec, impl;
   for (int i = 0; i < count; ++i)
   {
+    if (!Heard(key, n, i))
+      continue;
     const std::string c = i == 0 ? std::string() : "_" + std::to_string(i);
     dec += "uniform sampler2D uTransfer@n@" + c + ";\nuniform vec3 uTableRange@n@" + c + ";\n";
     std::string table = vtkMultiVolumeComponentsIndependentTable;
@@ -183,12 +193,13 @@ std::string ComponentAtlasLookups(const Key& key, int n, bool first)
   for (int c = 1; c < 4; ++c)
   {
     const std::string name = std::to_string(n) + "c" + std::to_string(c);
-    if (c < count && key.Feedback)
+    const bool read = c < count && Heard(key, n, c);
+    if (read && key.Feedback)
       code += "uniform int uFeedbackSet" + name + ";\n";
-    if (c < count)
+    if (read)
       code += vtkBrickAtlasTexture::GetLookupFunction(
         name, key.Feedback ? FeedbackFetchCheck(key, n, c) : "", normalized);
-    fetches += c < count ? ", strataScalarAt" + name + "(idx)" : std::string(", 0.0");
+    fetches += read ? ", strataScalarAt" + name + "(idx)" : std::string(", 0.0");
   }
   std::string vector = ForVolume(vtkMultiVolumeComponentsAtlasLookup, n);
   Replace(vector, "//STRATA::ComponentFetches::Impl", fetches);
@@ -211,7 +222,8 @@ std::string ComponentVolume(const Key& key, int n, bool first)
     case Comps::RGBA:
       return code + ForVolume(vtkMultiVolumeComponentsRGBA, n);
     default:
-      return code + IndependentMedium(n, vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode));
+      return code +
+             IndependentMedium(key, n, vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode));
   }
 }
 
@@ -288,6 +300,8 @@ std::string FeedbackPacking(const Key& key)
       key.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(ComponentMode(key, i)) : 1;
     for (int c = 0; c < count; ++c)
     {
+      if (!Heard(key, i, c))
+        continue;
       std::string branch =
         "  if (gLackVolume == @id@)\n  {\n    return strataPackPage(uint(uFeedbackSet@set@), "
         "uint(gLack.w), uint((w.z * uLevelBricks@n@[g + 1] + w.y) * "
@@ -895,6 +909,8 @@ bool vtkMultiVolumeShaderComposer::FragmentKey::operator<(const FragmentKey& o) 
 {
   if (this->ComponentModes != o.ComponentModes)
     return this->ComponentModes < o.ComponentModes;
+  if (this->SilentComponents != o.SilentComponents)
+    return this->SilentComponents < o.SilentComponents;
   return std::tie(this->Volumes,
            this->Shaded,
            this->Classification,
@@ -969,6 +985,11 @@ std::string vtkMultiVolumeShaderComposer::FragmentKey::ToString() const
             ? ", " + std::to_string(i) + " of " +
                 components[static_cast<int>(this->ComponentModes[i])]
             : std::string());
+  for (size_t i = 0; i < this->SilentComponents.size(); ++i)
+    for (int c = 1; c < 4; ++c)
+      s << (this->SilentComponents[i] & (1 << c)
+              ? ", " + std::to_string(i) + " component " + std::to_string(c) + " of weight 0"
+              : std::string());
   for (size_t i = 0; i < this->Normalized.size(); ++i)
     s << (this->Normalized[i] ? ", normalised " + std::to_string(i) : std::string());
   if (this->Surfaces > 0)

@@ -81,6 +81,9 @@ public:
     /// Per volume: its components (missing entries: One). A volume of several is read from its
     /// own texture, never the atlas, as a composite medium (post-classified, unshaded).
     std::vector<Components> ComponentModes;
+    /// Per volume: bit c (c > 0) set for an independent component of weight 0, which shows
+    /// nothing: it has no lookup and no table (its value reads 0; missing entries: none).
+    std::vector<int> SilentComponents;
     /// Per volume: texels normalised, decoded by uDecode<n> (R8 or R16 storage,
     /// vtkBrickAtlasFormat; missing entries: float).
     std::vector<bool> Normalized;
