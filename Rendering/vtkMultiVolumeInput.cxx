@@ -328,12 +328,12 @@ double TableEmptyScalar(const vtkTransferFunctionTable& table)
       return range[0] + (range[1] - range[0]) * i / (n - 1.0);
   return range[0];
 }
-
-bool IsIndependent(vtkMultiVolumeInput::Components mode)
-{
-  using C = vtkMultiVolumeInput::Components;
-  return mode == C::Independent2 || mode == C::Independent3 || mode == C::Independent4;
 }
+
+bool vtkMultiVolumeInput::IsIndependent(Components mode)
+{
+  return mode == Components::Independent2 || mode == Components::Independent3 ||
+         mode == Components::Independent4;
 }
 
 void vtkMultiVolumeInput::UpdateTransfer(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property)
@@ -357,8 +357,7 @@ void vtkMultiVolumeInput::UpdateComponentTables(vtkOpenGLRenderWindow* window,
   vtkVolumeProperty* property,
   Components mode)
 {
-  const bool independent = mode == Components::Independent2 || mode == Components::Independent3 ||
-                           mode == Components::Independent4;
+  const bool independent = IsIndependent(mode);
   const int count = independent ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(mode) : 1;
   for (int c = 1; c < count; ++c)
     this->ComponentTables[c - 1].Update(window, property, c);
@@ -753,9 +752,7 @@ void vtkMultiVolumeInput::BindComponents(vtkShaderProgram* program,
 
 void vtkMultiVolumeInput::Unbind(const Binding& b)
 {
-  const int count = b.ComponentMode == Components::Independent2 ||
-                        b.ComponentMode == Components::Independent3 ||
-                        b.ComponentMode == Components::Independent4
+  const int count = IsIndependent(b.ComponentMode)
                       ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(b.ComponentMode)
                       : 1;
   for (int c = 1; c < count; ++c)

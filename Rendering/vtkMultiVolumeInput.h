@@ -198,6 +198,8 @@ public:
     int opacityComponent = 0);
   /// The component the opacity of `mode` reads when it is one (dependent), else -1.
   static int GetOpacityComponent(Components mode);
+  /// Whether `mode` is independent components (2, 3 or 4).
+  static bool IsIndependent(Components mode);
 
   /// The pre-integration table of the classification at `sampleDistance`, uploaded on change.
   void UpdatePreIntegration(vtkOpenGLRenderWindow* window,

@@ -871,10 +871,7 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
     key.ComponentModes.push_back(e.ComponentMode);
     int silent = 0;
     const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
-    const bool independent = e.ComponentMode == Components::Independent2 ||
-                             e.ComponentMode == Components::Independent3 ||
-                             e.ComponentMode == Components::Independent4;
-    for (int c = 1; independent && c < count; ++c)
+    for (int c = 1; vtkMultiVolumeInput::IsIndependent(e.ComponentMode) && c < count; ++c)
       silent |= e.Property->GetComponentWeight(c) <= 0.0 ? 1 << c : 0;
     key.SilentComponents.push_back(silent);
     float decode[2];
