@@ -851,11 +851,13 @@ int Storage(const std::string& data, const strata_test::TestPaths& paths, int fl
 
 /**
  * What components cost, in core and paged: `data` as two independent components (the data, and
- * the data moved 6 voxels along x through its own functions, weight 0.5) and as RGBA (colours
- * from the data, opacity the data), each drawn in core (one texture of a float channel per
- * component) and paged from a set of component pools of 32^3 pages (a volume of one scalar per
- * component in the atlas, its own index fetch each), converged before timing; 512 x 512, timed
- * interleaved. Each paged row's note: its RMS (8-bit) against the in-core image, resident
+ * the data moved 6 voxels along x through its own functions, weight 0.5), as RGBA (colours
+ * from the data, opacity the data), and the RGBA data as four independent components through
+ * the data's functions, all of weight 1 and with only the fourth of weight 1 (ParaView's
+ * component mode: the others neither paged nor read), each drawn in core (one texture of a float
+ * channel per component) and paged from a set of component pools of 32^3 pages (a volume of one
+ * scalar per component in the atlas, its own index fetch each), converged before timing; 512 x 512,
+ * timed interleaved. Each paged row's note: its RMS (8-bit) against the in-core image, resident
  * bricks and the pools' MB.
  */
 int ComponentsCost(const std::string& data, const strata_test::TestPaths& paths)
@@ -905,19 +907,31 @@ int ComponentsCost(const std::string& data, const strata_test::TestPaths& paths)
     vtkSmartPointer<vtkImageData> Image;
     vtkSmartPointer<vtkVolumeProperty> Property;
   };
+  auto rgba = make(4, true);
   std::vector<Mode> modes = { { "independent2", make(2, false), nullptr },
-    { "rgba", make(4, true), nullptr } };
+    { "rgba", rgba, nullptr },
+    { "independent4", rgba, nullptr },
+    { "independent4-one", rgba, nullptr } };
   for (Mode& m : modes)
   {
+    const std::string mode = m.Name;
     m.Property = strata_test::MakeRealVolumeProperty(data);
-    if (std::string(m.Name) == "rgba")
-      m.Property->IndependentComponentsOff();
-    else
+    if (mode == "rgba")
     {
-      m.Property->SetColor(1, m.Property->GetRGBTransferFunction(0));
-      m.Property->SetScalarOpacity(1, m.Property->GetScalarOpacity(0));
-      m.Property->SetComponentWeight(1, 0.5);
+      m.Property->IndependentComponentsOff();
+      continue;
     }
+    const int count = mode == "independent2" ? 2 : 4;
+    for (int c = 1; c < count; ++c)
+    {
+      m.Property->SetColor(c, m.Property->GetRGBTransferFunction(0));
+      m.Property->SetScalarOpacity(c, m.Property->GetScalarOpacity(0));
+    }
+    // independent4-one: ParaView's component mode (component 3, the data, alone; the others
+    // weigh 0, so they are neither paged nor read).
+    for (int c = 0; c < count; ++c)
+      m.Property->SetComponentWeight(c,
+        mode == "independent2" ? (c ? 0.5 : 1.0) : (mode == "independent4" || c == 3 ? 1.0 : 0.0));
   }
   const std::string dir = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/strata-bench-" +
                           std::to_string(static_cast<long>(getpid()));
