@@ -22,9 +22,13 @@ import argparse
 import json
 import os
 import time
+import sys
 
 import paraview.simple
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from strata_png import load_png  # noqa: E402 (beside this script)
 
 SIZE = [160, 160]
 VIEWS = {
@@ -231,17 +235,6 @@ def check_cut(work, n, label):
           % (n, inner))
 
 
-def load(path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    values = vtk_to_numpy(image.GetPointData().GetScalars())
-    return image.GetDimensions(), values[:, :3].astype("int32")
-
-
 def compare(args):
     import numpy
     whole = paged_megabytes(args.work, 1, "")[0]
@@ -262,13 +255,13 @@ def compare(args):
               % (n, bound))
         check_cut(args.work, n, args.label)
     for name in VIEWS:
-        dims1, one = load(os.path.join(args.work, "parallel_1_%s.png" % name))
+        dims1, one = load_png(os.path.join(args.work, "parallel_1_%s.png" % name))
         covered = numpy.count_nonzero(one.max(axis=1) > 2)
         check(covered > len(one) // 4, "%s: the scene covers %d of %d pixels (more than a "
               "quarter)" % (name, covered, len(one)))
         for n in args.compare:
-            dims, many = load(os.path.join(args.work, "parallel_%d%s_%s.png"
-                                           % (n, args.label, name)))
+            dims, many = load_png(os.path.join(args.work, "parallel_%d%s_%s.png"
+                                               % (n, args.label, name)))
             check(dims == dims1, "%s: %d-rank image size" % (name, n))
             if dims != dims1:
                 continue

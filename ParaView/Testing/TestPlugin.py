@@ -23,10 +23,14 @@ import argparse
 import json
 import os
 import time
+import sys
 
 import paraview.simple
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from strata_png import load_png  # noqa: E402 (beside this script)
 
 STRATA_PROXIES = {
     "sources": ["StrataPagePoolReader", "StrataIrapGridReader", "StrataNumpyGridReader",
@@ -93,18 +97,6 @@ def render_until_converged(view, display, prefix, frames=500):
             return frame
         time.sleep(0.02)
     return frames + 1
-
-
-def load_png(path):
-    """A PNG's dimensions and its RGB pixels as int32, one row a pixel."""
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    values = vtk_to_numpy(image.GetPointData().GetScalars())
-    return image.GetDimensions(), values[:, :3].astype("int32")
 
 
 def compare(view, camera, work, scene, tolerance):
