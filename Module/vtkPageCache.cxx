@@ -770,9 +770,13 @@ size_t vtkPageCache::Forget(int dataset)
   }
   for (auto it = in.Queue.begin(); it != in.Queue.end();)
   {
-    if (of(it->Key))
-      in.QueueMap.erase(it->Key);
-    it = of(it->Key) ? in.Queue.erase(it) : std::next(it);
+    if (!of(it->Key))
+    {
+      ++it;
+      continue;
+    }
+    in.QueueMap.erase(it->Key);
+    it = in.Queue.erase(it);
   }
   for (const auto& loading : in.InFlight)
     if (of(loading.first))

@@ -401,7 +401,7 @@ double vtkMultiVolumeInput::ComponentVisibility(Components mode, int c, double l
   if (mode == Components::One)
     return this->BrickVisibility(lo, hi);
   if (IsIndependent(mode))
-    return this->ComponentWeights[c] > 0.0
+    return this->ShowsComponent(c)
              ? TableMaxOpacity(c == 0 ? this->Table : this->ComponentTables[c - 1], lo, hi)
              : 0.0;
   return c == GetOpacityComponent(mode) ? this->MaxOpacity(lo, hi) : 1.0;

@@ -183,6 +183,9 @@ public:
    * always count (their bricks are kept wherever the volume is).
    */
   double ComponentVisibility(Components mode, int c, double lo, double hi) const;
+  /// Whether component c shows anything: false for an independent component of weight 0 (as
+  /// UpdateComponentTables last read the property).
+  bool ShowsComponent(int c) const { return this->ComponentWeights[c] > 0.0; }
   double GetComponentEmptyScalar(Components mode, int c) const;
 
   /**
@@ -198,8 +201,6 @@ public:
     int opacityComponent = 0);
   /// The component the opacity of `mode` reads when it is one (dependent), else -1.
   static int GetOpacityComponent(Components mode);
-  /// Whether `mode` is independent components (2, 3 or 4).
-  static bool IsIndependent(Components mode);
 
   /// The pre-integration table of the classification at `sampleDistance`, uploaded on change.
   void UpdatePreIntegration(vtkOpenGLRenderWindow* window,
@@ -253,6 +254,9 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  /// Whether `mode` is independent components (2, 3 or 4).
+  static bool IsIndependent(Components mode);
+
   void BindBlendMode(vtkShaderProgram* program,
     const std::string& n,
     vtkVolumeProperty* property,

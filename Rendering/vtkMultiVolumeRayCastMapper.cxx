@@ -869,10 +869,9 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
                                   self->Classification == Classifications::PostClassification &&
                                   this->Inputs.at(e.Port).HasGradientOpacity());
     key.ComponentModes.push_back(e.ComponentMode);
-    int silent = 0;
-    const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
-    for (int c = 1; vtkMultiVolumeInput::IsIndependent(e.ComponentMode) && c < count; ++c)
-      silent |= e.Property->GetComponentWeight(c) <= 0.0 ? 1 << c : 0;
+    int silent = 0; // the components of weight 0 (all weigh 1 unless independent)
+    for (int c = 1; c < vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode); ++c)
+      silent |= this->Inputs.at(e.Port).ShowsComponent(c) ? 0 : 1 << c;
     key.SilentComponents.push_back(silent);
     float decode[2];
     key.Normalized.push_back(this->GetDecode(frame, v, decode));
