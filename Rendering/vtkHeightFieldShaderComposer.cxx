@@ -11,6 +11,7 @@
 #include "vtkStackedHeightFieldFeedback.h"
 #include "vtkStackedHeightFieldFeedbackWrite.h"
 #include "vtkStackedHeightFieldHeadlight.h"
+#include "vtkStackedHeightFieldHoles.h"
 #include "vtkStackedHeightFieldHorizonColor.h"
 #include "vtkStackedHeightFieldLayerDec.h"
 #include "vtkStackedHeightFieldLayerMerge.h"
@@ -55,20 +56,36 @@ void Heights(const Key& key, std::string& fs)
       "vec4 strataCellCorners(int layer, ivec2 c) { return strataCorners(layer, c); }");
     Replace(fs, "//STRATA::SearchLevel::Impl", "");
   }
-  // Paged: a missing tile reads as BIG (GLSL 1.50 has no portable NaN constant).
+}
+
+// --- Holes: NaN in core and BIG where a paged tile is missing, tested on the bits and by
+// magnitude (strataHoles; never isnan, which fast math may fold away). The layer merge tests
+// holes too, attribute grids their NaN (strataIsNaN).
+bool UsesBits(const Key& key)
+{
+  const bool merged =
+    key.Translucent == Translucency::Layer || key.Translucent == Translucency::Blend;
+  return key.Holes || merged || (key.Shaded && key.PerHorizon && key.Attributes);
+}
+
+void Holes(const Key& key, std::string& fs)
+{
+  Replace(fs, "//STRATA::Holes::Dec", UsesBits(key) ? vtkStackedHeightFieldHoles : "");
+  Replace(fs, "//STRATA::Hole::Impl", key.Holes ? "valid = !any(strataHoles(h));" : "");
+}
+
+// --- Extensions: floatBitsToUint (core in GLSL 3.30; VTK declares 1.50), image load/store.
+void Extensions(const Key& key, std::string& fs)
+{
   Replace(fs,
-    "//STRATA::Hole::Impl",
-    !key.Holes  ? ""
-    : key.Paged ? "valid = !any(isnan(h)) && all(lessThan(abs(h), vec4(1.0e30)));"
-                : "valid = !any(isnan(h));");
+    "//STRATA::Extensions::Dec",
+    std::string(UsesBits(key) ? "#extension GL_ARB_shader_bit_encoding : require\n" : "") +
+      (key.Feedback ? "#extension GL_ARB_shader_image_load_store : require" : ""));
 }
 
 // --- Feedback (image load/store): the tile each sampled ray hit, at the level it wants.
 void Feedback(const Key& key, std::string& fs)
 {
-  Replace(fs,
-    "//STRATA::Extensions::Dec",
-    key.Feedback ? "#extension GL_ARB_shader_image_load_store : require" : "");
   Replace(fs,
     "//STRATA::Feedback::Dec",
     key.Feedback
@@ -263,6 +280,8 @@ std::string vtkHeightFieldShaderComposer::BuildFragmentShader(const Key& key,
 {
   std::string fs = vtkStackedHeightFieldFS;
   Heights(key, fs);
+  Holes(key, fs);
+  Extensions(key, fs);
   Feedback(key, fs);
   Color(key, fs);
   Shading(key, lightingUniforms, fs);

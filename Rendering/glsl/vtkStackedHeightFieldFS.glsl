@@ -25,6 +25,8 @@ uniform samplerBuffer uNodes;      // min, max, interval offset, interval count
 uniform samplerBuffer uIntervals;  // zmin, zmax, layer offset, layer count
 uniform samplerBuffer uLayerLists; // layer ids
 
+//STRATA::Holes::Dec
+
 //STRATA::HeightLookup::Dec
 
 //STRATA::Feedback::Dec

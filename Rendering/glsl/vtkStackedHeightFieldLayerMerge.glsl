@@ -16,8 +16,12 @@
       if (l != hitLayer)
       {
         vec4 hl = strataCorners(l, hitCell);
+        if (any(strataHoles(hl))) // a hole is not coincident (tested on the bits, not by NaN)
+        {
+          continue;
+        }
         float h = mix(mix(hl.x, hl.y, muv.x), mix(hl.z, hl.w, muv.x), muv.y);
-        if (!(abs(h - hHit) <= uZEps)) // NaN (a hole) is not coincident
+        if (abs(h - hHit) > uZEps)
         {
           continue;
         }
