@@ -11,6 +11,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <iostream>
 #include <vector>
 
 vtkStandardNewMacro(vtkStrataEGLRenderWindow);
@@ -153,6 +154,43 @@ SharedDisplay& OpenDisplay()
 }
 }
 
+namespace
+{
+/// Where a window's debug messages go: the window (for vtkErrorMacro) and the count.
+struct DebugSink
+{
+  vtkStrataEGLRenderWindow* Window = nullptr;
+  int Errors = 0;
+};
+
+const char* DebugTypeName(GLenum type)
+{
+  return type == GL_DEBUG_TYPE_ERROR ? "error" : "undefined behaviour";
+}
+
+// KHR_debug's callback: errors and undefined behaviour count, the rest is chatter (NVIDIA's
+// buffer placement notes, performance hints).
+void GLAPIENTRY ReportGLDebugMessage(GLenum,
+  GLenum type,
+  GLuint id,
+  GLenum,
+  GLsizei,
+  const GLchar* message,
+  const void* user)
+{
+  if (type != GL_DEBUG_TYPE_ERROR && type != GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR)
+  {
+    return;
+  }
+  auto* sink = static_cast<DebugSink*>(const_cast<void*>(user));
+  ++sink->Errors;
+  std::cerr << "Strata GL debug: " << DebugTypeName(type) << " 0x" << std::hex << id << std::dec
+            << ": " << message << std::endl;
+  vtkErrorWithObjectMacro(
+    sink->Window, "GL debug output: " << DebugTypeName(type) << ": " << message);
+}
+}
+
 class vtkStrataEGLRenderWindow::vtkInternals
 {
 public:
@@ -171,6 +209,7 @@ public:
     EGLContext Context;
   };
   std::vector<Current> Pushed;
+  DebugSink Debug;
 };
 
 vtkStrataEGLRenderWindow::vtkStrataEGLRenderWindow()
@@ -182,6 +221,8 @@ vtkStrataEGLRenderWindow::vtkStrataEGLRenderWindow()
   this->SetReadyForRendering(true);
   this->Size[0] = 300;
   this->Size[1] = 300;
+  const char* debug = std::getenv("STRATA_GL_DEBUG");
+  this->GLDebugOutput = debug && std::strcmp(debug, "1") == 0;
 }
 
 vtkStrataEGLRenderWindow::~vtkStrataEGLRenderWindow()
@@ -262,6 +303,8 @@ bool vtkStrataEGLRenderWindow::CreateContext()
       v[1],
       EGL_CONTEXT_OPENGL_PROFILE_MASK,
       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+      EGL_CONTEXT_OPENGL_DEBUG,
+      this->GLDebugOutput ? EGL_TRUE : EGL_FALSE,
       EGL_NONE };
     in.Context = eglCreateContext(in.Display, in.Config, EGL_NO_CONTEXT, contextAttribs);
     if (in.Context != EGL_NO_CONTEXT)
@@ -351,8 +394,33 @@ void vtkStrataEGLRenderWindow::OpenGLInitContext()
     }
     this->GlewInitValid = true;
     this->Initialized = true;
+    if (this->GLDebugOutput)
+    {
+      this->EnableGLDebugOutput();
+    }
   }
   this->Superclass::OpenGLInitContext();
+}
+
+void vtkStrataEGLRenderWindow::EnableGLDebugOutput()
+{
+  if (!GLEW_VERSION_4_3 && !GLEW_KHR_debug)
+  {
+    vtkWarningMacro("GL debug output asked for, but the context has no KHR_debug.");
+    return;
+  }
+  // Synchronous: the message arrives inside the call that caused it (a stack trace points at
+  // it), on the render thread.
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  this->Internals->Debug.Window = this;
+  glDebugMessageCallback(ReportGLDebugMessage, &this->Internals->Debug);
+  glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+}
+
+int vtkStrataEGLRenderWindow::GetNumberOfGLDebugErrors() const
+{
+  return this->Internals->Debug.Errors;
 }
 
 void vtkStrataEGLRenderWindow::Finalize()
@@ -522,6 +590,8 @@ void vtkStrataEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Platform: " << this->Internals->Platform << "\n";
+  os << indent << "GLDebugOutput: " << this->GLDebugOutput
+     << " (errors reported: " << this->Internals->Debug.Errors << ")\n";
   os << indent << "HasContext: " << (this->Internals->Context != EGL_NO_CONTEXT) << "\n";
   os << indent << "SurfaceSize: " << this->Internals->SurfaceSize[0] << " x "
      << this->Internals->SurfaceSize[1] << "\n";

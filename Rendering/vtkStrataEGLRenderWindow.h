@@ -72,6 +72,23 @@ public:
    */
   std::string GetRendererName();
 
+  ///@{
+  /**
+   * GL debug output (KHR_debug, synchronous, on a debug context): each GL error and each
+   * undefined-behaviour report of this window's context is printed to stderr as
+   * "Strata GL debug: ..." and raised through vtkErrorMacro; other messages (performance and
+   * portability notes, API chatter) are ignored. The context is created with the debug flag, so
+   * set this before the first render. Default: on when STRATA_GL_DEBUG=1 (the C++ suite sets
+   * it and fails a test on that line), else off.
+   */
+  vtkSetMacro(GLDebugOutput, bool);
+  vtkGetMacro(GLDebugOutput, bool);
+  vtkBooleanMacro(GLDebugOutput, bool);
+  ///@}
+
+  /// The GL errors and undefined-behaviour reports debug output has delivered so far.
+  int GetNumberOfGLDebugErrors() const;
+
   /**
    * True when this process should use this window for plain vtkRenderWindow::New(): no DISPLAY,
    * or STRATA_OFFSCREEN=1; STRATA_OFFSCREEN=0 says no.
@@ -89,6 +106,9 @@ private:
   void operator=(const vtkStrataEGLRenderWindow&) = delete;
 
   bool CreateContext();
+  void EnableGLDebugOutput();
+
+  bool GLDebugOutput = false;
   bool ResizeSurface(int width, int height);
 
   class vtkInternals;

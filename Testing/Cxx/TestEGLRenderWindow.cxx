@@ -2,7 +2,9 @@
 //
 // Plain vtkRenderWindow::New() must give Strata's EGL window (no X server here), render a lit
 // sphere correctly, survive a resize, read back depth, and print nothing at all on the way:
-// in particular not VTK's "GLEW could not be initialized".
+// in particular not VTK's "GLEW could not be initialized". With --provoke-gl-error (the
+// ctest TestGLDebugOutput) it makes one GL error on purpose: the suite's GL debug output must
+// print it as "Strata GL debug:" (the line that fails every other test) and count it.
 #include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
@@ -16,10 +18,38 @@
 #include "vtkSphereSource.h"
 #include "vtkStrataEGLRenderWindow.h"
 
+#include "vtk_glew.h"
+
 #include <cmath>
+#include <cstring>
 #include <iostream>
 
-int TestEGLRenderWindow(int, char*[])
+namespace
+{
+/// One GL error on purpose (a texture name never generated, GL_INVALID_OPERATION in a core
+/// profile), seen by the window's GL debug output: prints the count and the captured message.
+int ProvokeGLError(vtkRenderWindow* win, strata_test::CapturingOutputWindow* capture)
+{
+  auto* egl = vtkStrataEGLRenderWindow::SafeDownCast(win);
+  win->SetSize(32, 32);
+  win->Render();
+  if (!egl->GetGLDebugOutput())
+  {
+    std::cout << "GLDebugOutput is off: run with STRATA_GL_DEBUG=1\n";
+    return EXIT_FAILURE;
+  }
+  win->MakeCurrent();
+  glBindTexture(GL_TEXTURE_2D, 0x7fffff);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  const bool captured = capture->Errors == 1 && capture->Messages.size() == 1 &&
+                        capture->Messages[0].find("GL debug output") != std::string::npos;
+  std::cout << "GLDebugOutput: " << egl->GetNumberOfGLDebugErrors() << " error counted, "
+            << (captured ? "raised" : "not raised") << " through vtkErrorMacro" << std::endl;
+  return egl->GetNumberOfGLDebugErrors() == 1 && captured ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+}
+
+int TestEGLRenderWindow(int argc, char* argv[])
 {
   auto* capture = strata_test::CapturingOutputWindow::Install();
 
@@ -30,6 +60,10 @@ int TestEGLRenderWindow(int, char*[])
     std::cerr << "vtkRenderWindow::New() returned " << win->GetClassName()
               << ", not vtkStrataEGLRenderWindow\n";
     return EXIT_FAILURE;
+  }
+  if (argc > 1 && std::strcmp(argv[1], "--provoke-gl-error") == 0)
+  {
+    return ProvokeGLError(win, capture);
   }
   win->SetSize(128, 96);
   win->SetMultiSamples(0);
