@@ -2,6 +2,7 @@
 #include "vtkBrickAtlasTexture.h"
 
 #include "vtkShaderProgram.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtk_glew.h"
 
 #include <cmath>
@@ -90,6 +91,8 @@ void vtkBrickAtlasTexture::Allocate(const std::array<int, 3>& size,
 void vtkBrickAtlasTexture::BeginUploads()
 {
   glBindTexture(GL_TEXTURE_3D, this->Atlas.GetName());
+  // Put back at EndUploads (vtkStrataRenderUtilities::ScopedPixelStore says why).
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &this->SavedAlignment);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
 }
 
@@ -108,7 +111,7 @@ void vtkBrickAtlasTexture::UploadBrick(const std::array<int, 3>& slot,
 void vtkBrickAtlasTexture::EndUploads()
 {
   glBindTexture(GL_TEXTURE_3D, 0);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, this->SavedAlignment);
 }
 
 void vtkBrickAtlasTexture::SetIndex(int key,
@@ -143,7 +146,7 @@ void vtkBrickAtlasTexture::SetIndex(int key,
         out[3] = static_cast<float>(std::ldexp(1.0, -int(e[3])));
       }
   glBindTexture(GL_TEXTURE_3D, it->second.Get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 4);
   glTexImage3D(GL_TEXTURE_3D,
     0,
     GL_RGBA32F,

@@ -81,6 +81,7 @@ private:
   std::array<int, 3> Size = { 0, 0, 0 };
   vtkVolumeBrickTree::ScalarType Type = vtkVolumeBrickTree::ScalarType::Float32;
   std::map<int, vtkStrataGLObject> Index;
+  int SavedAlignment = 4; ///< GL_UNPACK_ALIGNMENT before BeginUploads, put back by EndUploads
 };
 
 #endif

@@ -3,6 +3,7 @@
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
@@ -78,7 +79,7 @@ void vtkFeedbackBuffer::Clear(vtkOpenGLRenderWindow* window)
   OnFreeUnit(window,
     [&]
     {
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 4);
       glBindTexture(GL_TEXTURE_2D, this->Ids.GetName());
       glTexSubImage2D(GL_TEXTURE_2D,
         0,
@@ -121,7 +122,7 @@ void vtkFeedbackBuffer::Queue(vtkOpenGLRenderWindow* window)
     {
       glBindTexture(GL_TEXTURE_2D, this->Ids.GetName());
       glBindBuffer(GL_PIXEL_PACK_BUFFER, this->PixelBuffer.GetName());
-      glPixelStorei(GL_PACK_ALIGNMENT, 4);
+      const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_PACK_ALIGNMENT, 4);
       glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
       glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     });

@@ -8,6 +8,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkShaderProgram.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -68,12 +69,14 @@ bool UploadLayers(vtkOpenGLRenderWindow* window,
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, nx, ny, layers, 0, GL_RED, GL_FLOAT, nullptr);
-  for (int k = 0; k < layers; ++k)
   {
-    glTexSubImage3D(
-      GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT, stack.GetLayer(k));
+    const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, nx, ny, layers, 0, GL_RED, GL_FLOAT, nullptr);
+    for (int k = 0; k < layers; ++k)
+    {
+      glTexSubImage3D(
+        GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, nx, ny, 1, GL_RED, GL_FLOAT, stack.GetLayer(k));
+    }
   }
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
   if (glGetError() != GL_NO_ERROR)

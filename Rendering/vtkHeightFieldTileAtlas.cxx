@@ -4,6 +4,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkShaderProgram.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
@@ -75,7 +76,7 @@ long long vtkHeightFieldTileAtlas::Upload(const vtkHeightFieldPager& pager,
   if (!uploads.empty())
   {
     glBindTexture(GL_TEXTURE_2D_ARRAY, this->Atlas.GetName());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 4);
     for (const auto& u : uploads)
     {
       pager.GetUploadValues(u, values);
@@ -89,7 +90,7 @@ long long vtkHeightFieldTileAtlas::Upload(const vtkHeightFieldPager& pager,
   if (!pager.GetBorderUploads().empty())
   {
     glBindTexture(GL_TEXTURE_2D_ARRAY, this->Atlas.GetName());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 4);
     for (const auto& u : pager.GetBorderUploads())
     {
       if (u.Slot < 0)
@@ -115,7 +116,7 @@ void vtkHeightFieldTileAtlas::UploadPageTable(const vtkHeightFieldPager& pager)
   glBindTexture(GL_TEXTURE_2D_ARRAY, this->PageTable.Get());
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+  const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 2);
   glTexImage3D(GL_TEXTURE_2D_ARRAY,
     0,
     GL_RGBA16UI,
@@ -126,7 +127,6 @@ void vtkHeightFieldTileAtlas::UploadPageTable(const vtkHeightFieldPager& pager)
     GL_RGBA_INTEGER,
     GL_UNSIGNED_SHORT,
     table.data());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
 }
 

@@ -2,6 +2,7 @@
 #include "vtkMultiVolumeInput.h"
 
 #include "vtkBrickAtlasFormat.h"
+#include "vtkStrataRenderUtilities.h"
 #include "vtkVolumeBrickTree.h"
 
 #include "vtkVolumeMapper.h"
@@ -517,7 +518,7 @@ void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   this->Skip.Classify([this](double lo, double hi) { return this->CellVisibility(lo, hi); });
   const int* cd = this->Skip.GetCellDimensions();
   glBindTexture(GL_TEXTURE_3D, this->SkipTexture.Get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const vtkStrataRenderUtilities::ScopedPixelStore alignment(GL_UNPACK_ALIGNMENT, 1);
   glTexImage3D(GL_TEXTURE_3D,
     0,
     GL_R8UI,
@@ -531,7 +532,6 @@ void vtkMultiVolumeInput::UpdateSkipGrid(const vtkVolumeBrickTree* poolTree,
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindTexture(GL_TEXTURE_3D, 0);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   this->SkipTime = this->Table.GetBuildCount();
 }
 

@@ -693,8 +693,11 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::PrepareFeedback(Self* self,
   vtkOpenGLRenderWindow* renWin,
   Frame& frame)
 {
-  this->Feedback.Allocate(renWin, frame.Viewport[2], frame.Viewport[3], self->FeedbackScale);
-  if (!frame.Hold)
+  // A held frame keeps the reports so far, unless the images were just (re)made: their texels
+  // are undefined then (zero on llvmpipe, old memory on a GPU), and imageLoad compares with them.
+  const bool allocated =
+    this->Feedback.Allocate(renWin, frame.Viewport[2], frame.Viewport[3], self->FeedbackScale);
+  if (allocated || !frame.Hold)
     this->Feedback.Clear(renWin);
   this->Feedback.BindImages(true);
   // The size of one pixel at distance r from the eye, times the error threshold: what a voxel
@@ -736,15 +739,19 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   vtkOpenGLState* state = renWin->GetState();
   this->Buffers.Bind(renWin, frame.Rays, this->SurfaceLayers.GetProgress());
   vtkOpenGLState::ScopedglViewport viewportSaver(state);
-  vtkOpenGLState::ScopedglClearColor clearSaver(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
   vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthEnable(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable cullEnable(state, GL_CULL_FACE);
   vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  // VTK leaves its scissor on the renderer's window rectangle; the buffers sit at (0, 0) of
+  // their own textures, so a renderer off the window's origin lost part of its volumes.
+  vtkOpenGLState::ScopedglEnableDisable scissorEnable(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
   state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
-  state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  // The fragments read these buffers back (prior opacity, surface progress) from the first
+  // draw on, so the clear is followed by a texture barrier.
+  vtkStrataRenderUtilities::ClearForReadBack(state);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglEnable(GL_BLEND);
@@ -817,8 +824,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
     vtkVolumeIntegrationBuffers& layer = this->LayerBuffers[frame.Volumes[v].Port];
     layer.Bind(renWin, frame.Rays);
     state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
-    state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+    // The first fragment reads the cleared state back ("not met"): a barrier after the clear.
+    vtkStrataRenderUtilities::ClearForReadBack(state);
     for (int f : order)
     {
       const auto& boxes = this->Geometry.GetTree().GetFragment(f).BoxIndices;
@@ -1023,13 +1030,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     // The next fragment's comparison must see this one's reports.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
-  if (key.Barrier || key.Reduce)
-  {
-    if (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier)
-      glTextureBarrier();
-    else
-      glTextureBarrierNV();
-  }
+  // The next fragment reads what this one wrote into the bound buffers (its opacity, the
+  // surface progress, the reduction state): a texture barrier between the two draws.
+  if (key.Barrier || key.Reduce || key.Surfaces > 0)
+    vtkStrataRenderUtilities::TextureBarrier();
   for (int i = 0; i < k; ++i)
     this->Inputs[frame.Volumes[volumes[i]].Port].Unbind(bindings[i]);
   for (vtkTextureObject* texture : readBack)
@@ -1313,7 +1317,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   // Early termination across fragments reads the integration buffer's own pixel while drawing
   // into it: defined under a texture barrier (each pixel is read and written once per fragment).
   // Reductions read their layer buffers the same way.
-  const bool barriers = GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier;
+  const bool barriers = vtkStrataRenderUtilities::HasTextureBarrier();
   frame.Barrier = frame.FrontToBack && barriers;
   if (frame.AnyReduced && !barriers)
   {

@@ -11,8 +11,10 @@
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderPass.h"
+#include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkTypeInt64Array.h"
+#include "vtk_glew.h"
 
 #include <cmath>
 
@@ -107,4 +109,39 @@ void vtkStrataRenderUtilities::SetField(vtkFieldData* out, const char* name, dou
 void vtkStrataRenderUtilities::SetField(vtkFieldData* out, const char* name, long long value)
 {
   SetOneValue<vtkTypeInt64Array>(out, name, static_cast<vtkTypeInt64>(value));
+}
+
+void vtkStrataRenderUtilities::TextureBarrier()
+{
+  // Without either extension no pass reads back what it draws (the mappers check
+  // HasTextureBarrier() first), so there is nothing to order.
+  if (GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier)
+    glTextureBarrier();
+  else if (GLEW_NV_texture_barrier)
+    glTextureBarrierNV();
+}
+
+bool vtkStrataRenderUtilities::HasTextureBarrier()
+{
+  return GLEW_VERSION_4_5 || GLEW_ARB_texture_barrier || GLEW_NV_texture_barrier;
+}
+
+void vtkStrataRenderUtilities::ClearForReadBack(vtkOpenGLState* state)
+{
+  vtkOpenGLState::ScopedglClearColor clearSaver(state);
+  state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  vtkStrataRenderUtilities::TextureBarrier();
+}
+
+vtkStrataRenderUtilities::ScopedPixelStore::ScopedPixelStore(unsigned int name, int value)
+  : Name(name)
+{
+  glGetIntegerv(name, &this->Saved);
+  glPixelStorei(name, value);
+}
+
+vtkStrataRenderUtilities::ScopedPixelStore::~ScopedPixelStore()
+{
+  glPixelStorei(this->Name, this->Saved);
 }

@@ -20,6 +20,7 @@
 class vtkActor;
 class vtkFieldData;
 class vtkOpenGLRenderPass;
+class vtkOpenGLState;
 class vtkRenderer;
 
 class STRATARENDERING_EXPORT vtkStrataRenderUtilities
@@ -40,6 +41,46 @@ public:
   static void GetLights(vtkRenderer* ren,
     std::vector<float>& directions,
     std::vector<float>& colors);
+
+  /**
+   * Makes what earlier draws and clears wrote into textures attached to the bound framebuffer
+   * visible to texture reads of later draws while the textures stay attached (GL 4.5 section
+   * 9.3.1; ARB_texture_barrier, or NV_texture_barrier before it). Without it such a read is
+   * undefined: llvmpipe happens to run clears and draws in order, NVIDIA read stale texels
+   * (a blob's core missing where the previous frame had terminated its rays). The only place
+   * Strata issues the barrier; a pass that reads back what it draws calls it after each draw.
+   */
+  static void TextureBarrier();
+  /// Whether the context has texture barriers (GL 4.5, ARB or NV_texture_barrier): a pass may
+  /// read back what it draws only then.
+  static bool HasTextureBarrier();
+
+  /**
+   * Clears the colour attachments of the bound draw framebuffer to (0, 0, 0, 0) for a pass that
+   * reads them back as textures, and puts the texture barrier in: a clear is a write. Every
+   * clear of such a pass goes through here.
+   */
+  static void ClearForReadBack(vtkOpenGLState* state);
+
+  /**
+   * Sets a pixel-store alignment (GL_UNPACK_ALIGNMENT or GL_PACK_ALIGNMENT) for its lifetime and
+   * then puts back the value it found. vtkOpenGLState caches these and skips setting a value its
+   * cache already holds, so a raw glPixelStorei left behind desynchronises VTK: its later
+   * uploads of rows that are not a multiple of 4 bytes came out sheared (an 8-bit volume of odd
+   * width after a skip-grid upload), and its RGB read-backs overran their buffers.
+   */
+  class STRATARENDERING_EXPORT ScopedPixelStore
+  {
+  public:
+    ScopedPixelStore(unsigned int name, int value);
+    ~ScopedPixelStore();
+    ScopedPixelStore(const ScopedPixelStore&) = delete;
+    ScopedPixelStore& operator=(const ScopedPixelStore&) = delete;
+
+  private:
+    unsigned int Name;
+    int Saved = 4;
+  };
 
   /// A row-major double matrix (vtkMatrix4x4::GetData()) as the column-major floats that
   /// vtkShaderProgram::SetUniformMatrix4x4 hands to glUniformMatrix4fv.

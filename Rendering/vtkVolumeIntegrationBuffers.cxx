@@ -57,15 +57,19 @@ void vtkVolumeIntegrationBuffers::Bind(vtkOpenGLRenderWindow* window,
 {
   window->GetState()->PushFramebufferBindings();
   this->Framebuffer->Bind();
+  // Detach first: VTK's framebuffer keeps an attachment whose vtkTextureObject it already holds
+  // even when Prepare reallocated that texture under a new GL name (a resize), and a framebuffer
+  // that is not bound keeps a deleted texture attached. Without this every draw after a resize
+  // went into the old, deleted textures and the composite read new, never written ones.
+  this->Framebuffer->RemoveColorAttachments(static_cast<unsigned int>(this->Attached));
   for (int r = 0; r < rays; ++r)
   {
     this->Framebuffer->AddColorAttachment(r, this->Accumulation[r]);
   }
   if (extra)
     this->Framebuffer->AddColorAttachment(rays, extra);
-  else
-    this->Framebuffer->RemoveColorAttachment(rays);
-  this->Framebuffer->ActivateDrawBuffers(rays + (extra ? 1 : 0));
+  this->Attached = rays + (extra ? 1 : 0);
+  this->Framebuffer->ActivateDrawBuffers(this->Attached);
 }
 
 void vtkVolumeIntegrationBuffers::Unbind(vtkOpenGLRenderWindow* window)
@@ -113,6 +117,7 @@ void vtkVolumeIntegrationBuffers::ReleaseGraphicsResources(vtkWindow* window)
   if (this->Framebuffer)
     this->Framebuffer->ReleaseGraphicsResources(window);
   this->Accumulation.clear();
+  this->Attached = 0;
   this->SceneDepth = nullptr;
   this->Framebuffer = nullptr;
   this->EmptyArray.Release();

@@ -59,6 +59,7 @@ private:
   std::vector<vtkSmartPointer<vtkTextureObject>> Accumulation;
   vtkSmartPointer<vtkTextureObject> SceneDepth;
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  int Attached = 0; ///< colour attachments of the last Bind
   vtkStrataGLObject EmptyArray{ vtkStrataGLObject::Kinds::VertexArray };
 };
 

@@ -30,13 +30,14 @@ bool vtkVolumeSurfacePeelPass::PreReplaceShaderValues(std::string&,
   vtkShaderProgram::Substitute(fragmentShader,
     "//VTK::DepthPeeling::Dec",
     "uniform sampler2D strataPeelScene;\nuniform sampler2D strataPeelPrevious;\n"
-    "uniform int strataPeelLayer;\n//VTK::DepthPeeling::Dec");
+    "uniform int strataPeelLayer;\nuniform int strataPeelActive;\n//VTK::DepthPeeling::Dec");
   vtkShaderProgram::Substitute(fragmentShader,
     "//VTK::DepthPeeling::PreColor",
     "{\n    ivec2 strataPixel = ivec2(gl_FragCoord.xy);\n"
-    "    if (gl_FragCoord.z >= texelFetch(strataPeelScene, strataPixel, 0).r ||\n"
+    "    if (strataPeelActive != 0 &&\n"
+    "      (gl_FragCoord.z >= texelFetch(strataPeelScene, strataPixel, 0).r ||\n"
     "      (strataPeelLayer > 0 &&\n"
-    "        gl_FragCoord.z <= texelFetch(strataPeelPrevious, strataPixel, 0).r))\n"
+    "        gl_FragCoord.z <= texelFetch(strataPeelPrevious, strataPixel, 0).r)))\n"
     "    {\n      discard;\n    }\n  }\n  //VTK::DepthPeeling::PreColor");
   return true;
 }
@@ -46,8 +47,12 @@ bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
   vtkProp*,
   vtkOpenGLVertexArrayObject*)
 {
-  if (!this->Scene || !this->Previous)
-    return true; // drawn outside a peel (an actor also in the renderer): nothing to bind
+  // Drawn outside a peel (an actor also in the renderer), the test is off: its samplers would
+  // name whatever is bound on the last peel's units.
+  const bool active = this->Active && this->Scene && this->Previous;
+  program->SetUniformi("strataPeelActive", active ? 1 : 0);
+  if (!active)
+    return true;
   program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
   program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());
   program->SetUniformi("strataPeelLayer", this->Layer);
@@ -182,8 +187,12 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
     vtkOpenGLState::ScopedglEnableDisable depthEnable(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
     vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+    // VTK leaves its scissor on the renderer's window rectangle: off for the layers, which sit at
+    // (0, 0) of their own textures (a renderer off the window's origin lost its layers).
+    vtkOpenGLState::ScopedglEnableDisable scissorEnable(state, GL_SCISSOR_TEST);
     this->Framebuffer->Bind();
     state->vtkglViewport(0, 0, width, height);
+    state->vtkglDisable(GL_SCISSOR_TEST);
     state->vtkglDisable(GL_BLEND);
     state->vtkglEnable(GL_DEPTH_TEST);
     state->vtkglDepthFunc(GL_LESS);
@@ -196,6 +205,8 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
       this->Framebuffer->AddDepthAttachment(this->Depths[k]);
       this->Framebuffer->ActivateDrawBuffers(1);
       state->vtkglDepthMask(GL_TRUE);
+      // Not read back: layer k is drawn here and read in later passes only, once detached (the
+      // peel reads layer k - 1's depth, which is no longer attached).
       state->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       this->Pass->Layer = k;
       this->Pass->Scene = sceneDepth;
@@ -210,6 +221,8 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
       sceneDepth->Deactivate();
     }
     this->Pass->Active = false;
+    this->Pass->Scene = nullptr; // freed with the buffers; not to be named after the peel
+    this->Pass->Previous = nullptr;
     this->Framebuffer->RemoveDepthAttachment();
     this->Framebuffer->RemoveColorAttachment(0);
   }
