@@ -132,7 +132,7 @@ void Color(const Key& key, std::string& fs)
     Replace(fs,
       "//STRATA::Color::Impl",
       "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
-      "  vec3 baseColor = texelFetch(uColors, clamp(int(lutS * 1024.0), 0, 1023)).rgb;");
+      "  vec3 baseColor = texelFetch(uColors, int(clamp(lutS * 1024.0, 0.0, 1023.0))).rgb;");
     return;
   }
   Replace(fs,

@@ -63,6 +63,8 @@ void BuildPointShaders(const PointKey& key, std::string& vs, std::string& fs)
   vs = vtkHybridPointsVS;
   fs = vtkHybridPointsFS;
   Replace(vs, "//STRATA::Splat::VSDec", splats ? "out float vSigma;\nout float vSide;" : "");
+  // Every output written on every path, the culled points' too.
+  Replace(vs, "//STRATA::Splat::VSCulled", splats ? "vSigma = 1.0;\n    vSide = 1.0;" : "");
   Replace(vs,
     "//STRATA::Splat::VSImpl",
     splats ? vtkHybridPointsSplatVS

@@ -664,7 +664,16 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UpdatePreIntegration(Self* self,
   Frame& frame)
 {
   frame.SampleDistance = self->SampleDistance;
-  if (self->AutoAdjustSampleDistances)
+  // The shaders divide by the step: a step of 0 (or less) would make every ray NaN.
+  const bool valid = self->SampleDistance > 0.0 && std::isfinite(self->SampleDistance);
+  if (!valid && !this->SampleDistanceWarned)
+  {
+    vtkErrorWithObjectMacro(self,
+      "SampleDistance " << self->SampleDistance
+                        << " is not a positive length: half the smallest voxel edge is used.");
+    this->SampleDistanceWarned = true;
+  }
+  if (self->AutoAdjustSampleDistances || !valid)
   {
     // Half the smallest voxel edge of any volume, in world units.
     frame.SampleDistance = VTK_DOUBLE_MAX;

@@ -134,6 +134,7 @@ public:
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
   bool ComponentLimitsWarned = false;
+  bool SampleDistanceWarned = false;
   ViewKey FeedbackView{};                  ///< the view the queued feedback was rendered from
   vtkMTimeType FeedbackClassification = 0; ///< and the properties' (Frame::Classification)
   ViewKey LastView{};                      ///< the view of the last frame

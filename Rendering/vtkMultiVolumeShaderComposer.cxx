@@ -507,9 +507,9 @@ std::string Segment(const Key& key)
   }
   const std::string K = std::to_string(k);
   std::string code = "void strataSampleAll(vec3 p, out float s[" + K + "])\n{\n";
+  // Every element written: an out array is copied back whole (the others are never read).
   for (int i = 0; i < k; ++i)
-    if (Medium(key, i))
-      code += ForVolume("  s[@n@] = strataScalar@n@(p);\n", i);
+    code += ForVolume(Medium(key, i) ? "  s[@n@] = strataScalar@n@(p);\n" : "  s[@n@] = 0.0;\n", i);
   code += "}\n";
   if (k == 1)
   {

@@ -42,6 +42,7 @@ void main()
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // nothing to add: outside the clip volume
     gl_PointSize = 1.0;
     vColor = vec4(0.0);
+    //STRATA::Splat::VSCulled
     return;
   }
   gl_Position = p;

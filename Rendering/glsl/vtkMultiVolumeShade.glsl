@@ -22,8 +22,13 @@ vec3 strataShade@n@(vec3 p, vec3 color)
   for (int l = 0; l < uNumLights; ++l)
   {
     diffuse += abs(dot(N, uLightDirection[l])) * uLightColor[l];
-    vec3 H = normalize(uLightDirection[l] + gViewDirection);
-    specular += pow(abs(dot(N, H)), m.w) * uLightColor[l];
+    // No NaN from the GPU's corner cases: L + V is zero for a light straight against the view
+    // (no highlight; normalize(0) is NaN), and pow(x, 0) is undefined at x = 0 (a power of 0 is
+    // a constant highlight).
+    vec3 H = uLightDirection[l] + gViewDirection;
+    float HH = dot(H, H);
+    float NH = HH > 1.0e-12 ? abs(dot(N, H)) * inversesqrt(HH) : 0.0;
+    specular += (m.w > 0.0 ? pow(NH, m.w) : 1.0) * uLightColor[l];
   }
   return color * (m.x + m.y * diffuse) + m.z * specular;
 }

@@ -5,6 +5,7 @@ uniform sampler2DArray uAttributes;
 // (vtkHeightFieldStack::Interpolate).
 bool strataAttribute(int layer, vec2 g, out float value)
 {
+  value = 0.0; // written on every path (an out parameter is copied back even when not set)
   g = clamp(g, vec2(0.0), uGridMax);
   ivec2 c = min(ivec2(g), ivec2(uGridMax) - 1);
   vec2 uv = g - vec2(c);

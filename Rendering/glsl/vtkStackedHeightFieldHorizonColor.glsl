@@ -14,5 +14,6 @@ vec3 strataHorizonColor(int layer, vec3 pGrid)
   float value = pGrid.z;
   //STRATA::Attribute::Impl
   float s = (value - d.z) / (d.w - d.z);
-  return texelFetch(uColors, table + clamp(int(s * 1024.0), 0, 1023)).rgb;
+  // Clamped in float: int() of a value beyond int's range (or Inf, NaN) is undefined.
+  return texelFetch(uColors, table + int(clamp(s * 1024.0, 0.0, 1023.0))).rgb;
 }
