@@ -69,8 +69,11 @@ void vtkFeedbackBuffer::Clear(vtkOpenGLRenderWindow* window)
   const GLfloat zeroScore = 0.f;
   if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
   {
+    // No barrier needed: image units, not attachments; a clear is an ordinary GL command, which
+    // later image loads see in order (glMemoryBarrier orders shader writes only; Queue has it).
     glClearTexImage(this->Ids.GetName(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     if (this->Scored)
+      // No barrier needed: as above.
       glClearTexImage(this->Scores.GetName(), 0, GL_RED, GL_FLOAT, &zeroScore);
     return;
   }

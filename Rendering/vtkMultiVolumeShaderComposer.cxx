@@ -385,9 +385,10 @@ std::string LayerVolume(const Key& key, int n)
   {
     case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
     case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      color = "vec4 tf = texture(uTransfer@n@, vec2((st.x - uTableRange@n@.x) * uTableRange@n@.y + "
-              "uTableRange@n@.z, 0.5));\n  float alpha = 1.0 - exp(-tf.a * uUnit@n@);\n"
-              "  color = vec4(tf.rgb * alpha, alpha);\n  return st.w > 0.0 ? st.z : 3.0e38;";
+      color =
+        "vec4 tf = textureLod(uTransfer@n@, vec2((st.x - uTableRange@n@.x) * uTableRange@n@.y + "
+        "uTableRange@n@.z, 0.5), 0.0);\n  float alpha = 1.0 - exp(-tf.a * uUnit@n@);\n"
+        "  color = vec4(tf.rgb * alpha, alpha);\n  return st.w > 0.0 ? st.z : 3.0e38;";
       break;
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
       color = "float g = st.y > 0.0 ? clamp(st.x / st.y, 0.0, 1.0) : 0.0;\n"

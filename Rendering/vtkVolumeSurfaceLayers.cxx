@@ -205,8 +205,8 @@ int vtkVolumeSurfaceLayers::Peel(vtkRenderer* ren,
       this->Framebuffer->AddDepthAttachment(this->Depths[k]);
       this->Framebuffer->ActivateDrawBuffers(1);
       state->vtkglDepthMask(GL_TRUE);
-      // Not read back: layer k is drawn here and read in later passes only, once detached (the
-      // peel reads layer k - 1's depth, which is no longer attached).
+      // No barrier needed: layer k is read only once detached (the peel of layer k + 1 reads
+      // its depth with layer k + 1 attached; the integration reads the layers after the peel).
       state->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       this->Pass->Layer = k;
       this->Pass->Scene = sceneDepth;

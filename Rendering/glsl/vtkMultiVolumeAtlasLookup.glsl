@@ -14,8 +14,8 @@ uniform float uEmptyScalar@n@; // a value the transfer function makes transparen
 float strataScalarAt@n@(vec3 idx)
 {
   vec3 x = clamp(idx, vec3(0.0), uIndexExtent@n@);
-  vec4 f = texture(uIndex@n@, x * uIndexScale@n@);
+  vec4 f = textureLod(uIndex@n@, x * uIndexScale@n@, 0.0);
   //STRATA::FeedbackCheck::Impl
-  float v = texture(uAtlas, (f.xyz + x * f.w) / uAtlasSize).r@decode@;
+  float v = textureLod(uAtlas, (f.xyz + x * f.w) / uAtlasSize, 0.0).r@decode@;
   return f.w > 0.0 ? v : uEmptyScalar@n@;
 }

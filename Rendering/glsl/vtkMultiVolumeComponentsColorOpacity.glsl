@@ -6,5 +6,5 @@ vec4 strataMedium@n@(vec3 p)
 {
   vec2 s = strataComponents@n@(p).xy;
   vec2 x = (s - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z;
-  return vec4(texture(uTransfer@n@, vec2(x.x, 0.5)).rgb, texture(uTransfer@n@, vec2(x.y, 0.5)).a);
+  return vec4(textureLod(uTransfer@n@, vec2(x.x, 0.5), 0.0).rgb, textureLod(uTransfer@n@, vec2(x.y, 0.5), 0.0).a);
 }

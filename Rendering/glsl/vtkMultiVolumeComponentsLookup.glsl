@@ -10,5 +10,5 @@ vec4 strataComponents@n@(vec3 p)
 {
   vec3 idx = (uLocalToIndex@n@ * vec4(p, 1.0)).xyz;
   idx = mix(idx, floor(idx + 0.5), uNearest@n@);
-  return texture(uVolume@n@, (idx + 0.5) / uDims@n@);
+  return textureLod(uVolume@n@, (idx + 0.5) / uDims@n@, 0.0);
 }

@@ -9,6 +9,6 @@ uniform vec3 uColorScale@n@;
 vec4 strataMedium@n@(vec3 p)
 {
   vec4 s = strataComponents@n@(p);
-  float tau = texture(uTransfer@n@, vec2((s.w - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z, 0.5)).a;
+  float tau = textureLod(uTransfer@n@, vec2((s.w - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z, 0.5), 0.0).a;
   return vec4(clamp((s.xyz - uColorLo@n@) * uColorScale@n@, 0.0, 1.0), tau);
 }

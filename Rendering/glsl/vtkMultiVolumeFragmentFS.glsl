@@ -11,6 +11,8 @@
 // gl_FragData[r], its own integration buffer, so each ray composites through all fragments on
 // its own and the pixel is their mean. Paged scenes add level-of-detail feedback: the
 // extension tag above, the lookups of lacking bricks and the report at the end of main.
+// Every lookup is textureLod(..., 0.0) or texelFetch: the ray loop is non-uniform control flow,
+// where the implicit derivatives of texture() are undefined.
 
 //VTK::Output::Dec
 

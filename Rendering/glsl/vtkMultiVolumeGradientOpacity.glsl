@@ -12,7 +12,7 @@ float strataGradientTau@n@(vec3 p, float tau)
     strataScalarAt@n@(x + vec3(0.0, 1.0, 0.0)) - strataScalarAt@n@(x - vec3(0.0, 1.0, 0.0)),
     strataScalarAt@n@(x + vec3(0.0, 0.0, 1.0)) - strataScalarAt@n@(x - vec3(0.0, 0.0, 1.0)));
   g = transpose(mat3(uLocalToIndex@n@)) * g;
-  float go = texture(uGradientOpacity@n@, vec2((length(g) - uGradientRange@n@.x) * uGradientRange@n@.y + uGradientRange@n@.z, 0.5)).r;
+  float go = textureLod(uGradientOpacity@n@, vec2((length(g) - uGradientRange@n@.x) * uGradientRange@n@.y + uGradientRange@n@.z, 0.5), 0.0).r;
   float a = (1.0 - exp(-tau * uUnit@n@)) * clamp(go, 0.0, 1.0);
   return -log(max(1.0 - a, 1.0e-6)) / uUnit@n@;
 }

@@ -17,7 +17,7 @@ vec4 strataIso@n@(vec3 pa, vec3 pb)
     float v = uIso@n@[sb >= sa ? j : uNumIso@n@ - 1 - j];
     if ((sa >= v) != (sb >= v))
     {
-      vec4 tf = texture(uTransfer@n@, vec2((v - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z, 0.5));
+      vec4 tf = textureLod(uTransfer@n@, vec2((v - uTableRange@n@.x) * uTableRange@n@.y + uTableRange@n@.z, 0.5), 0.0);
       float alpha = 1.0 - exp(-tf.a * uUnit@n@);
       //STRATA::IsoCrop::Impl
       vec3 rgb = tf.rgb;

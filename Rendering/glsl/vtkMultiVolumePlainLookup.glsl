@@ -5,5 +5,5 @@ uniform vec3 uDims@n@;
 //STRATA::Decode::Dec
 float strataScalarAt@n@(vec3 idx)
 {
-  return texture(uVolume@n@, (idx + 0.5) / uDims@n@).r@decode@;
+  return textureLod(uVolume@n@, (idx + 0.5) / uDims@n@, 0.0).r@decode@;
 }

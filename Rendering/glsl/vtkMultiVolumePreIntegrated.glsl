@@ -8,7 +8,7 @@ vec4 strataPre@n@(float sf, float sb, float len)
 {
   vec2 x = clamp((vec2(sf, sb) - uPreRange@n@.x) * uPreRange@n@.y, 0.0, 1.0);
   float m = uPreRange@n@.z;
-  vec4 ca = texture(uPreTable@n@, (x * (m - 1.0) + 0.5) / m);
+  vec4 ca = textureLod(uPreTable@n@, (x * (m - 1.0) + 0.5) / m, 0.0);
   if (len != uPreStep@n@)
   {
     // A step cut short by a fragment face: opacity corrected to its length.

@@ -8,6 +8,6 @@ uniform vec2 uAverageRange0; // AverageIPScalarRange
 vec4 gState;
 float strataOpacity0(float s)
 {
-  float tau = texture(uTransfer0, vec2((s - uTableRange0.x) * uTableRange0.y + uTableRange0.z, 0.5)).a;
+  float tau = textureLod(uTransfer0, vec2((s - uTableRange0.x) * uTableRange0.y + uTableRange0.z, 0.5), 0.0).a;
   return 1.0 - exp(-tau * uUnit0);
 }

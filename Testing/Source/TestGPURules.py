@@ -1,0 +1,280 @@
+#!/usr/bin/env python3
+# Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
+"""The GPU rules that llvmpipe cannot check, checked on the sources (DESIGN.md, "Rules for
+whoever writes a shader next"). Mesa runs clears and draws in order and keeps NaN semantics,
+so a missing texture barrier or a NaN test that fast math folds away passes every image test
+here and fails on NVIDIA. This test reads the sources instead:
+
+1. Clears. Every clear in Rendering/ goes through vtkStrataRenderUtilities::ClearForReadBack
+   (clear, then texture barrier), or says on the lines above why its target needs no barrier
+   ("No barrier needed: ..."). ClearForReadBack's clear is followed by TextureBarrier(), the
+   only place that issues the barrier.
+2. Draws that read back their target. vtkMultiVolumeRayCastMapper's DrawFragment, the one pass
+   whose program reads the textures it draws into (prior opacity, surface progress, reduction
+   state), issues TextureBarrier() after its draw whenever it reads back (key.Barrier,
+   key.Reduce, key.Surfaces).
+3. GLSL: no isnan/isinf, no `x != x`, no negated comparison `!(a <= b)` or `not(lessThan(..))`
+   (the NaN tests fast math removes), no implicit-derivative lookup (texture(), dFdx, dFdy,
+   fwidth) outside vertex shaders: Strata's fragment code runs in ray loops, non-uniform flow.
+4. The suite's wiring of GL debug output: every C++ test runs with STRATA_GL_DEBUG=1 and fails
+   on "Strata GL debug:" (read from ctest's own listing of the build tree).
+
+Each rule is first run on a known-bad fixture (the code as it was before the H200 findings),
+which it must flag: a rule that flags nothing there is broken, and the test fails.
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+
+CLEAR = re.compile(r"\b(?:vtkgl|gl)Clear(?:Buffer\w*|Tex(?:Sub)?Image|NamedFramebuffer\w*)?\s*\(")
+BARRIER_CALL = re.compile(r"\bglTextureBarrier(?:NV)?\s*\(")
+EXEMPT = "No barrier needed:"
+
+
+def strip_comments(code):
+    """C/C++/GLSL comments removed (string literals kept: GLSL lives in them)."""
+    out, i, n = [], 0, len(code)
+    while i < n:
+        if code.startswith("//", i):
+            j = code.find("\n", i)
+            i = n if j < 0 else j
+        elif code.startswith("/*", i):
+            j = code.find("*/", i + 2)
+            i = n if j < 0 else j + 2
+        elif code[i] == '"':
+            j = i + 1
+            while j < n and code[j] != '"':
+                j += 2 if code[j] == "\\" else 1
+            out.append(code[i : j + 1])
+            i = j + 1
+        else:
+            out.append(code[i])
+            i += 1
+    return "".join(out)
+
+
+def function_body(code, qualified_name):
+    """The text between the braces of the definition of `qualified_name`, or None."""
+    m = re.search(re.escape(qualified_name) + r"\s*\([^;{]*\)\s*(?:const\s*)?\{", code)
+    if not m:
+        return None
+    depth, i = 1, m.end()
+    while depth and i < len(code):
+        depth += {"{": 1, "}": -1}.get(code[i], 0)
+        i += 1
+    return code[m.end() : i - 1]
+
+
+def check_clears(name, code):
+    """Rule 1 on one C++ source: clears outside ClearForReadBack need the exemption comment."""
+    problems = []
+    helper = function_body(code, "vtkStrataRenderUtilities::ClearForReadBack") or ""
+    lines = code.split("\n")
+    for number, line in enumerate(lines, 1):
+        stripped = line.split("//")[0]
+        if not CLEAR.search(stripped) or "ClearForReadBack" in stripped:
+            continue
+        if helper and stripped.strip() and stripped.strip() in helper:
+            continue
+        above = "\n".join(lines[max(0, number - 4) : number])
+        if EXEMPT not in above:
+            problems.append(
+                f"{name}:{number}: a clear outside ClearForReadBack without '{EXEMPT}' above it: "
+                f"{line.strip()}")
+    for number, line in enumerate(lines, 1):
+        if BARRIER_CALL.search(line.split("//")[0]) and not name.endswith(
+                "vtkStrataRenderUtilities.cxx"):
+            problems.append(f"{name}:{number}: glTextureBarrier outside "
+                            "vtkStrataRenderUtilities::TextureBarrier")
+    return problems
+
+
+def check_helpers(code):
+    """Rule 1: ClearForReadBack clears, then calls TextureBarrier(), which issues the barrier."""
+    problems = []
+    clear = function_body(code, "vtkStrataRenderUtilities::ClearForReadBack")
+    barrier = function_body(code, "vtkStrataRenderUtilities::TextureBarrier")
+    if clear is None or barrier is None:
+        return ["vtkStrataRenderUtilities.cxx: ClearForReadBack or TextureBarrier not found"]
+    c = CLEAR.search(clear)
+    b = clear.find("TextureBarrier()")
+    if not c or b < c.start():
+        problems.append("ClearForReadBack: no TextureBarrier() after its clear")
+    if not BARRIER_CALL.search(barrier):
+        problems.append("TextureBarrier: issues no glTextureBarrier")
+    return problems
+
+
+def check_read_back_draw(code):
+    """Rule 2: DrawFragment's draw is followed by TextureBarrier() on every read-back key."""
+    body = function_body(code, "vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment")
+    if body is None:
+        return ["vtkMultiVolumeRayCastMapper.cxx: DrawFragment not found"]
+    draw = body.find(".Draw(")
+    if draw < 0:
+        return ["DrawFragment: its draw (Geometry.Draw) not found"]
+    after = body[draw:]
+    m = re.search(r"if\s*\(([^)]*)\)\s*\n?\s*vtkStrataRenderUtilities::TextureBarrier\(\)", after)
+    if not m:
+        return ["DrawFragment: no TextureBarrier() after the draw"]
+    missing = [k for k in ("key.Barrier", "key.Reduce", "key.Surfaces") if k not in m.group(1)]
+    return [f"DrawFragment: the barrier after the draw skips read-backs of {', '.join(missing)}"
+            ] if missing else []
+
+
+GLSL_RULES = [
+    (re.compile(r"\bis(?:nan|inf)\s*\("), "isnan/isinf (fast math may fold it to false)"),
+    (re.compile(r"(?<![\w.])([A-Za-z_][\w.\[\]]*)\s*!=\s*\1(?![\w.\[])"),
+     "x != x (a NaN test fast math folds away)"),
+    (re.compile(r"!\s*\((?:[^()]|\([^()]*\))*?(?:<=|>=|==|!=|<|>)"),
+     "a negated comparison !(a <= b) (NaN-dependent: write the comparison itself)"),
+    (re.compile(r"\bnot\s*\(\s*(?:lessThan|lessThanEqual|greaterThan|greaterThanEqual|equal|"
+                r"notEqual)\s*\("), "not(lessThan(..)) (a negated comparison)"),
+]
+DERIVATIVES = (re.compile(r"\b(?:texture|textureProj|textureOffset|dFdx|dFdy|fwidth)\s*\("),
+               "an implicit-derivative lookup (texture(), dFdx, fwidth) in fragment code: "
+               "use textureLod(.., 0.0) or texelFetch")
+
+
+def glsl_of_cxx(code):
+    """The GLSL a C++ source carries: (line, text) of each string literal, escapes undone."""
+    return [(code.count("\n", 0, m.start()) + 1, m.group(1).replace("\\n", "\n"))
+            for m in re.finditer(r'"((?:[^"\\]|\\.)*)"', code)]
+
+
+def check_glsl(name, glsl, vertex, first_line=1):
+    problems = []
+    code = strip_comments(glsl)
+    rules = GLSL_RULES + ([] if vertex else [DERIVATIVES])
+    for number, line in enumerate(code.split("\n"), first_line):
+        for pattern, why in rules:
+            if pattern.search(line):
+                problems.append(f"{name}:{number}: {why}: {line.strip()}")
+    return problems
+
+
+def check_cxx_glsl(name, code):
+    """Rule 3 on the GLSL in a C++ source's string literals, by the literal's line."""
+    problems = []
+    for line, text in glsl_of_cxx(code):
+        problems += check_glsl(name, text, vertex=False, first_line=line)
+    return problems
+
+
+# Known-bad fixtures: each rule must flag its own.
+BAD_CLEAR = """
+void DrawFragments(vtkOpenGLState* state)
+{
+  state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+}
+"""
+BAD_HELPER = """
+void vtkStrataRenderUtilities::TextureBarrier()
+{
+  glTextureBarrier();
+}
+void vtkStrataRenderUtilities::ClearForReadBack(vtkOpenGLState* state)
+{
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+}
+"""
+BAD_DRAW = """
+bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self, int f)
+{
+  this->Geometry.Draw(f);
+  if (key.Barrier || key.Reduce)
+    vtkStrataRenderUtilities::TextureBarrier();
+  return true;
+}
+"""
+BAD_GLSL = {
+    "x != x": "if (h != h) { continue; }",
+    "negated <=": "if (!(abs(h - hHit) <= uZEps)) // NaN (a hole) is not coincident",
+    "isnan": "valid = !any(isnan(h));",
+    "not(lessThan)": "bvec4 ok = not(lessThan(abs(h), vec4(1.0e30)));",
+    "texture()": "float v = texture(uAtlas, p).r;",
+}
+
+
+def self_test():
+    """The rules flag the known-bad fixtures; an empty result is a broken rule."""
+    failures = []
+    if not check_clears("fixture.cxx", BAD_CLEAR):
+        failures.append("rule 1 missed a clear without barrier")
+    if not check_helpers(BAD_HELPER):
+        failures.append("rule 1 missed a ClearForReadBack without barrier")
+    if not check_read_back_draw(BAD_DRAW):
+        failures.append("rule 2 missed a barrier that skips key.Surfaces")
+    for what, line in BAD_GLSL.items():
+        if not check_glsl("fixture.glsl", line, vertex=False):
+            failures.append(f"rule 3 missed {what}")
+    return failures
+
+
+def check_wiring(ctest, build):
+    """Rule 4: every C++ test runs with STRATA_GL_DEBUG=1 and fails on the debug line."""
+    listing = subprocess.run([ctest, "--show-only=json-v1", "-R", "CoreCxx|IOCxx|RenderingCxx"],
+                             cwd=build, capture_output=True, text=True, check=True).stdout
+    problems, count = [], 0
+    for test in json.loads(listing)["tests"]:
+        props = {p["name"]: p["value"] for p in test.get("properties", [])}
+        env = props.get("ENVIRONMENT", [])
+        count += 1
+        if "STRATA_GL_DEBUG=1" not in env:
+            problems.append(f"{test['name']}: runs without STRATA_GL_DEBUG=1")
+        fail = props.get("FAIL_REGULAR_EXPRESSION", [])
+        guard = props.get("PASS_REGULAR_EXPRESSION", [])
+        if "Strata GL debug:" not in fail and not any("Strata GL debug:" in g for g in guard):
+            problems.append(f"{test['name']}: does not fail on 'Strata GL debug:'")
+    return count, problems
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--source", required=True, help="Strata's source tree")
+    parser.add_argument("--build", help="the build tree, for rule 4")
+    parser.add_argument("--ctest", default="ctest")
+    args = parser.parse_args()
+
+    problems = [f"self-test: {f}" for f in self_test()]
+    cxx = sorted(glob.glob(os.path.join(args.source, "Rendering", "*.cxx")))
+    clears = 0
+    for path in cxx:
+        code = open(path, encoding="utf-8").read()
+        name = os.path.relpath(path, args.source)
+        clears += sum(1 for line in code.split("\n") if CLEAR.search(line.split("//")[0]))
+        problems += check_clears(name, code)
+        if path.endswith("vtkStrataRenderUtilities.cxx"):
+            problems += check_helpers(code)
+        if path.endswith("vtkMultiVolumeRayCastMapper.cxx"):
+            problems += check_read_back_draw(code)
+        problems += check_cxx_glsl(name, code)
+    shaders = sorted(glob.glob(os.path.join(args.source, "Rendering", "glsl", "*.glsl")))
+    for path in shaders:
+        name = os.path.relpath(path, args.source)
+        problems += check_glsl(name, open(path, encoding="utf-8").read(),
+                               vertex=path.endswith("VS.glsl"))
+    pack = os.path.join(args.source, "Module", "vtkFeedbackReduction.cxx")
+    problems += check_cxx_glsl("Module/vtkFeedbackReduction.cxx GetGLSLPackFunction",
+                               function_body(open(pack, encoding="utf-8").read(),
+                                             "vtkFeedbackReduction::GetGLSLPackFunction") or "")
+    tests = 0
+    if args.build:
+        tests, wiring = check_wiring(args.ctest, args.build)
+        problems += wiring
+    for p in problems:
+        print("FAILED:", p)
+    print(f"gpu rules: {clears} clears in {len(cxx)} C++ sources, {len(shaders)} GLSL templates "
+          f"and the GLSL of the C++ sources, {tests} C++ tests' debug wiring; "
+          f"{len(BAD_GLSL) + 3} known-bad fixtures flagged: "
+          + ("ok" if not problems else f"{len(problems)} problems"))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
