@@ -212,8 +212,7 @@ void Translucent(const Key& key, std::string& fs)
   Replace(fs,
     "//STRATA::Translucency::Dec",
     std::string(layer ? vtkStackedHeightFieldLayerDec : "") +
-      (layer || blend ? "uniform int uNumHorizons;\n" : "") +
-      (blend ? "out vec4 fragOutput1;\n" : ""));
+      (layer || blend ? "uniform int uNumHorizons;\n" : ""));
   Replace(fs, "//STRATA::Translucency::Start", layer ? vtkStackedHeightFieldLayerStart : "");
   Replace(fs,
     "//STRATA::Translucency::Depth",
@@ -225,7 +224,7 @@ void Translucent(const Key& key, std::string& fs)
     fs, "//STRATA::Translucency::Merge", layer || blend ? vtkStackedHeightFieldLayerMerge : "");
   Replace(fs,
     "//STRATA::Translucency::Output",
-    blend ? vtkStackedHeightFieldBlend : "fragOutput0 = strataShade(hitLayer, hitCell, pGrid);");
+    blend ? vtkStackedHeightFieldBlend : "gl_FragData[0] = strataShade(hitLayer, hitCell, pGrid);");
 }
 }
 

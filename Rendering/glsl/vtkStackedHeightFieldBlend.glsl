@@ -13,5 +13,5 @@
       break;
     }
   }
-  fragOutput0 = blended;
-  fragOutput1 = vec4(blended.a);
+  gl_FragData[0] = blended;
+  gl_FragData[1] = vec4(blended.a);

@@ -5,7 +5,9 @@
 // linear search per layer with binary refinement. Tags are filled per scene by
 // vtkStackedHeightFieldMapper: what the scene does not use leaves no code here.
 
-out vec4 fragOutput0;
+// gl_FragData[i]: VTK declares fragOutput<i> and binds it to draw buffer i (two outputs without
+// bound locations would be placed as the linker likes).
+//VTK::Output::Dec
 
 uniform mat4 uClipToGrid;  // NDC -> grid (homogeneous), composed in double on the CPU
 uniform mat4 uGridToClip;

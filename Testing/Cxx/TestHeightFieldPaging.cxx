@@ -9,7 +9,10 @@
 //  2. converged, the paged image equals the in-core image of the same data, shaded and in
 //     horizon ids, with level-of-detail feedback (the default) and without; with feedback the
 //     tiles hidden under other horizons stay coarse, and out-of-view tiles stay coarse when
-//     zoomed in;
+//     zoomed in. Paged and in core are two programs (vtkHeightFieldShaderComposer::Key::Paged:
+//     heights through the tile atlas's page table, or one array texture): the shaded images
+//     may differ by ImagePolicy::TwoProgramsMax (1 of 255, StrataImagePolicy.h rule 2); the
+//     horizon ids are discrete and stay exact;
 //  3. the demo's other horizon scene, the four Reek horizons (Irap binary grids with holes on a
 //     rotated UTM-scale grid, 8x vertical exaggeration), paged the same way: every path frame
 //     is the rendering of its cut, and converged the image is the in-core one;
@@ -19,6 +22,7 @@
 #include "StrataErrorCounter.h"
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
+#include "StrataImagePolicy.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -324,9 +328,10 @@ void ReekPaged(const std::string& dataDir, const std::string& dir)
   Check(cut.Worst.Differing <= std::max(4L, cut.Worst.Covered / 2000) && cut.WorstCoverage <= 10,
     "every Reek frame is the rendering of its cut (<= 0.05 % of pixels, coverage within 10 "
     "pixels)");
-  // Converged, the cut's heights render exactly as in core; the paged lookup's float arithmetic
-  // on this UTM-scale grid may move a channel of a pixel by 1/255 (seen: one).
-  Check(d.Max <= 1 && d.Differing == 0 && d.Covered > 5000,
+  // Converged, the cut's heights render as in core, by another program (paged vs in core,
+  // StrataImagePolicy.h rule 2): the paged lookup's float arithmetic on this UTM-scale grid
+  // moved a channel of a pixel by 1/255 on llvmpipe (seen: one).
+  Check(d.Max <= ImagePolicy::TwoProgramsMax && d.Differing == 0 && d.Covered > 5000,
     "converged, the paged Reek scene equals the in-core one (max 1/255)");
   Check(st.Failures == 0 && st.RootPagesRead == 0, "Reek: no failures, roots from the readers");
   for (const auto& pool : pools)
@@ -502,12 +507,14 @@ void Converged(HFPagingFixture& fx)
   std::cout << "HFPaging: converged, shaded: max difference " << d.Max << " over " << d.Covered
             << " covered pixels; " << st.FinestTiles << " level-0 tiles resident of " << st.CutTiles
             << "; " << st.BytesRead / 1024 << " KiB read\n";
-  Check(
-    d.Max == 0 && d.Covered > 10000, "converged paged rendering equals the in-core one (shaded)");
+  // Paged vs in core: two programs (rule 2 of StrataImagePolicy.h), 1 of 255.
+  Check(d.Max <= ImagePolicy::TwoProgramsMax && d.Covered > 10000,
+    "converged paged rendering equals the in-core one (shaded, max 1/255)");
   incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
   paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::HorizonId);
   const Difference ids = Compare(render(paged), render(incore), background);
   std::cout << "HFPaging: converged, horizon ids: max difference " << ids.Max << "\n";
+  // Ids are discrete: exact, whatever the program.
   Check(ids.Max == 0, "converged paged rendering equals the in-core one (ids)");
   incore->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
   paged->SetOutputMode(vtkStackedHeightFieldMapper::OutputModes::Shaded);
@@ -542,7 +549,8 @@ void WithoutFeedback(HFPagingFixture& fx)
             << "; without feedback max difference " << db.Max << "; feedback reduction "
             << paged->GetPagingStatistics().FeedbackMilliseconds << " ms\n";
   Check(st.FeedbackUsed && !sb.FeedbackUsed, "feedback drives the cut when on, not when off");
-  Check(sb.Converged && db.Max == 0, "without feedback the converged image is the in-core one too");
+  Check(sb.Converged && db.Max <= ImagePolicy::TwoProgramsMax,
+    "without feedback the converged image is the in-core one too (paged vs in core: max 1/255)");
   Check(st.FinestTiles < sb.FinestTiles,
     "with feedback hidden tiles stay coarse (fewer level-0 tiles)");
 }
@@ -570,9 +578,10 @@ void DeferredReadBack(HFPagingFixture& fx)
   const Difference dd = Compare(render(deferred), full, background);
   std::cout << "HFPaging: deferred feedback read-back: converged after " << df << " frames, "
             << sd.FinestTiles << " level-0 tiles, max difference " << dd.Max << "\n";
-  Check(sd.Converged && sd.FeedbackUsed && dd.Max == 0 && sd.FinestTiles < fx.BlindFinestTiles,
-    "with the read-back deferred, feedback converges to the in-core image and keeps hidden tiles "
-    "coarse");
+  Check(sd.Converged && sd.FeedbackUsed && dd.Max <= ImagePolicy::TwoProgramsMax &&
+          sd.FinestTiles < fx.BlindFinestTiles,
+    "with the read-back deferred, feedback converges to the in-core image (max 1/255) and keeps "
+    "hidden tiles coarse");
 }
 
 void BlendedRefinement(HFPagingFixture& fx)
@@ -654,7 +663,8 @@ void ZoomedIn(HFPagingFixture& fx)
     std::cout << "HFPaging: zoomed in: " << st.FinestTiles << " of " << all
               << " level-0 tiles resident; max difference " << d.Max << " to in-core\n";
     Check(st.Converged && st.FinestTiles < all / 2, "tiles out of view stay coarse");
-    Check(d.Max == 0, "zoomed in, converged paged rendering equals the in-core one");
+    Check(d.Max <= ImagePolicy::TwoProgramsMax,
+      "zoomed in, converged paged rendering equals the in-core one (max 1/255)");
   }
 }
 

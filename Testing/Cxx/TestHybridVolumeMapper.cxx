@@ -9,6 +9,7 @@
 // rendering) blend into the whole image, each point drawn by one.
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
+#include "StrataImagePolicy.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
@@ -292,7 +293,11 @@ void ConstantVolume(HybridFixture& fx)
   Scene& scene = fx.S;
   vtkMultiVolumeRayCastMapper* lowMapper = fx.LowMapper;
   vtkHybridVolumeMapper* hybrid = fx.Hybrid;
-  // A constant volume: no error, no points, the low-resolution rendering exactly.
+  // A constant volume: no error, no points, the low-resolution rendering exactly. Without points
+  // the hybrid mapper renders its inner vtkMultiVolumeRayCastMapper alone, with the settings of
+  // LowMapper (sample distance 0.5, no clipping plane): the same program twice, bit-exact
+  // (ImagePolicy::SameProgramMax, StrataImagePolicy.h rule 1). On an H200 it was 1 off before the
+  // texture barrier after the integration buffers' clears (a stale texel read), 0 after.
   vtkNew<vtkImageData> constant;
   constant->DeepCopy(original);
   std::fill_n(static_cast<float*>(constant->GetScalarPointer()), 65 * 57 * 49, 120.0f);
@@ -310,7 +315,8 @@ void ConstantVolume(HybridFixture& fx)
   const int flatDiff = static_cast<int>(ImageError(flatHybrid, flatPlain).Max);
   std::cout << "Hybrid: constant volume: " << flat->GetPointsOutput()->GetNumberOfPoints()
             << " points; max difference to the low-resolution rendering " << flatDiff << "\n";
-  Check(flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff == 0,
+  Check(
+    flat->GetPointsOutput()->GetNumberOfPoints() == 0 && flatDiff <= ImagePolicy::SameProgramMax,
     "a constant volume gives no points and renders as the low-resolution volume alone");
 }
 

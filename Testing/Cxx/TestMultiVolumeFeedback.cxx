@@ -8,8 +8,16 @@
 // front, semi-transparent) the feedback refines it. Also: the CPU and OpenCL reductions drive
 // the same cut, every feedback scale hides the same volume, and LevelOfDetailThreshold makes the
 // rays ask for a coarser level.
+//
+// Bounds (StrataImagePolicy.h): a paged image against the in-core one is rule 2, paged vs in
+// core (with feedback another program; with or without, bricks from pages in other atlas slots
+// than the in-core upload's): 1 of 255, ImagePolicy::TwoProgramsMax. The CPU and the OpenCL
+// reduction only choose the cut; the drawing program is the same, and nearest interpolation
+// makes the slots' placement exact, so their images are bit-exact (ImagePolicy::SameProgramMax,
+// rule 1). Resident bricks are counts: exact.
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataImageHelpers.h"
+#include "StrataImagePolicy.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
@@ -187,7 +195,8 @@ int TestMultiVolumeFeedback(int argc, char* argv[])
               << "level: front volume " << Levels(front[feedback]) << ", hidden volume "
               << Levels(hidden[feedback]) << " (in core " << Levels(incoreHidden)
               << "); max difference to in core " << e.Max << "\n";
-    Check(frames > 0 && e.Max == 0, "converged to the in-core image (" + what + ")");
+    Check(frames > 0 && e.Max <= ImagePolicy::TwoProgramsMax,
+      "converged to the in-core image (" + what + ")");
   }
   // The hidden volume: its 58 visible level-0 bricks (6 of 64 are transparent) with the
   // screen-space cut, as in core; its root alone with feedback. The front volume: with
@@ -216,7 +225,7 @@ int TestMultiVolumeFeedback(int argc, char* argv[])
     Check(!cpu->GetPagingStatistics().FeedbackOpenCL, "FeedbackOpenCL off: reduced on the CPU");
     Check(cpu->GetResidentBricksPerLevel(0) == cl->GetResidentBricksPerLevel(0) &&
             cpu->GetResidentBricksPerLevel(1) == cl->GetResidentBricksPerLevel(1) &&
-            ImageError(cpuImage, clImage).Max == 0,
+            ImageError(cpuImage, clImage).Max <= ImagePolicy::SameProgramMax,
       "CPU and OpenCL reductions drive the same cut and image");
     for (int scale : { 1, 8 })
     {
@@ -229,7 +238,7 @@ int TestMultiVolumeFeedback(int argc, char* argv[])
                 << ", hidden volume " << Levels(m->GetResidentBricksPerLevel(1))
                 << "; max difference " << ImageError(image, reference).Max << "\n";
       Check(frames > 0 && Total(m->GetResidentBricksPerLevel(1)) == 1 &&
-              ImageError(image, reference).Max == 0,
+              ImageError(image, reference).Max <= ImagePolicy::TwoProgramsMax,
         "feedback scale 1/" + std::to_string(scale) +
           ": hidden volume at its root, image as in core");
     }
@@ -249,7 +258,8 @@ int TestMultiVolumeFeedback(int argc, char* argv[])
     std::cout << "Feedback: from the other side: converged after " << frames << " frames; blob "
               << Levels(blob) << ", opaque volume " << Levels(paged->GetResidentBricksPerLevel(0))
               << "; max difference to in core " << ImageError(image, reference).Max << "\n";
-    Check(frames > 0 && ImageError(image, reference).Max == 0 && blob[0] > 32,
+    Check(
+      frames > 0 && ImageError(image, reference).Max <= ImagePolicy::TwoProgramsMax && blob[0] > 32,
       "seen from the other side the blob is refined and the image equals the in-core one");
   }
 

@@ -12,6 +12,7 @@
 // per unit; the blobs' flanks reach about 9) thins every blob towards its core: ignoring it
 // changes the image by RMS 3.7 (measured; checked to be above 2), seven times the bound.
 #include "StrataImageHelpers.h"
+#include "StrataImagePolicy.h"
 #include "StrataMultiVolumeCase.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
@@ -73,8 +74,10 @@ void Single(const TestPaths& paths)
 }
 
 // Paged from a pool of 8^3 pages (the gradient's neighbours a voxel away often in the next
-// brick), converged: the in-core image with gradient opacity exactly (the same level-0 values
-// through the same atlas lookups), so the reference's bounds as well.
+// brick), converged: the in-core image with gradient opacity (the same level-0 values through
+// the same atlas lookups), so the reference's bounds as well. Paged vs in core are two programs
+// (the paged one has the feedback code): within ImagePolicy::TwoProgramsMax, 1 of 255
+// (StrataImagePolicy.h rule 2). Measured 0 on llvmpipe, 1 on an H200.
 void Paged(const TestPaths& paths)
 {
   VolumeScene s(paths.Output);
@@ -94,7 +97,8 @@ void Paged(const TestPaths& paths)
   std::cout << "GradientOpacityPaged: converged " << converged << " after " << frames
             << " frames; max difference to in core " << mx << "\n";
   Check(converged, "the paged volume converges");
-  Check(mx == 0, "paged with gradient opacity equals the in-core image");
+  Check(mx <= ImagePolicy::TwoProgramsMax,
+    "paged with gradient opacity equals the in-core image (max 1/255)");
   Check(
     CheckVolumeComparison(s.Compare("GradientOpacityPaged"), "GradientOpacityPaged", 0.5, 3, 2000),
     "a paged volume with gradient opacity matches the reference");

@@ -13,6 +13,7 @@
 #include "StrataErrorCounter.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataImageHelpers.h"
+#include "StrataImagePolicy.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -256,7 +257,8 @@ void PathSegment(PagingFixture& fx,
   Check(worst <= rootRms + 0.5,
     "every frame is at least as close as the root-only rendering (+0.5 RMS; " + at + ")");
   if (exact || !mode.Feedback)
-    Check(converged.Max == 0, "converged: the paged image equals the in-core one (" + at + ")");
+    Check(converged.Max <= ImagePolicy::TwoProgramsMax,
+      "converged: the paged image equals the in-core one (max 1/255; " + at + ")");
   else
     Check(converged.Rms < 0.1 * rootRms,
       "converged: within a tenth of the root-only RMS of the in-core image (" + at + ")");
@@ -324,7 +326,10 @@ void PagedMode(PagingFixture& fx,
 // every brick, and the image is the in-core one. That comparison uses nearest interpolation:
 // with linear filtering llvmpipe rounds the weights by texel position, and bricks that arrive
 // page by page sit in other atlas slots than the in-core upload puts them, which moves a few
-// pixels by 1 of 255 (as much without feedback). With feedback under the small atlas the cut
+// pixels by 1 of 255 (as much without feedback). Both converged images are paged against in
+// core, rule 2 of StrataImagePolicy.h: within ImagePolicy::TwoProgramsMax, 1 of 255 (with
+// feedback the programs differ; llvmpipe gives 0, an H200 gave 1). With feedback under the
+// small atlas the cut
 // spends it on the bricks the rays ask for, so it converges to another valid image. Every
 // frame of all three must be a valid coarser rendering: every frame of every path segment
 // is the in-core rendering of exactly its own cut (no hole, no garbage brick:

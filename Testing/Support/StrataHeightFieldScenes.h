@@ -68,7 +68,8 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
   const std::string& imageDirectory);
 
 /// Asserts the bounds on a comparison, printing the numbers: mismatches <= 0.5 % of
-/// covered pixels, no mismatched region wider than one pixel, depth within its bound, and at
+/// covered pixels (ImagePolicy::EdgePixelFraction, StrataImagePolicy.h rule 4), no mismatched
+/// region wider than one pixel, depth within its bound, and at
 /// least `minCovered` covered pixels (so that an empty image cannot pass).
 bool CheckReference(const ReferenceResult& r, const std::string& name, long minCovered);
 
