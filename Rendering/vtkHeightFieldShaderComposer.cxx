@@ -127,12 +127,13 @@ void Color(const Key& key, std::string& fs)
   {
     Replace(fs,
       "//STRATA::Color::Dec",
-      "uniform samplerBuffer uColors; // 1024 entries over uLutRange\nuniform vec2 uLutRange;\n"
+      "uniform samplerBuffer uColors; // 1024 entries from uLutRange.x, uLutRange.y a unit\n"
+      "uniform vec2 uLutRange;\n"
       "float strataHorizonOpacity(int layer) { return 1.0; } // translucency makes it per horizon");
     Replace(fs,
       "//STRATA::Color::Impl",
-      "float lutS = (pGrid.z - uLutRange.x) / (uLutRange.y - uLutRange.x);\n"
-      "  vec3 baseColor = texelFetch(uColors, int(clamp(lutS * 1024.0, 0.0, 1023.0))).rgb;");
+      "float lutS = (pGrid.z - uLutRange.x) * uLutRange.y;\n"
+      "  vec3 baseColor = texelFetch(uColors, int(clamp(lutS, 0.0, 1023.0))).rgb;");
     return;
   }
   Replace(fs,

@@ -114,8 +114,14 @@ void vtkHeightFieldStackBuffers::UploadTree(vtkOpenGLRenderWindow* window,
   std::vector<float> nodes, intervals, lists;
   for (const auto& node : tree.GetNodes())
   {
-    nodes.insert(
-      nodes.end(), { node.Min, node.Max, float(node.IntervalOffset), float(node.IntervalCount) });
+    // An empty node's range is (+Inf, -Inf) in the tree; the shader gets finite values of the
+    // same order (min > max), so its test compares no Inf (fast math may assume there is none).
+    const bool empty = !(node.Min <= node.Max);
+    nodes.insert(nodes.end(),
+      { empty ? 3.0e38f : node.Min,
+        empty ? -3.0e38f : node.Max,
+        float(node.IntervalOffset),
+        float(node.IntervalCount) });
   }
   for (const auto& iv : tree.GetIntervals())
   {

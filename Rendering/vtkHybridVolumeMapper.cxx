@@ -408,12 +408,11 @@ void vtkHybridVolumeMapper::vtkInternals::DrawSlabPoints(vtkOpenGLRenderWindow* 
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  glEnable(GL_PROGRAM_POINT_SIZE);
+  const vtkStrataRenderUtilities::ScopedEnable pointSize(GL_PROGRAM_POINT_SIZE);
   glDrawElements(GL_POINTS,
     static_cast<GLsizei>(last - first),
     GL_UNSIGNED_INT,
     reinterpret_cast<const void*>(first * sizeof(unsigned int)));
-  glDisable(GL_PROGRAM_POINT_SIZE);
   glBindVertexArray(0);
   this->Drawn += static_cast<vtkIdType>(last - first);
 }

@@ -772,7 +772,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   // is inside it; depth clamping keeps faces beyond the far plane.
   state->vtkglEnable(GL_CULL_FACE);
   state->vtkglCullFace(GL_FRONT);
-  glEnable(GL_DEPTH_CLAMP);
+  const vtkStrataRenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
 
   std::vector<int> order;
   vtkCamera* camera = ren->GetActiveCamera();
@@ -803,8 +803,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
     if (!this->DrawFragment(self, renWin, f, frame))
       break;
   }
-  glDisable(GL_DEPTH_CLAMP);
-  state->vtkglCullFace(GL_BACK);
+  state->vtkglCullFace(GL_BACK); // VTK's default; its actors set their own
   this->Buffers.Unbind(renWin);
   if (frame.Feedback)
   {

@@ -908,8 +908,10 @@ std::vector<float> vtkStackedHeightFieldMapper::vtkInternals::PerHorizonColors(S
       TableRange(lut ? lut : this->Lut.Get(), this->ZRange[0], this->ZRange[1], range);
     d[0] = static_cast<float>(colors.size() / 4);
     d[1] = static_cast<float>(attribute);
+    // Low end and table entries per unit, the reciprocal in double: hi - lo of a narrow range
+    // far from 0 (depths of 1e6) is 0 in float, and the shader would divide by it.
     d[2] = static_cast<float>(range[0]);
-    d[3] = static_cast<float>(range[1]);
+    d[3] = static_cast<float>(1024.0 / (range[1] - range[0]));
     AppendTable(lut || attribute >= 0 ? lut : this->Lut.Get(), range, colors);
   }
   return colors;
@@ -1185,15 +1187,17 @@ void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renW
   vtkOpenGLState* state = renWin->GetState();
   this->Buffers.BindBox(program);
   vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
   state->vtkglEnable(GL_CULL_FACE);
   state->vtkglCullFace(GL_FRONT);
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDepthMask(writeDepth ? GL_TRUE : GL_FALSE);
-  glEnable(GL_DEPTH_CLAMP);
-  this->Buffers.DrawBox();
-  glDisable(GL_DEPTH_CLAMP);
-  state->vtkglCullFace(GL_BACK);
+  {
+    const vtkStrataRenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
+    this->Buffers.DrawBox();
+  }
+  state->vtkglCullFace(GL_BACK); // VTK's default; its actors set their own
 }
 
 // The queued feedback, mapped and reduced, handed to the pager (a (tile, pixels) list).
@@ -1353,7 +1357,9 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   if (frame.LookupTable)
   {
-    const float lr[2] = { float(frame.LutRange[0]), float(frame.LutRange[1]) };
+    // Low end and entries per unit (the reciprocal in double, as the horizons' tables).
+    const float lr[2] = { float(frame.LutRange[0]),
+      float(1024.0 / (frame.LutRange[1] - frame.LutRange[0])) };
     program->SetUniform2f("uLutRange", lr);
   }
   if (feedback)

@@ -145,3 +145,16 @@ vtkStrataRenderUtilities::ScopedPixelStore::~ScopedPixelStore()
 {
   glPixelStorei(this->Name, this->Saved);
 }
+
+vtkStrataRenderUtilities::ScopedEnable::ScopedEnable(unsigned int capability)
+  : Capability(capability)
+  , WasEnabled(glIsEnabled(capability) == GL_TRUE)
+{
+  glEnable(capability);
+}
+
+vtkStrataRenderUtilities::ScopedEnable::~ScopedEnable()
+{
+  if (!this->WasEnabled)
+    glDisable(this->Capability);
+}

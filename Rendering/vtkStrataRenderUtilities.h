@@ -82,6 +82,23 @@ public:
     int Saved = 4;
   };
 
+  /**
+   * Enables a capability VTK's state cache does not track (GL_DEPTH_CLAMP,
+   * GL_PROGRAM_POINT_SIZE) for its lifetime, then leaves it as it found it, not forced off.
+   */
+  class STRATARENDERING_EXPORT ScopedEnable
+  {
+  public:
+    explicit ScopedEnable(unsigned int capability);
+    ~ScopedEnable();
+    ScopedEnable(const ScopedEnable&) = delete;
+    ScopedEnable& operator=(const ScopedEnable&) = delete;
+
+  private:
+    unsigned int Capability;
+    bool WasEnabled = false;
+  };
+
   /// A row-major double matrix (vtkMatrix4x4::GetData()) as the column-major floats that
   /// vtkShaderProgram::SetUniformMatrix4x4 hands to glUniformMatrix4fv.
   static void ToColumnMajor(const double rowMajor[16], float columnMajor[16]);
