@@ -58,6 +58,16 @@ void Replace(std::string& source, const std::string& tag, const std::string& cod
 }
 
 /// A per-volume snippet for volume `n` of the fragment.
+/// `n` copies of `zero` joined by commas: the body of an array constructor, so that a GLSL
+/// array is initialised where it is declared (`float[3](0.0, 0.0, 0.0)`).
+std::string Zeros(const std::string& zero, int n)
+{
+  std::string list;
+  for (int i = 0; i < n; ++i)
+    list += (i ? ", " : "") + zero;
+  return list;
+}
+
 std::string ForVolume(const char* snippet, int n)
 {
   std::string code = snippet;
@@ -346,7 +356,7 @@ std::string Lights(const Key& key)
   return AnyShaded(key) ? "uniform int uNumLights;\n"
                           "uniform vec3 uLightDirection[8]; // towards the light, unit\n"
                           "uniform vec3 uLightColor[8];\n"
-                          "vec3 gViewDirection; // towards the eye, set per ray\n"
+                          "vec3 gViewDirection = vec3(0.0); // towards the eye, set per ray\n"
                         : "";
 }
 
@@ -461,6 +471,8 @@ std::string Volumes(const Key& key)
   if (layers > 0)
   {
     std::string dec = vtkMultiVolumeLayerDec;
+    Replace(dec, "@L0@", Zeros("0.0", layers));
+    Replace(dec, "@L0V@", Zeros("vec4(0.0)", layers));
     Replace(dec, "@L@", std::to_string(layers));
     code += dec;
   }
@@ -650,7 +662,7 @@ std::string Rays(const Key& key)
 {
   const int rays = key.Rays;
   std::ostringstream code;
-  code << "float tFirst0;\n  bool inside0;\n" << SurfaceRaysStart(key);
+  code << "float tFirst0 = 0.0;\n  bool inside0 = false;\n" << SurfaceRaysStart(key);
   for (int r = 0; r < rays; ++r)
   {
     double offset[2];
@@ -675,7 +687,7 @@ std::string Rays(const Key& key)
       if (key.Feedback)
         code << "  gFeedbackRay = false;\n";
       if (rays > 1)
-        code << "  float tFirst;\n  bool inside;\n";
+        code << "  float tFirst = 0.0;\n  bool inside = false;\n";
       if (rays > 1 && key.Coherent)
         code << "  // Coherence: the others start where the centre ray left empty space.\n"
              << "  float tStart = inside0 ? tFirst0 : 0.0;\n";
@@ -821,6 +833,8 @@ void Surfaces(const Key& key, std::string& fs)
             ", ivec2(gl_FragCoord.xy), 0).r, ndc, o, d);";
   }
   Replace(dec, "//STRATA::SurfaceSamplers::Dec", samplers);
+  Replace(dec, "@K0@", Zeros("0.0", key.Surfaces));
+  Replace(dec, "@K0V@", Zeros("vec4(0.0)", key.Surfaces));
   Replace(dec, "@K@", std::to_string(key.Surfaces));
   Replace(fs, "//STRATA::Surfaces::Dec", dec);
   Replace(fs, "//STRATA::Surfaces::Load", load);
@@ -859,8 +873,9 @@ std::string Composite(const Key& key)
         ? "bool probe = true; // look for empty space: at the start and after transparent steps\n  "
         : "bool probe = true;\n  ";
   if (pre)
-    start += "float sA[" + K + "];\n  float sB[" + K + "];\n  strataSampleAll(o + " + end +
-             " * d, " + (ftb ? "sA" : "sB") + ");\n  ";
+    start += "float sA[" + K + "] = float[" + K + "](" + Zeros("0.0", key.Volumes) +
+             ");\n  float sB[" + K + "] = sA;\n  strataSampleAll(o + " + end + " * d, " +
+             (ftb ? "sA" : "sB") + ");\n  ";
   std::string skip;
   if (key.Skipping)
   {

@@ -12,7 +12,7 @@ vec4 strataMedium@n@(vec3 p)
   float weighted = 0.0;
   float squares = 0.0;
   vec3 e = vec3(0.0);
-  vec4 tf;
+  vec4 tf = vec4(0.0);
   //STRATA::ComponentTables::Impl
   float tau = weighted > 0.0 ? squares / weighted : 0.0;
   return tau > 0.0 ? vec4(e / tau, tau) : vec4(0.0);

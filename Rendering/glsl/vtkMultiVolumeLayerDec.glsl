@@ -2,8 +2,8 @@
 // MinIP, average, additive), one each, premultiplied, at their depth t on the ray (a sentinel
 // once composited or when the layer lies outside the fragment). A layer goes before the step
 // that contains its depth; several go in the order of their depths.
-float gLayerT[@L@];
-vec4 gLayerC[@L@];
+float gLayerT[@L@] = float[@L@](@L0@);
+vec4 gLayerC[@L@] = vec4[@L@](@L0V@);
 // Front to back: every pending layer in front of `bound`, nearest first.
 void strataLayersBefore(float bound, inout vec4 acc)
 {

@@ -5,13 +5,13 @@
 float strataEmptyUntil(vec3 o, vec3 d, float t, float dir)
 {
   float until = 3.0e38;
-  vec3 x0;
-  vec3 dx;
-  ivec3 c;
-  float D;
-  vec3 lo;
-  vec3 hi;
-  vec3 te;
+  vec3 x0 = vec3(0.0);
+  vec3 dx = vec3(0.0);
+  ivec3 c = ivec3(0);
+  float D = 0.0;
+  vec3 lo = vec3(0.0);
+  vec3 hi = vec3(0.0);
+  vec3 te = vec3(0.0);
   //STRATA::SkipVolumes::Impl
   return t + dir * until;
 }

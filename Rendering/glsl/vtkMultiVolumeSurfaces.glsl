@@ -5,9 +5,9 @@
 // that contains it is split there.
 uniform sampler2D uSurfaceProgress;
 //STRATA::SurfaceSamplers::Dec
-float gSurfaceT[@K@];
-vec4 gSurfaceC[@K@];
-int gSurfaceNext;
+float gSurfaceT[@K@] = float[@K@](@K0@);
+vec4 gSurfaceC[@K@] = vec4[@K@](@K0V@);
+int gSurfaceNext = 0;
 // Layer k of straight colour c at window depth z onto the ray o + t d through ndc.
 void strataSurfaceSet(int k, vec4 c, float z, vec2 ndc, vec3 o, vec3 d)
 {

@@ -226,7 +226,7 @@ bool strataCast(vec3 o, vec3 d, float tEnter, float tExit, out float tHit, out i
         {
           int layer = int(texelFetch(uLayerLists, int(iv.z) + r).x);
           //STRATA::Translucency::Skip
-          ivec2 cell;
+          ivec2 cell = ivec2(0);
           float th = strataSearchLayer(layer, o, d, s.x, min(s.y, best), cLo, cHi, cell);
           // Coincident horizons: a later one wins only when clearly nearer, so that float
           // noise cannot flip ids where two horizons are equal (the lower index wins ties).
@@ -327,9 +327,9 @@ void main()
   {
     discard;
   }
-  float tHit;
-  int hitLayer;
-  ivec2 hitCell;
+  float tHit = BIG;
+  int hitLayer = -1;
+  ivec2 hitCell = ivec2(0);
   if (!strataCast(o, d, tEnter, tExit, tHit, hitLayer, hitCell))
   {
     discard;
