@@ -14,8 +14,9 @@ here and fails on NVIDIA. This test reads the sources instead:
    state), issues TextureBarrier() after its draw whenever it reads back (key.Barrier,
    key.Reduce, key.Surfaces).
 3. GLSL: no isnan/isinf, no `x != x`, no negated comparison `!(a <= b)` or `not(lessThan(..))`
-   (the NaN tests fast math removes), no implicit-derivative lookup (texture(), dFdx, dFdy,
-   fwidth) outside vertex shaders: Strata's fragment code runs in ray loops, non-uniform flow.
+   (the NaN tests fast math removes), no variable declared without a value, no
+   implicit-derivative lookup (texture(), dFdx, dFdy, fwidth) outside vertex shaders: Strata's
+   fragment code runs in ray loops, non-uniform flow.
 4. The suite's wiring of GL debug output: every C++ test runs with STRATA_GL_DEBUG=1 and fails
    on "Strata GL debug:" (read from ctest's own listing of the build tree).
 
@@ -134,6 +135,9 @@ GLSL_RULES = [
      "a negated comparison !(a <= b) (NaN-dependent: write the comparison itself)"),
     (re.compile(r"\bnot\s*\(\s*(?:lessThan|lessThanEqual|greaterThan|greaterThanEqual|equal|"
                 r"notEqual)\s*\("), "not(lessThan(..)) (a negated comparison)"),
+    (re.compile(r"^\s*(?:const\s+)?(?:float|int|uint|bool|[iub]?vec[234]|mat[234])\s+"
+                r"[A-Za-z_][\w@]*\s*(?:\[[^\]]*\])?\s*;"),
+     "a variable declared without a value (initialise every GLSL variable)"),
 ]
 DERIVATIVES = (re.compile(r"\b(?:texture|textureProj|textureOffset|dFdx|dFdy|fwidth)\s*\("),
                "an implicit-derivative lookup (texture(), dFdx, fwidth) in fragment code: "
@@ -198,6 +202,7 @@ BAD_GLSL = {
     "isnan": "valid = !any(isnan(h));",
     "not(lessThan)": "bvec4 ok = not(lessThan(abs(h), vec4(1.0e30)));",
     "texture()": "float v = texture(uAtlas, p).r;",
+    "uninitialised": "vec4 gState;",
 }
 
 
