@@ -24,13 +24,6 @@
 
 namespace
 {
-/// The property's opacity unit distance as the shaders divide by it: at least 1e-30, as the
-/// transfer tables take it (VTK allows 0, and 0 / 0 is NaN on the GPU).
-float UnitDistance(vtkVolumeProperty* property)
-{
-  return static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-30));
-}
-
 constexpr int TableSize = vtkTransferFunctionTable::TableSize;
 }
 
@@ -659,7 +652,8 @@ void vtkMultiVolumeInput::Bind(vtkOpenGLRenderWindow* window,
     // Entry i at magnitude g0 + i (g1 - g0) / 255, its texel centre at (i + 0.5) / 256.
     const float range[3] = { float(g[0]), float(255.0 / (256.0 * (g[1] - g[0]))), 0.5f / 256.f };
     program->SetUniform3f(("uGradientRange" + N).c_str(), range);
-    program->SetUniformf(("uUnit" + N).c_str(), UnitDistance(property));
+    program->SetUniformf(("uUnit" + N).c_str(),
+      static_cast<float>(vtkTransferFunctionTable::GetUnitDistance(property)));
   }
   if (b.CropLo)
   {
@@ -697,7 +691,8 @@ void vtkMultiVolumeInput::BindBlendMode(vtkShaderProgram* program,
   vtkVolumeProperty* property,
   const Binding& b)
 {
-  program->SetUniformf(("uUnit" + N).c_str(), UnitDistance(property));
+  program->SetUniformf(
+    ("uUnit" + N).c_str(), static_cast<float>(vtkTransferFunctionTable::GetUnitDistance(property)));
   if (b.BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND)
   {
     float iso[8] = { 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f };

@@ -57,7 +57,6 @@ void Replace(std::string& source, const std::string& tag, const std::string& cod
   vtkStrataShaderCache<int>::Replace(source, tag, code);
 }
 
-/// A per-volume snippet for volume `n` of the fragment.
 /// `n` copies of `zero` joined by commas: the body of an array constructor, so that a GLSL
 /// array is initialised where it is declared (`float[3](0.0, 0.0, 0.0)`).
 std::string Zeros(const std::string& zero, int n)
@@ -68,6 +67,7 @@ std::string Zeros(const std::string& zero, int n)
   return list;
 }
 
+/// A per-volume snippet for volume `n` of the fragment.
 std::string ForVolume(const char* snippet, int n)
 {
   std::string code = snippet;

@@ -845,6 +845,13 @@ void AppendTable(vtkScalarsToColors* lut, const double range[2], std::vector<flo
 }
 
 // The table's range: the table's own when it has one, else `fallback`; never empty.
+/// Table entries per unit of a table's range, as the shaders scale by it: the reciprocal in
+/// double (hi - lo of a narrow range far from 0, depths of 1e6, is 0 in float).
+float EntriesPerUnit(const double range[2])
+{
+  return static_cast<float>(1024.0 / (range[1] - range[0]));
+}
+
 void TableRange(vtkScalarsToColors* lut, double lo, double hi, double range[2])
 {
   range[0] = lo;
@@ -908,10 +915,8 @@ std::vector<float> vtkStackedHeightFieldMapper::vtkInternals::PerHorizonColors(S
       TableRange(lut ? lut : this->Lut.Get(), this->ZRange[0], this->ZRange[1], range);
     d[0] = static_cast<float>(colors.size() / 4);
     d[1] = static_cast<float>(attribute);
-    // Low end and table entries per unit, the reciprocal in double: hi - lo of a narrow range
-    // far from 0 (depths of 1e6) is 0 in float, and the shader would divide by it.
     d[2] = static_cast<float>(range[0]);
-    d[3] = static_cast<float>(1024.0 / (range[1] - range[0]));
+    d[3] = EntriesPerUnit(range);
     AppendTable(lut || attribute >= 0 ? lut : this->Lut.Get(), range, colors);
   }
   return colors;
@@ -1357,9 +1362,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   if (frame.LookupTable)
   {
-    // Low end and entries per unit (the reciprocal in double, as the horizons' tables).
-    const float lr[2] = { float(frame.LutRange[0]),
-      float(1024.0 / (frame.LutRange[1] - frame.LutRange[0])) };
+    const float lr[2] = { float(frame.LutRange[0]), EntriesPerUnit(frame.LutRange) };
     program->SetUniform2f("uLutRange", lr);
   }
   if (feedback)

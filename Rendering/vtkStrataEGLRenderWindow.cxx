@@ -152,10 +152,7 @@ SharedDisplay& OpenDisplay()
   }
   return shared;
 }
-}
 
-namespace
-{
 /// Where a window's debug messages go: the window (for vtkErrorMacro) and the count.
 struct DebugSink
 {

@@ -93,7 +93,7 @@ void vtkTransferFunctionTable::TabulateExtinction(vtkVolumeProperty* property,
 {
   std::vector<float> rgb;
   Tabulate(property, size, range, rgb, opacity, component);
-  const double unit = std::max(property->GetScalarOpacityUnitDistance(component), 1e-30);
+  const double unit = GetUnitDistance(property, component);
   rgbTau.resize(4 * size_t(size));
   for (int i = 0; i < size; ++i)
   {
@@ -149,4 +149,9 @@ void vtkTransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)
   this->Texture = nullptr;
   this->Property = nullptr;
   this->Time = 0;
+}
+
+double vtkTransferFunctionTable::GetUnitDistance(vtkVolumeProperty* property, int component)
+{
+  return std::max(property->GetScalarOpacityUnitDistance(component), 1e-30);
 }

@@ -73,6 +73,10 @@ public:
   /// getters of the other kind would create, and switch to, a default).
   static vtkMTimeType GetMTime(vtkVolumeProperty* property, int component = 0);
 
+  /// The opacity unit distance as the tables and the shaders divide by it: at least 1e-30 (VTK
+  /// allows 0, and 0 / 0 is NaN on the GPU).
+  static double GetUnitDistance(vtkVolumeProperty* property, int component = 0);
+
   vtkTransferFunctionTable();
   ~vtkTransferFunctionTable();
   vtkTransferFunctionTable(const vtkTransferFunctionTable&) = delete;

@@ -49,9 +49,8 @@ bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
 {
   // Drawn outside a peel (an actor also in the renderer), the test is off: its samplers would
   // name whatever is bound on the last peel's units.
-  const bool active = this->Active && this->Scene && this->Previous;
-  program->SetUniformi("strataPeelActive", active ? 1 : 0);
-  if (!active)
+  program->SetUniformi("strataPeelActive", this->Active ? 1 : 0);
+  if (!this->Active)
     return true;
   program->SetUniformi("strataPeelScene", this->Scene->GetTextureUnit());
   program->SetUniformi("strataPeelPrevious", this->Previous->GetTextureUnit());

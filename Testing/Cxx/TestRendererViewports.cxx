@@ -84,11 +84,11 @@ std::vector<unsigned char> Columns(const std::vector<unsigned char>& rgb,
   return out;
 }
 
-/// A scene in a window of its own: `build` makes it, `window` and `renderer` reach it.
+/// A scene in a window of its own (owned by the caller of `build`).
 struct Scene
 {
-  std::function<vtkRenderWindow*()> Window;
-  std::function<vtkRenderer*()> Renderer;
+  vtkRenderWindow* Window;
+  vtkRenderer* Renderer;
 };
 
 /// Render, resize to 96 x 112, render, back to the first size, render: against a fresh scene at
@@ -99,7 +99,7 @@ void CheckViewports(const std::string& name,
   int height)
 {
   Scene scene = build();
-  vtkRenderWindow* win = scene.Window();
+  vtkRenderWindow* win = scene.Window;
   win->SetSize(width, height);
   win->Render();
   const auto first = ReadRGB(win);
@@ -111,9 +111,9 @@ void CheckViewports(const std::string& name,
   const auto back = ReadRGB(win);
 
   Scene fresh = build();
-  fresh.Window()->SetSize(96, 112);
-  fresh.Window()->Render();
-  const auto freshImage = ReadRGB(fresh.Window());
+  fresh.Window->SetSize(96, 112);
+  fresh.Window->Render();
+  const auto freshImage = ReadRGB(fresh.Window);
   const double toFresh = ImageError(resized, freshImage).Max;
   const double toFirst = ImageError(back, first).Max;
   std::cout << name << ": " << Lit(first) << " lit pixels at " << width << " x " << height << ", "
@@ -126,7 +126,7 @@ void CheckViewports(const std::string& name,
   Check(toFirst <= ImagePolicy::SameProgramMax, name + ": resized back, the first image again");
 
   // The renderer on the right half of a window twice as wide (nothing on the left).
-  scene.Renderer()->SetViewport(0.5, 0.0, 1.0, 1.0);
+  scene.Renderer->SetViewport(0.5, 0.0, 1.0, 1.0);
   win->SetSize(2 * width, height);
   win->Render();
   const auto right = Columns(ReadRGB(win), 2 * width, width, width);
@@ -230,7 +230,7 @@ int TestRendererViewports(int argc, char* argv[])
   {
     volumeScenes.emplace_back(new VolumesScene(paths.Output));
     VolumeScene* s = volumeScenes.back()->S.get();
-    return Scene{ [s]() { return s->Win.Get(); }, [s]() { return s->Ren.Get(); } };
+    return Scene{ s->Win, s->Ren };
   };
   const auto horizons = [&]()
   {
@@ -238,7 +238,7 @@ int TestRendererViewports(int argc, char* argv[])
     HeightFieldScene* s = horizonScenes.back().get();
     const double pos[3] = { 1000, -900, 1300 }, foc[3] = { 1000, 750, 0 }, up[3] = { 0, 0, 1 };
     s->Camera(pos, foc, up);
-    return Scene{ [s]() { return s->Win.Get(); }, [s]() { return s->Ren.Get(); } };
+    return Scene{ s->Win, s->Ren };
   };
   const int code = RunSubTests(
     {

@@ -70,16 +70,23 @@ def function_body(code, qualified_name):
     return code[m.end() : i - 1]
 
 
+def function_lines(code, qualified_name):
+    """The line numbers of the body of `qualified_name`'s definition (empty when absent)."""
+    body = function_body(code, qualified_name)
+    if body is None:
+        return range(0)
+    first = code.count("\n", 0, code.index(body)) + 1
+    return range(first, first + body.count("\n") + 1)
+
+
 def check_clears(name, code):
     """Rule 1 on one C++ source: clears outside ClearForReadBack need the exemption comment."""
     problems = []
-    helper = function_body(code, "vtkStrataRenderUtilities::ClearForReadBack") or ""
+    helper = function_lines(code, "vtkStrataRenderUtilities::ClearForReadBack")
     lines = code.split("\n")
     for number, line in enumerate(lines, 1):
         stripped = line.split("//")[0]
-        if not CLEAR.search(stripped) or "ClearForReadBack" in stripped:
-            continue
-        if helper and stripped.strip() and stripped.strip() in helper:
+        if not CLEAR.search(stripped) or "ClearForReadBack" in stripped or number in helper:
             continue
         above = "\n".join(lines[max(0, number - 4) : number])
         if EXEMPT not in above:
