@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
-"""The GPU rules that llvmpipe cannot check, checked on the sources (DESIGN.md, "Rules for
-whoever writes a shader next"). Mesa runs clears and draws in order and keeps NaN semantics,
+"""The GPU rules that llvmpipe cannot check, checked on the sources (Documentation/design.md,
+"GPU rules: for whoever writes a shader or a pass next"). Mesa runs clears and draws in order and keeps NaN semantics,
 so a missing texture barrier or a NaN test that fast math folds away passes every image test
 here and fails on NVIDIA. This test reads the sources instead:
 
