@@ -170,10 +170,10 @@ public:
   /**
    * Prefetch (default off): after a brick loads on demand, page-cache workers also read its six
    * neighbours and its parent, below every demand request, ahead of a moving camera. Off by
-   * default because it measured worse where it should help: the nine-volume fly-through of
-   * scripts/bench paging read 12.0-12.2 instead of 5.3 MB a frame and settled after 20-23
-   * instead of 19 frames (two runs; prefetches in flight delay the demand loads queued behind
-   * them). Worth trying where reads are cheap and the camera pans steadily.
+   * default because it measured worse where it should help: on the benchmark's fly-through it
+   * read more and settled later, since prefetches in flight delay the demand loads queued
+   * behind them (the guide's paging page, Documentation/paging.md, gives the figures). Worth
+   * trying where reads are cheap and the camera pans steadily.
    */
   vtkSetMacro(Prefetch, bool);
   vtkGetMacro(Prefetch, bool);

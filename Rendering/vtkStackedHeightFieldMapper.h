@@ -260,8 +260,8 @@ public:
    * copied into a pixel buffer object after the draw; off maps it at once, on maps it at the
    * next frame, before that frame's cut update, so the CPU does not wait for the GPU to finish
    * the frame it just queued (the cut sees the same feedback either way). On llvmpipe, where
-   * every draw finishes inside the call, mapping at once measured faster (fly-through median
-   * 43 vs 49 ms, BenchPagingHorizons): hence the default; on a GPU turn it on.
+   * every draw finishes inside the call, mapping at once measured faster (the guide's paging
+   * page, Documentation/paging.md, gives the figures): hence the default; on a GPU turn it on.
    */
   vtkSetMacro(DeferFeedbackReadBack, bool);
   vtkGetMacro(DeferFeedbackReadBack, bool);

@@ -71,7 +71,7 @@ vec4 strataCastRay(vec2 pixel, float phase, float prior, float tMin, out float t
   // with the next process's box is split there, as one process splits steps at every fragment
   // face; opaque geometry, cut to the same box, ends the rays at the same depths. (Moving the
   // faces to lattice points instead would let a ray run past the face into an opaque surface
-  // that only the other process draws: 29 of 255 in TestParallel.py's oblique view.)
+  // that only the other process draws; Documentation/mpi.md gives the error it showed.)
   for (int i = 0; i < uNumRegionPlanes; ++i)
   {
     float denom = dot(uRegionPlanes[i].xyz, d);
