@@ -114,10 +114,9 @@ public:
    * is 8-bit unsigned, 4x. Float volumes stay float. The shared atlas takes the widest type a
    * scene's volumes need; plain textures (UseBrickAtlas off) take each volume's own. Level 0 is
    * exact in every storage; coarser levels of in-core volumes are rounded to integers, as page
-   * pools store them. The texture unit filters R8 texels at lower precision than R16 and float ones
-   * (Mesa llvmpipe here): on the tooth CT of the examples' volumes scene R8 renders up to 2 of
-   * 255 from float storage (3867 of 57600 pixels differ, 5 by more than 1), R16 (8-bit values
-   * times 257) 1 on one pixel; hence the default.
+   * pools store them. A texture unit may filter R8 texels at lower precision than R16 and float
+   * ones, hence Normalized16 as the default; the guide's accuracy page
+   * (Documentation/accuracy.md) gives each storage's measured error and cost.
    */
   enum class ScalarStorages
   {

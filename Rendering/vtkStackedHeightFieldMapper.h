@@ -206,10 +206,9 @@ public:
    * (default 256, floats; never more tiles than the GPU's array layers) and tiles uploaded per
    * frame (default 64).
    * Prefetch (default off): after a tile loads on demand, page-cache workers also read its four
-   * neighbours and its parent ahead of a moving camera. Measured: the demo path of
-   * TestHeightFieldPaging (3 tiles a frame) settles in 67 instead of 78 frames, but the
-   * paper-size fly-through of scripts/bench paging reads 0.86 instead of 0.63 MB a frame for the
-   * same 17 frames to settle and the same frame times, hence off.
+   * neighbours and its parent ahead of a moving camera. Off: it settles a test's short path
+   * sooner, but on the benchmark's paper-size fly-through it reads more for the same settling
+   * and frame times (the guide's paging page, Documentation/paging.md, gives the figures).
    */
   vtkSetClampMacro(PageCacheBudget, double, 1.0, 1048576.0);
   vtkGetMacro(PageCacheBudget, double);
