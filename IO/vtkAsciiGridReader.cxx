@@ -115,9 +115,11 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
   }
   const bool matrix = grid.Format == AsciiGridFormat::Matrix;
   // Lines of a few numbers are far more often columns (inline crossline z, x y z) than a
-  // matrix: Auto mode does not guess, as vtkHorizonColumnReader's Auto mode does not either.
-  const int valuesPerLine = this->SwapAxes ? grid.NX : grid.NY;
-  if (matrix && this->Format == GridFormat::Auto && valuesPerLine <= MatrixMinimumColumns)
+  // matrix: Auto mode does not guess, as vtkHorizonColumnReader's Auto mode does not either,
+  // unless a raster header (Dimensions, extents) says what they are.
+  const int valuesPerLine = (this->SwapAxes || grid.RowsFromTop) ? grid.NX : grid.NY;
+  if (matrix && this->Format == GridFormat::Auto && !grid.RowsFromTop &&
+      valuesPerLine <= MatrixMinimumColumns)
   {
     error = "every line holds " + std::to_string(valuesPerLine) +
             " numbers: columns (read them with vtkHorizonColumnReader) or a narrow matrix (set "
@@ -125,8 +127,10 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
             std::to_string(MatrixMinimumColumns) + " numbers for a matrix";
     return false;
   }
-  if (matrix && (!(this->Spacing[0] > 0.0) || !(this->Spacing[1] > 0.0) ||
-                  !std::isfinite(this->Spacing[0]) || !std::isfinite(this->Spacing[1])))
+  // A matrix is placed by Origin, Spacing and Rotation unless its header gives its extents.
+  const bool placedBySettings = matrix && !grid.HasGeometry;
+  if (placedBySettings && (!(this->Spacing[0] > 0.0) || !(this->Spacing[1] > 0.0) ||
+                            !std::isfinite(this->Spacing[0]) || !std::isfinite(this->Spacing[1])))
   {
     error = "Spacing must be positive";
     return false;
@@ -147,10 +151,10 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
   this->NY = grid.NY;
   for (int k = 0; k < 2; ++k)
   {
-    this->GridOrigin[k] = matrix ? this->Origin[k] : grid.Origin[k];
-    this->GridSpacing[k] = matrix ? this->Spacing[k] : grid.Spacing[k];
+    this->GridOrigin[k] = placedBySettings ? this->Origin[k] : grid.Origin[k];
+    this->GridSpacing[k] = placedBySettings ? this->Spacing[k] : grid.Spacing[k];
   }
-  this->GridRotation = matrix ? this->Rotation : grid.Rotation;
+  this->GridRotation = placedBySettings ? this->Rotation : grid.Rotation;
   std::copy(grid.Bounds, grid.Bounds + 4, this->HeaderBounds);
   this->FileNullValue = grid.FileNullValue;
   this->CellCorner = grid.CellCorner;

@@ -26,7 +26,11 @@
  *   are more likely columns, and an error says so. Line r, value c is node (r, c):
  *   the first numpy axis is x, as vtkNumpyGridReader and vtkHorizonColumnReader's Matrix mode
  *   have it; SwapAxes makes line r the row j = r. The file has no geometry: Origin, Spacing and
- *   Rotation place it.
+ *   Rotation place it. A matrix of heights under a DEM export's header is a raster instead,
+ *   read by the rule of vtkHorizonColumnReader's Matrix mode: '#' lines "Dimensions: nx ny",
+ *   "x_extent: xmin xmax", "y_extent: ymin ymax" (node bounds), "nodata: v" (':' or '='), lines
+ *   rows of x from the top (y = ymax) down, placed by the extents when it gives them; SwapAxes
+ *   does not apply, and Auto takes it for a matrix however narrow.
  *
  * In every format NaN and NullValue (when set) are holes too; holes are NaN in the output, as
  * in the other horizon readers. The output is an nx x ny x 1 vtkImageData with one float
@@ -110,7 +114,7 @@ public:
   ///@{
   /**
    * Matrix only: line r of the file is the row j = r (an image stored as (y, x)) instead of
-   * the column i = r. Default: false.
+   * the column i = r. A raster header (Dimensions, extents) decides instead. Default: false.
    */
   vtkSetMacro(SwapAxes, bool);
   vtkGetMacro(SwapAxes, bool);
@@ -119,8 +123,9 @@ public:
 
   ///@{
   /**
-   * Matrix only (the other formats state their geometry): world x, y of node (0, 0), node
-   * spacing and rotation (degrees counterclockwise from x). Defaults: (0, 0), (1, 1), 0.
+   * Matrix only (the other formats, and a matrix whose header gives x_extent and y_extent,
+   * state their geometry): world x, y of node (0, 0), node spacing and rotation (degrees
+   * counterclockwise from x). Defaults: (0, 0), (1, 1), 0.
    */
   vtkSetVector2Macro(Origin, double);
   vtkGetVector2Macro(Origin, double);
@@ -144,9 +149,10 @@ public:
    * What the last UpdateInformation() read (zeros, Auto, NaN, empty before or after a failure):
    * the format, the dimensions, the output geometry (origin = node (0, 0), node spacing,
    * rotation), the header's bounds (Irap: xmin xmax ymin ymax as written; ZMAP+: min/max X and
-   * Y; ESRI: the first and last cell centres; a matrix: zeros), the file's own no-data value
-   * (Irap: 9999900; a matrix: NaN), whether an ESRI header gave the lower-left corner (true) or
-   * centre, a ZMAP+ grid's name and nodes per line, and the number of holes in the grid.
+   * Y; ESRI: the first and last cell centres; a matrix: its header's extents, or zeros), the
+   * file's own no-data value (Irap: 9999900; a matrix: its header's nodata, or NaN), whether an
+   * ESRI header gave the lower-left corner (true) or centre, a ZMAP+ grid's name and nodes per
+   * line, and the number of holes in the grid.
    */
   vtkGetEnumMacro(DetectedFormat, GridFormat);
   vtkGetMacro(NX, int);

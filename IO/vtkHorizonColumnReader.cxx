@@ -656,6 +656,8 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   std::vector<std::pair<size_t, size_t>> tokens;
   long long lineNumber = 0;
   bool sawContent = false;
+  // A '#' header that states a raster's Dimensions or extents (a DEM export) makes a matrix.
+  bool matrixHeader = false;
   // Values per data line, smallest and largest: a matrix has many, the same on every line.
   size_t fewestValues = std::numeric_limits<size_t>::max();
   size_t mostValues = 0;
@@ -676,7 +678,13 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
       }
       if (first == line.size() || line[first] == '#')
       {
+        matrixHeader = matrixHeader || (!sawContent && strata_io::IsMatrixGeometryLine(line));
         continue;
+      }
+      if (matrixHeader && this->Mode == ColumnMode::Auto)
+      {
+        in.close();
+        return this->ReadMatrixGrid(error);
       }
       Tokenize(line, tokens);
       double v[3];
@@ -936,7 +944,14 @@ bool vtkHorizonColumnReader::ReadMatrixGrid(std::string& error)
     error = "reading it as a whitespace matrix: " + error;
     return false;
   }
-  if (this->IndexCoordinates)
+  if (matrix.HasGeometry)
+  {
+    // The file states its geometry, as the text grid formats do: it wins over the settings.
+    std::copy(matrix.Origin, matrix.Origin + 2, this->GridOrigin);
+    std::copy(matrix.Spacing, matrix.Spacing + 2, this->GridSpacing);
+    this->GridRotation = 0.0;
+  }
+  else if (this->IndexCoordinates)
   {
     this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
     this->GridSpacing[0] = this->GridSpacing[1] = 1.0;
@@ -967,7 +982,7 @@ bool vtkHorizonColumnReader::ReadMatrixGrid(std::string& error)
   }
   std::copy(matrix.Values.begin(), matrix.Values.end(), grid->GetPointer(0));
   this->DetectedMode = ColumnMode::Matrix;
-  this->NumberOfRecords = matrix.NX;
+  this->NumberOfRecords = matrix.NumberOfLines;
   this->NX = matrix.NX;
   this->NY = matrix.NY;
   this->NumberOfNoDataValues = static_cast<vtkIdType>(matrix.NumberOfNoDataValues);

@@ -39,6 +39,17 @@
  *   savetxt and an np.save of one array give the same grid. Placed like InlineCrossline: at the
  *   index numbers (origin 0, spacing 1) with IndexCoordinates on, by Origin, InlineSpacing,
  *   CrosslineSpacing and Rotation with it off. NaN and NullValue are holes.
+ * - Matrix with a raster header: a matrix of heights as DEM exports write it, under '#' lines
+ *   "Dimensions: nx ny", "x_extent: xmin xmax", "y_extent: ymin ymax", "nodata: v" (':' or
+ *   '=', keys in any case, '_' optional; other '#' lines are comments). Its lines are rows of
+ *   x, as in ESRI ASCII grids: nx values per line, ny lines, the first line the top row
+ *   (y = ymax), so node (i, j) is value i of line ny - 1 - j. Dimensions must be (values per
+ *   line, lines); the extents are the bounds of the nodes (the first and last value of a line
+ *   at xmin and xmax), and when given (both, or neither) they place the grid (origin (xmin,
+ *   ymin), spacing (xmax - xmin) / (nx - 1) and (ymax - ymin) / (ny - 1), no rotation) whatever
+ *   IndexCoordinates says; without them it is placed as a plain matrix. nodata is a hole. Any
+ *   of Dimensions or an extent makes the file a raster, also for Auto mode however narrow its
+ *   lines; a header that disagrees with the data is an error.
  * - Auto (default): every data line holding the same number of values, more than
  *   MatrixMinimumColumns (8), and no header line, mean Matrix: no columns file has that many
  *   columns on every line. Otherwise a header line whose first two names say so ("inline xline
@@ -177,7 +188,7 @@ public:
    * What the last UpdateInformation() found: the mode used (never Auto after a successful read),
    * whether there was a header line, the number of data lines, the number of data lines that
    * hit a node already set (the last one wins; zero for a matrix), and the grid dimensions.
-   * A matrix's records are its lines.
+   * A matrix's records are its lines of numbers.
    */
   vtkGetEnumMacro(DetectedMode, ColumnMode);
   vtkGetMacro(HasHeaderLine, bool);

@@ -798,49 +798,249 @@ bool ReadEsri(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, std:
 }
 
 //------------------------------------------------------------------------------
-bool ReadMatrix(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, std::string& error)
+/// What the '#' lines above a matrix may say of it, as DEM exports write them:
+/// "# Dimensions: 327 468" (values per row, rows), "# x_extent = 0 3260" (first and last node),
+/// "# y_extent: ...", "# nodata: -9999".
+struct MatrixHeader
 {
-  // The rows are kept as they come (the file bounds them), then placed.
-  std::vector<double> values;
+  double Dimensions[2] = { 0.0, 0.0 };
+  double XExtent[2] = { 0.0, 0.0 };
+  double YExtent[2] = { 0.0, 0.0 };
+  double NoData = std::numeric_limits<double>::quiet_NaN();
+  bool HasDimensions = false;
+  bool HasXExtent = false;
+  bool HasYExtent = false;
+  long long DimensionsLine = 0;
+
+  /// The header describes a raster: lines are rows of x from the top.
+  bool Raster() const { return this->HasDimensions || this->HasXExtent || this->HasYExtent; }
+};
+
+enum class MatrixKey
+{
+  None,
+  Dimensions,
+  XExtent,
+  YExtent,
+  NoData
+};
+
+/// The key of a comment line "# key: values" or "# key = values" (any case, '_' and blanks in
+/// the key ignored) and the text after the separator; None for any other line.
+MatrixKey MatrixHeaderKey(std::string_view line, std::string_view& values)
+{
+  std::string_view t = Trim(line);
+  if (t.empty() || t.front() != '#')
+  {
+    return MatrixKey::None;
+  }
+  t.remove_prefix(std::min(t.find_first_not_of('#'), t.size()));
+  const size_t separator = t.find_first_of(":=");
+  if (separator == std::string_view::npos)
+  {
+    return MatrixKey::None;
+  }
+  std::string key;
+  for (char c : t.substr(0, separator))
+  {
+    if (c != '_' && !std::isspace(static_cast<unsigned char>(c)))
+    {
+      key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+  }
+  values = t.substr(separator + 1);
+  if (key == "dimensions")
+    return MatrixKey::Dimensions;
+  if (key == "xextent")
+    return MatrixKey::XExtent;
+  if (key == "yextent")
+    return MatrixKey::YExtent;
+  if (key == "nodata" || key == "nodatavalue")
+    return MatrixKey::NoData;
+  return MatrixKey::None;
+}
+
+/// Reads `count` numbers after a header key into `out`; false with a message otherwise.
+bool MatrixHeaderNumbers(std::string_view values,
+  const char* key,
+  size_t count,
+  long long line,
+  double* out,
+  std::string& error)
+{
+  std::vector<std::string_view> tokens;
+  Tokenize(values, tokens);
+  bool ok = tokens.size() == count;
+  for (size_t k = 0; ok && k < count; ++k)
+  {
+    ok = ParseNumber(tokens[k], out[k]) && std::isfinite(out[k]);
+  }
+  if (!ok)
+  {
+    error = AtLine(line) + key + " needs " + (count == 1 ? "one number" : "two numbers") +
+            ", found " + Shown(values);
+  }
+  return ok;
+}
+
+/// Takes a comment line into `header` when it is one of the matrix header's keys; false (with a
+/// message) when it is one but its values are not what the key needs.
+bool ReadMatrixHeaderLine(std::string_view line,
+  long long lineNumber,
+  MatrixHeader& header,
+  std::string& error)
+{
+  std::string_view values;
+  switch (MatrixHeaderKey(line, values))
+  {
+    case MatrixKey::Dimensions:
+      header.HasDimensions = true;
+      header.DimensionsLine = lineNumber;
+      return MatrixHeaderNumbers(
+        values, "Dimensions (values per row, rows)", 2, lineNumber, header.Dimensions, error);
+    case MatrixKey::XExtent:
+      header.HasXExtent = true;
+      return MatrixHeaderNumbers(
+        values, "x_extent (xmin xmax)", 2, lineNumber, header.XExtent, error);
+    case MatrixKey::YExtent:
+      header.HasYExtent = true;
+      return MatrixHeaderNumbers(
+        values, "y_extent (ymin ymax)", 2, lineNumber, header.YExtent, error);
+    case MatrixKey::NoData:
+      return MatrixHeaderNumbers(values, "nodata", 1, lineNumber, &header.NoData, error);
+    default:
+      return true;
+  }
+}
+
+/// The rows of numbers of a matrix as they come (the file bounds them), and the header of '#'
+/// lines before the first row.
+struct MatrixRows
+{
+  MatrixHeader Header;
+  std::vector<double> Values;
+  size_t Columns = 0;
+  size_t Rows = 0;
+};
+
+bool ReadMatrixRows(Text& text, MatrixRows& matrix, std::string& error)
+{
   std::vector<std::string_view> tokens;
   std::string_view line;
-  size_t columns = 0;
-  size_t rows = 0;
   long long firstLine = 0;
-  try
+  while (text.NextLine(line))
   {
-    while (text.NextLine(line))
+    const std::string_view t = Trim(line);
+    if (t.empty() || t.front() == '#')
     {
-      const std::string_view t = Trim(line);
-      if (t.empty() || t.front() == '#')
+      if (matrix.Rows == 0 && !ReadMatrixHeaderLine(t, text.LineNumber(), matrix.Header, error))
       {
-        continue;
-      }
-      Tokenize(t, tokens);
-      if (rows == 0)
-      {
-        columns = tokens.size();
-        firstLine = text.LineNumber();
-      }
-      else if (tokens.size() != columns)
-      {
-        error = AtLine(text.LineNumber()) + "a row of " + std::to_string(tokens.size()) +
-                " values, but line " + std::to_string(firstLine) + " has " +
-                std::to_string(columns) + ": the rows of a matrix must all have the same length";
         return false;
       }
-      for (size_t c = 0; c < tokens.size(); ++c)
+      continue;
+    }
+    Tokenize(t, tokens);
+    if (matrix.Rows == 0)
+    {
+      matrix.Columns = tokens.size();
+      firstLine = text.LineNumber();
+    }
+    else if (tokens.size() != matrix.Columns)
+    {
+      error = AtLine(text.LineNumber()) + "a row of " + std::to_string(tokens.size()) +
+              " values, but line " + std::to_string(firstLine) + " has " +
+              std::to_string(matrix.Columns) +
+              ": the rows of a matrix must all have the same length";
+      return false;
+    }
+    for (size_t c = 0; c < tokens.size(); ++c)
+    {
+      double v = 0.0;
+      if (!ParseNumber(tokens[c], v))
       {
-        double v = 0.0;
-        if (!ParseNumber(tokens[c], v))
-        {
-          error = AtLine(text.LineNumber()) + "value " + std::to_string(c + 1) + " is " +
-                  Shown(tokens[c]) + ", not a number";
-          return false;
-        }
-        values.push_back(v);
+        error = AtLine(text.LineNumber()) + "value " + std::to_string(c + 1) + " is " +
+                Shown(tokens[c]) + ", not a number";
+        return false;
       }
-      ++rows;
+      matrix.Values.push_back(v);
+    }
+    ++matrix.Rows;
+  }
+  if (matrix.Rows == 0)
+  {
+    error = "no rows of numbers";
+    return false;
+  }
+  return true;
+}
+
+/// A raster matrix's header against its data: Dimensions equal to (values per row, rows), both
+/// extents or neither, each increasing along an axis of more than one node.
+bool CheckMatrixHeader(const MatrixRows& matrix, std::string& error)
+{
+  const MatrixHeader& h = matrix.Header;
+  const double columns = static_cast<double>(matrix.Columns);
+  const double rows = static_cast<double>(matrix.Rows);
+  std::ostringstream msg;
+  if (h.HasDimensions && (h.Dimensions[0] != columns || h.Dimensions[1] != rows))
+  {
+    msg << AtLine(h.DimensionsLine) << "the header's Dimensions " << h.Dimensions[0] << " "
+        << h.Dimensions[1] << " (values per row, rows) do not match the data: " << columns
+        << " values per row, " << rows << " rows";
+    if (h.Dimensions[0] == rows && h.Dimensions[1] == columns)
+    {
+      msg << " (they are its rows and values per row, the other way round)";
+    }
+    msg << ": the header does not describe this data";
+    error = msg.str();
+    return false;
+  }
+  if (h.HasXExtent != h.HasYExtent)
+  {
+    error = std::string("the header gives ") +
+            (h.HasXExtent ? "x_extent but no y_extent" : "y_extent but no x_extent") +
+            ": a matrix is placed by both or by neither";
+    return false;
+  }
+  if ((h.HasXExtent && columns > 1 && !(h.XExtent[1] > h.XExtent[0])) ||
+      (h.HasYExtent && rows > 1 && !(h.YExtent[1] > h.YExtent[0])))
+  {
+    msg << "x_extent " << h.XExtent[0] << " " << h.XExtent[1] << ", y_extent " << h.YExtent[0]
+        << " " << h.YExtent[1] << ": each must go from the smaller value to the larger";
+    error = msg.str();
+    return false;
+  }
+  return true;
+}
+
+/// A raster matrix's geometry: node bounds from the extents (or zeros), spacing over the nodes.
+void PlaceRasterMatrix(const MatrixHeader& h, AsciiGrid& grid)
+{
+  grid.RowsFromTop = true;
+  grid.HasGeometry = h.HasXExtent && h.HasYExtent;
+  if (!grid.HasGeometry)
+  {
+    return;
+  }
+  const double* extent[2] = { h.XExtent, h.YExtent };
+  const int count[2] = { grid.NX, grid.NY };
+  for (int a = 0; a < 2; ++a)
+  {
+    grid.Origin[a] = extent[a][0];
+    grid.Spacing[a] = count[a] > 1 ? (extent[a][1] - extent[a][0]) / (count[a] - 1) : 1.0;
+    grid.Bounds[2 * a] = extent[a][0];
+    grid.Bounds[2 * a + 1] = extent[a][1];
+  }
+}
+
+bool ReadMatrix(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, std::string& error)
+{
+  MatrixRows matrix;
+  try
+  {
+    if (!ReadMatrixRows(text, matrix, error))
+    {
+      return false;
     }
   }
   catch (const std::bad_alloc&)
@@ -848,16 +1048,21 @@ bool ReadMatrix(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, st
     error = "out of memory while reading the matrix";
     return false;
   }
-  if (rows == 0)
+  const bool raster = matrix.Header.Raster();
+  if (raster && !CheckMatrixHeader(matrix, error))
   {
-    error = "no rows of numbers";
     return false;
   }
-  const double nx = static_cast<double>(options.SwapAxes ? columns : rows);
-  const double ny = static_cast<double>(options.SwapAxes ? rows : columns);
-  if (!CheckAsciiGridDimensions(options.SwapAxes ? "columns" : "rows",
+  // A raster's lines are rows of x (as are a matrix's with SwapAxes); otherwise line r is the
+  // column i = r, numpy's first axis being x as vtkNumpyGridReader has it.
+  const bool linesAreRows = raster || options.SwapAxes;
+  const size_t rows = matrix.Rows;
+  const size_t columns = matrix.Columns;
+  const double nx = static_cast<double>(linesAreRows ? columns : rows);
+  const double ny = static_cast<double>(linesAreRows ? rows : columns);
+  if (!CheckAsciiGridDimensions(linesAreRows ? "values per row" : "rows",
         nx,
-        options.SwapAxes ? "rows" : "columns",
+        linesAreRows ? "rows" : "values per row",
         ny,
         MaxNodes,
         error))
@@ -866,23 +1071,38 @@ bool ReadMatrix(Text& text, const AsciiGridOptions& options, AsciiGrid& grid, st
   }
   grid.NX = static_cast<int>(nx);
   grid.NY = static_cast<int>(ny);
+  grid.NumberOfLines = static_cast<int>(rows);
+  grid.FileNullValue = matrix.Header.NoData;
+  if (raster)
+  {
+    PlaceRasterMatrix(matrix.Header, grid);
+  }
   if (!AllocateValues(grid, error))
   {
     return false;
   }
-  // Row r, column c is node (r, c) (numpy's first axis is i, as vtkNumpyGridReader has it), or
-  // node (c, r) with SwapAxes.
+  // Row r, column c is node (r, c); node (c, r) with SwapAxes; node (c, ny - 1 - r) in a raster,
+  // whose first line is the top row.
   ValueSink sink(grid, options, /*irapHoles=*/false);
   for (size_t r = 0; r < rows; ++r)
   {
+    const size_t row = raster ? rows - 1 - r : r;
     for (size_t c = 0; c < columns; ++c)
     {
-      const size_t id = options.SwapAxes ? c + r * columns : r + c * rows;
-      sink.Set(id, values[r * columns + c]);
+      const size_t id = linesAreRows ? c + row * columns : r + c * rows;
+      sink.Set(id, matrix.Values[r * columns + c]);
     }
   }
   return true;
 }
+}
+
+//------------------------------------------------------------------------------
+bool IsMatrixGeometryLine(std::string_view line)
+{
+  std::string_view values;
+  const MatrixKey key = MatrixHeaderKey(line, values);
+  return key == MatrixKey::Dimensions || key == MatrixKey::XExtent || key == MatrixKey::YExtent;
 }
 
 //------------------------------------------------------------------------------

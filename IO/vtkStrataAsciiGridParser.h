@@ -2,13 +2,15 @@
 //
 // Private parser (not installed) of the text grid formats that vtkAsciiGridReader reads and
 // that vtkHorizonColumnReader hands a whitespace matrix to: Irap classic ASCII, ZMAP+, ESRI
-// ASCII grids and the plain matrix of numpy.savetxt. One parser, so that both readers agree on
-// every value, hole and error.
+// ASCII grids and the plain matrix of numpy.savetxt (or of a DEM export, whose '#' header
+// gives Dimensions, extents and nodata). One parser, so that both readers agree on every value,
+// hole and error.
 #ifndef vtkStrataAsciiGridParser_h
 #define vtkStrataAsciiGridParser_h
 
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace strata_io
@@ -49,14 +51,26 @@ struct AsciiGrid
   /// The file's own no-data value (Irap: 9999900, ZMAP+ and ESRI: the header's), NaN if none.
   double FileNullValue = std::numeric_limits<double>::quiet_NaN();
   bool CellCorner = false; ///< ESRI: the header gave xllcorner/yllcorner (not ...center)
-  int NodesPerLine = 0;    ///< ZMAP+: the header's nodes per line
-  int FieldWidth = 0;      ///< ZMAP+: the header's field width (0 if not a usable integer)
-  std::string Name;        ///< ZMAP+: the grid name of the '@' line
+  /// Matrix: its '#' header gave Dimensions or extents (a DEM export's raster): each line is a
+  /// row of x, the first line the top one (y = ymax), as in ESRI ASCII grids.
+  bool RowsFromTop = false;
+  /// Matrix: its header's x_extent and y_extent placed it (Origin, Spacing and Bounds are theirs).
+  bool HasGeometry = false;
+  int NumberOfLines = 0; ///< Matrix: the number of rows of numbers in the file
+  int NodesPerLine = 0;  ///< ZMAP+: the header's nodes per line
+  int FieldWidth = 0;    ///< ZMAP+: the header's field width (0 if not a usable integer)
+  std::string Name;      ///< ZMAP+: the grid name of the '@' line
   long long NumberOfNoDataValues = 0;
   long long OutOfRangeValues = 0; ///< values beyond float's range: a failed read
   double FirstOutOfRange = 0.0;
   std::vector<float> Values;
 };
+
+/// True when `line` is a matrix header line that states the grid's geometry, a '#' comment
+/// "Dimensions", "x_extent" or "y_extent" followed by ':' or '=' (as DEM exports write them;
+/// keys in any case, '_' optional): it makes a file of rows of numbers a raster (see
+/// vtkHorizonColumnReader).
+bool IsMatrixGeometryLine(std::string_view line);
 
 /// Which format `path` is in, from its first non-blank line: '!' or '@' is ZMAP+, an ESRI key
 /// (ncols, nrows, ...) ESRI, a line of four numbers starting with -996 Irap classic, '#' or other

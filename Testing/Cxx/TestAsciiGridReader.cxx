@@ -12,7 +12,9 @@
 // - ZMAP+, 31 columns x 19 rows, comments, column-major from the top, null -99999; and one
 //   whose values fill their 10-character fields and touch;
 // - ESRI ASCII with xllcorner and cellsize (nodes at cell centres) and with xllcenter, dx, dy;
-// - a numpy.savetxt matrix, both axis conventions, placed by Origin, Spacing and Rotation.
+// - a numpy.savetxt matrix, both axis conventions, placed by Origin, Spacing and Rotation;
+// - a matrix under a DEM export's header (Dimensions, x_extent, y_extent, nodata): a raster,
+//   rows from the top, placed by the header (issue 27).
 // Absurd and malformed headers (issue 14): dimensions that overflow, exceed 2^31 nodes, or need
 // far more values than the file holds are errors naming the header field, raised before the
 // values are allocated (peak RSS grows by less than 64 MB, where 2 x 10^9 float nodes would take
@@ -454,6 +456,43 @@ void CheckBad(const std::string& dir,
   Check(grown < 64.0, name + ": nothing allocated for the values (peak RSS + < 64 MB)");
 }
 
+/// Issue 27: a matrix of heights under a DEM export's header is a raster, read by the same rule
+/// as vtkHorizonColumnReader's: 7 values per line x 5 lines is 7 x 5 nodes, the first line the
+/// top row, placed by the extents (node bounds) whatever Origin, Spacing, Rotation and SwapAxes
+/// say, nodata a hole; taken for a matrix in Auto mode although its lines are narrow. Dimensions
+/// the other way round are an error.
+void MatrixRasterHeader(const std::string& dir)
+{
+  const Layout g{ 7, 5, -30.0, 100.0, 10.0, 5.0, 0.0 };
+  std::string text = "# Heights\n# Dimensions: 7 5\n# x_extent: -30 30\n# y_extent = 100 120\n"
+                     "# NODATA_value: -9999\n";
+  for (int line = 0; line < g.NY; ++line)
+  {
+    for (int i = 0; i < g.NX; ++i)
+    {
+      text += (i ? " " : "") + g.Text(i, g.NY - 1 - line, "-9999");
+    }
+    text += "\n";
+  }
+  const std::string path = dir + "/matrix_raster.txt";
+  Spit(path, text);
+  auto setup = +[](vtkAsciiGridReader* r)
+  {
+    r->SetOrigin(500.0, 700.0);
+    r->SetSpacing(2.0, 3.0);
+    r->SetRotation(-20.0);
+    r->SwapAxesOn();
+  };
+  auto r = ReadAndCompare(path, g, Format::Matrix, "matrix with a raster header", setup);
+  const double* b = r->GetHeaderBounds();
+  Check(r->GetFileNullValue() == -9999.0 && b[0] == -30.0 && b[1] == 30.0 && b[2] == 100.0 &&
+          b[3] == 120.0 && r->GetGridRotation() == 0.0,
+    "matrix with a raster header: nodata and extents from the header, no rotation");
+  std::string transposed = text;
+  transposed.replace(transposed.find("7 5"), 3, "5 7");
+  CheckBad(dir, "matrix_raster_transposed.txt", transposed, "Dimensions 5 7");
+}
+
 void AbsurdHeaders(const std::string& dir)
 {
   const std::string irapTail = "0 0 0 0 0 0 0\n1 2 3 4\n";
@@ -555,6 +594,7 @@ int TestAsciiGridReader(int argc, char* argv[])
       { "ZmapFixedWidth", [&] { ZmapFixedWidth(dir); } },
       { "EsriAscii", [&] { EsriAscii(dir); } },
       { "Matrix", [&] { Matrix(dir); } },
+      { "MatrixRasterHeader", [&] { MatrixRasterHeader(dir); } },
       { "LongRows", [&] { LongRows(dir); } },
       { "AbsurdHeaders", [&] { AbsurdHeaders(dir); } },
       { "BadInput", [&] { BadInput(dir); } },

@@ -14,6 +14,14 @@
 //   function that generated it; a 6 x 5 matrix in Matrix mode placed by Origin, spacings and
 //   Rotation (node (5, 4) against its position computed here), the same file in Auto mode an
 //   error, a ragged matrix and one with a word errors;
+// - matrices of heights with a DEM export's '#' header (issue 27): an outside consumer's 327
+//   values per row x 468 rows with "Dimensions", "x_extent", "y_extent" and "nodata" used to come
+//   out as a 468 x 327 grid, transposed without a word. Written here in that shape, and as 7 x 5
+//   with "key = value" lines (too narrow for Auto to call it a matrix without its header): the
+//   grid must be (values per row) x (rows), the first row at y = ymax, node (i, j) the value in
+//   column i of row ny - 1 - j, placed by the extents (node bounds), nodata a hole; Dimensions
+//   that disagree with the data (the transposed pair among them) and half the extents are errors
+//   that leave no grid behind;
 // - bad input: a missing file, a truncated copy, a garbage file, an empty file, points off any
 //   regular grid, non-integer indices in InlineCrossline mode. Each must raise an error (caught
 //   by an observer) and leave the output with no points.
@@ -572,6 +580,173 @@ void MatrixMode(const std::string& outDir)
     outDir + "TestHorizonColumnReader_text_matrix.txt", "matrix with a word", Mode::Matrix);
 }
 
+/// z of the DEM-export matrices at file row r (0 = the first line, the top), column c: quarter
+/// units, exact in float, different at every node, not integer-valued.
+double DemZ(int r, int c)
+{
+  return 1000.25 + 0.5 * c + 400.0 * r;
+}
+
+/// Node (c, r) of the DEM-export matrices that holds the header's no-data value.
+bool DemHole(int r, int c)
+{
+  return (3 * r + 5 * c) % 17 == 7; // not (0, 0): the top-left value is checked alone
+}
+
+/// A matrix of heights as a DEM export writes it: a '#' header (`header`), then `rows` lines of
+/// `cols` values each, the first line the top row (y = ymax), -9999 for no data.
+std::string DemMatrix(int cols, int rows, const std::string& header)
+{
+  std::string text = header;
+  char value[64];
+  for (int r = 0; r < rows; ++r)
+  {
+    for (int c = 0; c < cols; ++c)
+    {
+      std::snprintf(value, sizeof(value), "%.2f", DemHole(r, c) ? -9999.0 : DemZ(r, c));
+      text += (c ? " " : "") + std::string(value);
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+/// Reads a DEM-export matrix of `cols` values per row and `rows` rows in Auto mode and checks
+/// the grid against the file: dimensions, every node, holes, placement by the extents.
+void CheckDemMatrix(const std::string& path,
+  const std::string& tag,
+  int cols,
+  int rows,
+  const double xExtent[2],
+  const double yExtent[2])
+{
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3] = { 0, 0, 0 };
+  image->GetDimensions(dims);
+  const double* o = image->GetOrigin();
+  const double* s = image->GetSpacing();
+  std::cout << tag << ": " << errors->Errors << " error(s), " << errors->Warnings << " warning(s) "
+            << errors->First << "; grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
+            << ", origin " << o[0] << " " << o[1] << ", spacing " << s[0] << " " << s[1] << ", "
+            << reader->GetNumberOfNoDataValues() << " hole(s)\n";
+  Check(errors->Errors == 0 && errors->Warnings == 0, tag + ": no error, no warning");
+  Check(reader->GetDetectedMode() == Mode::Matrix, tag + ": read as a matrix");
+  Check(dims[0] == cols && dims[1] == rows && dims[2] == 1,
+    tag + ": (values per row) x (rows) x 1 = " + std::to_string(cols) + " x " +
+      std::to_string(rows) + " x 1");
+  Check(reader->GetNX() == cols && reader->GetNY() == rows, tag + ": GetNX/GetNY agree");
+  // The extents are the bounds of the nodes: the first value of a row at xmin, the last at xmax.
+  const double dx = (xExtent[1] - xExtent[0]) / (cols - 1);
+  const double dy = (yExtent[1] - yExtent[0]) / (rows - 1);
+  Check(o[0] == xExtent[0] && o[1] == yExtent[0] && Near(s[0], dx, 1e-9 * dx) &&
+          Near(s[1], dy, 1e-9 * dy) && s[2] == 1.0,
+    tag + ": origin (xmin, ymin), spacing from the extents");
+  Check(image->GetDirectionMatrix()->IsIdentity(), tag + ": no rotation");
+  if (dims[0] != cols || dims[1] != rows)
+  {
+    return;
+  }
+  // The top-left value of the file (row 0, column 0) is node (0, ny - 1), at (xmin, ymax).
+  double p[3] = { 0, 0, 0 };
+  const int topLeft[3] = { 0, rows - 1, 0 };
+  image->TransformIndexToPhysicalPoint(topLeft, p);
+  Check(ValueAt(image, 0, rows - 1) == static_cast<float>(DemZ(0, 0)) &&
+          Near(p[0], xExtent[0], 1e-6) && Near(p[1], yExtent[1], 1e-6),
+    tag + ": the first value of the file is node (0, ny - 1), at (xmin, ymax)");
+  int wrong = 0;
+  int holes = 0;
+  for (int j = 0; j < rows; ++j)
+  {
+    for (int i = 0; i < cols; ++i)
+    {
+      const int r = rows - 1 - j;
+      const double v = ValueAt(image, i, j);
+      const bool hole = DemHole(r, i);
+      holes += hole ? 1 : 0;
+      wrong += (hole ? std::isnan(v) : v == static_cast<float>(DemZ(r, i))) ? 0 : 1;
+    }
+  }
+  std::cout << tag << ": " << wrong << " of " << cols * rows << " values wrong\n";
+  Check(wrong == 0, tag + ": node (i, j) holds column i of row ny - 1 - j, nodata a hole (NaN)");
+  Check(reader->GetNumberOfNoDataValues() == holes,
+    tag + ": " + std::to_string(holes) + " no-data nodes");
+}
+
+/// Issue 27: the outside consumer's file, 327 values per row x 468 rows under a DEM export's
+/// header ("key: value"), read in Auto mode.
+void DemMatrixHeader(const std::string& outDir)
+{
+  const int cols = 327;
+  const int rows = 468;
+  const double xExtent[2] = { 500000.0, 500000.0 + 326 * 12.5 };
+  const double yExtent[2] = { 6700000.0, 6700000.0 + 467 * 25.0 };
+  char header[512];
+  std::snprintf(header,
+    sizeof(header),
+    "# Heights exported from the DEM\n# Dimensions: %d %d\n# x_extent: %.2f %.2f\n"
+    "# y_extent: %.2f %.2f\n# nodata: -9999\n",
+    cols,
+    rows,
+    xExtent[0],
+    xExtent[1],
+    yExtent[0],
+    yExtent[1]);
+  const std::string path = outDir + "TestHorizonColumnReader_dem_327x468.txt";
+  Spit(path, DemMatrix(cols, rows, header));
+  CheckDemMatrix(path, "DEM matrix 327 x 468", cols, rows, xExtent, yExtent);
+}
+
+/// The same rules on 7 values per row x 5 rows, "key = value" lines: too narrow for Auto to take
+/// for a matrix on its shape, its header says it is one.
+void DemMatrixSmall(const std::string& outDir)
+{
+  const double xExtent[2] = { -30.0, 30.0 };
+  const double yExtent[2] = { 100.0, 120.0 };
+  const std::string path = outDir + "TestHorizonColumnReader_dem_7x5.txt";
+  Spit(path,
+    DemMatrix(
+      7, 5, "# DIMENSIONS = 7 5\n# x_extent = -30 30\n# y_extent = 100 120\n# NODATA = -9999\n"));
+  CheckDemMatrix(path, "DEM matrix 7 x 5", 7, 5, xExtent, yExtent);
+}
+
+/// Expects an error, no points and no grid (NX, NY zero) from a DEM-export matrix whose header
+/// does not describe its data.
+void CheckBadDemMatrix(const std::string& path, const std::string& what)
+{
+  CheckBadInput(path, what);
+  vtkNew<vtkHorizonColumnReader> reader;
+  vtkNew<ErrorCounter> errors;
+  errors->Watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  Check(errors->Errors > 0 && reader->GetNX() == 0 && reader->GetNY() == 0 &&
+          reader->GetNumberOfRecords() == 0,
+    what + ": nothing half-read (NX, NY, records zero after the information pass)");
+}
+
+/// Headers that disagree with their data: errors, nothing half-written.
+void DemMatrixMismatch(const std::string& outDir)
+{
+  const std::string extents = "# x_extent: 0 60\n# y_extent: 0 40\n";
+  const std::string transposed = outDir + "TestHorizonColumnReader_dem_transposed.txt";
+  Spit(transposed, DemMatrix(327, 468, "# Dimensions: 468 327\n" + extents));
+  CheckBadDemMatrix(transposed, "Dimensions 468 327 over 327 values per row x 468 rows");
+  const std::string rows = outDir + "TestHorizonColumnReader_dem_rows.txt";
+  Spit(rows, DemMatrix(7, 5, "# Dimensions: 7 6\n" + extents));
+  CheckBadDemMatrix(rows, "Dimensions 7 6 over 7 x 5");
+  const std::string half = outDir + "TestHorizonColumnReader_dem_half.txt";
+  Spit(half, DemMatrix(7, 5, "# Dimensions: 7 5\n# x_extent: 0 60\n"));
+  CheckBadDemMatrix(half, "x_extent without y_extent");
+  const std::string bad = outDir + "TestHorizonColumnReader_dem_bad_key.txt";
+  Spit(bad, DemMatrix(7, 5, "# Dimensions: 7\n" + extents));
+  CheckBadDemMatrix(bad, "Dimensions with one number");
+}
+
 void PrintSelf()
 {
   vtkNew<vtkHorizonColumnReader> printed;
@@ -595,6 +770,9 @@ int TestHorizonColumnReader(int argc, char* argv[])
       { "SavetxtMatrixAuto", [&] { SavetxtMatrixAuto(outDir, false); } },
       { "SavetxtMatrixAutoInteger", [&] { SavetxtMatrixAuto(outDir, true); } },
       { "MatrixMode", [&] { MatrixMode(outDir); } },
+      { "DemMatrixHeader", [&] { DemMatrixHeader(outDir); } },
+      { "DemMatrixSmall", [&] { DemMatrixSmall(outDir); } },
+      { "DemMatrixMismatch", [&] { DemMatrixMismatch(outDir); } },
       { "PrintSelf", PrintSelf },
     },
     strata_test::Failures);
