@@ -22,6 +22,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -290,129 +291,155 @@ struct Lattice
   double MaxDeviation = 0.0;
 };
 
-/// Finds the lattice of the x y points of `records`; see the class documentation for the method.
-bool FitLattice(const std::vector<Record>& records,
-  double tolerance,
-  Lattice& lattice,
-  std::string& error)
+/// The x y of the records relative to the first one (UTM-scale values lose digits in the
+/// products of the fit), and their bounding box, which holds the first point (0, 0).
+struct PointSet
+{
+  double X0 = 0.0;
+  double Y0 = 0.0;
+  std::vector<double> X, Y;
+  double XMin = 0.0, XMax = 0.0, YMin = 0.0, YMax = 0.0;
+
+  size_t Size() const { return this->X.size(); }
+};
+
+bool RelativePoints(const std::vector<Record>& records, PointSet& points, std::string& error)
 {
   const size_t n = records.size();
-  // Coordinates relative to the first point: UTM-scale values lose digits in the products below.
-  const double x0 = records[0].A;
-  const double y0 = records[0].B;
-  std::vector<double> px(n), py(n);
-  double xmin = 0.0, xmax = 0.0, ymin = 0.0, ymax = 0.0;
+  points.X0 = records[0].A;
+  points.Y0 = records[0].B;
+  points.X.resize(n);
+  points.Y.resize(n);
   for (size_t k = 0; k < n; ++k)
   {
-    px[k] = records[k].A - x0;
-    py[k] = records[k].B - y0;
-    if (!std::isfinite(px[k]) || !std::isfinite(py[k]))
+    const double x = records[k].A - points.X0;
+    const double y = records[k].B - points.Y0;
+    if (!std::isfinite(x) || !std::isfinite(y))
     {
       error = "line " + std::to_string(records[k].Line) + ": x or y is not a finite number";
       return false;
     }
-    xmin = std::min(xmin, px[k]);
-    xmax = std::max(xmax, px[k]);
-    ymin = std::min(ymin, py[k]);
-    ymax = std::max(ymax, py[k]);
+    points.X[k] = x;
+    points.Y[k] = y;
+    points.XMin = std::min(points.XMin, x);
+    points.XMax = std::max(points.XMax, x);
+    points.YMin = std::min(points.YMin, y);
+    points.YMax = std::max(points.YMax, y);
   }
-  lattice = Lattice();
-  if (n == 1)
+  return true;
+}
+
+/// The points sorted into square buckets of side `Cell`, keyed by column * Rows + row.
+struct Buckets
+{
+  double Cell = 0.0;
+  long long Rows = 0;
+  std::vector<std::pair<long long, size_t>> Keyed; // (key, point), sorted
+
+  void Of(const PointSet& p, size_t k, long long& cx, long long& cy) const
   {
-    lattice.Origin[0] = x0;
-    lattice.Origin[1] = y0;
-    lattice.I.assign(1, 0);
-    lattice.J.assign(1, 0);
-    return true;
-  }
-  const double w = xmax - xmin;
-  const double h = ymax - ymin;
-  if (!std::isfinite(w) || !std::isfinite(h))
-  {
-    error = "x y coordinates span more than a double can hold";
-    return false;
-  }
-  if (w == 0.0 && h == 0.0)
-  {
-    error = "all " + std::to_string(n) + " points are at the same x y position";
-    return false;
+    cx = static_cast<long long>((p.X[k] - p.XMin) / this->Cell);
+    cy = static_cast<long long>((p.Y[k] - p.YMin) / this->Cell);
   }
 
-  // Nearest-neighbour vectors through a bucket grid. A neighbour found within one cell size is
-  // the true nearest one, since anything closer lies in the 3 x 3 cells around the point. The
-  // first cell size holds a few points per cell on a full grid; it doubles until some point finds
-  // its neighbour (sparse or strongly anisotropic data).
-  double cell = 1.5 * std::max(std::sqrt(w * h / static_cast<double>(n)),
-                        std::max(w, h) / static_cast<double>(n));
-  std::vector<std::array<double, 2>> neighbourVectors;
-  double nearest = std::numeric_limits<double>::max();
-  for (int attempt = 0; attempt < 64 && neighbourVectors.empty(); ++attempt, cell *= 2.0)
+  void Fill(const PointSet& p, double cell)
   {
-    const long long cellsY = static_cast<long long>(h / cell) + 1;
-    std::vector<std::pair<long long, size_t>> keyed(n);
-    auto cellOf = [&](size_t k, long long& cx, long long& cy)
-    {
-      cx = static_cast<long long>((px[k] - xmin) / cell);
-      cy = static_cast<long long>((py[k] - ymin) / cell);
-    };
-    for (size_t k = 0; k < n; ++k)
+    this->Cell = cell;
+    this->Rows = static_cast<long long>((p.YMax - p.YMin) / cell) + 1;
+    this->Keyed.resize(p.Size());
+    for (size_t k = 0; k < p.Size(); ++k)
     {
       long long cx, cy;
-      cellOf(k, cx, cy);
-      keyed[k] = { cx * cellsY + cy, k };
+      this->Of(p, k, cx, cy);
+      this->Keyed[k] = { cx * this->Rows + cy, k };
     }
-    std::sort(keyed.begin(), keyed.end());
-    for (size_t k = 0; k < n; ++k)
+    std::sort(this->Keyed.begin(), this->Keyed.end());
+  }
+};
+
+/// The vector from point k to its nearest neighbour in the 3 x 3 buckets around it, and its
+/// length; false when there is none within one bucket size (then a nearer one may lie beyond).
+bool NearestInBuckets(const PointSet& p,
+  const Buckets& buckets,
+  size_t k,
+  std::array<double, 2>& vector,
+  double& distance)
+{
+  long long cx, cy;
+  buckets.Of(p, k, cx, cy);
+  distance = std::numeric_limits<double>::max();
+  for (long long ix = cx - 1; ix <= cx + 1; ++ix)
+  {
+    for (long long iy = cy - 1; iy <= cy + 1; ++iy)
     {
-      long long cx, cy;
-      cellOf(k, cx, cy);
-      double best = std::numeric_limits<double>::max();
-      double bx = 0.0, by = 0.0;
-      for (long long ix = cx - 1; ix <= cx + 1; ++ix)
+      if (ix < 0 || iy < 0 || iy >= buckets.Rows)
       {
-        for (long long iy = cy - 1; iy <= cy + 1; ++iy)
+        continue;
+      }
+      const long long key = ix * buckets.Rows + iy;
+      auto it = std::lower_bound(
+        buckets.Keyed.begin(), buckets.Keyed.end(), std::make_pair(key, size_t(0)));
+      for (; it != buckets.Keyed.end() && it->first == key; ++it)
+      {
+        const double dx = p.X[it->second] - p.X[k];
+        const double dy = p.Y[it->second] - p.Y[k];
+        const double d = std::sqrt(dx * dx + dy * dy);
+        if (d > 0.0 && d < distance) // a duplicate (d = 0) is not a neighbour
         {
-          if (ix < 0 || iy < 0 || iy >= cellsY)
-          {
-            continue;
-          }
-          const long long key = ix * cellsY + iy;
-          auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(key, size_t(0)));
-          for (; it != keyed.end() && it->first == key; ++it)
-          {
-            const double dx = px[it->second] - px[k];
-            const double dy = py[it->second] - py[k];
-            const double d = std::sqrt(dx * dx + dy * dy);
-            if (d > 0.0 && d < best) // a duplicate (d = 0) is not a neighbour
-            {
-              best = d;
-              bx = dx;
-              by = dy;
-            }
-          }
+          distance = d;
+          vector = { dx, dy };
         }
       }
-      if (best <= cell)
+    }
+  }
+  return distance <= buckets.Cell;
+}
+
+/// Nearest-neighbour vectors through a bucket grid. A neighbour found within one cell size is
+/// the true nearest one, since anything closer lies in the 3 x 3 cells around the point. The
+/// first cell size holds a few points per cell on a full grid; it doubles until some point finds
+/// its neighbour (sparse or strongly anisotropic data). `nearest`: the shortest of them.
+void NeighbourVectors(const PointSet& p,
+  std::vector<std::array<double, 2>>& vectors,
+  double& nearest)
+{
+  const double w = p.XMax - p.XMin;
+  const double h = p.YMax - p.YMin;
+  const double n = static_cast<double>(p.Size());
+  double cell = 1.5 * std::max(std::sqrt(w * h / n), std::max(w, h) / n);
+  vectors.clear();
+  nearest = std::numeric_limits<double>::max();
+  Buckets buckets;
+  for (int attempt = 0; attempt < 64 && vectors.empty(); ++attempt, cell *= 2.0)
+  {
+    buckets.Fill(p, cell);
+    for (size_t k = 0; k < p.Size(); ++k)
+    {
+      std::array<double, 2> v = { 0.0, 0.0 };
+      double d = 0.0;
+      if (NearestInBuckets(p, buckets, k, v, d))
       {
-        neighbourVectors.push_back({ bx, by });
-        nearest = std::min(nearest, best);
+        vectors.push_back(v);
+        nearest = std::min(nearest, d);
       }
     }
   }
-  if (neighbourVectors.empty())
-  {
-    error = "cannot find neighbouring points";
-    return false;
-  }
+}
 
-  // Grid orientation from the short neighbour vectors (at most 1.2 x the smallest distance:
-  // shorter than any diagonal, so every one of them is along a grid axis). Quadrupling their
-  // angles maps all four axis directions onto one, so their mean gives the orientation modulo
-  // 90 degrees, and averaging over many vectors cancels the rounding of printed coordinates.
+/// Grid orientation from the short neighbour vectors (at most 1.2 x the smallest distance:
+/// shorter than any diagonal, so every one of them is along a grid axis). Quadrupling their
+/// angles maps all four axis directions onto one, so their mean gives the orientation modulo
+/// 90 degrees, and averaging over many vectors cancels the rounding of printed coordinates.
+/// `angle` in radians, in (-45, 45] degrees.
+bool GridOrientation(const std::vector<std::array<double, 2>>& vectors,
+  double nearest,
+  double& angle,
+  std::string& error)
+{
   double sc = 0.0;
   double ss = 0.0;
   size_t used = 0;
-  for (const auto& v : neighbourVectors)
+  for (const auto& v : vectors)
   {
     if (std::hypot(v[0], v[1]) <= 1.2 * nearest)
     {
@@ -428,81 +455,112 @@ bool FitLattice(const std::vector<Record>& records,
             "two perpendicular directions";
     return false;
   }
-  double angle = std::atan2(ss, sc) / 4.0; // in (-45, 45] degrees
-  double c = std::cos(angle);
-  double s = std::sin(angle);
+  angle = std::atan2(ss, sc) / 4.0;
+  return true;
+}
 
-  // Rows along each axis, on the lattice.
+/// Numbers the points' rows along the axes at `angle` (radians) into lattice.I and lattice.J
+/// (AxisRows), with the spacings of the rows along each axis.
+bool LatticeRows(const PointSet& p,
+  double angle,
+  double nearest,
+  Lattice& lattice,
+  double& du,
+  double& dv,
+  std::string& error)
+{
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const size_t n = p.Size();
   std::vector<double> along(n), across(n);
   for (size_t k = 0; k < n; ++k)
   {
-    along[k] = c * px[k] + s * py[k];
-    across[k] = -s * px[k] + c * py[k];
+    along[k] = c * p.X[k] + s * p.Y[k];
+    across[k] = -s * p.X[k] + c * p.Y[k];
   }
-  double du = 0.0;
-  double dv = 0.0;
-  long long nx = 1;
-  long long ny = 1;
-  if (!AxisRows(along, 0.5 * nearest, lattice.I, du, nx) ||
-      !AxisRows(across, 0.5 * nearest, lattice.J, dv, ny))
+  if (!AxisRows(along, 0.5 * nearest, lattice.I, du, lattice.NX) ||
+      !AxisRows(across, 0.5 * nearest, lattice.J, dv, lattice.NY))
   {
     error =
       "the x y points are not on a regular grid: the rows along an axis are not evenly spaced";
     return false;
   }
-  if (!CheckGridSize(nx, ny, n, error))
-  {
-    return false;
-  }
+  return CheckGridSize(lattice.NX, lattice.NY, n, error);
+}
 
-  // Least-squares fit of p = o + i U + j V, then the nearest rotation with U and V perpendicular.
-  double mi = 0.0, mj = 0.0, mx = 0.0, my = 0.0;
-  for (size_t k = 0; k < n; ++k)
+/// Means and centred second moments of node indices (i, j) and positions (x, y), for the
+/// least-squares fit of p = o + i U + j V.
+struct Moments
+{
+  double MI = 0.0, MJ = 0.0, MX = 0.0, MY = 0.0;
+  double SII = 0.0, SJJ = 0.0, SIJ = 0.0, SIX = 0.0, SIY = 0.0, SJX = 0.0, SJY = 0.0;
+
+  Moments(const PointSet& p, const Lattice& lattice)
   {
-    mi += lattice.I[k];
-    mj += lattice.J[k];
-    mx += px[k];
-    my += py[k];
+    const size_t n = p.Size();
+    for (size_t k = 0; k < n; ++k)
+    {
+      this->MI += lattice.I[k];
+      this->MJ += lattice.J[k];
+      this->MX += p.X[k];
+      this->MY += p.Y[k];
+    }
+    this->MI /= n;
+    this->MJ /= n;
+    this->MX /= n;
+    this->MY /= n;
+    for (size_t k = 0; k < n; ++k)
+    {
+      const double di = lattice.I[k] - this->MI;
+      const double dj = lattice.J[k] - this->MJ;
+      const double dx = p.X[k] - this->MX;
+      const double dy = p.Y[k] - this->MY;
+      this->SII += di * di;
+      this->SJJ += dj * dj;
+      this->SIJ += di * dj;
+      this->SIX += di * dx;
+      this->SIY += di * dy;
+      this->SJX += dj * dx;
+      this->SJY += dj * dy;
+    }
   }
-  mi /= n;
-  mj /= n;
-  mx /= n;
-  my /= n;
-  double sii = 0.0, sjj = 0.0, sij = 0.0, six = 0.0, siy = 0.0, sjx = 0.0, sjy = 0.0;
-  for (size_t k = 0; k < n; ++k)
-  {
-    const double di = lattice.I[k] - mi;
-    const double dj = lattice.J[k] - mj;
-    const double dx = px[k] - mx;
-    const double dy = py[k] - my;
-    sii += di * di;
-    sjj += dj * dj;
-    sij += di * dj;
-    six += di * dx;
-    siy += di * dy;
-    sjx += dj * dx;
-    sjy += dj * dy;
-  }
-  double U[2] = { du * c, du * s };
-  double V[2] = { -dv * s, dv * c };
-  const double det = sii * sjj - sij * sij;
+};
+
+/// The least-squares axis vectors U and V (world step per i and per j) from the moments; an
+/// axis the fit cannot determine (a single row or column) keeps its start value.
+void FitAxisVectors(const Moments& m, long long nx, long long ny, double U[2], double V[2])
+{
+  const double det = m.SII * m.SJJ - m.SIJ * m.SIJ;
   if (nx > 1 && ny > 1 && det > 0.0)
   {
-    U[0] = (sjj * six - sij * sjx) / det;
-    U[1] = (sjj * siy - sij * sjy) / det;
-    V[0] = (sii * sjx - sij * six) / det;
-    V[1] = (sii * sjy - sij * siy) / det;
+    U[0] = (m.SJJ * m.SIX - m.SIJ * m.SJX) / det;
+    U[1] = (m.SJJ * m.SIY - m.SIJ * m.SJY) / det;
+    V[0] = (m.SII * m.SJX - m.SIJ * m.SIX) / det;
+    V[1] = (m.SII * m.SJY - m.SIJ * m.SIY) / det;
   }
-  else if (nx > 1 && sii > 0.0)
+  else if (nx > 1 && m.SII > 0.0)
   {
-    U[0] = six / sii;
-    U[1] = siy / sii;
+    U[0] = m.SIX / m.SII;
+    U[1] = m.SIY / m.SII;
   }
-  else if (ny > 1 && sjj > 0.0)
+  else if (ny > 1 && m.SJJ > 0.0)
   {
-    V[0] = sjx / sjj;
-    V[1] = sjy / sjj;
+    V[0] = m.SJX / m.SJJ;
+    V[1] = m.SJY / m.SJJ;
   }
+}
+
+/// The nearest rotation with perpendicular axes to the fitted U and V: `angle` (radians) and the
+/// spacings du, dv (a single row or column takes the other axis's spacing).
+bool PerpendicularAxes(const double U[2],
+  const double V[2],
+  long long nx,
+  long long ny,
+  double& angle,
+  double& du,
+  double& dv,
+  std::string& error)
+{
   du = nx > 1 ? std::hypot(U[0], U[1]) : 0.0;
   dv = ny > 1 ? std::hypot(V[0], V[1]) : 0.0;
   if (nx > 1 && ny > 1)
@@ -532,19 +590,28 @@ bool FitLattice(const std::vector<Record>& records,
     error = "cannot determine the grid spacing";
     return false;
   }
-  c = std::cos(angle);
-  s = std::sin(angle);
-  double ox = mx - (c * mi * du - s * mj * dv);
-  double oy = my - (s * mi * du + c * mj * dv);
+  return true;
+}
 
-  // Every point must sit on its node.
-  const double limit = tolerance * std::min(du, dv);
-  size_t worst = 0;
+/// The largest distance of a point from its node of the grid with origin (ox, oy) (relative to
+/// the first point), axes at `angle` and spacings du, dv; `worst` is that point.
+double WorstDeviation(const PointSet& p,
+  const Lattice& lattice,
+  double ox,
+  double oy,
+  double angle,
+  double du,
+  double dv,
+  size_t& worst)
+{
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  worst = 0;
   double worstDeviation = 0.0;
-  for (size_t k = 0; k < n; ++k)
+  for (size_t k = 0; k < p.Size(); ++k)
   {
-    const double ex = ox + c * lattice.I[k] * du - s * lattice.J[k] * dv - px[k];
-    const double ey = oy + s * lattice.I[k] * du + c * lattice.J[k] * dv - py[k];
+    const double ex = ox + c * lattice.I[k] * du - s * lattice.J[k] * dv - p.X[k];
+    const double ey = oy + s * lattice.I[k] * du + c * lattice.J[k] * dv - p.Y[k];
     const double e = std::hypot(ex, ey);
     if (e > worstDeviation)
     {
@@ -552,26 +619,463 @@ bool FitLattice(const std::vector<Record>& records,
       worst = k;
     }
   }
-  if (worstDeviation > limit)
+  return worstDeviation;
+}
+
+/// Fits origin, rotation and spacings of `lattice` (its I, J, NX, NY numbered from the rows
+/// along the axes at `angle` with spacings du, dv) to all points by least squares, and checks
+/// that every point sits on its node within `tolerance` x the smaller spacing.
+bool FitLatticeGeometry(const PointSet& p,
+  const std::vector<Record>& records,
+  double tolerance,
+  double angle,
+  double du,
+  double dv,
+  Lattice& lattice,
+  std::string& error)
+{
+  const Moments m(p, lattice);
+  double U[2] = { du * std::cos(angle), du * std::sin(angle) };
+  double V[2] = { -dv * std::sin(angle), dv * std::cos(angle) };
+  FitAxisVectors(m, lattice.NX, lattice.NY, U, V);
+  if (!PerpendicularAxes(U, V, lattice.NX, lattice.NY, angle, du, dv, error))
+  {
+    return false;
+  }
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const double ox = m.MX - (c * m.MI * du - s * m.MJ * dv);
+  const double oy = m.MY - (s * m.MI * du + c * m.MJ * dv);
+
+  // Every point must sit on its node.
+  size_t worst = 0;
+  const double deviation = WorstDeviation(p, lattice, ox, oy, angle, du, dv, worst);
+  if (deviation > tolerance * std::min(du, dv))
   {
     std::ostringstream msg;
     msg << "the x y points are not on a regular grid: the point on line " << records[worst].Line
-        << " lies " << worstDeviation << " from its node of the best-fitting grid (spacing " << du
+        << " lies " << deviation << " from its node of the best-fitting grid (spacing " << du
         << " x " << dv << ", rotation " << vtkMath::DegreesFromRadians(angle)
         << " degrees), more than Tolerance " << tolerance << " x " << std::min(du, dv);
     error = msg.str();
     return false;
   }
-
-  lattice.Origin[0] = ox + x0;
-  lattice.Origin[1] = oy + y0;
+  lattice.Origin[0] = ox + p.X0;
+  lattice.Origin[1] = oy + p.Y0;
   lattice.Spacing[0] = du;
   lattice.Spacing[1] = dv;
   lattice.Angle = vtkMath::DegreesFromRadians(angle);
-  lattice.NX = nx;
-  lattice.NY = ny;
-  lattice.MaxDeviation = worstDeviation;
+  lattice.MaxDeviation = deviation;
   return true;
+}
+
+/// Finds the lattice of the x y points of `records`; see the class documentation for the method.
+bool FitLattice(const std::vector<Record>& records,
+  double tolerance,
+  Lattice& lattice,
+  std::string& error)
+{
+  PointSet points;
+  if (!RelativePoints(records, points, error))
+  {
+    return false;
+  }
+  lattice = Lattice();
+  const size_t n = records.size();
+  if (n == 1)
+  {
+    lattice.Origin[0] = points.X0;
+    lattice.Origin[1] = points.Y0;
+    lattice.I.assign(1, 0);
+    lattice.J.assign(1, 0);
+    return true;
+  }
+  const double w = points.XMax - points.XMin;
+  const double h = points.YMax - points.YMin;
+  if (!std::isfinite(w) || !std::isfinite(h))
+  {
+    error = "x y coordinates span more than a double can hold";
+    return false;
+  }
+  if (w == 0.0 && h == 0.0)
+  {
+    error = "all " + std::to_string(n) + " points are at the same x y position";
+    return false;
+  }
+  std::vector<std::array<double, 2>> neighbours;
+  double nearest = 0.0;
+  NeighbourVectors(points, neighbours, nearest);
+  if (neighbours.empty())
+  {
+    error = "cannot find neighbouring points";
+    return false;
+  }
+  double angle = 0.0;
+  double du = 0.0;
+  double dv = 0.0;
+  return GridOrientation(neighbours, nearest, angle, error) &&
+         LatticeRows(points, angle, nearest, lattice, du, dv, error) &&
+         FitLatticeGeometry(points, records, tolerance, angle, du, dv, lattice, error);
+}
+
+/// A data line quoted for a message: at most 80 characters, binary bytes made printable.
+std::string ShownLine(const std::string& line)
+{
+  std::string shown = line.substr(0, 80);
+  std::replace_if(
+    shown.begin(),
+    shown.end(),
+    [](char c) { return !std::isprint(static_cast<unsigned char>(c)); },
+    '?');
+  return "\"" + shown + (line.size() > 80 ? "...\"" : "\"");
+}
+
+/// A columns file as read: its data lines, its header line and what tells a matrix apart.
+struct ColumnFile
+{
+  std::vector<Record> Records;
+  std::vector<std::string> Header; // the names of the header line, if any
+  bool HasHeaderLine = false;
+  // A '#' header that states a raster's Dimensions or extents (a DEM export) came before the
+  // data: in Auto mode the file is a matrix, and reading stops at its first data line.
+  bool RasterHeader = false;
+  // Values per data line, smallest and largest: a matrix has many, the same on every line.
+  size_t FewestValues = std::numeric_limits<size_t>::max();
+  size_t MostValues = 0;
+
+  bool SameLength() const { return this->FewestValues == this->MostValues && this->MostValues > 3; }
+};
+
+/// Takes one line of a columns file (without its end of line) into `file`: skips blank and '#'
+/// lines, keeps one header line before any data, parses a data line. False with a message on a
+/// line that is none of these.
+bool TakeColumnLine(const std::string& line,
+  long long lineNumber,
+  std::vector<std::pair<size_t, size_t>>& tokens,
+  ColumnFile& file,
+  std::string& error)
+{
+  const bool sawContent = file.HasHeaderLine || !file.Records.empty();
+  size_t first = 0;
+  while (first < line.size() && std::isspace(static_cast<unsigned char>(line[first])))
+  {
+    ++first;
+  }
+  if (first == line.size() || line[first] == '#')
+  {
+    file.RasterHeader = file.RasterHeader || (!sawContent && strata_io::IsMatrixGeometryLine(line));
+    return true;
+  }
+  Tokenize(line, tokens);
+  double v[3];
+  bool numeric = tokens.size() >= 3;
+  for (int c = 0; numeric && c < 3; ++c)
+  {
+    numeric = ParseNumber(line.data() + tokens[c].first, line.data() + tokens[c].second, v[c]);
+  }
+  if (numeric)
+  {
+    file.Records.push_back({ v[0], v[1], v[2], lineNumber });
+    file.FewestValues = std::min(file.FewestValues, tokens.size());
+    file.MostValues = std::max(file.MostValues, tokens.size());
+    return true;
+  }
+  if (!sawContent)
+  {
+    // One header line is allowed, before any data.
+    for (const auto& t : tokens)
+    {
+      file.Header.push_back(line.substr(t.first, t.second - t.first));
+    }
+    file.HasHeaderLine = true;
+    return true;
+  }
+  error = "line " + std::to_string(lineNumber) + ": expected at least three numbers, found " +
+          ShownLine(line);
+  return false;
+}
+
+/// Reads the lines of `path` into `file`, reporting progress (fraction of the bytes) now and
+/// then; with `stopAtRasterHeader`, stops at the first data line after a raster header.
+bool ReadColumnFile(const char* path,
+  bool stopAtRasterHeader,
+  const std::function<void(double)>& progress,
+  ColumnFile& file,
+  std::string& error)
+{
+  vtksys::ifstream in(path, std::ios::in | std::ios::binary);
+  if (!in)
+  {
+    error = "cannot open file";
+    return false;
+  }
+  in.seekg(0, std::ios::end);
+  const double fileSize = std::max(1.0, static_cast<double>(in.tellg()));
+  in.seekg(0, std::ios::beg);
+  std::string line;
+  std::vector<std::pair<size_t, size_t>> tokens;
+  long long lineNumber = 0;
+  try
+  {
+    while (std::getline(in, line))
+    {
+      ++lineNumber;
+      if (!line.empty() && line.back() == '\r')
+      {
+        line.pop_back();
+      }
+      const size_t records = file.Records.size();
+      if (!TakeColumnLine(line, lineNumber, tokens, file, error))
+      {
+        return false;
+      }
+      if (stopAtRasterHeader && file.RasterHeader && (file.HasHeaderLine || !file.Records.empty()))
+      {
+        return true;
+      }
+      if (file.Records.size() > records && (file.Records.size() & 0x3fff) == 0)
+      {
+        progress(static_cast<double>(in.tellg()) / fileSize);
+      }
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "out of memory while reading the columns";
+    return false;
+  }
+  if (in.bad())
+  {
+    error = "read error";
+    return false;
+  }
+  if (file.Records.empty())
+  {
+    error = "no data lines (need lines of at least three numbers)";
+    return false;
+  }
+  return true;
+}
+
+/// The mode the columns are read in: the requested one, else the header's, else integer first
+/// two columns mean InlineCrossline, anything else XYZ. False when InlineCrossline meets
+/// non-integer indices.
+bool ChooseColumnMode(ColumnMode requested,
+  const ColumnFile& file,
+  ColumnMode& mode,
+  std::string& error)
+{
+  mode = requested == ColumnMode::Auto ? ModeFromHeader(file.Header) : requested;
+  const auto isIndex = [](const Record& r) { return IsIndexValue(r.A) && IsIndexValue(r.B); };
+  const auto bad = std::find_if_not(file.Records.begin(), file.Records.end(), isIndex);
+  if (mode == ColumnMode::Auto)
+  {
+    mode = bad == file.Records.end() ? ColumnMode::InlineCrossline : ColumnMode::XYZ;
+  }
+  if (mode == ColumnMode::InlineCrossline && bad != file.Records.end())
+  {
+    error = "line " + std::to_string(bad->Line) +
+            ": inline and crossline must be integers (use the XYZ mode for world coordinates)";
+    return false;
+  }
+  return true;
+}
+
+/// Where a grid lies and which node each record sets.
+struct Placement
+{
+  long long NX = 1;
+  long long NY = 1;
+  std::vector<long long> I, J;
+  double Origin[2] = { 0.0, 0.0 };
+  double Spacing[2] = { 1.0, 1.0 };
+  double Rotation = 0.0; // degrees
+  long long FirstInline = 0, InlineStep = 0, FirstCrossline = 0, CrosslineStep = 0;
+  double MaxDeviation = 0.0;
+};
+
+/// What places a grid of index numbers (InlineCrossline, Matrix) in the world.
+struct IndexSettings
+{
+  bool IndexCoordinates = true;
+  double Origin[2] = { 0.0, 0.0 };
+  double InlineSpacing = 1.0;
+  double CrosslineSpacing = 1.0;
+  double Rotation = 0.0;
+};
+
+/// Places a grid whose node (i, j) is inline first + i * step, crossline first + j * step: at
+/// its index numbers, or by the settings (spacing = step x bin size).
+bool PlaceIndexGrid(const IndexSettings& settings, Placement& placement, std::string& error)
+{
+  Placement& p = placement;
+  if (settings.IndexCoordinates)
+  {
+    p.Origin[0] = static_cast<double>(p.FirstInline);
+    p.Origin[1] = static_cast<double>(p.FirstCrossline);
+    p.Spacing[0] = static_cast<double>(p.InlineStep);
+    p.Spacing[1] = static_cast<double>(p.CrosslineStep);
+    p.Rotation = 0.0;
+    return true;
+  }
+  if (!(settings.InlineSpacing > 0.0) || !(settings.CrosslineSpacing > 0.0) ||
+      !std::isfinite(settings.InlineSpacing) || !std::isfinite(settings.CrosslineSpacing))
+  {
+    error = "InlineSpacing and CrosslineSpacing must be positive";
+    return false;
+  }
+  p.Origin[0] = settings.Origin[0];
+  p.Origin[1] = settings.Origin[1];
+  p.Spacing[0] = p.InlineStep * settings.InlineSpacing;
+  p.Spacing[1] = p.CrosslineStep * settings.CrosslineSpacing;
+  p.Rotation = settings.Rotation;
+  return true;
+}
+
+/// InlineCrossline mode: the grid spanned by the index columns, and each record's node.
+bool PlaceByIndices(const std::vector<Record>& records,
+  const IndexSettings& settings,
+  Placement& p,
+  std::string& error)
+{
+  IndexAxis(records, true, p.FirstInline, p.InlineStep, p.NX);
+  IndexAxis(records, false, p.FirstCrossline, p.CrosslineStep, p.NY);
+  if (!CheckGridSize(p.NX, p.NY, records.size(), error))
+  {
+    return false;
+  }
+  p.I.resize(records.size());
+  p.J.resize(records.size());
+  for (size_t k = 0; k < records.size(); ++k)
+  {
+    p.I[k] = (static_cast<long long>(records[k].A) - p.FirstInline) / p.InlineStep;
+    p.J[k] = (static_cast<long long>(records[k].B) - p.FirstCrossline) / p.CrosslineStep;
+  }
+  return PlaceIndexGrid(settings, p, error);
+}
+
+/// XYZ mode: the lattice of the x y points (FitLattice), and each record's node.
+bool PlaceByLattice(const std::vector<Record>& records,
+  double tolerance,
+  Placement& p,
+  std::string& error)
+{
+  Lattice lattice;
+  try
+  {
+    if (!FitLattice(records, tolerance, lattice, error))
+    {
+      return false;
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "out of memory while fitting the grid";
+    return false;
+  }
+  p.NX = lattice.NX;
+  p.NY = lattice.NY;
+  p.I.swap(lattice.I);
+  p.J.swap(lattice.J);
+  std::copy(lattice.Origin, lattice.Origin + 2, p.Origin);
+  std::copy(lattice.Spacing, lattice.Spacing + 2, p.Spacing);
+  p.Rotation = lattice.Angle;
+  p.MaxDeviation = lattice.MaxDeviation;
+  return true;
+}
+
+/// The grid of the records: nodes that no line sets stay NaN, and so do NaN, infinite and
+/// `nullValue` z (a NaN `nullValue`: none); the last line on a node wins. A finite z beyond
+/// float's range is an error.
+struct FilledGrid
+{
+  vtkSmartPointer<vtkFloatArray> Values;
+  vtkIdType Duplicates = 0;
+  vtkIdType NoData = 0;
+};
+
+bool FillGrid(const std::vector<Record>& records,
+  const Placement& p,
+  double nullValue,
+  FilledGrid& grid,
+  std::string& error)
+{
+  const vtkIdType total = static_cast<vtkIdType>(p.NX * p.NY);
+  grid.Values = vtkSmartPointer<vtkFloatArray>::New();
+  grid.Values->SetNumberOfTuples(total);
+  if (grid.Values->GetNumberOfTuples() != total)
+  {
+    error = "cannot allocate the grid values";
+    return false;
+  }
+  float* values = grid.Values->GetPointer(0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::fill(values, values + total, nan);
+  std::vector<bool> set;
+  try
+  {
+    set.assign(static_cast<size_t>(total), false);
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "out of memory for the grid";
+    return false;
+  }
+  const bool hasNull = !std::isnan(nullValue);
+  for (size_t k = 0; k < records.size(); ++k)
+  {
+    const vtkIdType id = static_cast<vtkIdType>(p.I[k] + p.J[k] * p.NX);
+    grid.Duplicates += set[id] ? 1 : 0;
+    set[id] = true;
+    const double z = records[k].Z;
+    const bool hole = !std::isfinite(z) || (hasNull && z == nullValue);
+    if (!hole && std::fabs(z) > std::numeric_limits<float>::max())
+    {
+      // Stored as float it would be infinity: a misread, not a depth.
+      std::ostringstream msg;
+      msg << "line " << records[k].Line << ": z = " << z
+          << " is beyond the range of float (3.4e38) and not the NullValue";
+      error = msg.str();
+      return false;
+    }
+    values[id] = hole ? nan : static_cast<float>(z);
+  }
+  grid.NoData = static_cast<vtkIdType>(
+    std::count_if(values, values + total, [](float v) { return std::isnan(v); }));
+  return true;
+}
+
+/// A small matrix read as columns puts its few rows on nodes already set, or on a grid that is
+/// mostly holes (one row per node of a rows x rows grid): in Auto mode, an error that says so.
+bool LooksLikeMatrix(const ColumnFile& file, const FilledGrid& grid, const Placement& p)
+{
+  return file.SameLength() && (grid.Duplicates > 0 || 2 * grid.NoData > p.NX * p.NY);
+}
+
+std::string MatrixReadAsColumnsMessage(const ColumnFile& file,
+  const FilledGrid& grid,
+  const Placement& p,
+  ColumnMode mode)
+{
+  std::ostringstream msg;
+  msg << "every data line holds " << file.MostValues << " values, and read as " << ModeName(mode)
+      << " columns " << grid.Duplicates << " of them fall on a grid node already set and "
+      << grid.NoData << " of the " << p.NX * p.NY << " nodes stay holes: this looks like a "
+      << "whitespace matrix (one grid row per line), not columns; set Mode to Matrix to read it "
+      << "as one, or to " << ModeName(mode) << " to read it as columns";
+  return msg.str();
+}
+
+/// The settings that place a grid of index numbers.
+IndexSettings IndexSettingsOf(vtkHorizonColumnReader* reader)
+{
+  IndexSettings settings;
+  settings.IndexCoordinates = reader->GetIndexCoordinates();
+  reader->GetOrigin(settings.Origin);
+  settings.InlineSpacing = reader->GetInlineSpacing();
+  settings.CrosslineSpacing = reader->GetCrosslineSpacing();
+  settings.Rotation = reader->GetRotation();
+  return settings;
 }
 }
 
@@ -639,293 +1143,68 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   {
     return this->ReadMatrixGrid(error);
   }
-  vtksys::ifstream in(this->FileName, std::ios::in | std::ios::binary);
-  if (!in)
-  {
-    error = "cannot open file";
-    return false;
-  }
-  in.seekg(0, std::ios::end);
-  const double fileSize = std::max(1.0, static_cast<double>(in.tellg()));
-  in.seekg(0, std::ios::beg);
-
   // Parsing takes the first 80% of the progress range, building the grid the rest.
-  std::vector<Record> records;
-  std::vector<std::string> header;
-  std::string line;
-  std::vector<std::pair<size_t, size_t>> tokens;
-  long long lineNumber = 0;
-  bool sawContent = false;
-  // A '#' header that states a raster's Dimensions or extents (a DEM export) makes a matrix.
-  bool matrixHeader = false;
-  // Values per data line, smallest and largest: a matrix has many, the same on every line.
-  size_t fewestValues = std::numeric_limits<size_t>::max();
-  size_t mostValues = 0;
+  const bool autoMode = this->Mode == ColumnMode::Auto;
+  ColumnFile file;
   this->UpdateProgress(0.0);
-  try
+  if (!ReadColumnFile(
+        this->FileName,
+        autoMode,
+        [this](double fraction) { this->UpdateProgress(0.8 * fraction); },
+        file,
+        error))
   {
-    while (std::getline(in, line))
-    {
-      ++lineNumber;
-      if (!line.empty() && line.back() == '\r')
-      {
-        line.pop_back();
-      }
-      size_t first = 0;
-      while (first < line.size() && std::isspace(static_cast<unsigned char>(line[first])))
-      {
-        ++first;
-      }
-      if (first == line.size() || line[first] == '#')
-      {
-        matrixHeader = matrixHeader || (!sawContent && strata_io::IsMatrixGeometryLine(line));
-        continue;
-      }
-      if (matrixHeader && this->Mode == ColumnMode::Auto)
-      {
-        in.close();
-        return this->ReadMatrixGrid(error);
-      }
-      Tokenize(line, tokens);
-      double v[3];
-      bool numeric = tokens.size() >= 3;
-      for (int c = 0; numeric && c < 3; ++c)
-      {
-        numeric = ParseNumber(line.data() + tokens[c].first, line.data() + tokens[c].second, v[c]);
-      }
-      if (!numeric)
-      {
-        if (!sawContent)
-        {
-          // One header line is allowed, before any data.
-          for (const auto& t : tokens)
-          {
-            header.push_back(line.substr(t.first, t.second - t.first));
-          }
-          this->HasHeaderLine = true;
-          sawContent = true;
-          continue;
-        }
-        // Quote the line for the message, binary bytes and all made printable.
-        std::string shown = line.substr(0, 80);
-        std::replace_if(
-          shown.begin(),
-          shown.end(),
-          [](char c) { return !std::isprint(static_cast<unsigned char>(c)); },
-          '?');
-        std::ostringstream msg;
-        msg << "line " << lineNumber << ": expected at least three numbers, found \"" << shown
-            << (line.size() > 80 ? "..." : "") << "\"";
-        error = msg.str();
-        return false;
-      }
-      sawContent = true;
-      records.push_back({ v[0], v[1], v[2], lineNumber });
-      fewestValues = std::min(fewestValues, tokens.size());
-      mostValues = std::max(mostValues, tokens.size());
-      if ((records.size() & 0x3fff) == 0)
-      {
-        this->UpdateProgress(0.8 * static_cast<double>(in.tellg()) / fileSize);
-      }
-    }
-  }
-  catch (const std::bad_alloc&)
-  {
-    error = "out of memory while reading the columns";
     return false;
   }
-  if (in.bad())
+  // A raster header, or every line as long as the others and longer than any columns file's: a
+  // matrix.
+  if (autoMode &&
+      (file.RasterHeader || (file.SameLength() && !file.HasHeaderLine &&
+                              file.MostValues > static_cast<size_t>(MatrixMinimumColumns))))
   {
-    error = "read error";
-    return false;
-  }
-  if (records.empty())
-  {
-    error = "no data lines (need lines of at least three numbers)";
-    return false;
-  }
-  this->NumberOfRecords = static_cast<vtkIdType>(records.size());
-
-  // Which mode. Every line as long as the others and longer than any columns file's: a matrix.
-  const bool sameLength = fewestValues == mostValues && mostValues > 3;
-  if (this->Mode == ColumnMode::Auto && sameLength && !this->HasHeaderLine &&
-      mostValues > static_cast<size_t>(MatrixMinimumColumns))
-  {
-    in.close();
     return this->ReadMatrixGrid(error);
   }
-  ColumnMode mode = this->Mode;
-  if (mode == ColumnMode::Auto)
+  ColumnMode mode = ColumnMode::Auto;
+  Placement placement;
+  if (!ChooseColumnMode(this->Mode, file, mode, error) ||
+      !(mode == ColumnMode::InlineCrossline
+          ? PlaceByIndices(file.Records, IndexSettingsOf(this), placement, error)
+          : PlaceByLattice(file.Records, this->Tolerance, placement, error)))
   {
-    mode = ModeFromHeader(header);
-  }
-  const bool integerColumns = std::all_of(records.begin(),
-    records.end(),
-    [](const Record& r) { return IsIndexValue(r.A) && IsIndexValue(r.B); });
-  if (mode == ColumnMode::Auto)
-  {
-    mode = integerColumns ? ColumnMode::InlineCrossline : ColumnMode::XYZ;
-  }
-  if (mode == ColumnMode::InlineCrossline && !integerColumns)
-  {
-    const auto bad = std::find_if(records.begin(),
-      records.end(),
-      [](const Record& r) { return !(IsIndexValue(r.A) && IsIndexValue(r.B)); });
-    error = "line " + std::to_string(bad->Line) +
-            ": inline and crossline must be integers (use the XYZ mode for world coordinates)";
     return false;
-  }
-
-  // Grid geometry and the node of every record.
-  std::vector<long long> nodeI, nodeJ;
-  long long nx = 1;
-  long long ny = 1;
-  if (mode == ColumnMode::InlineCrossline)
-  {
-    long long il0 = 0, ilStep = 1, xl0 = 0, xlStep = 1;
-    IndexAxis(records, true, il0, ilStep, nx);
-    IndexAxis(records, false, xl0, xlStep, ny);
-    if (!CheckGridSize(nx, ny, records.size(), error))
-    {
-      return false;
-    }
-    nodeI.resize(records.size());
-    nodeJ.resize(records.size());
-    for (size_t k = 0; k < records.size(); ++k)
-    {
-      nodeI[k] = (static_cast<long long>(records[k].A) - il0) / ilStep;
-      nodeJ[k] = (static_cast<long long>(records[k].B) - xl0) / xlStep;
-    }
-    this->FirstInline = il0;
-    this->InlineStep = ilStep;
-    this->FirstCrossline = xl0;
-    this->CrosslineStep = xlStep;
-    if (this->IndexCoordinates)
-    {
-      this->GridOrigin[0] = static_cast<double>(il0);
-      this->GridOrigin[1] = static_cast<double>(xl0);
-      this->GridSpacing[0] = static_cast<double>(ilStep);
-      this->GridSpacing[1] = static_cast<double>(xlStep);
-      this->GridRotation = 0.0;
-    }
-    else
-    {
-      if (!(this->InlineSpacing > 0.0) || !(this->CrosslineSpacing > 0.0) ||
-          !std::isfinite(this->InlineSpacing) || !std::isfinite(this->CrosslineSpacing))
-      {
-        error = "InlineSpacing and CrosslineSpacing must be positive";
-        return false;
-      }
-      this->GridOrigin[0] = this->Origin[0];
-      this->GridOrigin[1] = this->Origin[1];
-      this->GridSpacing[0] = ilStep * this->InlineSpacing;
-      this->GridSpacing[1] = xlStep * this->CrosslineSpacing;
-      this->GridRotation = this->Rotation;
-    }
-  }
-  else
-  {
-    Lattice lattice;
-    try
-    {
-      if (!FitLattice(records, this->Tolerance, lattice, error))
-      {
-        return false;
-      }
-    }
-    catch (const std::bad_alloc&)
-    {
-      error = "out of memory while fitting the grid";
-      return false;
-    }
-    nx = lattice.NX;
-    ny = lattice.NY;
-    nodeI.swap(lattice.I);
-    nodeJ.swap(lattice.J);
-    this->GridOrigin[0] = lattice.Origin[0];
-    this->GridOrigin[1] = lattice.Origin[1];
-    this->GridSpacing[0] = lattice.Spacing[0];
-    this->GridSpacing[1] = lattice.Spacing[1];
-    this->GridRotation = lattice.Angle;
-    this->MaxDeviation = lattice.MaxDeviation;
   }
   this->UpdateProgress(0.85);
-
-  // Fill the grid; nodes that no line sets stay NaN.
-  const vtkIdType total = static_cast<vtkIdType>(nx * ny);
-  vtkSmartPointer<vtkFloatArray> grid = vtkSmartPointer<vtkFloatArray>::New();
-  grid->SetName(this->ArrayName);
-  grid->SetNumberOfTuples(total);
-  if (grid->GetNumberOfTuples() != total)
+  FilledGrid grid;
+  if (!FillGrid(file.Records, placement, this->NullValue, grid, error))
   {
-    error = "cannot allocate the grid values";
     return false;
   }
-  float* values = grid->GetPointer(0);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::fill(values, values + total, nan);
-  std::vector<bool> set;
-  try
+  if (autoMode && LooksLikeMatrix(file, grid, placement))
   {
-    set.assign(static_cast<size_t>(total), false);
-  }
-  catch (const std::bad_alloc&)
-  {
-    error = "out of memory for the grid";
-    return false;
-  }
-  const bool hasNull = !std::isnan(this->NullValue);
-  vtkIdType duplicates = 0;
-  for (size_t k = 0; k < records.size(); ++k)
-  {
-    const vtkIdType id = static_cast<vtkIdType>(nodeI[k] + nodeJ[k] * nx);
-    if (set[id])
-    {
-      ++duplicates;
-    }
-    set[id] = true;
-    const double z = records[k].Z;
-    const bool hole = !std::isfinite(z) || (hasNull && z == this->NullValue);
-    if (!hole && std::fabs(z) > std::numeric_limits<float>::max())
-    {
-      // Stored as float it would be infinity: a misread, not a depth.
-      std::ostringstream msg;
-      msg << "line " << records[k].Line << ": z = " << z
-          << " is beyond the range of float (3.4e38) and not the NullValue";
-      error = msg.str();
-      return false;
-    }
-    values[id] = hole ? nan : static_cast<float>(z);
-  }
-  vtkIdType noData = 0;
-  for (vtkIdType id = 0; id < total; ++id)
-  {
-    noData += std::isnan(values[id]) ? 1 : 0;
-  }
-
-  // A small matrix read as columns puts its few rows on nodes already set, or on a grid that is
-  // mostly holes (one row per node of a rows x rows grid): in Auto mode, an error that says so.
-  if (this->Mode == ColumnMode::Auto && sameLength && (duplicates > 0 || 2 * noData > total))
-  {
-    std::ostringstream msg;
-    msg << "every data line holds " << mostValues << " values, and read as " << ModeName(mode)
-        << " columns " << duplicates << " of them fall on a grid node already set and " << noData
-        << " of the " << total << " nodes stay holes: this looks like a whitespace "
-        << "matrix (one grid row per line), not columns; set Mode to Matrix to read it as one, "
-        << "or to " << ModeName(mode) << " to read it as columns";
-    error = msg.str();
+    error = MatrixReadAsColumnsMessage(file, grid, placement, mode);
     return false;
   }
 
   this->DetectedMode = mode;
-  this->NX = static_cast<int>(nx);
-  this->NY = static_cast<int>(ny);
-  this->NumberOfDuplicates = duplicates;
-  this->NumberOfNoDataValues = noData;
-  this->Internals->Grid = grid;
-  if (duplicates > 0)
+  this->HasHeaderLine = file.HasHeaderLine;
+  this->NumberOfRecords = static_cast<vtkIdType>(file.Records.size());
+  this->NumberOfDuplicates = grid.Duplicates;
+  this->NumberOfNoDataValues = grid.NoData;
+  this->NX = static_cast<int>(placement.NX);
+  this->NY = static_cast<int>(placement.NY);
+  this->FirstInline = placement.FirstInline;
+  this->InlineStep = placement.InlineStep;
+  this->FirstCrossline = placement.FirstCrossline;
+  this->CrosslineStep = placement.CrosslineStep;
+  std::copy(placement.Origin, placement.Origin + 2, this->GridOrigin);
+  std::copy(placement.Spacing, placement.Spacing + 2, this->GridSpacing);
+  this->GridRotation = placement.Rotation;
+  this->MaxDeviation = placement.MaxDeviation;
+  grid.Values->SetName(this->ArrayName);
+  this->Internals->Grid = grid.Values;
+  if (grid.Duplicates > 0)
   {
-    vtkWarningMacro(<< this->FileName << ": " << duplicates
+    vtkWarningMacro(<< this->FileName << ": " << grid.Duplicates
                     << " data lines fall on a grid node already set; the last one was kept.");
   }
   return true;
@@ -944,33 +1223,22 @@ bool vtkHorizonColumnReader::ReadMatrixGrid(std::string& error)
     error = "reading it as a whitespace matrix: " + error;
     return false;
   }
+  // The file's extents place it when it gives them; else its index numbers, as a grid of
+  // inlines and crosslines numbered from 0 in steps of 1.
+  Placement placement;
+  placement.InlineStep = placement.CrosslineStep = 1;
   if (matrix.HasGeometry)
   {
-    // The file states its geometry, as the text grid formats do: it wins over the settings.
-    std::copy(matrix.Origin, matrix.Origin + 2, this->GridOrigin);
-    std::copy(matrix.Spacing, matrix.Spacing + 2, this->GridSpacing);
-    this->GridRotation = 0.0;
+    std::copy(matrix.Origin, matrix.Origin + 2, placement.Origin);
+    std::copy(matrix.Spacing, matrix.Spacing + 2, placement.Spacing);
   }
-  else if (this->IndexCoordinates)
+  else if (!PlaceIndexGrid(IndexSettingsOf(this), placement, error))
   {
-    this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
-    this->GridSpacing[0] = this->GridSpacing[1] = 1.0;
-    this->GridRotation = 0.0;
+    return false;
   }
-  else
-  {
-    if (!(this->InlineSpacing > 0.0) || !(this->CrosslineSpacing > 0.0) ||
-        !std::isfinite(this->InlineSpacing) || !std::isfinite(this->CrosslineSpacing))
-    {
-      error = "InlineSpacing and CrosslineSpacing must be positive";
-      return false;
-    }
-    this->GridOrigin[0] = this->Origin[0];
-    this->GridOrigin[1] = this->Origin[1];
-    this->GridSpacing[0] = this->InlineSpacing;
-    this->GridSpacing[1] = this->CrosslineSpacing;
-    this->GridRotation = this->Rotation;
-  }
+  std::copy(placement.Origin, placement.Origin + 2, this->GridOrigin);
+  std::copy(placement.Spacing, placement.Spacing + 2, this->GridSpacing);
+  this->GridRotation = placement.Rotation;
   vtkSmartPointer<vtkFloatArray> grid = vtkSmartPointer<vtkFloatArray>::New();
   grid->SetName(this->ArrayName);
   const vtkIdType total = static_cast<vtkIdType>(matrix.Values.size());

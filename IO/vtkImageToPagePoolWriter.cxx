@@ -184,6 +184,241 @@ bool Contains(const int outer[6], const int inner[6])
   }
   return true;
 }
+
+/// The upstream end of a conversion: asks the producer for one extent at a time, counting the
+/// requests and the errors the producer reports meanwhile (its observer goes with this object).
+class UpstreamSlabs
+{
+public:
+  /// `requests` counts the requests made.
+  UpstreamSlabs(vtkAlgorithm* producer, int port, vtkIdType& requests)
+    : Requests(requests)
+    , Producer(producer)
+    , Port(port)
+  {
+    this->OnError->SetCallback(CountError);
+    this->OnError->SetClientData(&this->Errors);
+    this->Tag = producer->AddObserver(vtkCommand::ErrorEvent, this->OnError);
+  }
+  ~UpstreamSlabs() { this->Producer->RemoveObserver(this->Tag); }
+  UpstreamSlabs(const UpstreamSlabs&) = delete;
+  UpstreamSlabs& operator=(const UpstreamSlabs&) = delete;
+
+  /// The producer's data for `extent`; nullptr with a message when the update fails or reports
+  /// an error, or its output is no image, does not cover the extent or has no scalars.
+  vtkImageData* Request(const int extent[6], std::string& error)
+  {
+    vtkNew<vtkInformationVector> requests;
+    for (int p = 0; p < this->Producer->GetNumberOfOutputPorts(); ++p)
+    {
+      vtkNew<vtkInformation> info;
+      if (p == this->Port)
+      {
+        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+      }
+      requests->Append(info);
+    }
+    ++this->Requests;
+    if (!this->Producer->Update(this->Port, requests) || this->Errors > 0)
+    {
+      error = "the upstream pipeline failed";
+      return nullptr;
+    }
+    vtkImageData* data =
+      vtkImageData::SafeDownCast(this->Producer->GetOutputDataObject(this->Port));
+    if (!data)
+    {
+      error = "the input is not a vtkImageData";
+      return nullptr;
+    }
+    int have[6];
+    data->GetExtent(have);
+    if (!Contains(have, extent))
+    {
+      error = "the input did not produce the requested extent";
+      return nullptr;
+    }
+    if (!PickScalars(data))
+    {
+      error = "the input has no point scalars";
+      return nullptr;
+    }
+    return data;
+  }
+
+  /// Lets go of the last slab: the conversion must not leave a slab of the input in memory. A
+  /// trivial producer's output is the caller's own data set, which is left alone.
+  void Release()
+  {
+    vtkDataObject* data = this->Producer->GetOutputDataObject(this->Port);
+    if (data && !this->Producer->IsA("vtkTrivialProducer"))
+    {
+      data->Initialize();
+    }
+  }
+
+private:
+  vtkIdType& Requests;
+  vtkAlgorithm* Producer;
+  int Port;
+  int Errors = 0;
+  vtkNew<vtkCallbackCommand> OnError;
+  unsigned long Tag = 0;
+};
+
+/// What the pools of one conversion share: the input's geometry, tile or brick pool, the
+/// streaming axis (y for tiles, z for bricks), the stored type, the number of components (pool
+/// files) and the set's tag.
+struct PoolLayout
+{
+  InputGeometry Geometry;
+  bool Tiles = false;
+  int Axis = 2;
+  Format::ScalarType Type = Format::ScalarType::Float32;
+  int Components = 1;
+  uint32_t SetTag = 0;
+};
+
+/// A page writer for component `k` of `layout` into `file`, its settings from `settings`, fed
+/// slab by slab from `upstream` (a failed request's message into `sourceError`).
+void SetUpComponentWriter(vtkPagePoolWriter& writer,
+  vtkImageToPagePoolWriter* settings,
+  const PoolLayout& layout,
+  const std::string& file,
+  int k,
+  UpstreamSlabs& upstream,
+  std::string& sourceError)
+{
+  const InputGeometry& g = layout.Geometry;
+  writer.SetFileName(file);
+  writer.SetKind(layout.Tiles ? Format::Kind::TilePool : Format::Kind::BrickPool);
+  writer.SetScalarType(layout.Type);
+  writer.SetDimensions(g.Dims[0], g.Dims[1], g.Dims[2]);
+  writer.SetSpacing(g.Spacing[0], g.Spacing[1], g.Spacing[2]);
+  writer.SetOrigin(g.First[0], g.First[1], g.First[2]);
+  writer.SetDirection(g.Direction);
+  writer.SetPageSize(settings->GetPageSize());
+  writer.SetCompression(settings->GetCompression());
+  writer.SetMemoryLimit(settings->GetMemoryLimit());
+  writer.SetComponent(k, layout.Components, layout.SetTag);
+  // No no-data value: the page writer always leaves NaN (float holes) out of min/max.
+  const int axis = layout.Axis;
+  writer.SetSource(
+    [&g, &upstream, &sourceError, &layout, axis, k](int firstSlab, int count, void* buffer)
+    {
+      int ext[6];
+      std::copy(g.Whole, g.Whole + 6, ext);
+      ext[2 * axis] = g.Whole[2 * axis] + firstSlab;
+      ext[2 * axis + 1] = g.Whole[2 * axis] + firstSlab + count - 1;
+      vtkImageData* data = upstream.Request(ext, sourceError);
+      if (!data)
+      {
+        return false;
+      }
+      int have[6];
+      data->GetExtent(have);
+      CopySlab(PickScalars(data), k, have, ext, layout.Type, buffer);
+      return true;
+    });
+}
+
+/// Learns the stored type and the number of components from one slice of the input (not every
+/// reader reports its scalar type in its information), warning about components dropped, and
+/// draws the set's tag.
+bool ProbeLayout(vtkImageToPagePoolWriter* self,
+  UpstreamSlabs& upstream,
+  PoolLayout& layout,
+  std::string& error)
+{
+  const InputGeometry& g = layout.Geometry;
+  layout.Tiles = g.Dims[2] == 1;
+  layout.Axis = layout.Tiles ? 1 : 2;
+  int slab[6];
+  std::copy(g.Whole, g.Whole + 6, slab);
+  slab[2 * layout.Axis + 1] = slab[2 * layout.Axis];
+  vtkImageData* probe = upstream.Request(slab, error);
+  if (!probe)
+  {
+    return false;
+  }
+  vtkDataArray* probeArray = PickScalars(probe);
+  layout.Type = PoolType(probeArray->GetDataType());
+  const int arrayComponents = probeArray->GetNumberOfComponents();
+  if (arrayComponents > Format::MaxComponents || (layout.Tiles && arrayComponents > 1))
+  {
+    vtkWarningWithObjectMacro(self,
+      "Input array \"" << (probeArray->GetName() ? probeArray->GetName() : "") << "\" has "
+                       << arrayComponents << " components; only the first "
+                       << (layout.Tiles ? "is converted (a tile pool holds one)."
+                                        : "4 are converted."));
+  }
+  layout.Components =
+    layout.Tiles ? 1 : std::min(std::max(arrayComponents, 1), int(Format::MaxComponents));
+  // One write's tag in every file of a set, so that a reader refuses a set mixed from two.
+  layout.SetTag =
+    std::random_device{}() ^
+    static_cast<uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  return true;
+}
+
+/// Pages and bytes over the files of a set.
+struct WriteTotals
+{
+  vtkIdType Pages = 0;
+  vtkTypeInt64 Bytes = 0;
+};
+
+/// Writes every component of `layout` into its file (component k of `name`:
+/// vtkPagePoolFormat::GetComponentFileName), reporting progress through `self` over the whole
+/// set. The files of components 1, 2, ... come first, so the set appears under `name` only when
+/// complete; a failure removes the components already written.
+bool WriteComponents(vtkImageToPagePoolWriter* self,
+  const std::string& name,
+  UpstreamSlabs& upstream,
+  const PoolLayout& layout,
+  WriteTotals& totals,
+  std::string& error)
+{
+  const int components = layout.Components;
+  double last = 0.0;
+  self->UpdateProgress(0.0);
+  std::vector<std::string> written;
+  for (int k = components - 1; k >= 0; --k)
+  {
+    const std::string file = Format::GetComponentFileName(name, k);
+    const int done = components - 1 - k;
+    vtkPagePoolWriter writer;
+    std::string sourceError;
+    SetUpComponentWriter(writer, self, layout, file, k, upstream, sourceError);
+    writer.SetProgressCallback(
+      [&](double fraction)
+      {
+        // Kept strictly non-decreasing and short of 1 until the last file is in place.
+        fraction = std::min(std::max((done + fraction) / components, last), 0.999);
+        if (fraction > last)
+        {
+          last = fraction;
+          self->UpdateProgress(fraction);
+        }
+      });
+    const bool ok = writer.Write();
+    upstream.Release();
+    if (!ok)
+    {
+      error = sourceError.empty() ? writer.GetErrorMessage()
+                                  : sourceError + " (" + writer.GetErrorMessage() + ")";
+      if (components > 1)
+        error = "component " + std::to_string(k) + ": " + error;
+      for (const std::string& w : written)
+        vtksys::SystemTools::RemoveFile(w);
+      return false;
+    }
+    totals.Pages += static_cast<vtkIdType>(writer.GetStatistics().NumberOfPages);
+    totals.Bytes += static_cast<vtkTypeInt64>(writer.GetStatistics().FileSize);
+    written.push_back(file);
+  }
+  return true;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -248,181 +483,21 @@ bool vtkImageToPagePoolWriter::Write()
 
   // Information only: extent and geometry, no data.
   producer->UpdateInformation();
-  InputGeometry geometry;
-  std::string geometryError;
-  if (!ReadGeometry(producer->GetOutputInformation(port), geometry, geometryError))
-  {
-    return fail(geometryError);
-  }
-  const int* whole = geometry.Whole;
-  const int* dims = geometry.Dims;
-  const double* spacing = geometry.Spacing;
-  const double* first = geometry.First;
-  const double* direction = geometry.Direction;
-
-  const bool tiles = dims[2] == 1;
-  const int axis = tiles ? 1 : 2; // the streaming axis
-
-  int upstreamErrors = 0;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(CountError);
-  onError->SetClientData(&upstreamErrors);
-  const unsigned long tag = producer->AddObserver(vtkCommand::ErrorEvent, onError);
-  struct RemoveObserver
-  {
-    vtkAlgorithm* Producer;
-    unsigned long Tag;
-    ~RemoveObserver() { this->Producer->RemoveObserver(this->Tag); }
-  } removeObserver{ producer, tag };
-
-  auto request = [&](const int extent[6], std::string& error) -> vtkImageData*
-  {
-    vtkNew<vtkInformationVector> requests;
-    for (int p = 0; p < producer->GetNumberOfOutputPorts(); ++p)
-    {
-      vtkNew<vtkInformation> info;
-      if (p == port)
-      {
-        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-      }
-      requests->Append(info);
-    }
-    ++this->NumberOfSlabRequests;
-    if (!producer->Update(port, requests) || upstreamErrors > 0)
-    {
-      error = "the upstream pipeline failed";
-      return nullptr;
-    }
-    vtkImageData* data = vtkImageData::SafeDownCast(producer->GetOutputDataObject(port));
-    if (!data)
-    {
-      error = "the input is not a vtkImageData";
-      return nullptr;
-    }
-    int have[6];
-    data->GetExtent(have);
-    if (!Contains(have, extent))
-    {
-      error = "the input did not produce the requested extent";
-      return nullptr;
-    }
-    if (!PickScalars(data))
-    {
-      error = "the input has no point scalars";
-      return nullptr;
-    }
-    return data;
-  };
-
-  // One slice first, to learn the scalar type from the data itself (not every reader reports
-  // it in its information).
+  PoolLayout layout;
   std::string error;
-  int slab[6];
-  std::copy(whole, whole + 6, slab);
-  slab[2 * axis + 1] = slab[2 * axis];
-  vtkImageData* probe = request(slab, error);
-  if (!probe)
+  if (!ReadGeometry(producer->GetOutputInformation(port), layout.Geometry, error))
   {
     return fail(error);
   }
-  vtkDataArray* probeArray = PickScalars(probe);
-  const Format::ScalarType type = PoolType(probeArray->GetDataType());
-  const int arrayComponents = probeArray->GetNumberOfComponents();
-  if (arrayComponents > Format::MaxComponents || (tiles && arrayComponents > 1))
+  UpstreamSlabs upstream(producer, port, this->NumberOfSlabRequests);
+  WriteTotals totals;
+  const bool ok = ProbeLayout(this, upstream, layout, error) &&
+                  WriteComponents(this, name, upstream, layout, totals, error);
+  this->NumberOfPages = totals.Pages;
+  this->FileSize = totals.Bytes;
+  if (!ok)
   {
-    vtkWarningMacro("Input array \""
-                    << (probeArray->GetName() ? probeArray->GetName() : "") << "\" has "
-                    << arrayComponents << " components; only the first "
-                    << (tiles ? "is converted (a tile pool holds one)." : "4 are converted."));
-  }
-  const int components =
-    tiles ? 1 : std::min(std::max(arrayComponents, 1), int(Format::MaxComponents));
-  // One write's tag in every file of a set, so that a reader refuses a set mixed from two.
-  const uint32_t setTag =
-    std::random_device{}() ^
-    static_cast<uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
-  double last = 0.0;
-  this->UpdateProgress(0.0);
-  // Component k of `components` into `file`; progress over the set's files.
-  auto writeComponent = [&](const std::string& file, int k, int done, std::string& error)
-  {
-    vtkPagePoolWriter writer;
-    writer.SetFileName(file);
-    writer.SetKind(tiles ? Format::Kind::TilePool : Format::Kind::BrickPool);
-    writer.SetScalarType(type);
-    writer.SetDimensions(dims[0], dims[1], dims[2]);
-    writer.SetSpacing(spacing[0], spacing[1], spacing[2]);
-    writer.SetOrigin(first[0], first[1], first[2]);
-    writer.SetDirection(direction);
-    writer.SetPageSize(this->PageSize);
-    writer.SetCompression(this->Compression);
-    writer.SetMemoryLimit(this->MemoryLimit);
-    writer.SetComponent(k, components, setTag);
-    // No no-data value: the page writer always leaves NaN (float holes) out of min/max.
-    std::string sourceError;
-    writer.SetSource(
-      [&](int firstSlab, int count, void* buffer)
-      {
-        int ext[6];
-        std::copy(whole, whole + 6, ext);
-        ext[2 * axis] = whole[2 * axis] + firstSlab;
-        ext[2 * axis + 1] = whole[2 * axis] + firstSlab + count - 1;
-        vtkImageData* data = request(ext, sourceError);
-        if (!data)
-        {
-          return false;
-        }
-        int have[6];
-        data->GetExtent(have);
-        CopySlab(PickScalars(data), k, have, ext, type, buffer);
-        return true;
-      });
-    writer.SetProgressCallback(
-      [&](double fraction)
-      {
-        // Kept strictly non-decreasing and short of 1 until the last file is in place.
-        fraction = std::min(std::max((done + fraction) / components, last), 0.999);
-        if (fraction > last)
-        {
-          last = fraction;
-          this->UpdateProgress(fraction);
-        }
-      });
-    const bool ok = writer.Write();
-    // Let go of the last slab: the conversion must not leave a slab of the input in memory. A
-    // trivial producer's output is the caller's own data set, which is left alone.
-    vtkDataObject* data = producer->GetOutputDataObject(port);
-    if (data && !producer->IsA("vtkTrivialProducer"))
-    {
-      data->Initialize();
-    }
-    if (!ok)
-    {
-      error = sourceError.empty() ? writer.GetErrorMessage()
-                                  : sourceError + " (" + writer.GetErrorMessage() + ")";
-      if (components > 1)
-        error = "component " + std::to_string(k) + ": " + error;
-      return false;
-    }
-    this->NumberOfPages += static_cast<vtkIdType>(writer.GetStatistics().NumberOfPages);
-    this->FileSize += static_cast<vtkTypeInt64>(writer.GetStatistics().FileSize);
-    return true;
-  };
-  // The files of components 1, 2, ... first: the set appears under `name` only when complete,
-  // and a failure removes the components already written.
-  std::vector<std::string> written;
-  for (int k = components - 1; k >= 0; --k)
-  {
-    const std::string file = Format::GetComponentFileName(name, k);
-    const int done = components - 1 - k;
-    std::string error;
-    if (!writeComponent(file, k, done, error))
-    {
-      for (const std::string& w : written)
-        vtksys::SystemTools::RemoveFile(w);
-      return fail(error);
-    }
-    written.push_back(file);
+    return fail(error);
   }
   this->UpdateProgress(1.0);
   return true;
