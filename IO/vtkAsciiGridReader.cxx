@@ -1,14 +1,9 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkAsciiGridReader.h"
 #include "vtkStrataAsciiGridParser.h"
-#include "vtkStrataGridReaderUtilities.h"
 
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -40,30 +35,13 @@ const char* FormatName(GridFormat f)
 }
 
 //------------------------------------------------------------------------------
-class vtkAsciiGridReader::vtkInternals
-{
-public:
-  /// The grid read by the last successful RequestInformation, handed to the output (and
-  /// released) by the following RequestData.
-  vtkSmartPointer<vtkFloatArray> Grid;
-};
-
-//------------------------------------------------------------------------------
 vtkAsciiGridReader::vtkAsciiGridReader()
-  : NullValue(std::numeric_limits<double>::quiet_NaN())
-  , FileNullValue(std::numeric_limits<double>::quiet_NaN())
-  , Internals(new vtkInternals)
+  : FileNullValue(std::numeric_limits<double>::quiet_NaN())
 {
-  this->SetNumberOfInputPorts(0);
-  this->SetArrayName("depth");
 }
 
 //------------------------------------------------------------------------------
-vtkAsciiGridReader::~vtkAsciiGridReader()
-{
-  this->SetFileName(nullptr);
-  this->SetArrayName(nullptr);
-}
+vtkAsciiGridReader::~vtkAsciiGridReader() = default;
 
 //------------------------------------------------------------------------------
 vtkAsciiGridReader::GridFormat vtkAsciiGridReader::DetectFormat(const char* fileName)
@@ -81,29 +59,19 @@ bool vtkAsciiGridReader::CanReadFile(const char* fileName)
 //------------------------------------------------------------------------------
 void vtkAsciiGridReader::ResetResults()
 {
+  this->Superclass::ResetResults();
   this->DetectedFormat = GridFormat::Auto;
-  this->NX = this->NY = 0;
-  this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
-  this->GridSpacing[0] = this->GridSpacing[1] = 0.0;
-  this->GridRotation = 0.0;
   std::fill(this->HeaderBounds, this->HeaderBounds + 4, 0.0);
   this->FileNullValue = std::numeric_limits<double>::quiet_NaN();
   this->CellCorner = false;
   this->NodesPerLine = 0;
   this->GridName.clear();
-  this->NumberOfNoDataValues = 0;
-  this->Internals->Grid = nullptr;
 }
 
 //------------------------------------------------------------------------------
-bool vtkAsciiGridReader::ReadGrid(std::string& error)
+bool vtkAsciiGridReader::ReadGridInformation(std::string& error)
 {
   this->ResetResults();
-  if (!this->FileName || !*this->FileName)
-  {
-    error = "no file name set";
-    return false;
-  }
   strata_io::AsciiGridOptions options;
   options.NullValue = this->NullValue;
   options.SwapAxes = this->SwapAxes;
@@ -135,16 +103,15 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
     error = "Spacing must be positive";
     return false;
   }
-  auto array = vtkSmartPointer<vtkFloatArray>::New();
-  array->SetName(this->ArrayName);
-  const vtkIdType total = static_cast<vtkIdType>(grid.Values.size());
-  array->SetNumberOfTuples(total);
-  if (array->GetNumberOfTuples() != total)
+  vtkSmartPointer<vtkDataArray> array =
+    NewValues(VTK_FLOAT, static_cast<vtkIdType>(grid.Values.size()), error);
+  if (!array)
   {
-    error = "cannot allocate the grid values";
     return false;
   }
-  std::copy(grid.Values.begin(), grid.Values.end(), array->GetPointer(0));
+  std::copy(grid.Values.begin(),
+    grid.Values.end(),
+    static_cast<vtkFloatArray*>(array.GetPointer())->GetPointer(0));
 
   this->DetectedFormat = FromParser(grid.Format);
   this->NX = grid.NX;
@@ -161,100 +128,24 @@ bool vtkAsciiGridReader::ReadGrid(std::string& error)
   this->NodesPerLine = grid.NodesPerLine;
   this->GridName = grid.Name;
   this->NumberOfNoDataValues = static_cast<vtkIdType>(grid.NumberOfNoDataValues);
-  this->Internals->Grid = array;
+  this->SetPendingValues(array);
   return true;
-}
-
-//------------------------------------------------------------------------------
-int vtkAsciiGridReader::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  std::string error;
-  if (!this->ReadGrid(error))
-  {
-    this->ResetResults();
-    strata_io::ClearOutput(outInfo);
-    vtkErrorMacro(
-      "Cannot read text grid \"" << (this->FileName ? this->FileName : "") << "\": " << error);
-    return 0;
-  }
-  strata_io::SetGridInformation(outInfo,
-    this->NX,
-    this->NY,
-    this->GridOrigin,
-    this->GridSpacing,
-    this->GridRotation,
-    VTK_FLOAT);
-  return 1;
-}
-
-//------------------------------------------------------------------------------
-int vtkAsciiGridReader::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (!output)
-  {
-    vtkErrorMacro("No vtkImageData output to fill.");
-    return 0;
-  }
-  output->Initialize();
-  // A second RequestData without a new information pass reads the file again rather than
-  // keeping a copy of the grid around.
-  if (!this->Internals->Grid)
-  {
-    const int nx = this->NX;
-    const int ny = this->NY;
-    std::string error;
-    if (!this->ReadGrid(error) || this->NX != nx || this->NY != ny)
-    {
-      if (error.empty())
-      {
-        error = "the grid dimensions changed since the information pass";
-      }
-      this->ResetResults();
-      strata_io::ClearOutput(outInfo);
-      vtkErrorMacro(
-        "Cannot read text grid \"" << (this->FileName ? this->FileName : "") << "\": " << error);
-      return 0;
-    }
-  }
-  strata_io::SetGridGeometry(
-    output, this->NX, this->NY, this->GridOrigin, this->GridSpacing, this->GridRotation);
-  output->GetPointData()->SetScalars(this->Internals->Grid);
-  this->Internals->Grid = nullptr;
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 //------------------------------------------------------------------------------
 void vtkAsciiGridReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
   os << indent << "Format: " << FormatName(this->Format) << "\n";
-  os << indent << "NullValue: " << this->NullValue << "\n";
   os << indent << "SwapAxes: " << (this->SwapAxes ? "On" : "Off") << "\n";
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << "\n";
   os << indent << "Rotation: " << this->Rotation << "\n";
   os << indent << "DetectedFormat: " << FormatName(this->DetectedFormat) << "\n";
-  os << indent << "NX: " << this->NX << "\n";
-  os << indent << "NY: " << this->NY << "\n";
-  os << indent << "GridOrigin: " << this->GridOrigin[0] << " " << this->GridOrigin[1] << "\n";
-  os << indent << "GridSpacing: " << this->GridSpacing[0] << " " << this->GridSpacing[1] << "\n";
-  os << indent << "GridRotation: " << this->GridRotation << "\n";
   os << indent << "HeaderBounds: " << this->HeaderBounds[0] << " " << this->HeaderBounds[1] << " "
      << this->HeaderBounds[2] << " " << this->HeaderBounds[3] << "\n";
   os << indent << "FileNullValue: " << this->FileNullValue << "\n";
   os << indent << "CellCorner: " << (this->CellCorner ? "yes" : "no") << "\n";
   os << indent << "NodesPerLine: " << this->NodesPerLine << "\n";
   os << indent << "GridName: " << this->GridName << "\n";
-  os << indent << "NumberOfNoDataValues: " << this->NumberOfNoDataValues << "\n";
-  os << indent << "GridPending: " << (this->Internals->Grid ? "yes" : "no") << "\n";
 }

@@ -33,8 +33,10 @@
  *   does not apply, and Auto takes it for a matrix however narrow.
  *
  * In every format NaN and NullValue (when set) are holes too; holes are NaN in the output, as
- * in the other horizon readers. The output is an nx x ny x 1 vtkImageData with one float
- * point-data array (ArrayName, "depth" by default) and the rotation as its direction matrix.
+ * in the other horizon readers (vtkHorizonGridReader: FileName, ArrayName, NullValue, the
+ * dimensions, geometry and number of holes). The output is an nx x ny x 1 vtkImageData with one
+ * float point-data array (ArrayName, "depth" by default) and the rotation as its direction
+ * matrix.
  *
  * The file is read in RequestInformation and the grid handed over in RequestData. Errors
  * (missing, truncated or malformed file, a header whose dimensions overflow, need more nodes
@@ -42,22 +44,21 @@
  * anything is allocated) are reported with vtkErrorMacro naming the line or header field, and
  * leave the output empty.
  *
- * @sa vtkIrapBinaryGridReader vtkNumpyGridReader vtkHorizonColumnReader
+ * @sa vtkHorizonGridReader vtkIrapBinaryGridReader vtkNumpyGridReader vtkHorizonColumnReader
  */
 #ifndef vtkAsciiGridReader_h
 #define vtkAsciiGridReader_h
 
 #include "StrataIOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkHorizonGridReader.h"
 
-#include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class STRATAIO_EXPORT vtkAsciiGridReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkAsciiGridReader : public vtkHorizonGridReader
 {
 public:
   static vtkAsciiGridReader* New();
-  vtkTypeMacro(vtkAsciiGridReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkAsciiGridReader, vtkHorizonGridReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Auto takes rows of numbers for a matrix only when they hold more values than this.
@@ -75,22 +76,6 @@ public:
 
   ///@{
   /**
-   * The text grid to read. Default: none.
-   */
-  vtkSetFilePathMacro(FileName);
-  vtkGetFilePathMacro(FileName);
-  ///@}
-
-  ///@{
-  /**
-   * Name of the output point-data array. Default: "depth".
-   */
-  vtkSetStringMacro(ArrayName);
-  vtkGetStringMacro(ArrayName);
-  ///@}
-
-  ///@{
-  /**
    * The format of the file. Default: Auto (detected from the first non-blank line).
    */
   vtkSetEnumMacro(Format, GridFormat);
@@ -100,15 +85,6 @@ public:
   void SetFormatToZmap() { this->SetFormat(GridFormat::Zmap); }
   void SetFormatToEsriAscii() { this->SetFormat(GridFormat::EsriAscii); }
   void SetFormatToMatrix() { this->SetFormat(GridFormat::Matrix); }
-  ///@}
-
-  ///@{
-  /**
-   * An extra no-data value (e.g. -999.25), turned into NaN like the format's own. Default: NaN,
-   * meaning none.
-   */
-  vtkSetMacro(NullValue, double);
-  vtkGetMacro(NullValue, double);
   ///@}
 
   ///@{
@@ -146,71 +122,47 @@ public:
 
   ///@{
   /**
-   * What the last UpdateInformation() read (zeros, Auto, NaN, empty before or after a failure):
-   * the format, the dimensions, the output geometry (origin = node (0, 0), node spacing,
-   * rotation), the header's bounds (Irap: xmin xmax ymin ymax as written; ZMAP+: min/max X and
+   * What the last UpdateInformation() read (zeros, Auto, NaN, empty before or after a failure;
+   * the dimensions, the output geometry and the number of holes are vtkHorizonGridReader's):
+   * the format, the header's bounds (Irap: xmin xmax ymin ymax as written; ZMAP+: min/max X and
    * Y; ESRI: the first and last cell centres; a matrix: its header's extents, or zeros), the
    * file's own no-data value (Irap: 9999900; a matrix: its header's nodata, or NaN), whether an
    * ESRI header gave the lower-left corner (true) or centre, a ZMAP+ grid's name and nodes per
    * line, and the number of holes in the grid.
    */
   vtkGetEnumMacro(DetectedFormat, GridFormat);
-  vtkGetMacro(NX, int);
-  vtkGetMacro(NY, int);
-  vtkGetVector2Macro(GridOrigin, double);
-  vtkGetVector2Macro(GridSpacing, double);
-  vtkGetMacro(GridRotation, double);
   vtkGetVector4Macro(HeaderBounds, double);
   vtkGetMacro(FileNullValue, double);
   vtkGetMacro(CellCorner, bool);
   vtkGetMacro(NodesPerLine, int);
   const char* GetGridName() const { return this->GridName.c_str(); }
-  vtkGetMacro(NumberOfNoDataValues, vtkIdType);
   ///@}
 
 protected:
   vtkAsciiGridReader();
   ~vtkAsciiGridReader() override;
 
-  int RequestInformation(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  const char* GetGridDescription() override { return "text grid"; }
+  /// Reads the whole file (its values become the pending values).
+  bool ReadGridInformation(std::string& error) override;
+  void ResetResults() override;
 
-  char* FileName = nullptr;
-  char* ArrayName = nullptr;
   GridFormat Format = GridFormat::Auto;
-  double NullValue;
   bool SwapAxes = false;
   double Origin[2] = { 0.0, 0.0 };
   double Spacing[2] = { 1.0, 1.0 };
   double Rotation = 0.0;
 
   GridFormat DetectedFormat = GridFormat::Auto;
-  int NX = 0;
-  int NY = 0;
-  double GridOrigin[2] = { 0.0, 0.0 };
-  double GridSpacing[2] = { 0.0, 0.0 };
-  double GridRotation = 0.0;
   double HeaderBounds[4] = { 0.0, 0.0, 0.0, 0.0 };
   double FileNullValue;
   bool CellCorner = false;
   int NodesPerLine = 0;
   std::string GridName;
-  vtkIdType NumberOfNoDataValues = 0;
 
 private:
   vtkAsciiGridReader(const vtkAsciiGridReader&) = delete;
   void operator=(const vtkAsciiGridReader&) = delete;
-
-  /// Reads the file into Internals and the results; false (with the reason) on failure.
-  bool ReadGrid(std::string& error);
-  void ResetResults();
-
-  class vtkInternals;
-  std::unique_ptr<vtkInternals> Internals;
 };
 
 #endif

@@ -1,21 +1,13 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonColumnReader.h"
 #include "vtkStrataAsciiGridParser.h"
-#include "vtkStrataGridReaderUtilities.h"
 
-#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <vtksys/FStream.hxx>
-#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <array>
@@ -33,9 +25,6 @@ vtkStandardNewMacro(vtkHorizonColumnReader);
 
 namespace
 {
-using strata_io::ClearOutput;
-using strata_io::SetGridGeometry;
-using strata_io::SetGridInformation;
 using ColumnMode = vtkHorizonColumnReader::ColumnMode;
 
 // Same bound as the other horizon readers: 2^31 nodes or more is not a horizon.
@@ -1080,65 +1069,30 @@ IndexSettings IndexSettingsOf(vtkHorizonColumnReader* reader)
 }
 
 //------------------------------------------------------------------------------
-class vtkHorizonColumnReader::vtkInternals
-{
-public:
-  /// The grid built by the last successful RequestInformation, handed to the output (and
-  /// released) by the following RequestData.
-  vtkSmartPointer<vtkFloatArray> Grid;
-};
+vtkHorizonColumnReader::vtkHorizonColumnReader() = default;
 
 //------------------------------------------------------------------------------
-vtkHorizonColumnReader::vtkHorizonColumnReader()
-  : NullValue(std::numeric_limits<double>::quiet_NaN())
-  , Internals(new vtkInternals)
-{
-  this->SetNumberOfInputPorts(0);
-  this->SetArrayName("depth");
-}
-
-//------------------------------------------------------------------------------
-vtkHorizonColumnReader::~vtkHorizonColumnReader()
-{
-  this->SetFileName(nullptr);
-  this->SetArrayName(nullptr);
-}
+vtkHorizonColumnReader::~vtkHorizonColumnReader() = default;
 
 //------------------------------------------------------------------------------
 void vtkHorizonColumnReader::ResetResults()
 {
+  this->Superclass::ResetResults();
   this->DetectedMode = ColumnMode::Auto;
   this->HasHeaderLine = false;
   this->NumberOfRecords = 0;
   this->NumberOfDuplicates = 0;
-  this->NX = 0;
-  this->NY = 0;
   this->FirstInline = 0;
   this->InlineStep = 0;
   this->FirstCrossline = 0;
   this->CrosslineStep = 0;
-  this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
-  this->GridSpacing[0] = this->GridSpacing[1] = 0.0;
-  this->GridRotation = 0.0;
   this->MaxDeviation = 0.0;
-  this->NumberOfNoDataValues = 0;
-  this->Internals->Grid = nullptr;
 }
 
 //------------------------------------------------------------------------------
-bool vtkHorizonColumnReader::ReadGrid(std::string& error)
+bool vtkHorizonColumnReader::ReadGridInformation(std::string& error)
 {
   this->ResetResults();
-  if (!this->FileName || !*this->FileName)
-  {
-    error = "no file name set";
-    return false;
-  }
-  if (!vtksys::SystemTools::FileExists(this->FileName, /*isFile=*/true))
-  {
-    error = "file does not exist or is not a regular file";
-    return false;
-  }
   if (this->Mode == ColumnMode::Matrix)
   {
     return this->ReadMatrixGrid(error);
@@ -1200,8 +1154,7 @@ bool vtkHorizonColumnReader::ReadGrid(std::string& error)
   std::copy(placement.Spacing, placement.Spacing + 2, this->GridSpacing);
   this->GridRotation = placement.Rotation;
   this->MaxDeviation = placement.MaxDeviation;
-  grid.Values->SetName(this->ArrayName);
-  this->Internals->Grid = grid.Values;
+  this->SetPendingValues(grid.Values);
   if (grid.Duplicates > 0)
   {
     vtkWarningMacro(<< this->FileName << ": " << grid.Duplicates
@@ -1239,97 +1192,28 @@ bool vtkHorizonColumnReader::ReadMatrixGrid(std::string& error)
   std::copy(placement.Origin, placement.Origin + 2, this->GridOrigin);
   std::copy(placement.Spacing, placement.Spacing + 2, this->GridSpacing);
   this->GridRotation = placement.Rotation;
-  vtkSmartPointer<vtkFloatArray> grid = vtkSmartPointer<vtkFloatArray>::New();
-  grid->SetName(this->ArrayName);
-  const vtkIdType total = static_cast<vtkIdType>(matrix.Values.size());
-  grid->SetNumberOfTuples(total);
-  if (grid->GetNumberOfTuples() != total)
+  vtkSmartPointer<vtkDataArray> grid =
+    NewValues(VTK_FLOAT, static_cast<vtkIdType>(matrix.Values.size()), error);
+  if (!grid)
   {
-    error = "cannot allocate the grid values";
     return false;
   }
-  std::copy(matrix.Values.begin(), matrix.Values.end(), grid->GetPointer(0));
+  std::copy(matrix.Values.begin(),
+    matrix.Values.end(),
+    static_cast<vtkFloatArray*>(grid.GetPointer())->GetPointer(0));
   this->DetectedMode = ColumnMode::Matrix;
   this->NumberOfRecords = matrix.NumberOfLines;
   this->NX = matrix.NX;
   this->NY = matrix.NY;
   this->NumberOfNoDataValues = static_cast<vtkIdType>(matrix.NumberOfNoDataValues);
-  this->Internals->Grid = grid;
+  this->SetPendingValues(grid);
   return true;
-}
-
-//------------------------------------------------------------------------------
-int vtkHorizonColumnReader::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  std::string error;
-  if (!this->ReadGrid(error))
-  {
-    this->ResetResults();
-    ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read horizon columns \"" << (this->FileName ? this->FileName : "")
-                                                   << "\": " << error);
-    return 0;
-  }
-  const double origin[2] = { this->GridOrigin[0], this->GridOrigin[1] };
-  const double spacing[2] = { this->GridSpacing[0], this->GridSpacing[1] };
-  SetGridInformation(outInfo, this->NX, this->NY, origin, spacing, this->GridRotation, VTK_FLOAT);
-  return 1;
-}
-
-//------------------------------------------------------------------------------
-int vtkHorizonColumnReader::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (!output)
-  {
-    vtkErrorMacro("No vtkImageData output to fill.");
-    return 0;
-  }
-  output->Initialize();
-
-  // The grid was built in RequestInformation; a second RequestData without a new information
-  // pass (another update extent, say) builds it again rather than keeping a copy around.
-  if (!this->Internals->Grid)
-  {
-    const int nx = this->NX;
-    const int ny = this->NY;
-    std::string error;
-    if (!this->ReadGrid(error) || this->NX != nx || this->NY != ny)
-    {
-      if (error.empty())
-      {
-        error = "the grid dimensions changed since the information pass";
-      }
-      this->ResetResults();
-      ClearOutput(outInfo);
-      vtkErrorMacro("Cannot read horizon columns \"" << (this->FileName ? this->FileName : "")
-                                                     << "\": " << error);
-      return 0;
-    }
-  }
-
-  const double gridOrigin[2] = { this->GridOrigin[0], this->GridOrigin[1] };
-  const double gridSpacing[2] = { this->GridSpacing[0], this->GridSpacing[1] };
-  SetGridGeometry(output, this->NX, this->NY, gridOrigin, gridSpacing, this->GridRotation);
-  output->GetPointData()->SetScalars(this->Internals->Grid);
-  this->Internals->Grid = nullptr;
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 //------------------------------------------------------------------------------
 void vtkHorizonColumnReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
-  os << indent << "NullValue: " << this->NullValue << "\n";
   os << indent << "Mode: " << ModeName(this->Mode) << "\n";
   os << indent << "IndexCoordinates: " << (this->IndexCoordinates ? "On" : "Off") << "\n";
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << "\n";
@@ -1341,16 +1225,9 @@ void vtkHorizonColumnReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HasHeaderLine: " << (this->HasHeaderLine ? "yes" : "no") << "\n";
   os << indent << "NumberOfRecords: " << this->NumberOfRecords << "\n";
   os << indent << "NumberOfDuplicates: " << this->NumberOfDuplicates << "\n";
-  os << indent << "NX: " << this->NX << "\n";
-  os << indent << "NY: " << this->NY << "\n";
   os << indent << "FirstInline: " << this->FirstInline << "\n";
   os << indent << "InlineStep: " << this->InlineStep << "\n";
   os << indent << "FirstCrossline: " << this->FirstCrossline << "\n";
   os << indent << "CrosslineStep: " << this->CrosslineStep << "\n";
-  os << indent << "GridOrigin: " << this->GridOrigin[0] << " " << this->GridOrigin[1] << "\n";
-  os << indent << "GridSpacing: " << this->GridSpacing[0] << " " << this->GridSpacing[1] << "\n";
-  os << indent << "GridRotation: " << this->GridRotation << "\n";
   os << indent << "MaxDeviation: " << this->MaxDeviation << "\n";
-  os << indent << "NumberOfNoDataValues: " << this->NumberOfNoDataValues << "\n";
-  os << indent << "GridPending: " << (this->Internals->Grid ? "yes" : "no") << "\n";
 }

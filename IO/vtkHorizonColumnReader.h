@@ -60,27 +60,28 @@
  *   probably a small matrix, to be read with Mode Matrix (or as columns with an explicit mode).
  *
  * The output is one float point-data array (ArrayName, "depth" by default); the grid rotation is
- * the image's direction matrix. The file is parsed in RequestInformation (the dimensions depend on
- * all of it) and the grid handed over in RequestData. Errors (missing file, no data, malformed
- * lines, absurd dimensions, points off a regular grid) are reported with vtkErrorMacro and leave
- * the output empty.
+ * the image's direction matrix. NullValue, a z that means "no data" (e.g. -999.25), and the
+ * results common to the horizon readers (dimensions, geometry given to the output, number of
+ * NaN nodes: missing nodes plus NaN or NullValue z) are vtkHorizonGridReader's. The file is parsed
+ * in RequestInformation (the dimensions depend on all of it) and the grid handed over in
+ * RequestData. Errors (missing file, no data, malformed lines, absurd dimensions, points off a
+ * regular grid) are reported with vtkErrorMacro and leave the output empty.
  *
- * @sa vtkIrapBinaryGridReader vtkNumpyGridReader
+ * @sa vtkHorizonGridReader vtkIrapBinaryGridReader vtkNumpyGridReader vtkAsciiGridReader
  */
 #ifndef vtkHorizonColumnReader_h
 #define vtkHorizonColumnReader_h
 
 #include "StrataIOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkHorizonGridReader.h"
 
-#include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class STRATAIO_EXPORT vtkHorizonColumnReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkHorizonColumnReader : public vtkHorizonGridReader
 {
 public:
   static vtkHorizonColumnReader* New();
-  vtkTypeMacro(vtkHorizonColumnReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkHorizonColumnReader, vtkHorizonGridReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// What the first two columns hold.
@@ -94,31 +95,6 @@ public:
 
   /// Auto mode takes a file whose every line holds more values than this for a matrix.
   static constexpr int MatrixMinimumColumns = 8;
-
-  ///@{
-  /**
-   * The text file to read. Default: none.
-   */
-  vtkSetFilePathMacro(FileName);
-  vtkGetFilePathMacro(FileName);
-  ///@}
-
-  ///@{
-  /**
-   * Name of the output point-data array. Default: "depth".
-   */
-  vtkSetStringMacro(ArrayName);
-  vtkGetStringMacro(ArrayName);
-  ///@}
-
-  ///@{
-  /**
-   * A z value that means "no data" in this file (e.g. -999.25), turned into NaN. Default: NaN,
-   * meaning none (NaN in the file is always a hole).
-   */
-  vtkSetMacro(NullValue, double);
-  vtkGetMacro(NullValue, double);
-  ///@}
 
   ///@{
   /**
@@ -187,15 +163,13 @@ public:
   /**
    * What the last UpdateInformation() found: the mode used (never Auto after a successful read),
    * whether there was a header line, the number of data lines, the number of data lines that
-   * hit a node already set (the last one wins; zero for a matrix), and the grid dimensions.
-   * A matrix's records are its lines of numbers.
+   * hit a node already set (the last one wins; zero for a matrix); the grid dimensions are
+   * vtkHorizonGridReader's GetNX() and GetNY(). A matrix's records are its lines of numbers.
    */
   vtkGetEnumMacro(DetectedMode, ColumnMode);
   vtkGetMacro(HasHeaderLine, bool);
   vtkGetMacro(NumberOfRecords, vtkIdType);
   vtkGetMacro(NumberOfDuplicates, vtkIdType);
-  vtkGetMacro(NX, int);
-  vtkGetMacro(NY, int);
   ///@}
 
   ///@{
@@ -209,41 +183,21 @@ public:
   vtkGetMacro(CrosslineStep, vtkIdType);
   ///@}
 
-  ///@{
-  /**
-   * The geometry given to the output, in either mode: origin (world x, y of node (0, 0)), node
-   * spacing along the image axes, and rotation (degrees counterclockwise from world x).
-   */
-  vtkGetVector2Macro(GridOrigin, double);
-  vtkGetVector2Macro(GridSpacing, double);
-  vtkGetMacro(GridRotation, double);
-  ///@}
-
   /**
    * XYZ mode: the largest distance of a point from its fitted node (world units). Zero in
    * InlineCrossline mode.
    */
   vtkGetMacro(MaxDeviation, double);
 
-  /**
-   * Number of grid nodes that are NaN in the output: missing nodes plus NaN or NullValue z.
-   */
-  vtkGetMacro(NumberOfNoDataValues, vtkIdType);
-
 protected:
   vtkHorizonColumnReader();
   ~vtkHorizonColumnReader() override;
 
-  int RequestInformation(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  const char* GetGridDescription() override { return "horizon columns"; }
+  /// Parses the file and builds the grid (the pending values).
+  bool ReadGridInformation(std::string& error) override;
+  void ResetResults() override;
 
-  char* FileName = nullptr;
-  char* ArrayName = nullptr;
-  double NullValue;
   ColumnMode Mode = ColumnMode::Auto;
   bool IndexCoordinates = true;
   double Origin[2] = { 0.0, 0.0 };
@@ -256,30 +210,18 @@ protected:
   bool HasHeaderLine = false;
   vtkIdType NumberOfRecords = 0;
   vtkIdType NumberOfDuplicates = 0;
-  int NX = 0;
-  int NY = 0;
   vtkIdType FirstInline = 0;
   vtkIdType InlineStep = 0;
   vtkIdType FirstCrossline = 0;
   vtkIdType CrosslineStep = 0;
-  double GridOrigin[2] = { 0.0, 0.0 };
-  double GridSpacing[2] = { 0.0, 0.0 };
-  double GridRotation = 0.0;
   double MaxDeviation = 0.0;
-  vtkIdType NumberOfNoDataValues = 0;
 
 private:
   vtkHorizonColumnReader(const vtkHorizonColumnReader&) = delete;
   void operator=(const vtkHorizonColumnReader&) = delete;
 
-  /// Parses the file and builds the grid into Internals; false (with the reason) on failure.
-  bool ReadGrid(std::string& error);
-  /// ReadGrid for a whitespace matrix (Matrix mode, or Auto mode's finding).
+  /// ReadGridInformation for a whitespace matrix (Matrix mode, or Auto mode's finding).
   bool ReadMatrixGrid(std::string& error);
-  void ResetResults();
-
-  class vtkInternals;
-  std::unique_ptr<vtkInternals> Internals;
 };
 
 #endif

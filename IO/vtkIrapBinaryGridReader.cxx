@@ -1,17 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkIrapBinaryGridReader.h"
-#include "vtkStrataGridReaderUtilities.h"
 
-#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
-#include "vtkMath.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <vtksys/FStream.hxx>
 #include <vtksys/SystemTools.hxx>
@@ -20,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -28,9 +20,6 @@ vtkStandardNewMacro(vtkIrapBinaryGridReader);
 
 namespace
 {
-using strata_io::ClearOutput;
-using strata_io::SetGridGeometry;
-using strata_io::SetGridInformation;
 // Irap's nominal undefined value. RMS and xtgeo write 1e30 instead; anything at least that large
 // in magnitude is a hole as well, since no depth, time or thickness comes anywhere near it.
 constexpr float IrapUndefined = 9999900.0f;
@@ -235,22 +224,113 @@ bool ReadHeader(RecordFile& file, IrapHeader& h, std::string& error)
   return true;
 }
 
+/// Reads value record `record` (its markers checked) into `dst`, the place of value `count` of
+/// the grid's `total`; `n` is the number of values it held.
+bool ReadValueRecord(RecordFile& file,
+  int record,
+  vtkIdType count,
+  vtkIdType total,
+  float* dst,
+  vtkIdType& n,
+  std::string& error)
+{
+  int32_t lead = 0;
+  int32_t trail = 0;
+  std::ostringstream msg;
+  if (!file.ReadMarker(lead))
+  {
+    msg << "file truncated: it ends after " << count << " of " << total << " values (before record "
+        << record << ")";
+  }
+  else if (lead < 0 || lead % 4 != 0)
+  {
+    msg << "record " << record << " at byte " << (file.Position - 4)
+        << " has an invalid length marker " << lead << " (need a non-negative multiple of 4)";
+  }
+  else if ((n = lead / 4) > total - count)
+  {
+    msg << "record " << record << " holds " << n << " values but only " << (total - count)
+        << " of the " << total << " grid values remain";
+  }
+  else if (!file.Read(dst, lead))
+  {
+    msg << "file truncated inside record " << record << " (" << lead << " bytes declared, "
+        << file.Remaining() << " remain)";
+  }
+  else if (!file.ReadMarker(trail))
+  {
+    msg << "file truncated: record " << record << " has no trailing length marker";
+  }
+  else if (trail != lead)
+  {
+    msg << "record " << record << ": leading length marker " << lead
+        << " differs from trailing marker " << trail;
+  }
+  error = msg.str();
+  return error.empty();
+}
+
+/// Turns `n` big-endian floats in place into host floats, holes NaN; returns the holes.
+vtkIdType ConvertValues(float* values, vtkIdType n, double nullValue)
+{
+  const bool hasNull = !std::isnan(nullValue);
+  const float null = static_cast<float>(nullValue);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  vtkIdType holes = 0;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    float v = BigEndianFloat(reinterpret_cast<const unsigned char*>(values + k));
+    // The negated comparison also catches NaN and infinities already in the file.
+    if (!(std::fabs(v) < IrapHugeUndefined) || v == IrapUndefined || (hasNull && v == null))
+    {
+      v = nan;
+      ++holes;
+    }
+    values[k] = v;
+  }
+  return holes;
+}
+
+/// Reads the `total` values that follow the header, over records of any length, into `dst`;
+/// `noData` counts the holes. Progress is reported about 50 times per file, never per record:
+/// some writers put a handful of values in each record.
+bool ReadValueRecords(RecordFile& file,
+  vtkIdType total,
+  double nullValue,
+  const std::function<void(double)>& progress,
+  float* dst,
+  vtkIdType& noData,
+  std::string& error)
+{
+  const vtkIdType progressStep = std::max<vtkIdType>(total / 50, 1);
+  vtkIdType nextProgress = progressStep;
+  vtkIdType count = 0;
+  noData = 0;
+  for (int record = 4; count < total; ++record)
+  {
+    vtkIdType n = 0;
+    if (!ReadValueRecord(file, record, count, total, dst + count, n, error))
+    {
+      return false;
+    }
+    noData += ConvertValues(dst + count, n, nullValue);
+    count += n;
+    if (count >= nextProgress)
+    {
+      progress(static_cast<double>(count) / total);
+      nextProgress = count + progressStep;
+    }
+  }
+  // Bytes after the last value (some writers pad) are not part of the grid and are ignored.
+  return true;
+}
 }
 
 //------------------------------------------------------------------------------
-vtkIrapBinaryGridReader::vtkIrapBinaryGridReader()
-  : NullValue(std::numeric_limits<double>::quiet_NaN())
-{
-  this->SetNumberOfInputPorts(0);
-  this->SetArrayName("depth");
-}
+vtkIrapBinaryGridReader::vtkIrapBinaryGridReader() = default;
 
 //------------------------------------------------------------------------------
-vtkIrapBinaryGridReader::~vtkIrapBinaryGridReader()
-{
-  this->SetFileName(nullptr);
-  this->SetArrayName(nullptr);
-}
+vtkIrapBinaryGridReader::~vtkIrapBinaryGridReader() = default;
 
 //------------------------------------------------------------------------------
 bool vtkIrapBinaryGridReader::CanReadFile(const char* fileName)
@@ -267,10 +347,9 @@ bool vtkIrapBinaryGridReader::CanReadFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
-void vtkIrapBinaryGridReader::ResetHeader()
+void vtkIrapBinaryGridReader::ResetResults()
 {
-  this->NX = 0;
-  this->NY = 0;
+  this->Superclass::ResetResults();
   this->XMin = this->XMax = this->YMin = this->YMax = 0.0;
   this->XInc = this->YInc = 0.0;
   this->XOrigin = this->YOrigin = 0.0;
@@ -278,22 +357,13 @@ void vtkIrapBinaryGridReader::ResetHeader()
 }
 
 //------------------------------------------------------------------------------
-int vtkIrapBinaryGridReader::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+bool vtkIrapBinaryGridReader::ReadGridInformation(std::string& error)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   RecordFile file;
   IrapHeader h;
-  std::string error;
   if (!file.Open(this->FileName, error) || !ReadHeader(file, h, error))
   {
-    this->ResetHeader();
-    this->NumberOfNoDataValues = 0;
-    ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read Irap binary grid \"" << (this->FileName ? this->FileName : "")
-                                                    << "\": " << error);
-    return 0;
+    return false;
   }
   this->NX = h.NX;
   this->NY = h.NY;
@@ -306,151 +376,63 @@ int vtkIrapBinaryGridReader::RequestInformation(vtkInformation*,
   this->XOrigin = h.XOrigin;
   this->YOrigin = h.YOrigin;
   this->Rotation = h.Rotation;
-
-  const double origin[2] = { h.XOrigin, h.YOrigin };
-  const double spacing[2] = { h.XInc, h.YInc };
-  SetGridInformation(outInfo, h.NX, h.NY, origin, spacing, h.Rotation, VTK_FLOAT);
-  return 1;
+  this->GridOrigin[0] = h.XOrigin;
+  this->GridOrigin[1] = h.YOrigin;
+  this->GridSpacing[0] = h.XInc;
+  this->GridSpacing[1] = h.YInc;
+  this->GridRotation = h.Rotation;
+  return true;
 }
 
 //------------------------------------------------------------------------------
-int vtkIrapBinaryGridReader::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+vtkSmartPointer<vtkDataArray> vtkIrapBinaryGridReader::ReadGridValues(std::string& error)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
   this->NumberOfNoDataValues = 0;
-  if (!output)
-  {
-    vtkErrorMacro("No vtkImageData output to fill.");
-    return 0;
-  }
-  output->Initialize();
-
-  const char* name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error)
-  {
-    ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read Irap binary grid \"" << name << "\": " << error);
-    return 0;
-  };
-
   // The header is read again rather than trusted from RequestInformation: the file may have
   // changed in between, and the value records must be read from the same open stream anyway.
   RecordFile file;
   IrapHeader h;
-  std::string error;
   if (!file.Open(this->FileName, error) || !ReadHeader(file, h, error))
   {
-    return fail(error);
+    return nullptr;
   }
   if (h.NX != this->NX || h.NY != this->NY)
   {
-    return fail("grid dimensions changed since the information pass");
+    error = "grid dimensions changed since the information pass";
+    return nullptr;
   }
-
   const vtkIdType total = static_cast<vtkIdType>(h.NX) * h.NY;
-  vtkNew<vtkFloatArray> values;
-  values->SetName(this->ArrayName);
-  values->SetNumberOfTuples(total);
-  if (values->GetNumberOfTuples() != total)
+  vtkSmartPointer<vtkDataArray> values = NewValues(VTK_FLOAT, total, error);
+  if (!values)
   {
-    return fail("cannot allocate the grid values");
+    return nullptr;
   }
-  float* dst = values->GetPointer(0);
-
-  const bool hasNull = !std::isnan(this->NullValue);
-  const float nullValue = static_cast<float>(this->NullValue);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  vtkIdType count = 0;
   vtkIdType noData = 0;
-  int record = 3;
-  // Progress is reported about 50 times per file, never per record: some writers put a handful
-  // of values in each record.
-  const vtkIdType progressStep = std::max<vtkIdType>(total / 50, 1);
-  vtkIdType nextProgress = progressStep;
   this->UpdateProgress(0.0);
-  while (count < total)
+  if (!ReadValueRecords(
+        file,
+        total,
+        this->NullValue,
+        [this](double fraction) { this->UpdateProgress(fraction); },
+        static_cast<vtkFloatArray*>(values.GetPointer())->GetPointer(0),
+        noData,
+        error))
   {
-    ++record;
-    int32_t lead = 0;
-    int32_t trail = 0;
-    std::ostringstream msg;
-    if (!file.ReadMarker(lead))
-    {
-      msg << "file truncated: it ends after " << count << " of " << total
-          << " values (before record " << record << ")";
-      return fail(msg.str());
-    }
-    if (lead < 0 || lead % 4 != 0)
-    {
-      msg << "record " << record << " at byte " << (file.Position - 4)
-          << " has an invalid length marker " << lead << " (need a non-negative multiple of 4)";
-      return fail(msg.str());
-    }
-    const vtkIdType n = lead / 4;
-    if (n > total - count)
-    {
-      msg << "record " << record << " holds " << n << " values but only " << (total - count)
-          << " of the " << total << " grid values remain";
-      return fail(msg.str());
-    }
-    if (!file.Read(dst + count, lead))
-    {
-      msg << "file truncated inside record " << record << " (" << lead << " bytes declared, "
-          << file.Remaining() << " remain)";
-      return fail(msg.str());
-    }
-    if (!file.ReadMarker(trail))
-    {
-      msg << "file truncated: record " << record << " has no trailing length marker";
-      return fail(msg.str());
-    }
-    if (trail != lead)
-    {
-      msg << "record " << record << ": leading length marker " << lead
-          << " differs from trailing marker " << trail;
-      return fail(msg.str());
-    }
-    for (vtkIdType k = count; k < count + n; ++k)
-    {
-      float v = BigEndianFloat(reinterpret_cast<const unsigned char*>(dst + k));
-      // The negated comparison also catches NaN and infinities already in the file.
-      if (!(std::fabs(v) < IrapHugeUndefined) || v == IrapUndefined || (hasNull && v == nullValue))
-      {
-        v = nan;
-        ++noData;
-      }
-      dst[k] = v;
-    }
-    count += n;
-    if (count >= nextProgress)
-    {
-      this->UpdateProgress(static_cast<double>(count) / total);
-      nextProgress = count + progressStep;
-    }
+    return nullptr;
   }
-  // Bytes after the last value (some writers pad) are not part of the grid and are ignored.
-
-  const double gridOrigin[2] = { h.XOrigin, h.YOrigin };
-  const double gridSpacing[2] = { h.XInc, h.YInc };
-  SetGridGeometry(output, h.NX, h.NY, gridOrigin, gridSpacing, h.Rotation);
-  output->GetPointData()->SetScalars(values);
+  this->GridOrigin[0] = h.XOrigin;
+  this->GridOrigin[1] = h.YOrigin;
+  this->GridSpacing[0] = h.XInc;
+  this->GridSpacing[1] = h.YInc;
+  this->GridRotation = h.Rotation;
   this->NumberOfNoDataValues = noData;
-  this->UpdateProgress(1.0);
-  return 1;
+  return values;
 }
 
 //------------------------------------------------------------------------------
 void vtkIrapBinaryGridReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
-  os << indent << "NullValue: " << this->NullValue << "\n";
-  os << indent << "NX: " << this->NX << "\n";
-  os << indent << "NY: " << this->NY << "\n";
   os << indent << "XMin: " << this->XMin << "\n";
   os << indent << "XMax: " << this->XMax << "\n";
   os << indent << "YMin: " << this->YMin << "\n";
@@ -460,5 +442,4 @@ void vtkIrapBinaryGridReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "XOrigin: " << this->XOrigin << "\n";
   os << indent << "YOrigin: " << this->YOrigin << "\n";
   os << indent << "Rotation: " << this->Rotation << "\n";
-  os << indent << "NumberOfNoDataValues: " << this->NumberOfNoDataValues << "\n";
 }

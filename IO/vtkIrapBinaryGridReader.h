@@ -24,51 +24,30 @@
  * the stored angle, so that world positions come out exactly where RMS puts them. The values
  * become one float point-data array (named by ArrayName, "depth" by default). Holes become NaN:
  * values of magnitude >= 1e30 (what RMS and xtgeo write), the format's nominal undefined value
- * 9999900.0, and NullValue when it is set.
+ * 9999900.0 (always holes), and NullValue (e.g. -999.25) when it is set. FileName, ArrayName,
+ * NullValue and the results every horizon reader reports are vtkHorizonGridReader's.
  *
  * The header getters are valid after UpdateInformation(); GetNumberOfNoDataValues() after
  * Update(). Errors (missing or truncated file, mismatched markers, a wrong magic number, absurd
  * dimensions) are reported with vtkErrorMacro and leave the output empty.
  *
- * @sa vtkNumpyGridReader vtkHorizonColumnReader vtkImageData::SetDirectionMatrix
+ * @sa vtkHorizonGridReader vtkNumpyGridReader vtkHorizonColumnReader
+ * vtkImageData::SetDirectionMatrix
  */
 #ifndef vtkIrapBinaryGridReader_h
 #define vtkIrapBinaryGridReader_h
 
 #include "StrataIOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkHorizonGridReader.h"
 
-class STRATAIO_EXPORT vtkIrapBinaryGridReader : public vtkImageAlgorithm
+#include <string> // For std::string
+
+class STRATAIO_EXPORT vtkIrapBinaryGridReader : public vtkHorizonGridReader
 {
 public:
   static vtkIrapBinaryGridReader* New();
-  vtkTypeMacro(vtkIrapBinaryGridReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkIrapBinaryGridReader, vtkHorizonGridReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * The .gri file to read. Default: none.
-   */
-  vtkSetFilePathMacro(FileName);
-  vtkGetFilePathMacro(FileName);
-  ///@}
-
-  ///@{
-  /**
-   * Name of the output point-data array. Default: "depth".
-   */
-  vtkSetStringMacro(ArrayName);
-  vtkGetStringMacro(ArrayName);
-  ///@}
-
-  ///@{
-  /**
-   * An extra no-data value of this file (e.g. -999.25), turned into NaN like the format's own
-   * ones. Default: NaN, meaning none; 1e30 and 9999900.0 are always holes.
-   */
-  vtkSetMacro(NullValue, double);
-  vtkGetMacro(NullValue, double);
-  ///@}
 
   /**
    * True when the file starts like an Irap binary grid: a 32-byte first record holding -996.
@@ -79,12 +58,10 @@ public:
   ///@{
   /**
    * The header as read by the last UpdateInformation() (zeros before, or after a failed read).
-   * NX/NY are the numbers of columns and rows; XOrigin/YOrigin are record 2's xori/yori, the world
-   * position of node (0, 0); XMin..YMax are record 1's (unrotated) bounds, kept for reference;
-   * Rotation is in degrees, counterclockwise from the x axis.
+   * GetNX()/GetNY() (vtkHorizonGridReader) are the numbers of columns and rows; XOrigin/YOrigin are
+   * record 2's xori/yori, the world position of node (0, 0); XMin..YMax are record 1's (unrotated)
+   * bounds, kept for reference; Rotation is in degrees, counterclockwise from the x axis.
    */
-  vtkGetMacro(NX, int);
-  vtkGetMacro(NY, int);
   vtkGetMacro(XMin, double);
   vtkGetMacro(XMax, double);
   vtkGetMacro(YMin, double);
@@ -96,29 +73,17 @@ public:
   vtkGetMacro(Rotation, double);
   ///@}
 
-  /**
-   * Number of grid nodes that the last Update() turned into NaN (holes of any kind, NaNs already
-   * in the file included).
-   */
-  vtkGetMacro(NumberOfNoDataValues, vtkIdType);
-
 protected:
   vtkIrapBinaryGridReader();
   ~vtkIrapBinaryGridReader() override;
 
-  int RequestInformation(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  const char* GetGridDescription() override { return "Irap binary grid"; }
+  /// Reads the three header records.
+  bool ReadGridInformation(std::string& error) override;
+  /// Reads the header again (the file may have changed) and the value records after it.
+  vtkSmartPointer<vtkDataArray> ReadGridValues(std::string& error) override;
+  void ResetResults() override;
 
-  char* FileName = nullptr;
-  char* ArrayName = nullptr;
-  double NullValue;
-
-  int NX = 0;
-  int NY = 0;
   double XMin = 0.0;
   double XMax = 0.0;
   double YMin = 0.0;
@@ -128,13 +93,10 @@ protected:
   double XOrigin = 0.0;
   double YOrigin = 0.0;
   double Rotation = 0.0;
-  vtkIdType NumberOfNoDataValues = 0;
 
 private:
   vtkIrapBinaryGridReader(const vtkIrapBinaryGridReader&) = delete;
   void operator=(const vtkIrapBinaryGridReader&) = delete;
-
-  void ResetHeader();
 };
 
 #endif

@@ -1,18 +1,9 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkNumpyGridReader.h"
-#include "vtkStrataGridReaderUtilities.h"
 
-#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
-#include "vtkMath.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <vtksys/FStream.hxx>
 #include <vtksys/SystemTools.hxx>
@@ -22,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -31,9 +23,6 @@ vtkStandardNewMacro(vtkNumpyGridReader);
 
 namespace
 {
-using strata_io::ClearOutput;
-using strata_io::SetGridGeometry;
-using strata_io::SetGridInformation;
 // Same bound as the other horizon readers: 2^31 nodes or more is a corrupt header, not a horizon.
 constexpr long long MaxNodes = 2147483647LL;
 // numpy itself writes headers of a few hundred bytes; anything beyond this is not a header.
@@ -613,6 +602,84 @@ vtkIdType ConvertAny(const NpyHeader& h,
   return 0;
 }
 
+/// How the file's elements land in the image: element k of the file is at numpy index (a0, a1)
+/// with k = a0 + a1 * d0 (Fortran order) or k = a0 * d1 + a1 (C order). The image puts (ix, iy)
+/// at ix + iy * nx with ix = a0 (a1 when swapped), so exactly one of "Fortran order" and
+/// "swapped" makes the copy an identity, and otherwise it is a transpose of a P x Q row-major
+/// block.
+struct Layout
+{
+  bool Transpose = false;
+  vtkIdType P = 0;
+  vtkIdType Q = 0;
+
+  Layout(const NpyHeader& h, bool swapAxes)
+    : Transpose(h.FortranOrder == swapAxes)
+    , P(h.FortranOrder ? h.Dims[1] : h.Dims[0])
+    , Q(h.FortranOrder ? h.Dims[0] : h.Dims[1])
+  {
+  }
+};
+
+/// Reads the values of the stream `in` (at the header's data offset) into `values` (float, or
+/// double for float64 files), in chunks, converting and placing them; `noData` counts the
+/// holes (NaN and `nullValue`, compared after conversion).
+bool ReadValues(std::istream& in,
+  const NpyHeader& h,
+  bool swapAxes,
+  double nullValue,
+  const std::function<void(double)>& progress,
+  vtkDataArray* values,
+  vtkIdType& noData,
+  std::string& error)
+{
+  const Layout layout(h, swapAxes);
+  const vtkIdType total = static_cast<vtkIdType>(h.Dims[0]) * h.Dims[1];
+  const bool hasNull = !std::isnan(nullValue);
+  std::vector<unsigned char> buffer(static_cast<size_t>(ChunkElements) * h.ItemSize);
+  in.seekg(h.DataOffset, std::ios::beg);
+  noData = 0;
+  for (vtkIdType first = 0; first < total; first += ChunkElements)
+  {
+    const vtkIdType n = std::min(ChunkElements, total - first);
+    if (!in.read(
+          reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n * h.ItemSize)))
+    {
+      std::ostringstream msg;
+      msg << "read error after " << first << " of " << total << " values";
+      error = msg.str();
+      return false;
+    }
+    if (auto* d = vtkDoubleArray::SafeDownCast(values))
+    {
+      noData += ConvertAny<double>(h,
+        buffer.data(),
+        first,
+        n,
+        layout.Transpose,
+        layout.P,
+        layout.Q,
+        hasNull,
+        nullValue,
+        d->GetPointer(0));
+    }
+    else
+    {
+      noData += ConvertAny<float>(h,
+        buffer.data(),
+        first,
+        n,
+        layout.Transpose,
+        layout.P,
+        layout.Q,
+        hasNull,
+        static_cast<float>(nullValue),
+        vtkFloatArray::SafeDownCast(values)->GetPointer(0));
+    }
+    progress(static_cast<double>(first + n) / total);
+  }
+  return true;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -630,19 +697,12 @@ public:
 
 //------------------------------------------------------------------------------
 vtkNumpyGridReader::vtkNumpyGridReader()
-  : NullValue(std::numeric_limits<double>::quiet_NaN())
-  , Internals(new vtkInternals)
+  : Internals(new vtkInternals)
 {
-  this->SetNumberOfInputPorts(0);
-  this->SetArrayName("depth");
 }
 
 //------------------------------------------------------------------------------
-vtkNumpyGridReader::~vtkNumpyGridReader()
-{
-  this->SetFileName(nullptr);
-  this->SetArrayName(nullptr);
-}
+vtkNumpyGridReader::~vtkNumpyGridReader() = default;
 
 //------------------------------------------------------------------------------
 bool vtkNumpyGridReader::CanReadFile(const char* fileName)
@@ -689,16 +749,6 @@ vtkIdType vtkNumpyGridReader::GetShape(int axis) const
            : 0;
 }
 
-int vtkNumpyGridReader::GetNX() const
-{
-  return this->Internals->Valid ? this->Internals->NX() : 0;
-}
-
-int vtkNumpyGridReader::GetNY() const
-{
-  return this->Internals->Valid ? this->Internals->NY() : 0;
-}
-
 int vtkNumpyGridReader::GetOutputDataType() const
 {
   if (!this->Internals->Valid)
@@ -710,175 +760,88 @@ int vtkNumpyGridReader::GetOutputDataType() const
 }
 
 //------------------------------------------------------------------------------
-int vtkNumpyGridReader::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+void vtkNumpyGridReader::ResetResults()
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkInternals& internals = *this->Internals;
-  internals.Valid = false;
-  internals.Header = NpyHeader();
-
-  vtksys::ifstream in;
-  long long size = 0;
-  std::string error;
-  if (!OpenFile(this->FileName, in, size, error) || !ReadHeader(in, size, internals.Header, error))
-  {
-    internals.Header = NpyHeader();
-    this->NumberOfNoDataValues = 0;
-    ClearOutput(outInfo);
-    vtkErrorMacro(
-      "Cannot read NumPy grid \"" << (this->FileName ? this->FileName : "") << "\": " << error);
-    return 0;
-  }
-  internals.Valid = true;
-  internals.Swapped = this->SwapAxes;
-
-  const double origin[2] = { this->Origin[0], this->Origin[1] };
-  const double spacing[2] = { this->Spacing[0], this->Spacing[1] };
-  SetGridInformation(outInfo,
-    internals.NX(),
-    internals.NY(),
-    origin,
-    spacing,
-    this->Rotation,
-    this->GetOutputDataType());
-  return 1;
+  this->Superclass::ResetResults();
+  this->Internals->Valid = false;
+  this->Internals->Header = NpyHeader();
 }
 
 //------------------------------------------------------------------------------
-int vtkNumpyGridReader::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+bool vtkNumpyGridReader::ReadGridInformation(std::string& error)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  this->NumberOfNoDataValues = 0;
-  if (!output)
+  vtkInternals& internals = *this->Internals;
+  vtksys::ifstream in;
+  long long size = 0;
+  if (!OpenFile(this->FileName, in, size, error) || !ReadHeader(in, size, internals.Header, error))
   {
-    vtkErrorMacro("No vtkImageData output to fill.");
-    return 0;
+    return false;
   }
-  output->Initialize();
+  internals.Valid = true;
+  internals.Swapped = this->SwapAxes;
+  this->NX = internals.NX();
+  this->NY = internals.NY();
+  std::copy(this->Origin, this->Origin + 2, this->GridOrigin);
+  std::copy(this->Spacing, this->Spacing + 2, this->GridSpacing);
+  this->GridRotation = this->Rotation;
+  return true;
+}
 
-  const char* name = this->FileName ? this->FileName : "";
-  auto fail = [&](const std::string& error)
-  {
-    ClearOutput(outInfo);
-    vtkErrorMacro("Cannot read NumPy grid \"" << name << "\": " << error);
-    return 0;
-  };
-
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkDataArray> vtkNumpyGridReader::ReadGridValues(std::string& error)
+{
+  this->NumberOfNoDataValues = 0;
   // Re-read the header from the stream the values come from; the file may have changed since
   // the information pass.
   vtksys::ifstream in;
   long long size = 0;
-  std::string error;
   NpyHeader h;
   if (!OpenFile(this->FileName, in, size, error) || !ReadHeader(in, size, h, error))
   {
-    return fail(error);
+    return nullptr;
   }
   const NpyHeader& known = this->Internals->Header;
   if (!this->Internals->Valid || h.Dims[0] != known.Dims[0] || h.Dims[1] != known.Dims[1] ||
       h.Descr != known.Descr || this->SwapAxes != this->Internals->Swapped)
   {
-    return fail("the file or the axis setting changed since the information pass");
+    error = "the file or the axis setting changed since the information pass";
+    return nullptr;
   }
-
-  // Element k of the file is at numpy index (a0, a1) with k = a0 + a1 * d0 (Fortran order) or
-  // k = a0 * d1 + a1 (C order). The image puts (ix, iy) at ix + iy * nx with ix = a0 (a1 when
-  // swapped), so exactly one of "Fortran order" and "swapped" makes the copy an identity, and
-  // otherwise it is a transpose of a P x Q row-major block.
-  const vtkIdType d0 = h.Dims[0];
-  const vtkIdType d1 = h.Dims[1];
-  const vtkIdType total = d0 * d1;
-  const bool transpose = h.FortranOrder == this->SwapAxes;
-  const vtkIdType P = h.FortranOrder ? d1 : d0;
-  const vtkIdType Q = h.FortranOrder ? d0 : d1;
-
-  const bool isDouble = h.ElementKind == Kind::Float && h.ItemSize == 8;
-  vtkSmartPointer<vtkDataArray> values;
-  if (isDouble)
+  const vtkIdType total = static_cast<vtkIdType>(h.Dims[0]) * h.Dims[1];
+  vtkSmartPointer<vtkDataArray> values = NewValues(this->GetOutputDataType(), total, error);
+  if (!values)
   {
-    values = vtkSmartPointer<vtkDoubleArray>::New();
+    return nullptr;
   }
-  else
-  {
-    values = vtkSmartPointer<vtkFloatArray>::New();
-  }
-  values->SetName(this->ArrayName);
-  values->SetNumberOfTuples(total);
-  if (values->GetNumberOfTuples() != total)
-  {
-    return fail("cannot allocate the grid values");
-  }
-
-  const bool hasNull = !std::isnan(this->NullValue);
-  std::vector<unsigned char> buffer(static_cast<size_t>(ChunkElements) * h.ItemSize);
-  in.seekg(h.DataOffset, std::ios::beg);
   vtkIdType noData = 0;
   this->UpdateProgress(0.0);
-  for (vtkIdType first = 0; first < total; first += ChunkElements)
-  {
-    const vtkIdType n = std::min(ChunkElements, total - first);
-    if (!in.read(
-          reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n * h.ItemSize)))
-    {
-      std::ostringstream msg;
-      msg << "read error after " << first << " of " << total << " values";
-      return fail(msg.str());
-    }
-    if (isDouble)
-    {
-      noData += ConvertAny<double>(h,
-        buffer.data(),
-        first,
-        n,
-        transpose,
-        P,
-        Q,
-        hasNull,
+  if (!ReadValues(
+        in,
+        h,
+        this->SwapAxes,
         this->NullValue,
-        static_cast<vtkDoubleArray*>(values.Get())->GetPointer(0));
-    }
-    else
-    {
-      noData += ConvertAny<float>(h,
-        buffer.data(),
-        first,
-        n,
-        transpose,
-        P,
-        Q,
-        hasNull,
-        static_cast<float>(this->NullValue),
-        static_cast<vtkFloatArray*>(values.Get())->GetPointer(0));
-    }
-    this->UpdateProgress(static_cast<double>(first + n) / total);
+        [this](double fraction) { this->UpdateProgress(fraction); },
+        values,
+        noData,
+        error))
+  {
+    return nullptr;
   }
-
-  const double gridOrigin[2] = { this->Origin[0], this->Origin[1] };
-  const double gridSpacing[2] = { this->Spacing[0], this->Spacing[1] };
-  SetGridGeometry(
-    output, this->Internals->NX(), this->Internals->NY(), gridOrigin, gridSpacing, this->Rotation);
-  output->GetPointData()->SetScalars(values);
+  std::copy(this->Origin, this->Origin + 2, this->GridOrigin);
+  std::copy(this->Spacing, this->Spacing + 2, this->GridSpacing);
+  this->GridRotation = this->Rotation;
   this->NumberOfNoDataValues = noData;
-  return 1;
+  return values;
 }
 
 //------------------------------------------------------------------------------
 void vtkNumpyGridReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
-  os << indent << "NullValue: " << this->NullValue << "\n";
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << "\n";
   os << indent << "Rotation: " << this->Rotation << "\n";
   os << indent << "SwapAxes: " << (this->SwapAxes ? "On" : "Off") << "\n";
-  os << indent << "NumberOfNoDataValues: " << this->NumberOfNoDataValues << "\n";
   const vtkInternals& internals = *this->Internals;
   os << indent << "HeaderValid: " << (internals.Valid ? "yes" : "no") << "\n";
   os << indent << "Version: " << internals.Header.Major << "." << internals.Header.Minor << "\n";

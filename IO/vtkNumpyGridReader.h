@@ -23,55 +23,31 @@
  * Output: one point-data array named ArrayName ("depth" by default), vtkDoubleArray for float64
  * files and vtkFloatArray for every other dtype (horizon values need no more than float32;
  * float64 is kept so a file round-trips exactly). NaN in the file and NullValue (when set)
- * are holes and come out as NaN. The grid rotation about z (degrees, counterclockwise from +x) is
- * the image's direction matrix.
+ * are holes and come out as NaN (NullValue, e.g. -999.25 or, for integer arrays, -32768, is
+ * compared after conversion to the output type). The grid rotation about z (degrees,
+ * counterclockwise from +x) is the image's direction matrix.
  *
  * Header getters are valid after UpdateInformation(), GetNumberOfNoDataValues() after Update().
  * Errors (missing or truncated file, bad magic, unsupported dtype or version, malformed header,
  * absurd shapes) are reported with vtkErrorMacro and leave the output empty.
  *
- * @sa vtkIrapBinaryGridReader vtkHorizonColumnReader
+ * @sa vtkHorizonGridReader vtkIrapBinaryGridReader vtkHorizonColumnReader
  */
 #ifndef vtkNumpyGridReader_h
 #define vtkNumpyGridReader_h
 
 #include "StrataIOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkHorizonGridReader.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
-class STRATAIO_EXPORT vtkNumpyGridReader : public vtkImageAlgorithm
+class STRATAIO_EXPORT vtkNumpyGridReader : public vtkHorizonGridReader
 {
 public:
   static vtkNumpyGridReader* New();
-  vtkTypeMacro(vtkNumpyGridReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkNumpyGridReader, vtkHorizonGridReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * The .npy file to read. Default: none.
-   */
-  vtkSetFilePathMacro(FileName);
-  vtkGetFilePathMacro(FileName);
-  ///@}
-
-  ///@{
-  /**
-   * Name of the output point-data array. Default: "depth".
-   */
-  vtkSetStringMacro(ArrayName);
-  vtkGetStringMacro(ArrayName);
-  ///@}
-
-  ///@{
-  /**
-   * An extra no-data value of this file (e.g. -999.25 or, for integer arrays, -32768), turned
-   * into NaN. It is compared after conversion to the output type. Default: NaN, meaning none
-   * (NaNs in the file are always holes).
-   */
-  vtkSetMacro(NullValue, double);
-  vtkGetMacro(NullValue, double);
-  ///@}
 
   ///@{
   /**
@@ -117,8 +93,8 @@ public:
   /**
    * The header as read by the last UpdateInformation(): format version, the 'descr' string
    * (e.g. "<f8"), 'fortran_order', the shape (number of axes and their lengths; 0 for an axis
-   * the file does not have), and the resulting image dimensions NX x NY. Empty/zero before a
-   * successful read.
+   * the file does not have); the resulting image dimensions are vtkHorizonGridReader's GetNX()
+   * and GetNY(). Empty/zero before a successful read.
    */
   int GetMajorVersion() const;
   int GetMinorVersion() const;
@@ -126,8 +102,6 @@ public:
   bool GetFortranOrder() const;
   int GetNumberOfAxes() const;
   vtkIdType GetShape(int axis) const;
-  int GetNX() const;
-  int GetNY() const;
   ///@}
 
   /**
@@ -136,30 +110,22 @@ public:
    */
   int GetOutputDataType() const;
 
-  /**
-   * Number of grid nodes that the last Update() turned into NaN (NaNs in the file included).
-   */
-  vtkGetMacro(NumberOfNoDataValues, vtkIdType);
-
 protected:
   vtkNumpyGridReader();
   ~vtkNumpyGridReader() override;
 
-  int RequestInformation(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  const char* GetGridDescription() override { return "NumPy grid"; }
+  /// Reads the header.
+  bool ReadGridInformation(std::string& error) override;
+  /// Reads the header again (the file may have changed) and the values, chunk by chunk.
+  vtkSmartPointer<vtkDataArray> ReadGridValues(std::string& error) override;
+  int GetValuesType() override { return this->GetOutputDataType(); }
+  void ResetResults() override;
 
-  char* FileName = nullptr;
-  char* ArrayName = nullptr;
-  double NullValue;
   double Origin[2] = { 0.0, 0.0 };
   double Spacing[2] = { 1.0, 1.0 };
   double Rotation = 0.0;
   bool SwapAxes = false;
-  vtkIdType NumberOfNoDataValues = 0;
 
 private:
   vtkNumpyGridReader(const vtkNumpyGridReader&) = delete;
