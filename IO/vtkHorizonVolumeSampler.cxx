@@ -1,6 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonVolumeSampler.h"
 
+#include "StrataImageSampling.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkPagePoolReader.h"
 
 #include "vtkDataArray.h"
@@ -49,49 +51,6 @@ vtkDataArray* NamedOrScalars(vtkImageData* image, const std::string& name)
 }
 }
 
-double vtkHorizonVolumeSampler::SampleImage(vtkImageData* image,
-  vtkDataArray* values,
-  const double x[3],
-  bool nearest)
-{
-  const int* e = image->GetExtent();
-  int base[3];
-  double f[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    if (!(x[c] >= e[2 * c] - 1e-9 && x[c] <= e[2 * c + 1] + 1e-9))
-      return NaN;
-    if (nearest)
-    {
-      base[c] =
-        std::min(std::max(static_cast<int>(std::floor(x[c] + 0.5)), e[2 * c]), e[2 * c + 1]);
-      f[c] = 0.0;
-      continue;
-    }
-    base[c] = std::min(
-      std::max(static_cast<int>(std::floor(x[c])), e[2 * c]), std::max(e[2 * c + 1] - 1, e[2 * c]));
-    f[c] = e[2 * c + 1] > e[2 * c] ? std::min(std::max(x[c] - base[c], 0.0), 1.0) : 0.0;
-  }
-  const vtkIdType nx = e[1] - e[0] + 1, ny = e[3] - e[2] + 1;
-  double sum = 0.0;
-  for (int k = 0; k < 8; ++k)
-  {
-    const int o[3] = { k & 1, (k >> 1) & 1, (k >> 2) & 1 };
-    double w = 1.0;
-    int p[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      w *= o[c] ? f[c] : 1.0 - f[c];
-      p[c] = std::min(base[c] + o[c], e[2 * c + 1]);
-    }
-    if (w == 0.0)
-      continue;
-    const vtkIdType id = (vtkIdType(p[2] - e[4]) * ny + (p[1] - e[2])) * nx + (p[0] - e[0]);
-    sum += w * values->GetComponent(id, 0);
-  }
-  return sum;
-}
-
 vtkHorizonVolumeSampler::vtkHorizonVolumeSampler()
 {
   this->SetNumberOfInputPorts(2);
@@ -124,7 +83,7 @@ int vtkHorizonVolumeSampler::RequestUpdateExtent(vtkInformation*,
       continue;
     // A paged volume is read here block by block: its pipeline output stays the coarsest level.
     if (port == 1)
-      vtkPagePoolReader::RequestCoarsestLevel(in);
+      vtkPagePoolProtocol::RequestCoarsestLevel(in);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
       in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
       6);
@@ -161,13 +120,13 @@ int vtkHorizonVolumeSampler::RequestData(vtkInformation*,
 
   // The volume: in core, or the pool behind a vtkPagePoolReader at full resolution.
   vtkInformation* volumeInfo = inputVector[1]->GetInformationObject(0);
-  const char* pool = volumeInfo->Get(vtkPagePoolReader::POOL_FILE_NAME());
+  const std::string pool = vtkPagePoolProtocol::GetInputPool(volumeInfo, volume).FileName;
   vtkNew<vtkPagePoolReader> reader;
   vtkNew<vtkMatrix4x4> volumeToIndex;
   int whole[6];
-  if (pool)
+  if (!pool.empty())
   {
-    reader->SetFileName(pool);
+    reader->SetFileName(pool.c_str());
     reader->SetResolution(1.0);
     reader->UpdateInformation();
     vtkInformation* info = reader->GetOutputInformation(0);
@@ -244,7 +203,7 @@ int vtkHorizonVolumeSampler::RequestData(vtkInformation*,
       vtkImageData* source = volume;
       vtkSmartPointer<vtkImageData> pages;
       bool any = lo[0] <= hi[0];
-      if (pool && any)
+      if (!pool.empty() && any)
       {
         // Only the pages under this block's points (one voxel of margin for the trilinear).
         int extent[6];
@@ -263,7 +222,8 @@ int vtkHorizonVolumeSampler::RequestData(vtkInformation*,
         }
       }
       vtkDataArray* data =
-        any ? NamedOrScalars(source, pool ? std::string() : this->VolumeArrayName) : nullptr;
+        any ? NamedOrScalars(source, !pool.empty() ? std::string() : this->VolumeArrayName)
+            : nullptr;
       if (any && !data)
       {
         vtkErrorMacro("Could not read the pages of the volume under horizon points ("
@@ -274,8 +234,9 @@ int vtkHorizonVolumeSampler::RequestData(vtkInformation*,
         for (int i = i0; i < i1; ++i)
         {
           const double* x = &index[3 * (static_cast<size_t>(j - j0) * (i1 - i0) + (i - i0))];
-          const double v =
-            !any || std::isnan(x[0]) ? NaN : SampleImage(source, data, x, this->NearestNeighbor);
+          const double v = !any || std::isnan(x[0])
+                             ? NaN
+                             : strata::SampleImage(source, data, x, this->NearestNeighbor);
           values->SetValue(static_cast<vtkIdType>(j) * dims[0] + i, static_cast<float>(v));
           ++(std::isnan(v) ? this->NumberOfEmptyPoints : this->NumberOfSampledPoints);
         }

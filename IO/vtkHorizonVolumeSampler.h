@@ -103,16 +103,6 @@ public:
   vtkGetMacro(NumberOfPagesRead, vtkIdType);
   ///@}
 
-  /**
-   * Component 0 of `values` (one tuple per point of `image`'s extent) at continuous index `x`
-   * (the image's structured coordinates), trilinear or nearest-point; NaN outside the extent
-   * (1e-9 of slack at its faces). The sampling this filter and vtkSubsurfacePicker share.
-   */
-  static double SampleImage(vtkImageData* image,
-    vtkDataArray* values,
-    const double x[3],
-    bool nearest);
-
 protected:
   vtkHorizonVolumeSampler();
   ~vtkHorizonVolumeSampler() override;

@@ -12,22 +12,23 @@
  * - BrickPool (nx, ny, nz): an nx x ny x nz image.
  * - TilePool (nx, ny, L): an nx x ny x 1 image of the layer selected by Layer.
  *
- * Resolution. VTK 9.1 has no UPDATE_RESOLUTION key (it was dropped in VTK 7), so this class
- * defines one, vtkPagePoolReader::UPDATE_RESOLUTION(), which a downstream filter sets on its
- * input information in RequestUpdateExtent (it is copied upstream through intermediate filters
- * like UPDATE_EXTENT) or a caller sets on the reader's output information; without it the
- * Resolution member is used. A resolution r in (0, 1] selects level
- * l = floor(log2(1 / r)) clamped to the pool's levels: 1 is level 0 (full resolution), 0.5
- * level 1, 0.25 level 2, and r <= 0 the coarsest level. Level l has about 1/2^l of the points
- * per axis, so the level chosen is the coarsest one at least as fine as requested.
+ * Resolution. VTK 9.1 has no UPDATE_RESOLUTION key (it was dropped in VTK 7), so the core
+ * defines one, vtkPagePoolProtocol::UPDATE_RESOLUTION() (also UPDATE_RESOLUTION() here), which a
+ * downstream filter sets on its input information in RequestUpdateExtent (it is copied
+ * upstream through intermediate filters like UPDATE_EXTENT) or a caller sets on the reader's
+ * output information; without it the Resolution member is used. A resolution r in (0, 1]
+ * selects level l = floor(log2(1 / r)) clamped to the pool's levels: 1 is level 0 (full
+ * resolution), 0.5 level 1, 0.25 level 2, and r <= 0 the coarsest level.
  *
- * Geometry of a coarse level. Level l has n_l points per axis (n -> n/2 + 1 per level). The
- * output keeps the origin and the direction, and its spacing is s * (n_0 - 1) / (n_l - 1) per
- * axis (s when n_l = 1), so that the coarse image covers exactly the physical region of the
- * full one. The update extent, given in level-0 indices, is mapped to the smallest level-l
- * extent covering it ([floor(a / r), ceil(b / r)] with r = (n_0 - 1) / (n_l - 1)); the output
- * extent is that level-l extent. (Coarse samples sit up to one level-0 spacing from where the
- * filter took them when n_0 - 1 is not a multiple of 2^l; that is the price of exact bounds.)
+ * Geometry of a coarse level: strata::PagePoolSet (the output keeps the origin and the
+ * direction, its spacing grows so that the coarse image covers exactly the full one's region;
+ * the update extent, in level-0 indices, maps to the smallest level extent covering it).
+ *
+ * Pools and their consumers (vtkPagePoolProtocol). RequestInformation marks the output
+ * information PAGE_POOL, so that a mapper paging the pool itself asks for the coarsest level
+ * only; RequestData writes the pool's identity (file, layer, step, series) on the output's
+ * field data. The files are opened once per process (vtkPagePoolFile::OpenShared): the reader
+ * holds the pools it names open, and the mappers paging them share its descriptors.
  *
  * Time series. A series is one pool per time step, given with AddTimeStep(file, time) in
  * increasing time (FileName is then ignored): RequestInformation checks that every step's
@@ -36,10 +37,9 @@
  * TIME_STEPS and TIME_RANGE. A request's UPDATE_TIME_STEP t selects the step at or below t,
  * as VTK's readers do: the last step whose time is <= t, the first step for t before it,
  * the last for t after it; without UPDATE_TIME_STEP, the first step. The output's
- * DATA_TIME_STEP is that step's time, and POOL_FILE_NAME names that step's pool (on the
- * output information after RequestData and on the data), beside POOL_TIME_STEP (its index)
- * and POOL_SERIES (every step's pool, in time order), so that a mapper paging the pool pages
- * the step shown and can prefetch the next one. Steps share one geometry: the first step's
+ * DATA_TIME_STEP is that step's time, and its identity names that step's pool, its index and
+ * every step's pool in time order, so that a mapper paging the pool pages the step shown and
+ * can prefetch the next one. Steps share one geometry: the first step's
  * spacing, origin and direction.
  *
  * Components. A set of brick pools, one per component (vtkPagePoolFormat, Components), is one
@@ -61,8 +61,6 @@
 #include "StrataIOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
-class vtkInformationIntegerKey;
-
 #include "vtkSmartPointer.h" // For LastOutput
 
 #include <memory> // For std::unique_ptr
@@ -71,8 +69,6 @@ class vtkInformationIntegerKey;
 
 class vtkImageData;
 class vtkInformationDoubleKey;
-class vtkInformationStringKey;
-class vtkInformationStringVectorKey;
 class vtkInformationVector;
 
 class STRATAIO_EXPORT vtkPagePoolReader : public vtkImageAlgorithm
@@ -132,62 +128,13 @@ public:
   /// The step the last RequestData read (-1 before, 0 without a series).
   vtkGetMacro(TimeStepRead, int);
 
-  /// Requested resolution in [0, 1] (1 = finest), read from the reader's output information.
   /**
-   * The pool's file name, set by RequestInformation on the output information and by
-   * RequestData on the output data object's information: how the Strata mappers recognise a
-   * pool behind their input and page from it directly instead of using the (coarse) image.
+   * The resolution a consumer asks for: vtkPagePoolProtocol::UPDATE_RESOLUTION (the same key,
+   * here for wrapped languages, where the core is not wrapped). The pipeline protocol (the
+   * PAGE_POOL mark this reader sets in RequestInformation, the pool's identity it writes on
+   * its output's field data) is vtkPagePoolProtocol's.
    */
-  static vtkInformationStringKey* POOL_FILE_NAME();
-
-  /// The tile pool layer the output shows (Layer), set beside POOL_FILE_NAME: a height-field
-  /// mapper pages that layer of the pool.
-  static vtkInformationIntegerKey* POOL_LAYER();
-
   static vtkInformationDoubleKey* UPDATE_RESOLUTION();
-
-  /// The time step of a series that POOL_FILE_NAME names (0 without a series).
-  static vtkInformationIntegerKey* POOL_TIME_STEP();
-  /// Every step's pool of a series, in time order (absent without a series).
-  static vtkInformationStringVectorKey* POOL_SERIES();
-
-  ///@{
-  /**
-   * The pool behind an output, as it travels with the data: RequestData also writes the file
-   * name and the layer into the output's field data (one-value arrays PoolFileNameArray and
-   * PoolLayerArray), which shallow copies and pass-through filters keep where pipeline
-   * information is lost (ParaView hands a representation a copy of the reader's output).
-   * GetPoolFileName returns null when `data` names no pool; GetPoolLayer returns 0 then. A
-   * consumer that pages from the named pool must only do so when the data is the reader's
-   * output unchanged (the ParaView representations take it straight from the reader).
-   * A time series travels the same way: every step's pool in time order (PoolSeriesArray, as
-   * POOL_SERIES) and the step shown (PoolTimeStepArray, as POOL_TIME_STEP); GetPoolSeries is
-   * empty and GetPoolTimeStep 0 without a series.
-   */
-  static const char* GetPoolFileName(vtkDataObject* data);
-  static int GetPoolLayer(vtkDataObject* data);
-  static std::vector<std::string> GetPoolSeries(vtkDataObject* data);
-  static int GetPoolTimeStep(vtkDataObject* data);
-  static const char* const PoolFileNameArray;
-  static const char* const PoolLayerArray;
-  static const char* const PoolSeriesArray;
-  static const char* const PoolTimeStepArray;
-  ///@}
-
-  /// Level that resolution `r` selects in a pool of `levels` levels.
-  static int ResolutionToLevel(double r, int levels);
-  /**
-   * For a consumer that pages from the pool itself (the Strata mappers): if `inputInfo` (a
-   * consumer's input information) has a pool behind it, asks for the coarsest level (one page)
-   * and returns true. Call it before updating the input and in the consumer's
-   * REQUEST_UPDATE_EXTENT, so that no update (a render, GetBounds) reads the whole pool.
-   */
-  static bool RequestCoarsestLevel(vtkInformation* inputInfo);
-  /// RequestCoarsestLevel on every input of the first `ports` ports when `request` is a
-  /// REQUEST_UPDATE_EXTENT pass; a consumer's ProcessRequest calls it after its superclass's.
-  static void RequestCoarsestLevels(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    int ports);
 
   /// True when the file starts with a valid page pool header (magic, version, checksum).
   static bool CanReadFile(const char* fileName);
@@ -207,7 +154,13 @@ public:
   ///@}
 
 protected:
+  /// The pool's identity (vtkPagePoolProtocol) and the step's time on `output`.
   void MarkPool(vtkImageData* output, const std::string& name);
+  /// The request `outInfo` makes of pool `name` as a string (to answer a repeat from
+  /// LastOutput), and the level it reads.
+  std::string DescribeRequest(vtkInformation* outInfo, const std::string& name, int& level) const;
+  /// MemoryLimit, or the physical memory when it is 0 (0 if unknown).
+  double GetMemoryLimitMB() const;
   /// The pool that `outInfo`'s request reads (the series' step of its time), the step's
   /// index in `step`; the request's pool keys set on `outInfo`.
   std::string SelectPool(vtkInformation* outInfo, int& step);
@@ -246,6 +199,9 @@ protected:
   vtkMTimeType LastTime = 0;
 
 private:
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+
   vtkPagePoolReader(const vtkPagePoolReader&) = delete;
   void operator=(const vtkPagePoolReader&) = delete;
 };

@@ -3,9 +3,13 @@
 
 #include <zstd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <map>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -43,6 +47,31 @@ bool ReadAll(int fd, void* data, size_t size, uint64_t offset, std::string& erro
   return true;
 }
 
+// The signature OpenShared compares: a file replaced on disk (rewritten, renamed over) differs.
+bool ReadSignature(const struct stat& info, uint64_t out[4])
+{
+  out[0] = static_cast<uint64_t>(info.st_dev);
+  out[1] = static_cast<uint64_t>(info.st_ino);
+  out[2] = static_cast<uint64_t>(info.st_size);
+  out[3] = static_cast<uint64_t>(info.st_mtim.tv_sec) * 1000000000ull +
+           static_cast<uint64_t>(info.st_mtim.tv_nsec);
+  return true;
+}
+
+std::atomic<long long> Opens{ 0 };
+
+struct SharedFiles
+{
+  std::mutex Mutex;
+  std::map<std::string, std::weak_ptr<vtkPagePoolFile>> Files;
+};
+
+SharedFiles& Shared()
+{
+  static SharedFiles* files = new SharedFiles; // never destroyed: used from static destructors
+  return *files;
+}
+
 template<typename T>
 void ToFloat(const unsigned char* raw, uint64_t count, float* out)
 {
@@ -67,10 +96,57 @@ void vtkPagePoolFile::Close()
     ::close(this->Fd);
   }
   this->Fd = -1;
+  std::fill(this->Signature, this->Signature + 4, 0);
   this->Levels.clear();
   this->Table.clear();
   this->PageValues = 0;
   this->PoolHeader = Header();
+}
+
+std::shared_ptr<vtkPagePoolFile> vtkPagePoolFile::OpenShared(const std::string& path,
+  std::string& error)
+{
+  SharedFiles& shared = Shared();
+  std::lock_guard<std::mutex> lock(shared.Mutex);
+  std::shared_ptr<vtkPagePoolFile> file = shared.Files[path].lock();
+  struct stat info;
+  uint64_t now[4] = { 0, 0, 0, 0 };
+  if (file && ::stat(path.c_str(), &info) == 0 && ReadSignature(info, now) &&
+      std::equal(now, now + 4, file->Signature))
+  {
+    return file;
+  }
+  file = std::make_shared<vtkPagePoolFile>();
+  if (!file->Open(path))
+  {
+    error = file->GetErrorMessage();
+    shared.Files.erase(path);
+    return nullptr;
+  }
+  shared.Files[path] = file;
+  // Entries of files nobody holds any more go, so the table stays as small as what is open.
+  for (auto it = shared.Files.begin(); it != shared.Files.end();)
+    it = it->second.expired() ? shared.Files.erase(it) : std::next(it);
+  return file;
+}
+
+std::shared_ptr<vtkPagePoolFile> vtkPagePoolFile::OpenSharedComponent(const vtkPagePoolFile& first,
+  int c,
+  std::string& error)
+{
+  const std::string path = vtkPagePoolFormat::GetComponentFileName(first.Path, c);
+  std::shared_ptr<vtkPagePoolFile> file = OpenShared(path, error);
+  if (file && !vtkPagePoolFormat::CheckComponent(first.PoolHeader, file->PoolHeader, c, error))
+  {
+    error = "page pool '" + path + "': " + error;
+    return nullptr;
+  }
+  return file;
+}
+
+long long vtkPagePoolFile::GetNumberOfOpens()
+{
+  return Opens.load();
 }
 
 bool vtkPagePoolFile::OpenComponent(const vtkPagePoolFile& first, int c)
@@ -111,11 +187,13 @@ bool vtkPagePoolFile::Open(const std::string& path)
   {
     return fail(std::string("cannot open: ") + std::strerror(errno));
   }
+  ++Opens;
   struct stat info;
   if (::fstat(this->Fd, &info) != 0)
   {
     return fail(std::string("cannot stat: ") + std::strerror(errno));
   }
+  ReadSignature(info, this->Signature);
   if (!S_ISREG(info.st_mode))
   {
     return fail("not a regular file");

@@ -21,6 +21,7 @@
 #include "vtkPagePoolFormat.h" // For the header and table types
 
 #include <cstdint> // For fixed-width types
+#include <memory>  // For std::shared_ptr
 #include <mutex>   // For std::mutex
 #include <string>  // For std::string
 #include <vector>  // For std::vector
@@ -50,6 +51,24 @@ public:
    */
   bool OpenComponent(const vtkPagePoolFile& first, int c);
   void Close();
+
+  ///@{
+  /**
+   * The pool at `path` opened once per process: the file some reader, pager or picker holds
+   * open already, while the file on disk is that file still (same device, inode, size and
+   * modification time), else a newly opened one. Null, with `error` naming the file and the
+   * fault, when it cannot be opened. A shared file is read-only: never Open or Close it.
+   * (A process-wide table, not a member: the point is that a reader and the mappers paging
+   * its output, which know nothing of each other, hold one descriptor and one page table.)
+   */
+  static std::shared_ptr<vtkPagePoolFile> OpenShared(const std::string& path, std::string& error);
+  /// OpenShared of component `c` of the set `first` heads, checked as OpenComponent does.
+  static std::shared_ptr<vtkPagePoolFile> OpenSharedComponent(const vtkPagePoolFile& first,
+    int c,
+    std::string& error);
+  /// Files this process has opened (Open calls that reached the disk), for tests of sharing.
+  static long long GetNumberOfOpens();
+  ///@}
   const std::string& GetPath() const { return this->Path; }
   bool IsOpen() const { return this->Fd >= 0; }
 
@@ -100,6 +119,8 @@ private:
 
   std::string Path;
   int Fd = -1;
+  /// What the file was when opened (device, inode, size, modification time in ns).
+  uint64_t Signature[4] = { 0, 0, 0, 0 };
   Header PoolHeader;
   std::vector<Level> Levels;
   std::vector<PageEntry> Table;

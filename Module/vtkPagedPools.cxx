@@ -85,12 +85,10 @@ std::shared_ptr<vtkPagePoolFile> vtkPagedPools::OpenPool(int id,
     if (it != in.Pools.end() && it->second.Name == fileName)
       return it->second.File;
   }
-  auto file = std::make_shared<vtkPagePoolFile>();
-  if (!file->Open(fileName))
-  {
-    error = file->GetErrorMessage();
+  // Shared with the reader that shows the pool (and any other pager of it): one descriptor.
+  std::shared_ptr<vtkPagePoolFile> file = vtkPagePoolFile::OpenShared(fileName, error);
+  if (!file)
     return nullptr;
-  }
   bool replaced = false;
   {
     std::lock_guard<std::mutex> lock(in.Mutex);

@@ -21,7 +21,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
@@ -480,7 +480,7 @@ vtkTypeBool vtkHybridVolumeMapper::ProcessRequest(vtkInformation* request,
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the input (GetBounds, the render), a pool's reader serves its coarsest
   // level only: the bricks are paged by the volume mapper.
-  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, 1);
+  vtkPagePoolProtocol::RequestCoarsestLevels(request, inputVector, 1);
   return result;
 }
 
@@ -576,7 +576,7 @@ vtkImageData* vtkHybridVolumeMapper::UpdateInputs(vtkPolyData*& points)
     if (this->GetNumberOfInputConnections(port) == 0)
       continue;
     this->GetInputAlgorithm(port, 0)->UpdateInformation();
-    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
+    vtkPagePoolProtocol::RequestCoarsestLevel(this->GetInputInformation(port, 0));
     this->GetInputAlgorithm(port, 0)->Update();
   }
   auto* low = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
@@ -588,8 +588,7 @@ vtkImageData* vtkHybridVolumeMapper::UpdateInputs(vtkPolyData*& points)
     vtkErrorMacro("No low-resolution volume on input 0.");
     return nullptr;
   }
-  vtkInformation* lowInfo = this->GetInputInformation(0, 0);
-  if (lowInfo && lowInfo->Has(vtkPagePoolReader::POOL_FILE_NAME()))
+  if (vtkPagePoolProtocol::GetInputPool(this->GetInputInformation(0, 0), low).IsValid())
   {
     if (in.Volume->GetInputConnection(0, 0) != this->GetInputConnection(0, 0))
       in.Volume->SetInputConnection(this->GetInputConnection(0, 0));

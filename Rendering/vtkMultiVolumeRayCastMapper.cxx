@@ -10,7 +10,7 @@
 #include "vtkMultiVolumeInput.h"
 #include "vtkMultiVolumeShaderComposer.h"
 #include "vtkPagePoolFile.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkStrataRenderUtilities.h"
 #include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeBrickTree.h"
@@ -137,7 +137,7 @@ double LongestVoxelEdge(const FrameVolume& e)
 }
 
 // --- The volumes of this frame: a vtkMultiVolume's members on their ports, or one volume; a
-// page pool behind an input (vtkPagePoolReader) pages it, and pools fix the brick size.
+// page pool behind an input (vtkPagePoolProtocol) pages it, and pools fix the brick size.
 bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
   vtkVolume* vol,
   Frame& frame)
@@ -173,12 +173,13 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     const double* o = image->GetOrigin();
     const double* s = image->GetSpacing();
     const double* d = image->GetDirectionMatrix()->GetData();
-    // (The image handed over is a transformed copy: the pool's name is read from the pipeline.)
-    vtkInformation* portInfo = self->GetInputInformation(port, 0);
-    const char* pool = portInfo ? portInfo->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
-    if (pool && *pool)
+    // (The image handed over is a transformed copy: the pool is read from the input's data.)
+    const std::string pool = vtkPagePoolProtocol::GetInputPool(
+      self->GetInputInformation(port, 0), self->GetInputDataObject(port, 0))
+                               .FileName;
+    if (!pool.empty())
     {
-      const vtkPagePoolFile* file = this->OpenPool(self, port, 0, pool);
+      const vtkPagePoolFile* file = this->OpenPool(self, port, 0, pool.c_str());
       if (!file)
         continue;
       const vtkPagePoolFile::Header& h = file->GetHeader();
@@ -270,17 +271,17 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& fr
 }
 
 // The pool of component `component` of a paged port (`pool` names component 0's): the step of
-// its series the input shows (POOL_TIME_STEP), and the next step in the direction of playback
-// prefetched (vtkVolumePager::FollowPlayback).
+// its series the input shows (its identity's TimeStep), and the next step in the direction of
+// playback prefetched (vtkVolumePager::FollowPlayback).
 const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
   int port,
   int component,
   const char* pool)
 {
-  using Reader = vtkPagePoolReader;
-  vtkInformation* info = self->GetInputInformation(port, 0);
-  const int step = info->Has(Reader::POOL_TIME_STEP()) ? info->Get(Reader::POOL_TIME_STEP()) : 0;
-  const int steps = info->Has(Reader::POOL_SERIES()) ? info->Length(Reader::POOL_SERIES()) : 0;
+  const vtkPagePoolProtocol::Identity identity =
+    vtkPagePoolProtocol::GetIdentity(self->GetInputDataObject(port, 0));
+  const int step = identity.TimeStep;
+  const int steps = static_cast<int>(identity.Series.size());
   const int channel = vtkVolumePager::GetChannel(port, component);
   const std::string name = vtkPagePoolFormat::GetComponentFileName(pool, component);
   std::string error;
@@ -296,9 +297,9 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
   shown = name;
   const int followed = this->Pager.FollowPlayback(channel, step, steps);
   const int next = self->PrefetchTimeSteps ? followed : -1;
-  const char* nextPool = next >= 0 ? info->Get(Reader::POOL_SERIES(), next) : "";
-  const std::string nextName =
-    nextPool && *nextPool ? vtkPagePoolFormat::GetComponentFileName(nextPool, component) : "";
+  const std::string nextName = next >= 0 && next < steps ? vtkPagePoolFormat::GetComponentFileName(
+                                                             identity.Series[next], component)
+                                                         : std::string();
   if (!this->Pager.SetNextStep(channel, next, nextName, error) && error != warned)
     vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
   warned = error;
@@ -1243,7 +1244,7 @@ void vtkMultiVolumeRayCastMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (this->GetNumberOfInputConnections(port) == 0)
       continue;
     this->GetInputAlgorithm(port, 0)->UpdateInformation();
-    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(port, 0));
+    vtkPagePoolProtocol::RequestCoarsestLevel(this->GetInputInformation(port, 0));
   }
   const auto start = std::chrono::steady_clock::now();
   this->Superclass::Render(ren, vol);
@@ -1262,7 +1263,7 @@ vtkTypeBool vtkMultiVolumeRayCastMapper::ProcessRequest(vtkInformation* request,
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
   // level only: the bricks are paged, not read through the pipeline.
-  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, this->GetNumberOfInputPorts());
+  vtkPagePoolProtocol::RequestCoarsestLevels(request, inputVector, this->GetNumberOfInputPorts());
   return result;
 }
 

@@ -146,8 +146,9 @@ public:
 
   ///@{
   /**
-   * Out of core. An input produced by vtkPagePoolReader (recognised by
-   * vtkPagePoolReader::POOL_FILE_NAME() on its data) is not read through the pipeline: the
+   * Out of core. An input produced by vtkPagePoolReader (recognised by vtkPagePoolProtocol:
+   * the PAGE_POOL mark on the connection, the pool's identity on the data) is not read
+   * through the pipeline: the
    * reader is asked for its coarsest level only, and the bricks are paged from the pool. The
    * cut (shared with in-core volumes, under AtlasBudget) may split a brick only when its
    * children's pages are in the RAM page cache (PageCacheBudget MB, LRU, worker threads); the

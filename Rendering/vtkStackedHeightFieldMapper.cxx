@@ -9,7 +9,7 @@
 #include "vtkHeightFieldStackBuffers.h"
 #include "vtkHeightFieldTileAtlas.h"
 #include "vtkMinMaxQuadtree.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkStrataRenderUtilities.h"
 #include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeCut.h"
@@ -387,8 +387,9 @@ bool vtkStackedHeightFieldMapper::UpdateStack()
   int pooled = 0;
   for (int i = 0; i < n; ++i)
   {
-    vtkInformation* info = this->GetInputInformation(0, i);
-    pooled += info && info->Has(vtkPagePoolReader::POOL_FILE_NAME()) ? 1 : 0;
+    pooled +=
+      vtkPagePoolProtocol::GetInputPool(this->GetInputInformation(0, i), images[i]).IsValid() ? 1
+                                                                                              : 0;
   }
   if (pooled > 0 && pooled < n)
   {
@@ -602,7 +603,7 @@ void vtkStackedHeightFieldMapper::SetPooledInputsToCoarsest()
   for (int i = 0; i < this->GetNumberOfInputConnections(0); ++i)
   {
     this->GetInputAlgorithm(0, i)->UpdateInformation();
-    vtkPagePoolReader::RequestCoarsestLevel(this->GetInputInformation(0, i));
+    vtkPagePoolProtocol::RequestCoarsestLevel(this->GetInputInformation(0, i));
   }
 }
 
@@ -613,7 +614,7 @@ vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(vtkInformation* request,
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   // Whatever updates the inputs (GetBounds, the render), a pool's reader serves its coarsest
   // level only.
-  vtkPagePoolReader::RequestCoarsestLevels(request, inputVector, 1);
+  vtkPagePoolProtocol::RequestCoarsestLevels(request, inputVector, 1);
   return result;
 }
 
@@ -624,10 +625,10 @@ bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageDat
   in.RootValues.resize(images.size());
   for (size_t i = 0; i < images.size(); ++i)
   {
-    vtkInformation* info = this->GetInputInformation(0, static_cast<int>(i));
-    sources[i].FileName = info->Get(vtkPagePoolReader::POOL_FILE_NAME());
-    sources[i].Layer =
-      info->Has(vtkPagePoolReader::POOL_LAYER()) ? info->Get(vtkPagePoolReader::POOL_LAYER()) : 0;
+    const vtkPagePoolProtocol::Identity pool = vtkPagePoolProtocol::GetInputPool(
+      this->GetInputInformation(0, static_cast<int>(i)), images[i]);
+    sources[i].FileName = pool.FileName;
+    sources[i].Layer = pool.Layer;
     // The reader's coarsest level is the root tile: the pager starts from it without a read.
     vtkDataArray* array = images[i]->GetPointData()->GetScalars();
     int d[3];

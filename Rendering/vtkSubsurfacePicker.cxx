@@ -7,9 +7,11 @@
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkTransferFunctionTable.h"
 
+#include "StrataImageSampling.h"
+#include "StrataPagePoolSet.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkAssemblyPath.h"
 #include "vtkDataArray.h"
-#include "vtkHorizonVolumeSampler.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -18,7 +20,7 @@
 #include "vtkMultiVolume.h"
 #include "vtkObjectFactory.h"
 #include "vtkPagePoolFile.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkPointData.h"
 #include "vtkProp3D.h"
 #include "vtkProp3DCollection.h"
@@ -97,18 +99,21 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
   double heightScale = 0.0,
   const double range[2] = nullptr)
 {
-  vtkNew<vtkPagePoolReader> reader;
-  reader->SetFileName(pool.c_str());
-  reader->SetLayer(layer);
-  reader->SetResolution(1.0);
-  reader->UpdateInformation();
-  vtkInformation* info = reader->GetOutputInformation(0);
-  int whole[6];
-  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  strata::PagePoolSet set;
+  std::string error;
+  if (!set.Open(pool, error))
+  {
+    vtkGenericWarningMacro("Cannot pick in the page pool: " << error);
+    return nullptr;
+  }
+  const vtkPagePoolFormat::Header& h = set.GetFile().GetHeader();
+  const int whole[6] = {
+    0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, set.IsTilePool() ? 0 : h.Dimensions[2] - 1
+  };
   double o[3], s[3], d[9];
-  info->Get(vtkDataObject::ORIGIN(), o);
-  info->Get(vtkDataObject::SPACING(), s);
-  info->Get(vtkDataObject::DIRECTION(), d);
+  std::copy(h.Origin, h.Origin + 3, o);
+  std::copy(h.Spacing, h.Spacing + 3, s);
+  std::copy(h.Direction, h.Direction + 9, d);
   if (heightScale != 0.0)
     s[2] = heightScale;
   IndexMatrix(o, s, d, worldToIndexHint);
@@ -148,24 +153,31 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
     extent[4] = whole[4];
     extent[5] = whole[5];
   }
-  reader->UpdateExtent(extent);
-  auto out = vtkSmartPointer<vtkImageData>::New();
-  out->ShallowCopy(reader->GetOutput());
+  strata::PagePoolSet::Read read;
+  read.Layer = layer;
+  read.ArrayName = "values";
+  vtkSmartPointer<vtkImageData> out = set.ReadImage(0, extent, read, error);
+  if (!out)
+    vtkGenericWarningMacro("Cannot pick in the page pool: " << error);
   return out;
 }
 
-/// The pool behind input `port`, `connection` of `mapper` (vtkPagePoolReader's information
-/// keys), or empty for an in-core input. Asks only for the information: updating a paged
-/// input here would read its every page.
+/// The pool behind input `port`, `connection` of `mapper` (vtkPagePoolProtocol), or empty for
+/// an in-core input. A paged input is brought up to date at its coarsest level only (one
+/// page): updating it as it stands could read its every page.
 std::string InputPool(vtkAlgorithm* mapper, int port, int connection, int& layer)
 {
-  mapper->GetInputAlgorithm(port, connection)->UpdateInformation();
+  vtkAlgorithm* input = mapper->GetInputAlgorithm(port, connection);
+  input->UpdateInformation();
   vtkInformation* info = mapper->GetInputInformation(port, connection);
-  const char* pool = info ? info->Get(vtkPagePoolReader::POOL_FILE_NAME()) : nullptr;
-  layer = info && info->Has(vtkPagePoolReader::POOL_LAYER())
-            ? info->Get(vtkPagePoolReader::POOL_LAYER())
-            : 0;
-  return pool ? std::string(pool) : std::string();
+  layer = 0;
+  if (!vtkPagePoolProtocol::RequestCoarsestLevel(info))
+    return std::string();
+  input->Update(mapper->GetInputConnection(port, connection)->GetIndex());
+  const vtkPagePoolProtocol::Identity pool =
+    vtkPagePoolProtocol::GetInputPool(info, mapper->GetInputDataObject(port, connection));
+  layer = pool.Layer;
+  return pool.FileName;
 }
 
 /// The data of an in-core input, brought up to date.
@@ -307,12 +319,13 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
   {
     int layer = 0;
     const std::string pool = InputPool(mapper, 0, k, layer);
-    vtkPagePoolFile file;
-    if (!pool.empty() && file.Open(pool) &&
-        file.GetHeader().ValueRange[0] <= file.GetHeader().ValueRange[1])
+    strata::PagePoolSet set;
+    std::string error;
+    if (!pool.empty() && set.Open(pool, error) &&
+        set.GetFile().GetHeader().ValueRange[0] <= set.GetFile().GetHeader().ValueRange[1])
     {
-      range[0] = std::min(range[0], file.GetHeader().ValueRange[0]);
-      range[1] = std::max(range[1], file.GetHeader().ValueRange[1]);
+      range[0] = std::min(range[0], set.GetFile().GetHeader().ValueRange[0]);
+      range[1] = std::max(range[1], set.GetFile().GetHeader().ValueRange[1]);
     }
   }
   std::vector<vtkSmartPointer<vtkImageData>> images;
@@ -505,8 +518,7 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
     {
       double x[3];
       Apply(volumes[k]->MapperToIndex, p, x);
-      values[k] = vtkHorizonVolumeSampler::SampleImage(
-        volumes[k]->Data, volumes[k]->Values, x, volumes[k]->Nearest);
+      values[k] = strata::SampleImage(volumes[k]->Data, volumes[k]->Values, x, volumes[k]->Nearest);
       tau += volumes[k]->Tau(values[k]);
     }
     const double w = step * length;

@@ -10,7 +10,7 @@
 #include "vtkNew.h"
 #include "vtkPVDataRepresentation.h"
 #include "vtkPVRenderView.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkProp3D.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -216,7 +216,7 @@ void vtkStrataParaViewUtilities::RequestCoarsestLevels(vtkInformationVector* inp
 {
   for (int i = 0; i < inputs->GetNumberOfInformationObjects(); ++i)
   {
-    inputs->GetInformationObject(i)->Set(vtkPagePoolReader::UPDATE_RESOLUTION(), 0.0);
+    inputs->GetInformationObject(i)->Set(vtkPagePoolProtocol::UPDATE_RESOLUTION(), 0.0);
   }
 }
 

@@ -5,11 +5,9 @@
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
-#include "vtkInformationStringKey.h"
-#include "vtkInformationStringVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolReader.h"
+#include "vtkPagePoolProtocol.h"
 
 vtkStandardNewMacro(vtkStrataPooledProducer);
 
@@ -26,11 +24,11 @@ void vtkStrataPooledProducer::PrintSelf(ostream& os, vtkIndent indent)
 //------------------------------------------------------------------------------
 void vtkStrataPooledProducer::SetOutput(vtkDataObject* output)
 {
-  const char* pool = vtkPagePoolReader::GetPoolFileName(output);
-  const std::string name = pool ? pool : "";
-  const int layer = vtkPagePoolReader::GetPoolLayer(output);
-  const int step = vtkPagePoolReader::GetPoolTimeStep(output);
-  std::vector<std::string> series = vtkPagePoolReader::GetPoolSeries(output);
+  vtkPagePoolProtocol::Identity pool = vtkPagePoolProtocol::GetIdentity(output);
+  const std::string& name = pool.FileName;
+  const int layer = pool.Layer;
+  const int step = pool.TimeStep;
+  std::vector<std::string>& series = pool.Series;
   if (name != this->PoolFileName || layer != this->PoolLayer || step != this->PoolTimeStep ||
       series != this->PoolSeries)
   {
@@ -53,23 +51,9 @@ vtkTypeBool vtkStrataPooledProducer::ProcessRequest(vtkInformation* request,
   {
     vtkInformation* info = outInfo->GetInformationObject(0);
     if (this->PoolFileName.empty())
-    {
-      info->Remove(vtkPagePoolReader::POOL_FILE_NAME());
-      info->Remove(vtkPagePoolReader::POOL_LAYER());
-    }
+      info->Remove(vtkPagePoolProtocol::PAGE_POOL());
     else
-    {
-      info->Set(vtkPagePoolReader::POOL_FILE_NAME(), this->PoolFileName.c_str());
-      info->Set(vtkPagePoolReader::POOL_LAYER(), this->PoolLayer);
-    }
-    info->Remove(vtkPagePoolReader::POOL_TIME_STEP());
-    info->Remove(vtkPagePoolReader::POOL_SERIES());
-    if (!this->PoolFileName.empty() && !this->PoolSeries.empty())
-    {
-      info->Set(vtkPagePoolReader::POOL_TIME_STEP(), this->PoolTimeStep);
-      for (const std::string& file : this->PoolSeries)
-        info->Append(vtkPagePoolReader::POOL_SERIES(), file.c_str());
-    }
+      info->Set(vtkPagePoolProtocol::PAGE_POOL(), 1);
   }
   return result;
 }

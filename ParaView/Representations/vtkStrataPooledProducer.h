@@ -3,15 +3,15 @@
  * @class   vtkStrataPooledProducer
  * @brief   A trivial producer that says which page pool its data came from.
  *
- * Strata's mappers page from a pool when their input's pipeline information carries
- * vtkPagePoolReader::POOL_FILE_NAME (and POOL_LAYER). Inside ParaView a representation gets a
- * copy of the reader's output, past ParaView's own pipeline, with that information gone; the
- * pool travels in the data's field data instead (vtkPagePoolReader::GetPoolFileName). The
- * representations hand their mappers the data through this producer, which puts the keys back
- * on its output information at every information pass, so a pool opened in ParaView is paged
- * by the mapper and never read whole. A time series travels alike (the step shown and every
- * step's pool, vtkPagePoolReader::GetPoolSeries), so that the mapper pages the step ParaView's
- * time selects and prefetches the next one in playback order.
+ * Strata's mappers page from a pool when their input's connection is marked
+ * vtkPagePoolProtocol::PAGE_POOL and its data names a pool (the identity in its field data).
+ * Inside ParaView a representation gets a copy of the reader's output, past ParaView's own
+ * pipeline, with the reader's mark gone but the field data kept. The representations hand
+ * their mappers the data through this producer, which marks its output PAGE_POOL at every
+ * information pass when the data names a pool, so a pool opened in ParaView is paged by the
+ * mapper and never read whole. A time series needs nothing more: the identity names the step
+ * shown and every step's pool, so the mapper pages the step ParaView's time selects and
+ * prefetches the next one in playback order.
  */
 #ifndef vtkStrataPooledProducer_h
 #define vtkStrataPooledProducer_h
@@ -29,7 +29,7 @@ public:
   vtkTypeMacro(vtkStrataPooledProducer, vtkTrivialProducer);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Sets the output and reads the pool it names, if any, from its field data.
+  /// Sets the output and reads the pool it names, if any (vtkPagePoolProtocol::GetIdentity).
   void SetOutput(vtkDataObject* output) override;
 
   /// The pool behind the output ("" when none) and its layer.

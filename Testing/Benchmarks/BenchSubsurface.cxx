@@ -15,6 +15,7 @@
 #include "StrataHeightFieldScenes.h"
 #include "StrataTestPaths.h"
 
+#include "StrataImageSampling.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkChart.h"
@@ -117,8 +118,7 @@ double VolumeAt(vtkImageData* volume, const double w[3])
 {
   double x[3];
   volume->TransformPhysicalPointToContinuousIndex(w, x);
-  return vtkHorizonVolumeSampler::SampleImage(
-    volume, volume->GetPointData()->GetScalars(), x, false);
+  return strata::SampleImage(volume, volume->GetPointData()->GetScalars(), x, false);
 }
 
 /// A fractal horizon (depths 1200-1100 m, HeightScale -1) over 1.6 km x 1.6 km at `spacing`.

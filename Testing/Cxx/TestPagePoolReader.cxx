@@ -17,6 +17,7 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataPagePoolSet.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -29,7 +30,9 @@
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPagePoolFile.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkPagePoolReader.h"
+#include "vtkPagedPools.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedShortArray.h"
@@ -254,12 +257,14 @@ void CoarseReads(vtkImageData* vol, const std::string& volPath)
     // The pool travels with the data through copies (what ParaView hands a representation).
     vtkNew<vtkImageData> copy;
     copy->ShallowCopy(coarse);
-    const char* pool = vtkPagePoolReader::GetPoolFileName(copy);
-    Check(pool && volPath == pool && vtkPagePoolReader::GetPoolLayer(copy) == 0,
+    const vtkPagePoolProtocol::Identity pool = vtkPagePoolProtocol::GetIdentity(copy);
+    Check(pool.FileName == volPath && pool.Layer == 0,
       "a shallow copy of the output names its pool (field data)");
+    Check(vtkPagePoolProtocol::IsPagePool(reader->GetOutputInformation(0)),
+      "the reader marks its output a page pool (PAGE_POOL)");
   }
-  Check(vtkPagePoolReader::GetPoolFileName(vol) == nullptr &&
-          vtkPagePoolReader::GetPoolFileName(nullptr) == nullptr,
+  Check(!vtkPagePoolProtocol::GetIdentity(vol).IsValid() &&
+          !vtkPagePoolProtocol::GetIdentity(nullptr).IsValid(),
     "an image not read from a pool names none");
 }
 
@@ -506,6 +511,39 @@ void Errors(const std::string& out, vtkImageData* vol, const std::string& volPat
 
 }
 
+/// A pool is opened once per process (vtkPagePoolFile::OpenShared): a reader's information
+/// and data passes, a second reader, the pagers' pools and the picker's set share one open
+/// file; a file replaced on disk is opened afresh, and the last holder's release closes it.
+void OpenedOnce(vtkImageData* vol, const std::string& out)
+{
+  const std::string path = out + "/shared.spp";
+  Convert(nullptr, vol, path, 16);
+  const long long before = vtkPagePoolFile::GetNumberOfOpens();
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetResolution(0.0);
+  reader->Update();
+  vtkNew<vtkPagePoolReader> second;
+  second->SetFileName(path.c_str());
+  second->Update();
+  vtkPagedPools pools;
+  std::string error;
+  std::shared_ptr<vtkPagePoolFile> paged = pools.OpenPool(0, path, error);
+  strata::PagePoolSet set;
+  Check(paged && set.Open(path, error) && &set.GetFile() == paged.get(),
+    "the pager and a picker's set get the reader's file");
+  const long long opens = vtkPagePoolFile::GetNumberOfOpens() - before;
+  std::cout << "opened once: " << opens << " open(s) for two readers, a pager and a set\n";
+  Check(opens == 1, "two readers, a pager and a set open the pool once");
+  // Replaced on disk (a new file under the name): the next opener gets the new file.
+  const std::string next = out + "/shared-next.spp";
+  Convert(nullptr, vol, next, 16);
+  Check(std::rename(next.c_str(), path.c_str()) == 0, "the pool replaced on disk");
+  std::shared_ptr<vtkPagePoolFile> fresh = vtkPagePoolFile::OpenShared(path, error);
+  Check(fresh && fresh != paged && vtkPagePoolFile::GetNumberOfOpens() - before == 2,
+    "a pool replaced on disk is opened afresh, not served from the old descriptor");
+}
+
 int TestPagePoolReader(int argc, char* argv[])
 {
   const strata_test::TestPaths paths = strata_test::TestPaths::FromArguments(argc, argv);
@@ -536,6 +574,7 @@ int TestPagePoolReader(int argc, char* argv[])
       { "Reek", [&] { Reek(out, paths); } },
       { "Components", [&] { Components(out); } },
       { "Errors", [&] { Errors(out, vol, volPath); } },
+      { "OpenedOnce", [&] { OpenedOnce(vol, out); } },
     },
     strata_test::Failures);
 }

@@ -49,3 +49,13 @@ endif ()
 step("run" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 ${preload}
   "${WORK}/build/StrataDownstream" "${WORK}/reek.spp")
 message("${step_output}")
+# A project written against the single module of earlier releases (Strata::Strata, now the
+# umbrella of the three) configures, builds and renders the same.
+step("configure (Strata::Strata)" "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${WORK}/build-umbrella"
+  -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${WORK}/install"
+  -DSTRATA_DOWNSTREAM_UMBRELLA=ON)
+step("build (Strata::Strata)" "${CMAKE_COMMAND}" --build "${WORK}/build-umbrella")
+step("run (Strata::Strata)" "${CMAKE_COMMAND}" -E env STRATA_OFFSCREEN=1 ${preload}
+  "${WORK}/build-umbrella/StrataDownstream" "${WORK}/reek.spp")
+string(REGEX MATCH "window [A-Za-z]+" window "${step_output}")
+message("downstream: Strata::Strata umbrella: ${window}: ok")
