@@ -1218,9 +1218,10 @@ void vtkMultiVolumeRayCastMapper::GetRayOffset(int ray, int rays, double offset[
 void vtkMultiVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
+  // The GPU copies only: the inputs' trees, tables and skip grids (CPU) stay, and their
+  // textures are made again from them at the next render, without reading the data again.
   for (auto& input : in.Inputs)
     input.second.ReleaseGraphicsResources(window);
-  in.Inputs.clear(); // rebuilt (trees, tables, skip grids) at the next render
   in.Pager.InvalidateCut();
   in.Geometry.ReleaseGraphicsResources();
   in.Atlas.ReleaseGraphicsResources();

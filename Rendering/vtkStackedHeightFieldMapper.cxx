@@ -1,5 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkStackedHeightFieldMapper.h"
+#include "vtkStackedHeightFieldMapperInternals.h"
 
 #include "vtkFeedbackBuffer.h"
 #include "vtkFeedbackReduction.h"
@@ -83,117 +84,6 @@ void DefaultDepthColor(double s, double rgb[3])
 }
 
 }
-
-class vtkStackedHeightFieldMapper::vtkInternals
-{
-public:
-  using Self = vtkStackedHeightFieldMapper;
-  explicit vtkInternals(Self* self)
-    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
-  {
-  }
-
-  // CPU side
-  vtkHeightFieldStack Stack;
-  vtkMinMaxQuadtree Tree;
-  std::vector<vtkSmartPointer<vtkDataArray>> Arrays; // keep borrowed layers alive
-  vtkNew<vtkMatrix4x4> GridToWorld;
-  vtkMTimeType BuildTime = 0;
-  bool Valid = false;
-  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
-  std::map<int, std::array<double, 3>> HorizonColors;
-  std::map<int, double> HorizonOpacities; ///< below 1 only
-  vtkSmartPointer<vtkScalarsToColors> Lut;
-  // Per horizon: a colour array (its name) and a lookup table; the arrays' values in core.
-  std::map<int, std::string> ColorArrays;
-  std::map<int, vtkSmartPointer<vtkScalarsToColors>> HorizonLuts;
-  vtkHeightFieldStack Attributes;
-  std::vector<int> AttributeLayer; ///< per horizon: its layer of Attributes, or -1
-  vtkTimeStamp ColorsModified;
-  // What the renderer draws, in core or paged: grid size, horizons, value range, holes.
-  int NX = 0, NY = 0, Layers = 0;
-  double ZRange[2] = { 0.0, -1.0 };
-  bool Holes = false;
-
-  // Paging (tile pools behind the inputs): the pager and the readers' coarsest levels as roots.
-  bool Paged = false;
-  vtkHeightFieldPager Pager;
-  std::vector<std::vector<float>> RootValues;
-  bool TreeDirty = true; ///< the pager's quadtree changed since it was uploaded
-  // Level-of-detail feedback: the lattice phase, the view the queued buffer was written from.
-  bool PendingViewChanged = false; ///< the queued frame's view differed from the one before
-  int64_t FeedbackFrame = 0;
-  bool FeedbackActive = false; ///< this frame's shader writes the buffer
-  bool FeedbackUnsupportedWarned = false;
-  bool UnsupportedTranslucentWarned = false;
-  std::array<double, 16> LastView{};
-  vtkStackedHeightFieldMapper::PagingStatistics Paging;
-
-  // GPU side: the parts, and what of the data they hold.
-  vtkStrataResourceFreeCallback<Self> ResourceCallback;
-  vtkHeightFieldStackBuffers Buffers;
-  vtkHeightFieldTileAtlas Atlas;
-  vtkFeedbackBuffer Feedback{ false };
-  vtkHeightFieldShaderComposer Composer;
-  vtkHeightFieldShaderComposer::Key LastKey;
-  bool HasLastKey = false;
-  vtkMTimeType UploadTime = 0;
-  vtkMTimeType ColorTime = 0;
-
-  /// What this frame draws with, and how.
-  struct Frame
-  {
-    bool Shaded = true;
-    bool LookupTable = false;
-    bool PerHorizon = false; ///< some horizon has its own table or colour array
-    bool Lit = false;
-    /// Skip in the opaque pass of a stack with translucent horizons, Layer in a peel.
-    vtkHeightFieldShaderComposer::Translucency Translucent =
-      vtkHeightFieldShaderComposer::Translucency::None;
-    vtkVolumeSurfacePeelPass* Peel = nullptr; ///< the peel drawing this frame's layer
-    double LutRange[2] = { 0.0, 1.0 };
-    vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;
-    int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
-  };
-
-  bool ReadAttributes(Self* self, const std::vector<vtkImageData*>& images);
-  /// pageFrame: advance paging (false in a peel, which redraws the frame's cut).
-  bool Upload(Self* self,
-    vtkRenderer* ren,
-    vtkActor* actor,
-    vtkOpenGLRenderWindow* renWin,
-    bool pageFrame);
-  bool ChooseTranslucency(Self* self, vtkActor* actor, Frame& frame);
-  void SetPeelUniforms(vtkShaderProgram* program, const Frame& frame) const;
-  bool UpdatePages(Self* self, vtkRenderer* ren, vtkActor* actor);
-  void UpdateColors(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
-  bool ColorsCurrent() const;
-  double Opacity(int horizon) const;
-  bool AnyTranslucent() const;
-  bool AnyOpaque() const;
-  std::vector<float> PerHorizonColors(Self* self) const;
-  bool UseFeedback(Self* self);
-  vtkShaderProgram* ReadyProgram(Self* self,
-    vtkOpenGLRenderWindow* renWin,
-    vtkOpenGLRenderer* oglRen,
-    const Frame& frame);
-  bool SetUniforms(Self* self,
-    vtkRenderer* ren,
-    vtkActor* actor,
-    vtkShaderProgram* program,
-    Frame& frame);
-  void SetLightingUniforms(vtkOpenGLRenderer* ren,
-    vtkActor* actor,
-    vtkShaderProgram* program,
-    const Frame& frame);
-  void PrepareFeedback(Self* self,
-    vtkOpenGLRenderWindow* renWin,
-    vtkShaderProgram* program,
-    const Frame& frame);
-  /// writeDepth: false in the translucent pass (what lies behind stays visible to the rest).
-  void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program, bool writeDepth);
-  void ReadFeedback(Self* self);
-};
 
 vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
   : Internals(new vtkInternals(this))
@@ -1286,6 +1176,77 @@ void vtkStackedHeightFieldMapper::vtkInternals::SetPeelUniforms(vtkShaderProgram
   program->SetUniformi("uNumHorizons", this->Layers);
 }
 
+// The heights (the tile atlas when paged, else the height array), normals and attributes on
+// their units for this frame's program, and the colour table's range.
+void vtkStackedHeightFieldMapper::vtkInternals::BindData(vtkOpenGLRenderWindow* renWin,
+  vtkShaderProgram* program,
+  const Frame& frame)
+{
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  if (this->Paged)
+  {
+    this->Atlas.Bind(renWin, program, this->Pager);
+  }
+  else
+  {
+    this->HeightUnit = units->Allocate();
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + this->HeightUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, this->Buffers.GetHeightTexture());
+    program->SetUniformi("uHeights", this->HeightUnit);
+  }
+  this->Buffers.Activate(program, frame.Shaded);
+  if (this->LastKey.Attributes)
+  {
+    this->AttributeUnit = units->Allocate();
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + this->AttributeUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, this->Buffers.GetAttributeTexture());
+    program->SetUniformi("uAttributes", this->AttributeUnit);
+  }
+  if (frame.LookupTable)
+  {
+    const float lr[2] = { float(frame.LutRange[0]), EntriesPerUnit(frame.LutRange) };
+    program->SetUniform2f("uLutRange", lr);
+  }
+}
+
+void vtkStackedHeightFieldMapper::vtkInternals::UnbindData(vtkOpenGLRenderWindow* renWin,
+  const Frame& frame)
+{
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  this->Buffers.Deactivate(frame.Shaded);
+  for (int* unit : { &this->AttributeUnit, &this->HeightUnit })
+  {
+    if (*unit < 0)
+      continue;
+    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + *unit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    units->Free(*unit);
+    *unit = -1;
+  }
+  if (this->Paged)
+  {
+    this->Atlas.Unbind(renWin);
+  }
+}
+
+// The frame's feedback image copied into the pixel buffer now; mapped at once, or at the next
+// frame when the read-back is deferred (ReadFeedback).
+void vtkStackedHeightFieldMapper::vtkInternals::QueueFeedback(Self* self,
+  vtkOpenGLRenderWindow* renWin,
+  const Frame& frame)
+{
+  this->Feedback.UnbindImages();
+  std::array<double, 16> view;
+  std::copy_n(frame.GridToClip->GetData(), 16, view.begin());
+  this->Feedback.Queue(renWin);
+  this->PendingViewChanged = view != this->LastView;
+  this->LastView = view;
+  if (!self->DeferFeedbackReadBack)
+  {
+    this->ReadFeedback(self);
+  }
+}
+
 void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   vtkInternals& in = *this->Internals;
@@ -1295,7 +1256,7 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Composer.ReleaseGraphicsResources();
   in.UploadTime = 0;
   in.ColorTime = 0;
-  this->Modified();
+  this->Superclass::ReleaseGraphicsResources(win);
 }
 
 // One frame: the stack and colours on the GPU, the program for the scene's features, its
@@ -1338,69 +1299,16 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
     in.SetLightingUniforms(oglRen, actor, program, frame);
   }
   in.SetPeelUniforms(program, frame);
-  const bool feedback = in.LastKey.Feedback;
-  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
-  int heightUnit = -1;
-  if (in.Paged)
-  {
-    in.Atlas.Bind(renWin, program, in.Pager);
-  }
-  else
-  {
-    heightUnit = units->Allocate();
-    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.Buffers.GetHeightTexture());
-    program->SetUniformi("uHeights", heightUnit);
-  }
-  in.Buffers.Activate(program, frame.Shaded);
-  int attributeUnit = -1;
-  if (in.LastKey.Attributes)
-  {
-    attributeUnit = units->Allocate();
-    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + attributeUnit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, in.Buffers.GetAttributeTexture());
-    program->SetUniformi("uAttributes", attributeUnit);
-  }
-  if (frame.LookupTable)
-  {
-    const float lr[2] = { float(frame.LutRange[0]), EntriesPerUnit(frame.LutRange) };
-    program->SetUniform2f("uLutRange", lr);
-  }
-  if (feedback)
+  in.BindData(renWin, program, frame);
+  if (in.LastKey.Feedback)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
   in.Draw(renWin, program, frame.Translucent != vtkHeightFieldShaderComposer::Translucency::Blend);
-  in.Buffers.Deactivate(frame.Shaded);
-  if (attributeUnit >= 0)
+  in.UnbindData(renWin, frame);
+  if (in.LastKey.Feedback)
   {
-    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + attributeUnit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    units->Free(attributeUnit);
-  }
-  if (in.Paged)
-  {
-    in.Atlas.Unbind(renWin);
-  }
-  else
-  {
-    renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + heightUnit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    units->Free(heightUnit);
-  }
-  if (feedback)
-  {
-    in.Feedback.UnbindImages();
-    std::array<double, 16> view;
-    std::copy_n(frame.GridToClip->GetData(), 16, view.begin());
-    // Copied into the pixel buffer now; mapped at once or at the next frame (ReadFeedback).
-    in.Feedback.Queue(renWin);
-    in.PendingViewChanged = view != in.LastView;
-    in.LastView = view;
-    if (!this->DeferFeedbackReadBack)
-    {
-      in.ReadFeedback(this);
-    }
+    in.QueueFeedback(this, renWin, frame);
   }
   vtkOpenGLCheckErrorMacro("failed after rendering the height-field stack");
 }
