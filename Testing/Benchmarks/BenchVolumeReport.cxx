@@ -60,7 +60,6 @@ namespace
 {
 const double NaN = std::numeric_limits<double>::quiet_NaN();
 
-
 std::vector<std::map<std::string, std::string>> ReadCsv(const std::string& path)
 {
   std::vector<std::map<std::string, std::string>> rows;
