@@ -1,10 +1,10 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHybridVolumeMapper.h"
 
+#include "StrataGraphicsResources.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkStrataGLObject.h"
 #include "vtkStrataRenderUtilities.h"
-#include "vtkStrataResourceFreeCallback.h"
 #include "vtkStrataShaderCache.h"
 #include "vtkTransferFunctionTable.h"
 
@@ -120,11 +120,11 @@ class vtkHybridVolumeMapper::vtkInternals
 public:
   using Self = vtkHybridVolumeMapper;
   explicit vtkInternals(Self* self)
-    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+    : GraphicsResources(self, &Self::ReleaseGraphicsResources)
   {
   }
 
-  vtkStrataResourceFreeCallback<Self> ResourceCallback;
+  strata::GraphicsResources<Self> GraphicsResources;
   vtkNew<vtkMultiVolumeRayCastMapper> Volume;
   vtkNew<vtkPlaneCollection> Slab;
   vtkNew<vtkPlane> Near;
@@ -458,7 +458,7 @@ vtkHybridVolumeMapper::vtkHybridVolumeMapper()
 vtkHybridVolumeMapper::~vtkHybridVolumeMapper()
 {
   // GL names die in their own context: the callback makes it current if the window lives.
-  this->Internals->ResourceCallback.Release();
+  this->Internals->GraphicsResources.Release();
 }
 
 int vtkHybridVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
@@ -631,7 +631,7 @@ void vtkHybridVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("vtkHybridVolumeMapper needs an OpenGL render window.");
     return;
   }
-  in.ResourceCallback.RegisterGraphicsResources(renWin);
+  in.GraphicsResources.Register(renWin);
   vtkPolyData* points = nullptr;
   if (!this->UpdateInputs(points))
     return;

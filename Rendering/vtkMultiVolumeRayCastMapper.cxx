@@ -2,6 +2,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkMultiVolumeRayCastMapperInternals.h"
 
+#include "StrataGraphicsResources.h"
 #include "vtkBrickAtlasAllocator.h"
 #include "vtkBrickAtlasFormat.h"
 #include "vtkBrickAtlasTexture.h"
@@ -12,7 +13,6 @@
 #include "vtkPagePoolFile.h"
 #include "vtkPagePoolProtocol.h"
 #include "vtkStrataRenderUtilities.h"
-#include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeBrickTree.h"
 #include "vtkVolumeFragmentGeometry.h"
 #include "vtkVolumeIntegrationBuffers.h"
@@ -1170,7 +1170,7 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper()
 {
   // GL names die in their own context: the callback makes it current if the window lives.
-  this->Internals->ResourceCallback.Release();
+  this->Internals->GraphicsResources.Release();
 }
 
 void vtkMultiVolumeRayCastMapper::SetRegion(const double bounds[6])
@@ -1300,7 +1300,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("vtkMultiVolumeRayCastMapper needs an OpenGL render window.");
     return;
   }
-  in.ResourceCallback.RegisterGraphicsResources(renWin);
+  in.GraphicsResources.Register(renWin);
   Frame frame;
   if (!in.CollectVolumes(this, vol, frame))
     return;

@@ -9,11 +9,11 @@
 
 #include "vtkMultiVolumeRayCastMapper.h"
 
+#include "StrataGraphicsResources.h"
 #include "vtkBrickAtlasTexture.h"
 #include "vtkFeedbackBuffer.h"
 #include "vtkMultiVolumeInput.h"
 #include "vtkMultiVolumeShaderComposer.h"
-#include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeCut.h"
 #include "vtkVolumeFragmentGeometry.h"
 #include "vtkVolumeIntegrationBuffers.h"
@@ -112,11 +112,11 @@ public:
   using ViewKey = vtkMultiVolumeRayCastMapperFrame::ViewKey;
   using Self = vtkMultiVolumeRayCastMapper;
   explicit vtkInternals(Self* self)
-    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+    : GraphicsResources(self, &Self::ReleaseGraphicsResources)
   {
   }
 
-  vtkStrataResourceFreeCallback<Self> ResourceCallback;
+  strata::GraphicsResources<Self> GraphicsResources;
   vtkVolumeFragmentGeometry Geometry;
   std::map<int, vtkMultiVolumeInput> Inputs; // by input port
   vtkVolumePager Pager;

@@ -2,6 +2,7 @@
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkStackedHeightFieldMapperInternals.h"
 
+#include "StrataGraphicsResources.h"
 #include "vtkFeedbackBuffer.h"
 #include "vtkFeedbackReduction.h"
 #include "vtkHeightFieldPager.h"
@@ -12,7 +13,6 @@
 #include "vtkMinMaxQuadtree.h"
 #include "vtkPagePoolProtocol.h"
 #include "vtkStrataRenderUtilities.h"
-#include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeCut.h"
 #include "vtkVolumeSurfaceLayers.h"
 
@@ -96,7 +96,7 @@ vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
 vtkStackedHeightFieldMapper::~vtkStackedHeightFieldMapper()
 {
   // GL names die in their own context: the callback makes it current if the window lives.
-  this->Internals->ResourceCallback.Release();
+  this->Internals->GraphicsResources.Release();
 }
 
 int vtkStackedHeightFieldMapper::FillInputPortInformation(int, vtkInformation* info)
@@ -1280,7 +1280,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     return;
   }
-  in.ResourceCallback.RegisterGraphicsResources(renWin);
+  in.GraphicsResources.Register(renWin);
   vtkOpenGLClearErrorMacro();
   if (!in.Upload(this, ren, actor, renWin, frame.Peel == nullptr))
   {

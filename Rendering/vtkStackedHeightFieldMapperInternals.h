@@ -8,6 +8,7 @@
 
 #include "vtkStackedHeightFieldMapper.h"
 
+#include "StrataGraphicsResources.h"
 #include "vtkFeedbackBuffer.h"
 #include "vtkHeightFieldPager.h"
 #include "vtkHeightFieldShaderComposer.h"
@@ -15,7 +16,6 @@
 #include "vtkHeightFieldStackBuffers.h"
 #include "vtkHeightFieldTileAtlas.h"
 #include "vtkMinMaxQuadtree.h"
-#include "vtkStrataResourceFreeCallback.h"
 #include "vtkVolumeSurfaceLayers.h"
 
 #include "vtkMatrix4x4.h"
@@ -44,7 +44,7 @@ class vtkStackedHeightFieldMapper::vtkInternals
 public:
   using Self = vtkStackedHeightFieldMapper;
   explicit vtkInternals(Self* self)
-    : ResourceCallback(self, &Self::ReleaseGraphicsResources)
+    : GraphicsResources(self, &Self::ReleaseGraphicsResources)
   {
   }
 
@@ -85,7 +85,7 @@ public:
   vtkStackedHeightFieldMapper::PagingStatistics Paging;
 
   // GPU side: the parts, and what of the data they hold.
-  vtkStrataResourceFreeCallback<Self> ResourceCallback;
+  strata::GraphicsResources<Self> GraphicsResources;
   vtkHeightFieldStackBuffers Buffers;
   vtkHeightFieldTileAtlas Atlas;
   vtkFeedbackBuffer Feedback{ false };

@@ -7,7 +7,7 @@
  * textures of a given internal format, pixel-pack buffers, plain vertex arrays). The name is
  * created on first Get() in the current context and deleted by Release(), which the owner
  * calls from its ReleaseGraphicsResources, where VTK guarantees a current context (the
- * owner's vtkStrataResourceFreeCallback makes it current when the owner dies first). The
+ * owner's strata::GraphicsResources makes it current when the owner dies first). The
  * destructor deletes nothing: without its context a GL name cannot be deleted, so an owner
  * that forgot Release() leaks it, which the GL lifetime test catches.
  */

@@ -8,7 +8,7 @@
 // page table, feedback), volumes with the atlas, without it, and paged (feedback), and the hybrid.
 // - Mapper first: after an empty frame (VTK's own names) the scene is drawn twice, then its
 //   mapper is taken off the prop and dropped while the prop stays in the renderer; the window
-//   must hold exactly its names of before. Nothing but the mapper's resource-free callback can
+//   must hold exactly its names of before. Nothing but the mapper's strata::GraphicsResources can
 //   release them then (VTK releases a prop's resources when it leaves a renderer, not when its
 //   mapper does), so the test fails when the callback is removed.
 // - Window change: drawn in one window, then the mapper is moved to a prop in a second one;
