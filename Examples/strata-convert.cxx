@@ -10,6 +10,7 @@
 // The pool is written to <output>.tmp-<pid> and renamed when complete; temporaries that killed
 // runs left beside the output are removed first.
 #include "StrataCommandLine.h"
+#include "StrataPagePoolFile.h"
 #include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -21,7 +22,6 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
-#include "vtkPagePoolFile.h"
 #include "vtkSegyVolumeReader.h"
 #include "vtkStreamingMetaImageReader.h"
 
@@ -68,7 +68,7 @@ int Die(const std::string& message)
 }
 
 /// Removes <output>.tmp-<pid> files whose process is gone: what a conversion killed before its
-/// rename left behind (vtkPagePoolWriter names its temporary so). A live pid's file is left.
+/// rename left behind (strata::PagePoolWriter names its temporary so). A live pid's file is left.
 void RemoveStaleTemporaries(const std::string& output)
 {
   const std::string dir = vtksys::SystemTools::GetFilenamePath(output);
@@ -391,12 +391,12 @@ int main(int argc, char* argv[])
     compress ? "zstd" : "raw",
     seconds);
   // A volume of several components is a set of pools, one per component.
-  vtkPagePoolFile written;
+  strata::PagePoolFile written;
   const int components = written.Open(output) ? written.GetHeader().Components : 1;
   for (int c = 1; c < components; ++c)
     std::printf("  component %d of %d: %s\n",
       c,
       components,
-      vtkPagePoolFormat::GetComponentFileName(output, c).c_str());
+      strata::PagePoolFormat::GetComponentFileName(output, c).c_str());
   return 0;
 }

@@ -1,16 +1,16 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // strata-hybrid: builds the hybrid point/volume representation of a volume (a low-resolution
-// volume plus points where it errs; vtkHybridVolumeBuilder) and writes it as a .shv file.
+// volume plus points where it errs; strata::HybridVolumeBuilder) and writes it as a .shv file.
 //   raw (--raw ...):           streamed from the file slab by slab, memory bounded by
 //                              --memory-limit plus one slice;
 //   .vti, .mhd/.mha, .nrrd:    read whole through its VTK reader, then vtkHybridVolumeFilter.
 #include "StrataCommandLine.h"
+#include "StrataHybridVolumeBuilder.h"
+#include "StrataHybridVolumeFile.h"
 #include "vtkByteSwap.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
-#include "vtkHybridVolumeBuilder.h"
-#include "vtkHybridVolumeFile.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -216,7 +216,7 @@ int main(int argc, char* argv[])
     {
       return Die("cannot open \"" + input + "\"");
     }
-    vtkHybridVolumeBuilder builder;
+    strata::HybridVolumeBuilder builder;
     filter->ConfigureBuilder(builder);
     const double origin[3] = { 0, 0, 0 };
     builder.SetInput(raw.Dimensions,
@@ -224,7 +224,7 @@ int main(int argc, char* argv[])
       origin,
       [&volume](int first, int count, float* out) { return volume.Read(first, count, out); });
     builder.SetProgressCallback([&bar](double fraction) { bar.Show(fraction); });
-    vtkHybridVolumeFile file;
+    strata::HybridVolumeFile file;
     const bool built = builder.Build(file);
     bar.Finish();
     if (!built)

@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkAsciiGridReader.h"
-#include "vtkStrataAsciiGridParser.h"
+#include "StrataAsciiGridParser.h"
 
 #include "vtkFloatArray.h"
 #include "vtkObjectFactory.h"

@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonColumnReader.h"
-#include "vtkStrataAsciiGridParser.h"
+#include "StrataAsciiGridParser.h"
 
 #include "vtkFloatArray.h"
 #include "vtkMath.h"

@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHorizonGridReader.h"
-#include "vtkStrataGridReaderUtilities.h"
+#include "StrataGridReaderUtilities.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"

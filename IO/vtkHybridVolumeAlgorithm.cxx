@@ -1,12 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHybridVolumeAlgorithm.h"
 
+#include "StrataHybridVolumeFile.h"
 #include "vtkCellArray.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkHybridVolumeFile.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -39,7 +39,7 @@ void LowResolutionGeometry(const int dimensions[3],
   {
     extent[2 * a] = 0;
     extent[2 * a + 1] =
-      vtkHybridVolumeFile::GetLowResolutionDimension(dimensions[a], factor[a]) - 1;
+      strata::HybridVolumeFile::GetLowResolutionDimension(dimensions[a], factor[a]) - 1;
     lowSpacing[a] = factor[a] * spacing[a];
   }
 }
@@ -170,7 +170,7 @@ void vtkHybridVolumeAlgorithm::ClearOutputs(vtkInformationVector* outputVector)
 }
 
 //------------------------------------------------------------------------------
-void vtkHybridVolumeAlgorithm::FillOutputs(const vtkHybridVolumeFile& file,
+void vtkHybridVolumeAlgorithm::FillOutputs(const strata::HybridVolumeFile& file,
   vtkImageData* lowResolution,
   vtkPolyData* points)
 {
@@ -206,14 +206,14 @@ void vtkHybridVolumeAlgorithm::FillOutputs(const vtkHybridVolumeFile& file,
   codes->SetNumberOfValues(n);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    const vtkHybridVolumeFile::Point& p = file.Points[static_cast<size_t>(i)];
+    const strata::HybridVolumeFile::Point& p = file.Points[static_cast<size_t>(i)];
     double x[3], normal[3];
     for (int a = 0; a < 3; ++a)
     {
       x[a] = file.Origin[a] + p.Position[a] * file.Spacing[a];
     }
     positions->SetPoint(i, x);
-    vtkHybridVolumeFile::DecodeNormal(p.Normal, normal);
+    strata::HybridVolumeFile::DecodeNormal(p.Normal, normal);
     normals->SetTuple(i, normal);
     value->SetValue(i, p.Value);
     error->SetValue(i, p.Error);

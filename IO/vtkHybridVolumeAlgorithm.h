@@ -5,7 +5,7 @@
  *          the low-resolution volume on output 0, the points on output 1.
  *
  * vtkHybridVolumeFilter (which builds the representation) and vtkHybridVolumeReader (which
- * loads it) must give identical outputs for the same vtkHybridVolumeFile, so the outputs are
+ * loads it) must give identical outputs for the same strata::HybridVolumeFile, so the outputs are
  * defined once, here:
  * - Output 0, vtkImageData: the low-resolution volume, float point scalars "LowResolution",
  *   extent [0, LowDimensions - 1], origin = the file's Origin (the original volume's first
@@ -22,7 +22,7 @@
  * Subclasses implement RequestData (and RequestInformation / RequestUpdateExtent as needed)
  * and call FillOutputs and SetLowResolutionInformation.
  *
- * @sa vtkHybridVolumeFilter vtkHybridVolumeReader vtkHybridVolumeFile
+ * @sa vtkHybridVolumeFilter vtkHybridVolumeReader strata::HybridVolumeFile
  */
 #ifndef vtkHybridVolumeAlgorithm_h
 #define vtkHybridVolumeAlgorithm_h
@@ -30,7 +30,10 @@
 #include "StrataIOModule.h" // For export macro
 #include "vtkAlgorithm.h"
 
-class vtkHybridVolumeFile;
+namespace strata
+{
+class HybridVolumeFile;
+}
 class vtkImageData;
 class vtkPolyData;
 
@@ -52,7 +55,7 @@ public:
 
 #ifndef __VTK_WRAP__
   /// Fills both outputs from `file` as the class documentation describes.
-  static void FillOutputs(const vtkHybridVolumeFile& file,
+  static void FillOutputs(const strata::HybridVolumeFile& file,
     vtkImageData* lowResolution,
     vtkPolyData* points);
 #endif

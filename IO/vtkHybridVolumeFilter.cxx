@@ -1,12 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHybridVolumeFilter.h"
 
+#include "StrataHybridVolumeBuilder.h"
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
-#include "vtkHybridVolumeBuilder.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -122,7 +122,7 @@ const char* vtkHybridVolumeFilter::GetFilterName(FilterType filter)
 }
 
 //------------------------------------------------------------------------------
-void vtkHybridVolumeFilter::ConfigureBuilder(vtkHybridVolumeBuilder& builder) const
+void vtkHybridVolumeFilter::ConfigureBuilder(strata::HybridVolumeBuilder& builder) const
 {
   builder.SetFactor(this->Factor[0], this->Factor[1], this->Factor[2]);
   builder.SetFilter(this->Filter);
@@ -240,7 +240,7 @@ int vtkHybridVolumeFilter::RequestData(vtkInformation*,
     vtkWarningMacro("The input's direction matrix is ignored: the outputs are axis-aligned.");
   }
 
-  vtkHybridVolumeBuilder builder;
+  strata::HybridVolumeBuilder builder;
   this->ConfigureBuilder(builder);
   bool aborted = false;
   builder.SetInput(dimensions,
@@ -274,7 +274,7 @@ int vtkHybridVolumeFilter::RequestData(vtkInformation*,
         this->UpdateProgress(fraction);
       }
     });
-  vtkHybridVolumeFile file;
+  strata::HybridVolumeFile file;
   if (!builder.Build(file))
   {
     return fail(aborted ? std::string("aborted") : builder.GetErrorMessage());

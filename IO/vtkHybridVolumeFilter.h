@@ -3,7 +3,7 @@
  * @class   vtkHybridVolumeFilter
  * @brief   Builds the hybrid point/volume representation of a vtkImageData in a pipeline.
  *
- * The VTK face of vtkHybridVolumeBuilder (Wilson, Ma and McCormick, "A hybrid point and
+ * The VTK face of strata::HybridVolumeBuilder (Wilson, Ma and McCormick, "A hybrid point and
  * volume rendering"): input 0 is a vtkImageData whose point scalars (the input array to
  * process, by default the active scalars; any type, component 0) are down-sampled; output 0
  * is the low-resolution volume and output 1 the points where it errs, as
@@ -13,7 +13,7 @@
  * Memory. The builder's own working memory is bounded by MemoryLimit, but this filter asks
  * its input for the whole extent, so the original volume is in memory as a whole; memory
  * stays bounded only when the input itself is streamed outside the pipeline, by driving
- * vtkHybridVolumeBuilder from a slab source directly (ConfigureBuilder gives it this filter's
+ * strata::HybridVolumeBuilder from a slab source directly (ConfigureBuilder gives it this filter's
  * settings; strata-hybrid does so for raw files).
  *
  * Geometry. The origin of both outputs is the world position of the input's first point (the
@@ -21,28 +21,31 @@
  * warning when it is not the identity): the file format stores none, and the filter must
  * give what vtkHybridVolumeReader gives back.
  *
- * When FileName is set the representation is also written there (vtkHybridVolumeFile::Write:
+ * When FileName is set the representation is also written there (strata::HybridVolumeFile::Write:
  * a temporary file renamed when complete). Errors (no scalars, bad settings, an unwritable
  * file) are reported with vtkErrorMacro and leave both outputs empty. Progress events follow
  * the builder (pass 1 the first half), non-decreasing, ending at 1. AbortExecute stops the
  * build at the next slab.
  *
- * @sa vtkHybridVolumeBuilder vtkHybridVolumeReader vtkHybridVolumeAlgorithm
+ * @sa strata::HybridVolumeBuilder vtkHybridVolumeReader vtkHybridVolumeAlgorithm
  */
 #ifndef vtkHybridVolumeFilter_h
 #define vtkHybridVolumeFilter_h
 
-#include "StrataIOModule.h" // For export macro
+#include "StrataHybridVolumeFile.h" // For FilterType
+#include "StrataIOModule.h"         // For export macro
 #include "vtkHybridVolumeAlgorithm.h"
-#include "vtkHybridVolumeFile.h" // For FilterType
 
-class vtkHybridVolumeBuilder;
+namespace strata
+{
+class HybridVolumeBuilder;
+}
 class vtkPiecewiseFunction;
 
 class STRATAIO_EXPORT vtkHybridVolumeFilter : public vtkHybridVolumeAlgorithm
 {
 public:
-  using FilterType = vtkHybridVolumeFile::FilterType;
+  using FilterType = strata::HybridVolumeFile::FilterType;
 
   static vtkHybridVolumeFilter* New();
   vtkTypeMacro(vtkHybridVolumeFilter, vtkHybridVolumeAlgorithm);
@@ -58,7 +61,7 @@ public:
   ///@}
 
   ///@{
-  /// Down-sampling filter; see vtkHybridVolumeBuilder. Default Cubic.
+  /// Down-sampling filter; see strata::HybridVolumeBuilder. Default Cubic.
   void SetFilter(FilterType filter);
   FilterType GetFilter() const { return this->Filter; }
   void SetFilterToBox() { this->SetFilter(FilterType::Box); }
@@ -91,7 +94,7 @@ public:
   /**
    * Optional: the opacity function the data will be seen with. Points are then ranked by the
    * opacity the low-resolution volume misses, max(0, f(original) - f(reconstruction)), instead
-   * of |error| (see vtkHybridVolumeBuilder::SetImportance); Threshold is in opacity units.
+   * of |error| (see strata::HybridVolumeBuilder::SetImportance); Threshold is in opacity units.
    */
   void SetOpacityFunction(vtkPiecewiseFunction* opacity);
   vtkGetObjectMacro(OpacityFunction, vtkPiecewiseFunction);
@@ -120,7 +123,7 @@ public:
 
 #ifndef __VTK_WRAP__
   /// Gives `builder` this filter's settings (all but the input and the progress callback).
-  void ConfigureBuilder(vtkHybridVolumeBuilder& builder) const;
+  void ConfigureBuilder(strata::HybridVolumeBuilder& builder) const;
 #endif
 
 protected:

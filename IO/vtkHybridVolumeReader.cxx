@@ -1,7 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHybridVolumeReader.h"
 
-#include "vtkHybridVolumeFile.h"
+#include "StrataHybridVolumeFile.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -30,7 +30,7 @@ void vtkHybridVolumeReader::PrintSelf(ostream& os, vtkIndent indent)
 //------------------------------------------------------------------------------
 bool vtkHybridVolumeReader::ReadFile()
 {
-  this->File.reset(new vtkHybridVolumeFile);
+  this->File.reset(new strata::HybridVolumeFile);
   if (!this->FileName || !*this->FileName)
   {
     this->File.reset();
@@ -60,7 +60,7 @@ int vtkHybridVolumeReader::RequestInformation(vtkInformation*,
     ClearOutputs(outputVector);
     return 0;
   }
-  const vtkHybridVolumeFile& f = *this->File;
+  const strata::HybridVolumeFile& f = *this->File;
   SetLowResolutionInformation(
     outputVector->GetInformationObject(0), f.Dimensions, f.Factor, f.Spacing, f.Origin);
   return 1;

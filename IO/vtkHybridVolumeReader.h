@@ -6,12 +6,12 @@
  *
  * The file holds only the low-resolution volume and the points, a small fraction of the
  * original volume, so RequestInformation reads and validates it as a whole
- * (vtkHybridVolumeFile::Read: sizes, fields, checksum) and reports output 0's whole extent,
+ * (strata::HybridVolumeFile::Read: sizes, fields, checksum) and reports output 0's whole extent,
  * spacing and origin; RequestData hands what was read to the outputs (reading again if the
  * pipeline asks for data without new information). A missing, truncated or corrupt file is
  * reported with vtkErrorMacro, saying what is wrong, and leaves both outputs empty.
  *
- * @sa vtkHybridVolumeFilter vtkHybridVolumeFile vtkHybridVolumeAlgorithm
+ * @sa vtkHybridVolumeFilter strata::HybridVolumeFile vtkHybridVolumeAlgorithm
  */
 #ifndef vtkHybridVolumeReader_h
 #define vtkHybridVolumeReader_h
@@ -21,7 +21,10 @@
 
 #include <memory> // For std::unique_ptr
 
-class vtkHybridVolumeFile;
+namespace strata
+{
+class HybridVolumeFile;
+}
 
 class STRATAIO_EXPORT vtkHybridVolumeReader : public vtkHybridVolumeAlgorithm
 {
@@ -57,7 +60,7 @@ private:
   bool ReadFile();
 
   /// What RequestInformation read, until RequestData hands it to the outputs.
-  std::unique_ptr<vtkHybridVolumeFile> File;
+  std::unique_ptr<strata::HybridVolumeFile> File;
 };
 
 #endif

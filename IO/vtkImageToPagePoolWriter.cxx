@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkImageToPagePoolWriter.h"
 
+#include "StrataPagePoolWriter.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
@@ -11,7 +12,6 @@
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolWriter.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -30,7 +30,7 @@ vtkStandardNewMacro(vtkImageToPagePoolWriter);
 
 namespace
 {
-using Format = vtkPagePoolFormat;
+using Format = strata::PagePoolFormat;
 
 vtkDataArray* PickScalars(vtkImageData* image)
 {
@@ -281,7 +281,7 @@ struct PoolLayout
 
 /// A page writer for component `k` of `layout` into `file`, its settings from `settings`, fed
 /// slab by slab from `upstream` (a failed request's message into `sourceError`).
-void SetUpComponentWriter(vtkPagePoolWriter& writer,
+void SetUpComponentWriter(strata::PagePoolWriter& writer,
   vtkImageToPagePoolWriter* settings,
   const PoolLayout& layout,
   const std::string& file,
@@ -369,7 +369,7 @@ struct WriteTotals
 };
 
 /// Writes every component of `layout` into its file (component k of `name`:
-/// vtkPagePoolFormat::GetComponentFileName), reporting progress through `self` over the whole
+/// strata::PagePoolFormat::GetComponentFileName), reporting progress through `self` over the whole
 /// set. The files of components 1, 2, ... come first, so the set appears under `name` only when
 /// complete; a failure removes the components already written.
 bool WriteComponents(vtkImageToPagePoolWriter* self,
@@ -387,7 +387,7 @@ bool WriteComponents(vtkImageToPagePoolWriter* self,
   {
     const std::string file = Format::GetComponentFileName(name, k);
     const int done = components - 1 - k;
-    vtkPagePoolWriter writer;
+    strata::PagePoolWriter writer;
     std::string sourceError;
     SetUpComponentWriter(writer, self, layout, file, k, upstream, sourceError);
     writer.SetProgressCallback(

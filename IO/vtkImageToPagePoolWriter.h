@@ -3,17 +3,17 @@
  * @class   vtkImageToPagePoolWriter
  * @brief   Converts the vtkImageData of a pipeline into a Strata page pool, slab by slab.
  *
- * The VTK face of vtkPagePoolWriter. A 3-D input (more than one point along z) becomes a brick
+ * The VTK face of strata::PagePoolWriter. A 3-D input (more than one point along z) becomes a brick
  * pool, a 2-D input (one point along z) a tile pool with one layer. The input is never updated
  * as a whole: Write() asks the upstream pipeline for one slab of z slices (rows for tile pools)
- * at a time, as many as vtkPagePoolWriter's memory limit allows per call, so a streaming reader
- * upstream (vtkImageReader2, vtkXMLImageDataReader, vtkPagePoolReader) never holds the whole
+ * at a time, as many as strata::PagePoolWriter's memory limit allows per call, so a streaming
+ * reader upstream (vtkImageReader2, vtkXMLImageDataReader, vtkPagePoolReader) never holds the whole
  * data set either. Memory is therefore the writer's bounded buffers plus one slab of the input.
  *
  * Scalars: the input's active point scalars (else its first point-data array). A 3-D input of
  * 2 to 4 components (RGBA colour, independent channels) becomes a set of brick pools, one per
- * component (vtkPagePoolFormat, Components): component 0 in FileName, component c in
- * vtkPagePoolFormat::GetComponentFileName(FileName, c), each written as a pass over the input;
+ * component (strata::PagePoolFormat, Components): component 0 in FileName, component c in
+ * strata::PagePoolFormat::GetComponentFileName(FileName, c), each written as a pass over the input;
  * components beyond 4 (and of a 2-D input, beyond 1) are dropped with a warning.
  * uint8, uint16, int16 and float are stored as they are; every other type is converted to
  * float (with the usual loss beyond 24 bits of mantissa). The geometry (spacing, origin,
@@ -22,12 +22,12 @@
  * Write() returns true on success. Errors (no input, no scalars, an upstream failure, a file
  * that cannot be written) are reported with vtkErrorMacro, and nothing is left under FileName
  * (nor the component files of a set that failed):
- * vtkPagePoolWriter writes to a temporary file renamed only when complete. Progress events
+ * strata::PagePoolWriter writes to a temporary file renamed only when complete. Progress events
  * report the fraction of pages written, non-decreasing, ending at 1 on success.
  *
  * Update() does nothing; call Write().
  *
- * @sa vtkPagePoolWriter vtkPagePoolReader vtkPagePoolFormat
+ * @sa strata::PagePoolWriter vtkPagePoolReader strata::PagePoolFormat
  */
 #ifndef vtkImageToPagePoolWriter_h
 #define vtkImageToPagePoolWriter_h

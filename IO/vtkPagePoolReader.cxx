@@ -1,7 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkPagePoolReader.h"
-#include "vtkStrataGridReaderUtilities.h"
+#include "StrataGridReaderUtilities.h"
 
+#include "StrataPagePoolFile.h"
 #include "StrataPagePoolSet.h"
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -10,7 +11,6 @@
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPagePoolProtocol.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -28,12 +28,12 @@ vtkStandardNewMacro(vtkPagePoolReader);
 
 namespace
 {
-using Format = vtkPagePoolFormat;
+using Format = strata::PagePoolFormat;
 using Protocol = vtkPagePoolProtocol;
 using strata_io::ClearOutput;
 }
 
-/// The pools this reader shows, held open (vtkPagePoolFile::OpenShared) from the information
+/// The pools this reader shows, held open (strata::PagePoolFile::OpenShared) from the information
 /// pass on, so that the mappers paging them share the reader's files: a step's set stays while
 /// the reader names it, and a file replaced on disk is opened afresh (OpenShared compares).
 struct vtkPagePoolReader::vtkInternals
@@ -118,7 +118,7 @@ bool vtkPagePoolReader::CheckSeries(std::string& error) const
       error = step + ": " + error;
       return false;
     }
-    const vtkPagePoolFile& file = set->GetFile();
+    const strata::PagePoolFile& file = set->GetFile();
     const Format::Header& h = file.GetHeader();
     if (i == 0)
     {

@@ -3,8 +3,8 @@
  * @class   vtkPagePoolReader
  * @brief   Reads a Strata page pool (brick or tile pool) as vtkImageData, page by page.
  *
- * The VTK face of the out-of-core format (vtkPagePoolFormat): RequestInformation opens the file
- * (header and page table only) and reports the whole extent, spacing, origin, direction and
+ * The VTK face of the out-of-core format (strata::PagePoolFormat): RequestInformation opens the
+ * file (header and page table only) and reports the whole extent, spacing, origin, direction and
  * scalar type of level 0, and CAN_PRODUCE_SUB_EXTENT; RequestData reads only the pages that
  * overlap the requested update extent, at the level chosen by the requested resolution, so a
  * downstream filter gets a correct, possibly coarse, image without the data set ever being read
@@ -27,7 +27,7 @@
  * Pools and their consumers (vtkPagePoolProtocol). RequestInformation marks the output
  * information PAGE_POOL, so that a mapper paging the pool itself asks for the coarsest level
  * only; RequestData writes the pool's identity (file, layer, step, series) on the output's
- * field data. The files are opened once per process (vtkPagePoolFile::OpenShared): the reader
+ * field data. The files are opened once per process (strata::PagePoolFile::OpenShared): the reader
  * holds the pools it names open, and the mappers paging them share its descriptors.
  *
  * Time series. A series is one pool per time step, given with AddTimeStep(file, time) in
@@ -42,7 +42,7 @@
  * can prefetch the next one. Steps share one geometry: the first step's
  * spacing, origin and direction.
  *
- * Components. A set of brick pools, one per component (vtkPagePoolFormat, Components), is one
+ * Components. A set of brick pools, one per component (strata::PagePoolFormat, Components), is one
  * image of 2 to 4 components: FileName names component 0 and the reader opens and checks the
  * others (each must belong to the same write and have the same structure; a missing or foreign
  * one is an error, never a volume of fewer components); every page is read once per component.
@@ -53,7 +53,7 @@
  * corrupt header, table or page) are reported with vtkErrorMacro and leave the output empty.
  * Progress events are fired per page.
  *
- * @sa vtkPagePoolFile vtkPagePoolFormat vtkImageToPagePoolWriter
+ * @sa strata::PagePoolFile strata::PagePoolFormat vtkImageToPagePoolWriter
  */
 #ifndef vtkPagePoolReader_h
 #define vtkPagePoolReader_h

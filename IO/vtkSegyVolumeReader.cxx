@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkSegyVolumeReader.h"
-#include "vtkStrataGridReaderUtilities.h"
+#include "StrataGridReaderUtilities.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"

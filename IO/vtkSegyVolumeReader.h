@@ -65,7 +65,7 @@
  * IBM floats are converted by segyio (exact apart from the rare values beyond IEEE single's
  * range or precision); 32-bit integers beyond 2^24 in magnitude are rounded. One output type
  * keeps missing traces representable: grid positions without a trace read as NaN, which
- * vtkPagePoolWriter leaves out of page and global min/max. SampleFormat overrides a wrong code
+ * strata::PagePoolWriter leaves out of page and global min/max. SampleFormat overrides a wrong code
  * in the binary header.
  *
  * Byte positions (1-based, as in the standard): a position where SEG-Y revision 1 defines a

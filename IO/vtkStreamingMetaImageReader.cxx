@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkStreamingMetaImageReader.h"
-#include "vtkStrataGridReaderUtilities.h"
+#include "StrataGridReaderUtilities.h"
 
 #include "vtkByteSwap.h"
 #include "vtkDataArray.h"

@@ -1,9 +1,9 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataPagePoolSet.h"
 
+#include "StrataPagePoolFile.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPointData.h"
 #include "vtkType.h"
 
@@ -14,7 +14,7 @@
 
 namespace
 {
-using Format = vtkPagePoolFormat;
+using Format = strata::PagePoolFormat;
 
 int ToVTKType(Format::ScalarType type)
 {
@@ -98,7 +98,7 @@ namespace strata
 bool PagePoolSet::Open(const std::string& name, std::string& error)
 {
   this->Files.clear();
-  std::shared_ptr<vtkPagePoolFile> first = vtkPagePoolFile::OpenShared(name, error);
+  std::shared_ptr<strata::PagePoolFile> first = strata::PagePoolFile::OpenShared(name, error);
   if (!first)
     return false;
   const Format::Header& h = first->GetHeader();
@@ -109,10 +109,10 @@ bool PagePoolSet::Open(const std::string& name, std::string& error)
             std::to_string(h.Component) + "\")";
     return false;
   }
-  std::vector<std::shared_ptr<vtkPagePoolFile>> files{ first };
+  std::vector<std::shared_ptr<strata::PagePoolFile>> files{ first };
   for (int c = 1; c < h.Components; ++c)
   {
-    files.push_back(vtkPagePoolFile::OpenSharedComponent(*first, c, error));
+    files.push_back(strata::PagePoolFile::OpenSharedComponent(*first, c, error));
     if (!files.back())
       return false;
   }
@@ -138,7 +138,7 @@ bool PagePoolSet::LevelExtent(int level,
   int extent[6],
   double spacing[3]) const
 {
-  const vtkPagePoolFile& file = this->GetFile();
+  const strata::PagePoolFile& file = this->GetFile();
   const Format::Header& h = file.GetHeader();
   const Format::Level& lv = file.GetLevel(level);
   const int axes = this->IsTilePool() ? 2 : 3;
@@ -222,7 +222,7 @@ bool PagePoolSet::ReadPages(int level,
   void* dst,
   std::string& error) const
 {
-  const vtkPagePoolFile& file = this->GetFile();
+  const strata::PagePoolFile& file = this->GetFile();
   const Format::Level& lv = file.GetLevel(level);
   const int axes = this->IsTilePool() ? 2 : 3;
   const int B = file.GetPageSize();

@@ -5,7 +5,7 @@
  *          and the image of a level-0 extent at any level, read page by page.
  *
  * What the pool reader (IO) and the picker (Rendering) both need, so that neither module
- * depends on the other: the files come from vtkPagePoolFile::OpenShared, so a reader, the
+ * depends on the other: the files come from strata::PagePoolFile::OpenShared, so a reader, the
  * pagers of the mappers and the picker hold one descriptor and one page table per file.
  *
  * Geometry of a coarse level. Level l has n_l points per axis (n -> n/2 + 1 per level). Its
@@ -14,7 +14,7 @@
  * full one. A level-0 extent [a, b] maps to the smallest level-l extent covering it:
  * [floor(a / r), ceil(b / r)] with r = (n_0 - 1) / (n_l - 1).
  *
- * @sa vtkPagePoolFile vtkPagePoolFormat vtkPagePoolProtocol
+ * @sa strata::PagePoolFile strata::PagePoolFormat vtkPagePoolProtocol
  */
 #ifndef StrataPagePoolSet_h
 #define StrataPagePoolSet_h
@@ -28,7 +28,10 @@
 #include <vector>     // For std::vector
 
 class vtkImageData;
-class vtkPagePoolFile;
+namespace strata
+{
+class PagePoolFile;
+}
 
 namespace strata
 {
@@ -43,7 +46,7 @@ public:
   void Close() { this->Files.clear(); }
   bool IsOpen() const { return !this->Files.empty(); }
   int GetNumberOfComponents() const { return static_cast<int>(this->Files.size()); }
-  const vtkPagePoolFile& GetFile(int component = 0) const { return *this->Files[component]; }
+  const strata::PagePoolFile& GetFile(int component = 0) const { return *this->Files[component]; }
   /// Whether this is a tile pool (nx x ny tiles of L layers) rather than a brick pool.
   bool IsTilePool() const;
   /// The VTK scalar type of the values.
@@ -81,7 +84,7 @@ public:
 private:
   bool ReadPages(int level, const int extent[6], Read& read, void* dst, std::string& error) const;
 
-  std::vector<std::shared_ptr<vtkPagePoolFile>> Files;
+  std::vector<std::shared_ptr<strata::PagePoolFile>> Files;
 };
 }
 

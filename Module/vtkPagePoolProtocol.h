@@ -23,7 +23,7 @@
  * GetInputPool combines them: the identity of the data on a connection marked PAGE_POOL, or
  * an invalid identity when either is missing.
  *
- * @sa vtkPagePoolFile vtkPagePoolFormat
+ * @sa strata::PagePoolFile strata::PagePoolFormat
  */
 #ifndef vtkPagePoolProtocol_h
 #define vtkPagePoolProtocol_h

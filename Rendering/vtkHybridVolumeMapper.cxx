@@ -1,12 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkHybridVolumeMapper.h"
 
+#include "StrataGLObject.h"
 #include "StrataGraphicsResources.h"
+#include "StrataRenderUtilities.h"
+#include "StrataShaderCache.h"
+#include "StrataTransferFunctionTable.h"
 #include "vtkMultiVolumeRayCastMapper.h"
-#include "vtkStrataGLObject.h"
-#include "vtkStrataRenderUtilities.h"
-#include "vtkStrataShaderCache.h"
-#include "vtkTransferFunctionTable.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
@@ -53,7 +53,7 @@ using PointKey = std::pair<bool, bool>; ///< (Gaussian splats, shaded): all a po
 
 void Replace(std::string& source, const std::string& tag, const std::string& code)
 {
-  vtkStrataShaderCache<PointKey>::Replace(source, tag, code);
+  strata::ShaderCache<PointKey>::Replace(source, tag, code);
 }
 
 // The point shaders for one shape, with or without shading: nothing else is compiled.
@@ -137,15 +137,15 @@ public:
   std::array<double, 3> Origin = { 0, 0, 0 };
   std::vector<double> Positions; // double, relative to Origin, for the per-frame depth sort
   bool HasNormals = false;
-  vtkStrataGLObject VBO{ vtkStrataGLObject::Kinds::Buffer };
-  vtkStrataGLObject IBO{ vtkStrataGLObject::Kinds::Buffer };
-  vtkStrataGLObject VAO{ vtkStrataGLObject::Kinds::VertexArray };
+  strata::GLObject VBO{ strata::GLObject::Kinds::Buffer };
+  strata::GLObject IBO{ strata::GLObject::Kinds::Buffer };
+  strata::GLObject VAO{ strata::GLObject::Kinds::VertexArray };
   vtkShaderProgram* VaoProgram = nullptr;
   vtkIdType Count = 0;
   vtkIdType Drawn = 0;
 
-  vtkTransferFunctionTable Transfer; ///< the volume property's table, as the ray caster's
-  vtkStrataShaderCache<PointKey> Programs;
+  strata::TransferFunctionTable Transfer; ///< the volume property's table, as the ray caster's
+  strata::ShaderCache<PointKey> Programs;
   PointKey LastKey{ false, false };
 
   /// What a frame draws with: the points sorted into slabs, the depths they span, the
@@ -362,7 +362,7 @@ void vtkHybridVolumeMapper::vtkInternals::SetUniforms(vtkRenderer* ren,
   if (!frame.Shaded)
     return;
   std::vector<float> lightDirections, lightColors;
-  vtkStrataRenderUtilities::GetLights(ren, lightDirections, lightColors);
+  strata::RenderUtilities::GetLights(ren, lightDirections, lightColors);
   program->SetUniformi("uNumLights", static_cast<int>(lightDirections.size() / 3));
   if (!lightDirections.empty())
   {
@@ -408,7 +408,7 @@ void vtkHybridVolumeMapper::vtkInternals::DrawSlabPoints(vtkOpenGLRenderWindow* 
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  const vtkStrataRenderUtilities::ScopedEnable pointSize(GL_PROGRAM_POINT_SIZE);
+  const strata::RenderUtilities::ScopedEnable pointSize(GL_PROGRAM_POINT_SIZE);
   glDrawElements(GL_POINTS,
     static_cast<GLsizei>(last - first),
     GL_UNSIGNED_INT,
@@ -714,7 +714,7 @@ void vtkHybridVolumeMapper::vtkInternals::SetUpProjection(vtkRenderer* ren,
     shift->SetElement(c, 3, in.Origin[c]);
   vtkMatrix4x4::Multiply4x4(toLocal, shift, toLocal);
   vtkMatrix4x4::Multiply4x4(worldToClip, toLocal, localToClip);
-  vtkStrataRenderUtilities::ToColumnMajor(localToClip->GetData(), frame.LocalToClip);
+  strata::RenderUtilities::ToColumnMajor(localToClip->GetData(), frame.LocalToClip);
   frame.Linear->DeepCopy(vol->GetMatrix());
   for (int c = 0; c < 3; ++c)
     frame.Linear->SetElement(c, 3, 0.0);

@@ -2,22 +2,22 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkMultiVolumeRayCastMapperInternals.h"
 
+#include "StrataBrickAtlasAllocator.h"
+#include "StrataBrickAtlasFormat.h"
+#include "StrataBrickAtlasTexture.h"
+#include "StrataFeedbackBuffer.h"
+#include "StrataFeedbackReduction.h"
 #include "StrataGraphicsResources.h"
-#include "vtkBrickAtlasAllocator.h"
-#include "vtkBrickAtlasFormat.h"
-#include "vtkBrickAtlasTexture.h"
-#include "vtkFeedbackBuffer.h"
-#include "vtkFeedbackReduction.h"
-#include "vtkMultiVolumeInput.h"
-#include "vtkMultiVolumeShaderComposer.h"
-#include "vtkPagePoolFile.h"
+#include "StrataMultiVolumeInput.h"
+#include "StrataMultiVolumeShaderComposer.h"
+#include "StrataPagePoolFile.h"
+#include "StrataRenderUtilities.h"
+#include "StrataVolumeBrickTree.h"
+#include "StrataVolumeFragmentGeometry.h"
+#include "StrataVolumeIntegrationBuffers.h"
+#include "StrataVolumePager.h"
+#include "StrataVolumeSurfaceLayers.h"
 #include "vtkPagePoolProtocol.h"
-#include "vtkStrataRenderUtilities.h"
-#include "vtkVolumeBrickTree.h"
-#include "vtkVolumeFragmentGeometry.h"
-#include "vtkVolumeIntegrationBuffers.h"
-#include "vtkVolumePager.h"
-#include "vtkVolumeSurfaceLayers.h"
 
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -60,19 +60,19 @@ using namespace vtkMultiVolumeRayCastMapperFrame;
 namespace
 {
 constexpr int MaxPlanes = 64;
-constexpr int FeedbackLevels = vtkFeedbackReduction::MaxLevels;
+constexpr int FeedbackLevels = strata::FeedbackReduction::MaxLevels;
 
 // The mapper's ScalarStorage in the atlas format's terms.
-vtkBrickAtlasFormat::Storage AtlasStorage(vtkMultiVolumeRayCastMapper::ScalarStorages storage)
+strata::BrickAtlasFormat::Storage AtlasStorage(vtkMultiVolumeRayCastMapper::ScalarStorages storage)
 {
   switch (storage)
   {
     case vtkMultiVolumeRayCastMapper::ScalarStorages::Normalized16:
-      return vtkBrickAtlasFormat::Storage::Normalized16;
+      return strata::BrickAtlasFormat::Storage::Normalized16;
     case vtkMultiVolumeRayCastMapper::ScalarStorages::Native:
-      return vtkBrickAtlasFormat::Storage::Native;
+      return strata::BrickAtlasFormat::Storage::Native;
     default:
-      return vtkBrickAtlasFormat::Storage::Float32;
+      return strata::BrickAtlasFormat::Storage::Float32;
   }
 }
 
@@ -102,9 +102,9 @@ std::vector<float> RootValues(vtkImageData* image, int brickSize, int component,
 }
 
 // Whether a BSP fragment (local frame) lies wholly outside a world box.
-bool OutsideRegion(const vtkVolumeBSPTree::Fragment& fragment,
-  const vtkVolumeBSPTree::Vector3& origin,
-  const vtkStrataRegion& region)
+bool OutsideRegion(const strata::VolumeBSPTree::Fragment& fragment,
+  const strata::VolumeBSPTree::Vector3& origin,
+  const strata::Region& region)
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -120,7 +120,7 @@ bool OutsideRegion(const vtkVolumeBSPTree::Fragment& fragment,
   return false;
 }
 
-// The longest level-0 voxel edge over the axes with voxels (vtkVolumeCut's voxel size).
+// The longest level-0 voxel edge over the axes with voxels (strata::VolumeCut's voxel size).
 double LongestVoxelEdge(const FrameVolume& e)
 {
   double longest = 0.0, any = 0.0;
@@ -165,7 +165,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
         self, "Blend mode " << e.Mode << " of port " << port << " is not supported: composite.");
       e.Mode = vtkVolumeMapper::COMPOSITE_BLEND;
     }
-    if (!vtkMultiVolumeInput::CollectComponents(
+    if (!strata::MultiVolumeInput::CollectComponents(
           self, port, image, e.Property, e.Mode, e.ComponentMode, this->ComponentLimitsWarned))
       continue;
     frame.AnyReduced = frame.AnyReduced || IsReduced(e.Mode);
@@ -179,10 +179,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
                                .FileName;
     if (!pool.empty())
     {
-      const vtkPagePoolFile* file = this->OpenPool(self, port, 0, pool.c_str());
+      const strata::PagePoolFile* file = this->OpenPool(self, port, 0, pool.c_str());
       if (!file)
         continue;
-      const vtkPagePoolFile::Header& h = file->GetHeader();
+      const strata::PagePoolFile::Header& h = file->GetHeader();
       e.Pool = pool;
       if (!this->OpenComponentPools(self, *file, e))
         continue;
@@ -236,7 +236,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
   // The pager's volumes: the frame's (component 0), then their components 1, 2, 3.
   for (FrameVolume& e : frame.Volumes)
     e.Channels =
-      frame.Atlas ? vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
+      frame.Atlas ? strata::MultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode) : 1;
   for (int c = 0; c < 4; ++c)
     for (size_t v = 0; v < frame.Volumes.size(); ++v)
       if (c < frame.Volumes[v].Channels)
@@ -254,9 +254,9 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& fr
   std::set<int> paged;
   for (const FrameVolume& e : frame.Volumes)
     for (int c = 0; !e.Pool.empty() &&
-                    c < vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+                    c < strata::MultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
          ++c)
-      paged.insert(vtkVolumePager::GetChannel(e.Port, c));
+      paged.insert(strata::VolumePager::GetChannel(e.Port, c));
   for (auto it = this->ShownPools.begin(); it != this->ShownPools.end();)
   {
     if (paged.count(it->first))
@@ -272,8 +272,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& fr
 
 // The pool of component `component` of a paged port (`pool` names component 0's): the step of
 // its series the input shows (its identity's TimeStep), and the next step in the direction of
-// playback prefetched (vtkVolumePager::FollowPlayback).
-const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
+// playback prefetched (strata::VolumePager::FollowPlayback).
+const strata::PagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
   int port,
   int component,
   const char* pool)
@@ -282,10 +282,10 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
     vtkPagePoolProtocol::GetIdentity(self->GetInputDataObject(port, 0));
   const int step = identity.TimeStep;
   const int steps = static_cast<int>(identity.Series.size());
-  const int channel = vtkVolumePager::GetChannel(port, component);
-  const std::string name = vtkPagePoolFormat::GetComponentFileName(pool, component);
+  const int channel = strata::VolumePager::GetChannel(port, component);
+  const std::string name = strata::PagePoolFormat::GetComponentFileName(pool, component);
   std::string error;
-  const vtkPagePoolFile* file = this->Pager.OpenPool(channel, name, error, step);
+  const strata::PagePoolFile* file = this->Pager.OpenPool(channel, name, error, step);
   if (!file)
   {
     vtkErrorWithObjectMacro(
@@ -297,9 +297,10 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
   shown = name;
   const int followed = this->Pager.FollowPlayback(channel, step, steps);
   const int next = self->PrefetchTimeSteps ? followed : -1;
-  const std::string nextName = next >= 0 && next < steps ? vtkPagePoolFormat::GetComponentFileName(
-                                                             identity.Series[next], component)
-                                                         : std::string();
+  const std::string nextName =
+    next >= 0 && next < steps
+      ? strata::PagePoolFormat::GetComponentFileName(identity.Series[next], component)
+      : std::string();
   if (!this->Pager.SetNextStep(channel, next, nextName, error) && error != warned)
     vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
   warned = error;
@@ -307,12 +308,13 @@ const vtkPagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self*
 }
 
 // The pools of components 1, 2, 3 of a paged volume whose component 0 is `first`: as many as
-// its input has components, each a member of `first`'s set (vtkPagePoolFormat::CheckComponent).
+// its input has components, each a member of `first`'s set
+// (strata::PagePoolFormat::CheckComponent).
 bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
-  const vtkPagePoolFile& first,
+  const strata::PagePoolFile& first,
   const FrameVolume& e)
 {
-  const int count = vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+  const int count = strata::MultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
   if (first.GetHeader().Components != count)
   {
     vtkErrorWithObjectMacro(self,
@@ -322,9 +324,10 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
   }
   for (int c = 1; c < count; ++c)
   {
-    const vtkPagePoolFile* file = this->OpenPool(self, e.Port, c, e.Pool.c_str());
+    const strata::PagePoolFile* file = this->OpenPool(self, e.Port, c, e.Pool.c_str());
     std::string error;
-    if (!file || !vtkPagePoolFormat::CheckComponent(first.GetHeader(), file->GetHeader(), c, error))
+    if (!file ||
+        !strata::PagePoolFormat::CheckComponent(first.GetHeader(), file->GetHeader(), c, error))
     {
       if (file)
         vtkErrorWithObjectMacro(self, "Cannot page the volume on port " << e.Port << ": " << error);
@@ -335,19 +338,20 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
 }
 
 // Feedback ranks the bricks of every volume while any is paged. It needs image load/store, and
-// page ids of 32 bits: at most 62 volumes and 2^21 bricks per level (vtkFeedbackReduction).
+// page ids of 32 bits: at most 62 volumes and 2^21 bricks per level (strata::FeedbackReduction).
 bool vtkMultiVolumeRayCastMapper::vtkInternals::SupportsFeedback(Self* self, const Frame& frame)
 {
   if (!frame.AnyPooled || !self->LevelOfDetailFeedback)
     return false;
-  bool idsFit = static_cast<int>(frame.PagerVolumes.size()) <= vtkFeedbackReduction::MaxDataSets;
+  bool idsFit =
+    static_cast<int>(frame.PagerVolumes.size()) <= strata::FeedbackReduction::MaxDataSets;
   const int B = frame.BrickSize;
   for (const auto& e : frame.Volumes)
   {
     uint64_t bricks = 1;
     for (int a = 0; a < 3; ++a)
       bricks *= e.Dims[a] <= 1 ? 1 : (static_cast<uint64_t>(e.Dims[a]) - 1 + B - 2) / (B - 1);
-    idsFit = idsFit && bricks <= vtkFeedbackReduction::MaxPagesPerLevel;
+    idsFit = idsFit && bricks <= strata::FeedbackReduction::MaxPagesPerLevel;
   }
   const bool imageStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
   if ((!imageStore || !idsFit) && !this->FeedbackUnsupportedWarned)
@@ -369,7 +373,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
 {
   for (const FrameVolume& e : frame.Volumes)
   {
-    vtkMultiVolumeInput& input = this->Inputs[e.Port];
+    strata::MultiVolumeInput& input = this->Inputs[e.Port];
     if (e.Pool.empty() && !input.HasScalarsOf(e.Input))
     {
       int cellFlag = 0;
@@ -417,12 +421,12 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
   for (const FrameVolume& e : frame.Volumes)
   {
     // Of a paged set of components, the ranges of the opacity component's pool.
-    const int opacity = vtkMultiVolumeInput::GetOpacityComponent(e.ComponentMode);
+    const int opacity = strata::MultiVolumeInput::GetOpacityComponent(e.ComponentMode);
     const int pool = std::max(opacity, 0);
     if (self->EmptySpaceSkipping && opacity >= 0)
       this->Inputs[e.Port].UpdateSkipGrid(
-        this->Pager.GetPoolTree(vtkVolumePager::GetChannel(e.Port, pool)),
-        e.Pool.empty() ? e.Pool : vtkPagePoolFormat::GetComponentFileName(e.Pool, pool),
+        this->Pager.GetPoolTree(strata::VolumePager::GetChannel(e.Port, pool)),
+        e.Pool.empty() ? e.Pool : strata::PagePoolFormat::GetComponentFileName(e.Pool, pool),
         e.Dims,
         self->SkipCellSize,
         opacity);
@@ -483,28 +487,28 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetUpView(Self* self,
     vtkNew<vtkMatrix4x4> worldToIndex, localToIndex;
     vtkMatrix4x4::Invert(e.IndexToWorld, worldToIndex);
     vtkMatrix4x4::Multiply4x4(worldToIndex, frame.ToWorld, localToIndex);
-    vtkStrataRenderUtilities::ToColumnMajor(localToIndex->GetData(), e.LocalToIndex);
+    strata::RenderUtilities::ToColumnMajor(localToIndex->GetData(), e.LocalToIndex);
   }
 }
 
-// --- Brick atlas: the cut through all volumes' octrees for this camera (vtkVolumePager),
+// --- Brick atlas: the cut through all volumes' octrees for this camera (strata::VolumePager),
 // bricks uploaded into the shared atlas, one index texture per volume. Held (HoldCut): the
 // last render's cut, atlas and index textures as they are.
 bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
   vtkRenderer* ren,
   Frame& frame)
 {
-  std::vector<vtkVolumePager::Volume> volumes;
+  std::vector<strata::VolumePager::Volume> volumes;
   for (const std::array<int, 2>& pagerVolume : frame.PagerVolumes)
   {
     // (Not a structured binding: C++17 lambdas cannot capture one, clang says so.)
     const FrameVolume& e = frame.Volumes[pagerVolume[0]];
     const int c = pagerVolume[1];
-    vtkVolumePager::Volume v;
-    v.Port = vtkVolumePager::GetChannel(e.Port, c);
+    strata::VolumePager::Volume v;
+    v.Port = strata::VolumePager::GetChannel(e.Port, c);
     v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree(c) : nullptr;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
-    const vtkMultiVolumeInput* input = &this->Inputs[e.Port];
+    const strata::MultiVolumeInput* input = &this->Inputs[e.Port];
     const Components mode = e.ComponentMode;
     v.Opacity = [input, mode, c](double lo, double hi)
     { return input->ComponentVisibility(mode, c, lo, hi); };
@@ -580,7 +584,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
     const bool sameView =
       this->FeedbackView == frame.View && this->FeedbackClassification == frame.Classification;
     const auto start = std::chrono::steady_clock::now();
-    std::vector<vtkFeedbackReduction::Entry> asked;
+    std::vector<strata::FeedbackReduction::Entry> asked;
     this->Feedback.SetUseOpenCL(self->FeedbackOpenCL);
     this->Feedback.Read(asked);
     this->Pager.AddFeedback(asked);
@@ -589,15 +593,15 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     feedbackCurrent = sameView;
   }
-  vtkVolumePager::Settings settings;
+  strata::VolumePager::Settings settings;
   settings.CacheBudgetMiB = self->PageCacheBudget;
   settings.PagesPerFrame = self->PagesPerFrame;
   settings.Prefetch = self->Prefetch;
   settings.Feedback = frame.Feedback;
   settings.ErrorThreshold = self->LevelOfDetailThreshold;
-  std::vector<vtkVolumeCut::Upload> uploads;
+  std::vector<strata::VolumeCut::Upload> uploads;
   std::string error;
-  vtkVolumeCut::Camera cutCamera = vtkStrataRenderUtilities::GetCutCamera(ren);
+  strata::VolumeCut::Camera cutCamera = strata::RenderUtilities::GetCutCamera(ren);
   cutCamera.Region = self->Region;
   // One step past the exit face (the voxel of each node's level covers gradient taps and an
   // automatic step, half a voxel).
@@ -613,7 +617,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
   const std::string clamped = this->Pager.TakeBudgetWarning();
   if (!clamped.empty())
     vtkWarningWithObjectMacro(self, << clamped);
-  static_cast<vtkVolumePager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
+  static_cast<strata::VolumePager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
   if (missing > 0)
     vtkWarningWithObjectMacro(
       self, << missing << " bricks found no atlas slot: raise AtlasBudget.");
@@ -622,16 +626,16 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateCut(Self* self,
 }
 
 void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
-  const std::vector<vtkVolumeCut::Upload>& uploads,
+  const std::vector<strata::VolumeCut::Upload>& uploads,
   const Frame& frame)
 {
   const int B = frame.BrickSize;
   const size_t voxels = size_t(B) * B * B;
   const auto atlasType = this->Pager.GetAtlasType();
-  const int texel = vtkBrickAtlasFormat::GetTexelSize(atlasType);
+  const int texel = strata::BrickAtlasFormat::GetTexelSize(atlasType);
   std::vector<float> scratch;
   // Float atlases take the values as they are; normalised ones their encoding.
-  const bool encode = vtkBrickAtlasFormat::IsNormalized(atlasType);
+  const bool encode = strata::BrickAtlasFormat::IsNormalized(atlasType);
   std::vector<unsigned char> texels(encode ? voxels * texel : 0);
   this->Atlas.BeginUploads();
   this->Paging.BytesUploaded = 0;
@@ -648,7 +652,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::UploadBricks(Self* self,
       data = scratch.data();
     }
     if (encode)
-      vtkBrickAtlasFormat::Encode(
+      strata::BrickAtlasFormat::Encode(
         data, voxels, atlasType, this->Pager.GetVolumeType(u.Volume), texels.data());
     this->Atlas.UploadBrick(this->Pager.GetAtlas().GetSlotPosition(u.Slot),
       B,
@@ -720,7 +724,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::PrepareFeedback(Self* self,
       static_cast<float>(tau * 2.0 * camera->GetParallelScale() / height);
   else
     frame.FeedbackFootprint[1] =
-      static_cast<float>(tau / vtkVolumeCut::PixelsPerRadian(height, camera->GetViewAngle()));
+      static_cast<float>(tau / strata::VolumeCut::PixelsPerRadian(height, camera->GetViewAngle()));
   const double* eye = camera->GetPosition();
   const auto& origin = this->Geometry.GetOrigin();
   for (int c = 0; c < 3; ++c)
@@ -729,7 +733,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::PrepareFeedback(Self* self,
   frame.LevelBricks.resize(frame.Volumes.size());
   for (size_t v = 0; v < frame.Volumes.size(); ++v)
   {
-    const vtkVolumeBrickTree* tree = this->Pager.GetTree(static_cast<int>(v));
+    const strata::VolumeBrickTree* tree = this->Pager.GetTree(static_cast<int>(v));
     frame.FeedbackLod[v] = { static_cast<float>(1.0 / LongestVoxelEdge(frame.Volumes[v])),
       static_cast<float>(std::min(tree->GetNumberOfLevels(), FeedbackLevels) - 1) };
     frame.LevelBricks[v].assign(3 * FeedbackLevels, 1);
@@ -761,7 +765,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
   // The fragments read these buffers back (prior opacity, surface progress) from the first
   // draw on, so the clear is followed by a texture barrier.
-  vtkStrataRenderUtilities::ClearForReadBack(state);
+  strata::RenderUtilities::ClearForReadBack(state);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglEnable(GL_BLEND);
@@ -773,14 +777,14 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   // is inside it; depth clamping keeps faces beyond the far plane.
   state->vtkglEnable(GL_CULL_FACE);
   state->vtkglCullFace(GL_FRONT);
-  const vtkStrataRenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
+  const strata::RenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
 
   std::vector<int> order;
   vtkCamera* camera = ren->GetActiveCamera();
   const double* eye = camera->GetPosition();
   const double* dop = camera->GetDirectionOfProjection();
-  const vtkVolumeBSPTree::Vector3 eyeV = { eye[0], eye[1], eye[2] };
-  const vtkVolumeBSPTree::Vector3 dirV = { dop[0], dop[1], dop[2] };
+  const strata::VolumeBSPTree::Vector3 eyeV = { eye[0], eye[1], eye[2] };
+  const strata::VolumeBSPTree::Vector3 dirV = { dop[0], dop[1], dop[2] };
   const bool parallel = camera->GetParallelProjection() != 0;
   if (frame.FrontToBack)
     this->Geometry.GetTree().SortFrontToBack(eyeV, parallel, dirV, order);
@@ -830,11 +834,11 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
   {
     if (!IsReduced(frame.Volumes[v].Mode))
       continue;
-    vtkVolumeIntegrationBuffers& layer = this->LayerBuffers[frame.Volumes[v].Port];
+    strata::VolumeIntegrationBuffers& layer = this->LayerBuffers[frame.Volumes[v].Port];
     layer.Bind(renWin, frame.Rays);
     state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
     // The first fragment reads the cleared state back ("not met"): a barrier after the clear.
-    vtkStrataRenderUtilities::ClearForReadBack(state);
+    strata::RenderUtilities::ClearForReadBack(state);
     for (int f : order)
     {
       const auto& boxes = this->Geometry.GetTree().GetFragment(f).BoxIndices;
@@ -846,30 +850,30 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
   }
 }
 
-// How volume v's texels decode (vtkBrickAtlasFormat): the atlas's type or its plain texture's.
+// How volume v's texels decode (strata::BrickAtlasFormat): the atlas's type or its plain texture's.
 bool vtkMultiVolumeRayCastMapper::vtkInternals::GetDecode(const Frame& frame,
   int v,
   float decode[2]) const
 {
-  const vtkMultiVolumeInput& input = this->Inputs.at(frame.Volumes[v].Port);
+  const strata::MultiVolumeInput& input = this->Inputs.at(frame.Volumes[v].Port);
   const auto texels = frame.Atlas ? this->Pager.GetAtlasType() : input.GetPlainTextureType();
   const auto values = frame.Atlas ? this->Pager.GetVolumeType(v) : input.GetScalarType();
   double scale = 1.0, offset = 0.0;
-  vtkBrickAtlasFormat::GetDecode(texels, values, scale, offset);
+  strata::BrickAtlasFormat::GetDecode(texels, values, scale, offset);
   decode[0] = static_cast<float>(scale);
   decode[1] = static_cast<float>(offset);
-  return vtkBrickAtlasFormat::IsNormalized(texels);
+  return strata::BrickAtlasFormat::IsNormalized(texels);
 }
 
 // The program's features for `volumes` (frame indices) of a fragment, or for the reduction
 // pass of volumes[0].
-vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkInternals::MakeKey(
+strata::MultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkInternals::MakeKey(
   Self* self,
   const std::vector<int>& volumes,
   bool reduce,
   const Frame& frame) const
 {
-  vtkMultiVolumeShaderComposer::FragmentKey key;
+  strata::MultiVolumeShaderComposer::FragmentKey key;
   key.Volumes = static_cast<int>(volumes.size());
   bool components = false, unskipped = false;
   for (int v : volumes)
@@ -877,7 +881,7 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
     const FrameVolume& e = frame.Volumes[v];
     const bool one = e.ComponentMode == Components::One;
     components = components || !one;
-    unskipped = unskipped || vtkMultiVolumeInput::GetOpacityComponent(e.ComponentMode) < 0;
+    unskipped = unskipped || strata::MultiVolumeInput::GetOpacityComponent(e.ComponentMode) < 0;
     key.Shaded.push_back(one && frame.Lit && e.Property->GetShade(0) != 0 && !IsReduced(e.Mode));
     key.Modes.push_back(e.Mode);
     key.Cropped.push_back(e.Cropped);
@@ -886,7 +890,8 @@ vtkMultiVolumeShaderComposer::FragmentKey vtkMultiVolumeRayCastMapper::vtkIntern
                                   this->Inputs.at(e.Port).HasGradientOpacity());
     key.ComponentModes.push_back(e.ComponentMode);
     int silent = 0; // the components of weight 0 (all weigh 1 unless independent)
-    for (int c = 1; c < vtkMultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode); ++c)
+    for (int c = 1; c < strata::MultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
+         ++c)
       silent |= this->Inputs.at(e.Port).ShowsComponent(c) ? 0 : 1 << c;
     key.SilentComponents.push_back(silent);
     float decode[2];
@@ -948,7 +953,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
                             << MaxPlanes << " in all are supported.");
     return true;
   }
-  const vtkMultiVolumeShaderComposer::FragmentKey key =
+  const strata::MultiVolumeShaderComposer::FragmentKey key =
     this->MakeKey(self, volumes, reduce >= 0, frame);
   vtkShaderProgram* program = this->Composer.ReadyFragmentProgram(renWin, key);
   if (!program)
@@ -972,7 +977,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   std::vector<vtkTextureObject*> readBack;
   for (int r = 0; (key.Barrier || key.Reduce) && r < frame.Rays; ++r)
   {
-    vtkVolumeIntegrationBuffers& target =
+    strata::VolumeIntegrationBuffers& target =
       key.Reduce ? this->LayerBuffers[frame.Volumes[reduce].Port] : this->Buffers;
     readBack.push_back(target.GetAccumulation(r));
     readBack.back()->Activate();
@@ -1004,12 +1009,12 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     program->SetUniform3f("uAtlasSize", atlasSize);
     program->SetUniformf("uBrickSize", static_cast<float>(frame.BrickSize));
   }
-  std::vector<vtkMultiVolumeInput::Binding> bindings(k);
+  std::vector<strata::MultiVolumeInput::Binding> bindings(k);
   for (int i = 0; i < k; ++i)
   {
     const int v = volumes[i];
     const FrameVolume& e = frame.Volumes[v];
-    vtkMultiVolumeInput::Binding& b = bindings[i];
+    strata::MultiVolumeInput::Binding& b = bindings[i];
     b.Classification = key.Classification;
     b.BlendMode = e.Mode;
     b.CropLo = e.Cropped ? e.CropLo : nullptr;
@@ -1021,7 +1026,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.IndexTexture = frame.Atlas ? this->Atlas.GetIndexName(e.Port) : 0;
     for (int c = 1; c < e.Channels; ++c)
       b.ComponentIndexTextures[c - 1] =
-        this->Atlas.GetIndexName(vtkVolumePager::GetChannel(e.Port, c));
+        this->Atlas.GetIndexName(strata::VolumePager::GetChannel(e.Port, c));
     b.TableBricks = frame.Atlas ? this->Pager.GetTree(v)->GetLevelBricks(0) : nullptr;
     b.BrickSize = frame.BrickSize;
     b.Normalized = this->GetDecode(frame, v, b.Decode);
@@ -1042,7 +1047,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   // The next fragment reads what this one wrote into the bound buffers (its opacity, the
   // surface progress, the reduction state): a texture barrier between the two draws.
   if (key.Barrier || key.Reduce || key.Surfaces > 0)
-    vtkStrataRenderUtilities::TextureBarrier();
+    strata::RenderUtilities::TextureBarrier();
   for (int i = 0; i < k; ++i)
     this->Inputs[frame.Volumes[volumes[i]].Port].Unbind(bindings[i]);
   for (vtkTextureObject* texture : readBack)
@@ -1066,13 +1071,13 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::SetFragmentUniforms(Self* self,
   vtkShaderProgram* program,
   int f,
   const std::vector<int>& volumes,
-  const vtkMultiVolumeShaderComposer::FragmentKey& key,
+  const strata::MultiVolumeShaderComposer::FragmentKey& key,
   const Frame& frame)
 {
   float m[16];
-  vtkStrataRenderUtilities::ToColumnMajor(frame.LocalToClip->GetData(), m);
+  strata::RenderUtilities::ToColumnMajor(frame.LocalToClip->GetData(), m);
   program->SetUniformMatrix4x4("uLocalToClip", m);
-  vtkStrataRenderUtilities::ToColumnMajor(frame.ClipToLocal->GetData(), m);
+  strata::RenderUtilities::ToColumnMajor(frame.ClipToLocal->GetData(), m);
   program->SetUniformMatrix4x4("uClipToLocal", m);
   const float width = float(frame.Viewport[2]), height = float(frame.Viewport[3]);
   const float viewport[4] = { 0.f, 0.f, width, height };
@@ -1276,7 +1281,7 @@ vtkMultiVolumeRayCastMapper::PagingStatistics vtkMultiVolumeRayCastMapper::GetPa
 
 void vtkMultiVolumeRayCastMapper::GetPagingStatistics(vtkFieldData* statistics) const
 {
-  vtkStrataRenderUtilities::ToFieldData(this->Internals->Paging, statistics);
+  strata::RenderUtilities::ToFieldData(this->Internals->Paging, statistics);
 }
 
 void vtkMultiVolumeRayCastMapper::RetryFailedPages()
@@ -1327,7 +1332,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
   // Early termination across fragments reads the integration buffer's own pixel while drawing
   // into it: defined under a texture barrier (each pixel is read and written once per fragment).
   // Reductions read their layer buffers the same way.
-  const bool barriers = vtkStrataRenderUtilities::HasTextureBarrier();
+  const bool barriers = strata::RenderUtilities::HasTextureBarrier();
   frame.Barrier = frame.FrontToBack && barriers;
   if (frame.AnyReduced && !barriers)
   {
@@ -1352,7 +1357,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     if (IsReduced(e.Mode))
       in.LayerBuffers[e.Port].Prepare(renWin, frame.Viewport, frame.Rays);
   in.UpdatePreIntegration(this, renWin, frame);
-  vtkStrataRenderUtilities::GetLights(ren, frame.LightDirections, frame.LightColors);
+  strata::RenderUtilities::GetLights(ren, frame.LightDirections, frame.LightColors);
   frame.Lit = ren->GetLights()->GetNumberOfItems() > 0;
   frame.Surfaces = in.SurfaceLayers.Peel(ren,
     renWin,

@@ -11,7 +11,7 @@
  * too. Volumes may differ in resolution, spacing, orientation (prop transform and vtkImageData
  * direction matrix) and scalar type.
  *
- * Each frame: the boxes of the volumes go into a vtkVolumeBSPTree (rebuilt only when a volume
+ * Each frame: the boxes of the volumes go into a strata::VolumeBSPTree (rebuilt only when a volume
  * moves); its convex fragments are sorted for the camera and each is ray cast in one pass by a
  * shader generated for the number of volumes covering it. Rays composite into a float
  * integration buffer (front to back or back to front), stop at the depth of the opaque geometry
@@ -19,8 +19,8 @@
  * physically: extinctions add and emission is weighted by extinction, with extinction
  * tau = -ln(1 - opacity) / ScalarOpacityUnitDistance from each volume's transfer functions.
  * Point scalars of several components follow the property's IndependentComponents (2-4
- * independent, 2 colour + opacity, 4 RGBA; vtkMultiVolumeInput), in core or paged (a set of
- * component pools, vtkPagePoolFormat: a volume of one scalar per component in the atlas),
+ * independent, 2 colour + opacity, 4 RGBA; strata::MultiVolumeInput), in core or paged (a set of
+ * component pools, strata::PagePoolFormat: a volume of one scalar per component in the atlas),
  * post-classified and unshaded; InterpolationType and the unit distances are each volume's (and
  * component's). All geometry is composed in double on the CPU relative to a local origin, so
  * volumes at UTM coordinates render like volumes at the origin.
@@ -28,15 +28,15 @@
  * vtkGPUVolumeRayCastMapper is the superclass because vtkMultiVolume accepts no other mapper; none
  * of its OpenGL implementation is used.
  *
- * @sa vtkVolumeBSPTree vtkMultiVolume
+ * @sa strata::VolumeBSPTree vtkMultiVolume
  */
 #ifndef vtkMultiVolumeRayCastMapper_h
 #define vtkMultiVolumeRayCastMapper_h
 
+#include "StrataRegion.h"          // For strata::Region
 #include "StrataRenderingModule.h" // For export macro
+#include "StrataVolumePager.h"     // For strata::VolumePager::Statistics
 #include "vtkGPUVolumeRayCastMapper.h"
-#include "vtkStrataRegion.h" // For vtkStrataRegion
-#include "vtkVolumePager.h"  // For vtkVolumePager::Statistics
 
 #include <array>  // For std::array
 #include <map>    // For std::map
@@ -73,7 +73,7 @@ public:
   /**
    * Classification (default PostClassification). Pre-integration integrates the transfer
    * function between the scalars at both ends of each step, so a coarse step still resolves
-   * sharp features of the transfer function (vtkPreIntegrationTable).
+   * sharp features of the transfer function (strata::PreIntegrationTable).
    */
   void SetClassification(Classifications classification);
   Classifications GetClassification() const { return this->Classification; }
@@ -92,10 +92,10 @@ public:
    * Virtualized volume data (default on): each volume is cut into bricks of BrickSize^3 voxels
    * sharing one voxel layer, with a down-sampled octree; one shared atlas texture of at most
    * AtlasBudget MB holds the bricks of all volumes chosen by a greedy split/collapse on their
-   * screen-space error (vtkVolumeCut; the atlas is never larger than all bricks of all levels),
-   * and each volume reaches its bricks through an index
-   * texture. Bricks that the transfer function makes transparent are neither stored nor
-   * sampled. Off: one plain 3-D texture per volume at full resolution.
+   * screen-space error (strata::VolumeCut; the atlas is never larger than all bricks of all
+   * levels), and each volume reaches its bricks through an index texture. Bricks that the transfer
+   * function makes transparent are neither stored nor sampled. Off: one plain 3-D texture per
+   * volume at full resolution.
    */
   vtkSetMacro(UseBrickAtlas, bool);
   vtkGetMacro(UseBrickAtlas, bool);
@@ -108,7 +108,7 @@ public:
 
   ///@{
   /**
-   * How 8- and 16-bit volumes are stored on the GPU (vtkBrickAtlasFormat): Float32, 4 bytes a
+   * How 8- and 16-bit volumes are stored on the GPU (strata::BrickAtlasFormat): Float32, 4 bytes a
    * voxel; Normalized16 (default), R16 textures normalised and decoded in the shader, 2 bytes a
    * voxel, so one AtlasBudget holds 2x the bricks of float; Native, R8 as well when every volume
    * is 8-bit unsigned, 4x. Float volumes stay float. The shared atlas takes the widest type a
@@ -133,7 +133,7 @@ public:
    * Empty-space skipping (default on), in both compositing orders and with or without the
    * atlas: each volume keeps a grid of cells of SkipCellSize voxels per axis with the
    * chessboard distance to the nearest cell the transfer function makes visible
-   * (vtkVolumeSkipGrid); a ray in empty space jumps out of the whole empty box around its cell
+   * (strata::VolumeSkipGrid); a ray in empty space jumps out of the whole empty box around its cell
    * with one texel fetch, and resumes on its own sample lattice, so the image is unchanged.
    * Probed only after a transparent step. Off: no skipping code in the shaders.
    */
@@ -200,7 +200,7 @@ public:
    * bricks of every volume in the scene. The ray caster reports the detail it lacks, in the
    * same pass: the centre ray of every FeedbackScale-th pixel per axis (default 4, a buffer of
    * 1/4 x 1/4 of the viewport) writes, with image load/store into an R32UI texture, the packed
-   * id (vtkFeedbackReduction: volume, level, brick) of one brick it reads data from (samples
+   * id (strata::FeedbackReduction: volume, level, brick) of one brick it reads data from (samples
    * and gradient taps) before it terminates whose cut level is coarser than the level its
    * footprint asks for (see LevelOfDetailThreshold): the one that costs the ray most, the
    * transmittance in front of the sample times 2^(levels too coarse), nearest first on ties. Why a
@@ -216,7 +216,7 @@ public:
    * asks for all at once.
    *
    * The buffer is read back through a pixel buffer object at the next frame (the GPU is not
-   * waited on), reduced to (page, pixels) by vtkFeedbackReduction (OpenCL when FeedbackOpenCL
+   * waited on), reduced to (page, pixels) by strata::FeedbackReduction (OpenCL when FeedbackOpenCL
    * is on and a device is found, else on the CPU), the pixels are added to every ancestor
    * (PropagateToAncestors), and a node's split priority is the number of feedback pixels that
    * asked for detail below it. Satisfied rays stop asking, so a node keeps the largest
@@ -245,9 +245,9 @@ public:
   vtkGetMacro(LevelOfDetailThreshold, double);
   ///@}
 
-  /// vtkVolumePager's counts (cut, cache, reads, roots, failures, feedback) and what the
+  /// strata::VolumePager's counts (cut, cache, reads, roots, failures, feedback) and what the
   /// mapper adds on the GPU side; all zero when no input is paged.
-  struct PagingStatistics : vtkVolumePager::Statistics
+  struct PagingStatistics : strata::VolumePager::Statistics
   {
     long long BytesUploaded = 0;       ///< to the atlas in the last frame (paged or not)
     double FeedbackMilliseconds = 0.0; ///< its read-back and reduction (propagation included)
@@ -257,7 +257,7 @@ public:
     template<typename Visit>
     void ForEachField(Visit&& visit) const
     {
-      vtkVolumePager::Statistics::ForEachField(visit);
+      strata::VolumePager::Statistics::ForEachField(visit);
       visit("BytesUploaded", this->BytesUploaded);
       visit("FeedbackMilliseconds", this->FeedbackMilliseconds);
       visit("FeedbackOpenCL", this->FeedbackOpenCL);
@@ -266,7 +266,7 @@ public:
   };
   PagingStatistics GetPagingStatistics() const;
   /// The same statistics as one-value arrays named as the fields ("PendingPages", "BytesRead",
-  /// "Converged", ...; vtkStrataRenderUtilities::ToFieldData), for Python and ParaView.
+  /// "Converged", ...; strata::RenderUtilities::ToFieldData), for Python and ParaView.
   void GetPagingStatistics(vtkFieldData* statistics) const;
   /// Loads failed pages again (after a transient error).
   void RetryFailedPages();
@@ -448,7 +448,7 @@ public:
    *
    * How: each frame the actors are depth-peeled into TranslucentLayers layers (default 4, at
    * most 7) of colour and window depth per pixel, in front of the opaque depth
-   * (vtkVolumeSurfaceLayers, a vtkOpenGLRenderPass on each actor's property keys); a ray
+   * (strata::VolumeSurfaceLayers, a vtkOpenGLRenderPass on each actor's property keys); a ray
    * splits its lattice step at each layer it crosses and composites the layer there; layers in
    * front of, between or behind the volumes' fragments are composited in ray order too. Where
    * more than TranslucentLayers surfaces overlap a pixel, the farthest are dropped. A MIP,
@@ -497,7 +497,7 @@ public:
   /**
    * Shader sources built and programs compiled (handed to VTK's shader cache, or compiled
    * again after a release) since the mapper was made, counted by its composer
-   * (vtkMultiVolumeShaderComposer): a frame that draws what the last one drew adds nothing.
+   * (strata::MultiVolumeShaderComposer): a frame that draws what the last one drew adds nothing.
    */
   int GetNumberOfShaderSourcesBuilt() const;
   int GetNumberOfShaderCompilations() const;
@@ -551,7 +551,7 @@ protected:
   bool FeedbackOpenCL = true;
   double LevelOfDetailThreshold = 0.0;
   bool HoldCut = false;
-  vtkStrataRegion Region;
+  strata::Region Region;
   bool MeasureRenderTime = false;
   int TranslucentLayers = 4;
   std::map<int, int> InputBlendModes; ///< by port; absent: the mapper's BlendMode

@@ -9,16 +9,16 @@
 
 #include "vtkMultiVolumeRayCastMapper.h"
 
+#include "StrataBrickAtlasTexture.h"
+#include "StrataFeedbackBuffer.h"
 #include "StrataGraphicsResources.h"
-#include "vtkBrickAtlasTexture.h"
-#include "vtkFeedbackBuffer.h"
-#include "vtkMultiVolumeInput.h"
-#include "vtkMultiVolumeShaderComposer.h"
-#include "vtkVolumeCut.h"
-#include "vtkVolumeFragmentGeometry.h"
-#include "vtkVolumeIntegrationBuffers.h"
-#include "vtkVolumePager.h"
-#include "vtkVolumeSurfaceLayers.h"
+#include "StrataMultiVolumeInput.h"
+#include "StrataMultiVolumeShaderComposer.h"
+#include "StrataVolumeCut.h"
+#include "StrataVolumeFragmentGeometry.h"
+#include "StrataVolumeIntegrationBuffers.h"
+#include "StrataVolumePager.h"
+#include "StrataVolumeSurfaceLayers.h"
 
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -31,7 +31,10 @@
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
-class vtkPagePoolFile;
+namespace strata
+{
+class PagePoolFile;
+}
 class vtkRenderer;
 class vtkShaderProgram;
 class vtkVolume;
@@ -42,7 +45,7 @@ namespace vtkMultiVolumeRayCastMapperFrame
 using ViewKey = std::array<double, 18>; ///< world -> clip, viewport width and height
 
 // One volume of the current frame.
-using Components = vtkMultiVolumeShaderComposer::Components;
+using Components = strata::MultiVolumeShaderComposer::Components;
 
 struct FrameVolume
 {
@@ -57,12 +60,12 @@ struct FrameVolume
   bool Cropped = false;
   float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
   int CropFlags = 0;
-  /// Several components: a composite medium (vtkMultiVolumeInput), from a plain texture or,
+  /// Several components: a composite medium (strata::MultiVolumeInput), from a plain texture or,
   /// when the frame uses the atlas, from a volume of one scalar per component there.
   Components ComponentMode = Components::One;
   /// In the atlas: that many volumes of the pager, component c's PagerVolumes[c] (component
   /// 0's is the frame's number of the volume), paged from the set's file of component c
-  /// (vtkPagePoolFormat::GetComponentFileName of Pool).
+  /// (strata::PagePoolFormat::GetComponentFileName of Pool).
   int Channels = 1;
   int PagerVolumes[4] = { 0, 0, 0, 0 };
 };
@@ -117,17 +120,19 @@ public:
   }
 
   strata::GraphicsResources<Self> GraphicsResources;
-  vtkVolumeFragmentGeometry Geometry;
-  std::map<int, vtkMultiVolumeInput> Inputs; // by input port
-  vtkVolumePager Pager;
-  vtkBrickAtlasTexture Atlas;
-  vtkFeedbackBuffer Feedback{ true };
-  vtkVolumeIntegrationBuffers Buffers;
-  vtkVolumeSurfaceLayers SurfaceLayers;                    ///< with the translucent actors
-  std::map<int, vtkVolumeIntegrationBuffers> LayerBuffers; ///< by port: reduced volumes' layers
-  vtkMultiVolumeShaderComposer Composer;
-  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastKeys; ///< by volumes, last frame
-  std::map<int, vtkMultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
+  strata::VolumeFragmentGeometry Geometry;
+  std::map<int, strata::MultiVolumeInput> Inputs; // by input port
+  strata::VolumePager Pager;
+  strata::BrickAtlasTexture Atlas;
+  strata::FeedbackBuffer Feedback{ true };
+  strata::VolumeIntegrationBuffers Buffers;
+  strata::VolumeSurfaceLayers SurfaceLayers; ///< with the translucent actors
+  std::map<int, strata::VolumeIntegrationBuffers>
+    LayerBuffers; ///< by port: reduced volumes' layers
+  strata::MultiVolumeShaderComposer Composer;
+  std::map<int, strata::MultiVolumeShaderComposer::FragmentKey>
+    LastKeys; ///< by volumes, last frame
+  std::map<int, strata::MultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
   int LastFragments = 0;
   int ResidentBricks = 0;
   int Max3DTexture = 0;   ///< the GPU's, asked once
@@ -142,26 +147,26 @@ public:
   /// (pre-integration) and the region. When it changes the cut starts again from the roots:
   /// a brick that turns non-empty under a node already split has no page yet.
   bool CutHalo = false;
-  vtkStrataRegion CutRegion;
+  strata::Region CutRegion;
   PagingStatistics Paging;
   /// By paged port: the pool shown (a new step's bricks end HoldCut) and the last prefetch
   /// warning (made once).
   std::map<int, std::array<std::string, 2>> ShownPools;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
-  const vtkPagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
-  bool OpenComponentPools(Self* self, const vtkPagePoolFile& first, const FrameVolume& e);
-  /// Closes the pools of the channels the frame does not page (vtkVolumePager::ClosePool).
+  const strata::PagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
+  bool OpenComponentPools(Self* self, const strata::PagePoolFile& first, const FrameVolume& e);
+  /// Closes the pools of the channels the frame does not page (strata::VolumePager::ClosePool).
   void CloseUnusedPools(const Frame& frame);
   bool SupportsFeedback(Self* self, const Frame& frame);
   bool UpdateInputs(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void SetUpView(Self* self, vtkRenderer* ren, Frame& frame);
   bool UpdateAtlas(Self* self, vtkRenderer* ren, Frame& frame);
-  /// Whether volume v's texels are normalised, and their decode (vtkBrickAtlasFormat).
+  /// Whether volume v's texels are normalised, and their decode (strata::BrickAtlasFormat).
   bool GetDecode(const Frame& frame, int v, float decode[2]) const;
   bool UpdateCut(Self* self, vtkRenderer* ren, Frame& frame);
   void UploadBricks(Self* self,
-    const std::vector<vtkVolumeCut::Upload>& uploads,
+    const std::vector<strata::VolumeCut::Upload>& uploads,
     const Frame& frame);
   void UpdatePreIntegration(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
   void PrepareFeedback(Self* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin, Frame& frame);
@@ -170,7 +175,7 @@ public:
     vtkOpenGLRenderWindow* renWin,
     const std::vector<int>& order,
     Frame& frame);
-  vtkMultiVolumeShaderComposer::FragmentKey MakeKey(Self* self,
+  strata::MultiVolumeShaderComposer::FragmentKey MakeKey(Self* self,
     const std::vector<int>& volumes,
     bool reduce,
     const Frame& frame) const;
@@ -183,7 +188,7 @@ public:
     vtkShaderProgram* program,
     int f,
     const std::vector<int>& volumes,
-    const vtkMultiVolumeShaderComposer::FragmentKey& key,
+    const strata::MultiVolumeShaderComposer::FragmentKey& key,
     const Frame& frame);
   void Composite(vtkOpenGLRenderWindow* renWin, const Frame& frame);
 };

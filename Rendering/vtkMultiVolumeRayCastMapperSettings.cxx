@@ -5,10 +5,10 @@
 // itself is in vtkMultiVolumeRayCastMapper.cxx).
 #include "vtkMultiVolumeRayCastMapper.h"
 
-#include "vtkBrickAtlasFormat.h"
+#include "StrataBrickAtlasFormat.h"
 #include "vtkMultiVolumeRayCastMapperInternals.h"
 
-#include "vtkBrickAtlasAllocator.h"
+#include "StrataBrickAtlasAllocator.h"
 
 #include "vtkActor.h"
 #include "vtkIntArray.h"
@@ -60,12 +60,12 @@ int vtkMultiVolumeRayCastMapper::GetNumberOfAtlasSlots() const
 int vtkMultiVolumeRayCastMapper::GetAtlasBytesPerBrick() const
 {
   const int B = this->Internals->Pager.GetAtlas().GetBrickSize();
-  return B * B * B * vtkBrickAtlasFormat::GetTexelSize(this->Internals->Pager.GetAtlasType());
+  return B * B * B * strata::BrickAtlasFormat::GetTexelSize(this->Internals->Pager.GetAtlasType());
 }
 
 const char* vtkMultiVolumeRayCastMapper::GetAtlasScalarTypeName() const
 {
-  return vtkBrickAtlasFormat::GetName(this->Internals->Pager.GetAtlasType());
+  return strata::BrickAtlasFormat::GetName(this->Internals->Pager.GetAtlasType());
 }
 
 std::vector<std::array<int, 2>> vtkMultiVolumeRayCastMapper::GetCutBricks(int port) const
@@ -77,8 +77,8 @@ void vtkMultiVolumeRayCastMapper::SetFixedCut(int port,
   const std::vector<std::array<int, 2>>& bricks)
 {
   // A volume of several components in the atlas is a volume per component: the same cut each.
-  for (int c = 0; c < vtkVolumePager::MaxComponents; ++c)
-    this->Internals->Pager.SetFixedCut(vtkVolumePager::GetChannel(port, c), bricks);
+  for (int c = 0; c < strata::VolumePager::MaxComponents; ++c)
+    this->Internals->Pager.SetFixedCut(strata::VolumePager::GetChannel(port, c), bricks);
   this->Modified();
 }
 

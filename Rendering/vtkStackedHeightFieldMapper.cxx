@@ -2,19 +2,19 @@
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkStackedHeightFieldMapperInternals.h"
 
+#include "StrataFeedbackBuffer.h"
+#include "StrataFeedbackReduction.h"
 #include "StrataGraphicsResources.h"
-#include "vtkFeedbackBuffer.h"
-#include "vtkFeedbackReduction.h"
-#include "vtkHeightFieldPager.h"
-#include "vtkHeightFieldShaderComposer.h"
-#include "vtkHeightFieldStack.h"
-#include "vtkHeightFieldStackBuffers.h"
-#include "vtkHeightFieldTileAtlas.h"
-#include "vtkMinMaxQuadtree.h"
+#include "StrataHeightFieldPager.h"
+#include "StrataHeightFieldShaderComposer.h"
+#include "StrataHeightFieldStack.h"
+#include "StrataHeightFieldStackBuffers.h"
+#include "StrataHeightFieldTileAtlas.h"
+#include "StrataMinMaxQuadtree.h"
+#include "StrataRenderUtilities.h"
+#include "StrataVolumeCut.h"
+#include "StrataVolumeSurfaceLayers.h"
 #include "vtkPagePoolProtocol.h"
-#include "vtkStrataRenderUtilities.h"
-#include "vtkVolumeCut.h"
-#include "vtkVolumeSurfaceLayers.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -237,7 +237,7 @@ void vtkStackedHeightFieldMapper::GetGridToWorld(double m[16])
   vtkMatrix4x4::DeepCopy(m, this->Internals->GridToWorld);
 }
 
-const vtkHeightFieldStack* vtkStackedHeightFieldMapper::GetStack()
+const strata::HeightFieldStack* vtkStackedHeightFieldMapper::GetStack()
 {
   return this->UpdateStack() && !this->Internals->Paged ? &this->Internals->Stack : nullptr;
 }
@@ -511,7 +511,7 @@ vtkTypeBool vtkStackedHeightFieldMapper::ProcessRequest(vtkInformation* request,
 bool vtkStackedHeightFieldMapper::UpdatePagedStack(const std::vector<vtkImageData*>& images)
 {
   vtkInternals& in = *this->Internals;
-  std::vector<vtkHeightFieldPager::Source> sources(images.size());
+  std::vector<strata::HeightFieldPager::Source> sources(images.size());
   in.RootValues.resize(images.size());
   for (size_t i = 0; i < images.size(); ++i)
   {
@@ -580,7 +580,7 @@ vtkStackedHeightFieldMapper::PagingStatistics vtkStackedHeightFieldMapper::GetPa
 
 void vtkStackedHeightFieldMapper::GetPagingStatistics(vtkFieldData* statistics) const
 {
-  vtkStrataRenderUtilities::ToFieldData(this->Internals->Paging, statistics);
+  strata::RenderUtilities::ToFieldData(this->Internals->Paging, statistics);
 }
 
 void vtkStackedHeightFieldMapper::RetryFailedPages()
@@ -598,7 +598,7 @@ bool vtkStackedHeightFieldMapper::GetPaged() const
   return this->Internals->Paged;
 }
 
-const vtkHeightFieldPager* vtkStackedHeightFieldMapper::GetPager() const
+const strata::HeightFieldPager* vtkStackedHeightFieldMapper::GetPager() const
 {
   return &this->Internals->Pager;
 }
@@ -644,9 +644,9 @@ bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
   // The cut refines by the size of a tile's points on screen, under this camera.
   vtkNew<vtkMatrix4x4> modelGrid;
   vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), this->GridToWorld, modelGrid);
-  std::vector<vtkHeightFieldPager::Upload> uploads;
+  std::vector<strata::HeightFieldPager::Upload> uploads;
   const bool changed =
-    this->Pager.Update(vtkStrataRenderUtilities::GetCutCamera(ren), modelGrid->GetData(), uploads);
+    this->Pager.Update(strata::RenderUtilities::GetCutCamera(ren), modelGrid->GetData(), uploads);
   this->Paging.BytesUploaded = this->Atlas.Upload(this->Pager, uploads);
   if (changed || !this->Atlas.HasPageTable())
   {
@@ -662,7 +662,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::UpdatePages(Self* self,
   {
     vtkWarningWithObjectMacro(self, << clamped);
   }
-  static_cast<vtkHeightFieldPager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
+  static_cast<strata::HeightFieldPager::Statistics&>(this->Paging) = this->Pager.GetStatistics();
   this->Paging.Paged = true;
   this->Paging.AtlasSlots = this->Atlas.GetSlots();
   this->Paging.FeedbackUsed = this->FeedbackActive;
@@ -863,8 +863,8 @@ void vtkStackedHeightFieldMapper::vtkInternals::UpdateColors(Self* self,
 // horizons (page ids); without it the pager goes back to screen-space priorities.
 bool vtkStackedHeightFieldMapper::vtkInternals::UseFeedback(Self* self)
 {
-  bool feedback =
-    this->Paged && self->LevelOfDetailFeedback && this->Layers <= vtkFeedbackReduction::MaxDataSets;
+  bool feedback = this->Paged && self->LevelOfDetailFeedback &&
+                  this->Layers <= strata::FeedbackReduction::MaxDataSets;
   if (feedback)
   {
     GLint major = 0, minor = 0;
@@ -897,7 +897,7 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   vtkOpenGLRenderer* oglRen,
   const Frame& frame)
 {
-  vtkHeightFieldShaderComposer::Key key;
+  strata::HeightFieldShaderComposer::Key key;
   key.Paged = this->Paged;
   // A peel redraws the frame's cut: no feedback of its own.
   key.Feedback = frame.Peel ? false : this->UseFeedback(self);
@@ -975,9 +975,9 @@ bool vtkStackedHeightFieldMapper::vtkInternals::SetUniforms(Self* self,
   vtkMatrix4x4::Invert(frame.GridToClip, frame.ClipToGrid);
   vtkMatrix4x4::Multiply4x4(camera->GetViewTransformMatrix(), modelGrid, frame.GridToView);
   float m[16];
-  vtkStrataRenderUtilities::ToColumnMajor(frame.GridToClip->GetData(), m);
+  strata::RenderUtilities::ToColumnMajor(frame.GridToClip->GetData(), m);
   program->SetUniformMatrix4x4("uGridToClip", m);
-  vtkStrataRenderUtilities::ToColumnMajor(frame.ClipToGrid->GetData(), m);
+  strata::RenderUtilities::ToColumnMajor(frame.ClipToGrid->GetData(), m);
   program->SetUniformMatrix4x4("uClipToGrid", m);
   int* vp = frame.Viewport;
   ren->GetTiledSizeAndOrigin(&vp[2], &vp[3], &vp[0], &vp[1]);
@@ -996,7 +996,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::SetUniforms(Self* self,
   program->SetUniformf("uStep", float(self->LinearSearchStep));
   // Ties: hits closer than 1e-6 of the near-to-far segment (t spans [0, 1]) are one hit.
   program->SetUniformf("uTieEps", 1e-6f);
-  const vtkMinMaxQuadtree& tree = this->Paged ? this->Pager.GetTree() : this->Tree;
+  const strata::MinMaxQuadtree& tree = this->Paged ? this->Pager.GetTree() : this->Tree;
   program->SetUniformi("uTileSize", tree.GetTileSize());
   const int levels = tree.GetNumberOfLevels();
   if (levels > 16)
@@ -1036,7 +1036,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::SetLightingUniforms(vtkOpenGLRen
       n9[c * 3 + r] = static_cast<float>(normal->GetElement(r, c));
   program->SetUniformMatrix3x3("uNormalMatrix", n9);
   float m[16];
-  vtkStrataRenderUtilities::ToColumnMajor(frame.GridToView->GetData(), m);
+  strata::RenderUtilities::ToColumnMajor(frame.GridToView->GetData(), m);
   program->SetUniformMatrix4x4("uGridToView", m);
   program->SetUniformi("uParallel", ren->GetActiveCamera()->GetParallelProjection() ? 1 : 0);
   vtkProperty* prop = actor->GetProperty();
@@ -1067,7 +1067,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::PrepareFeedback(Self* self,
   glUniform2i(program->FindUniform("uFeedbackOffset"), phase % s, phase / s);
   program->SetUniformf("uLodScale", float(self->LevelOfDetailThreshold));
   const int levelsPaged =
-    std::min(this->Pager.GetNumberOfLevels(), vtkFeedbackReduction::MaxLevels);
+    std::min(this->Pager.GetNumberOfLevels(), strata::FeedbackReduction::MaxLevels);
   program->SetUniformi("uPageLevels", levelsPaged);
   int tilesX[32] = { 0 };
   for (int l = 0; l < levelsPaged; ++l)
@@ -1090,7 +1090,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::Draw(vtkOpenGLRenderWindow* renW
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDepthMask(writeDepth ? GL_TRUE : GL_FALSE);
   {
-    const vtkStrataRenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
+    const strata::RenderUtilities::ScopedEnable depthClamp(GL_DEPTH_CLAMP);
     this->Buffers.DrawBox();
   }
   state->vtkglCullFace(GL_BACK); // VTK's default; its actors set their own
@@ -1102,7 +1102,7 @@ void vtkStackedHeightFieldMapper::vtkInternals::ReadFeedback(Self* self)
   const bool viewChanged = this->PendingViewChanged;
   // Timed from here: mapping, reduction and handing over (the copy was queued after the draw).
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<vtkFeedbackReduction::Entry> list;
+  std::vector<strata::FeedbackReduction::Entry> list;
   this->Feedback.SetUseOpenCL(self->FeedbackOpenCL);
   this->Feedback.Read(list);
   std::vector<uint32_t> pages(list.size()), coverage(list.size());
@@ -1126,7 +1126,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
   vtkActor* actor,
   Frame& frame)
 {
-  using Translucency = vtkHeightFieldShaderComposer::Translucency;
+  using Translucency = strata::HeightFieldShaderComposer::Translucency;
   const bool translucent = self->OutputMode == OutputModes::Shaded && this->AnyTranslucent();
   vtkVolumeSurfacePeelPass* peel = vtkVolumeSurfacePeelPass::Find(actor);
   if (peel && peel->Active)
@@ -1142,7 +1142,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
     // translucent hits composited as one fragment; its depth peeling passes are not supported.
     if (!translucent || peel)
       return false;
-    if (!vtkStrataRenderUtilities::FindRenderPass<vtkOrderIndependentTranslucentPass>(actor))
+    if (!strata::RenderUtilities::FindRenderPass<vtkOrderIndependentTranslucentPass>(actor))
     {
       if (!this->UnsupportedTranslucentWarned)
         vtkWarningWithObjectMacro(self,
@@ -1164,7 +1164,7 @@ bool vtkStackedHeightFieldMapper::vtkInternals::ChooseTranslucency(Self* self,
 void vtkStackedHeightFieldMapper::vtkInternals::SetPeelUniforms(vtkShaderProgram* program,
   const Frame& frame) const
 {
-  if (frame.Translucent == vtkHeightFieldShaderComposer::Translucency::Blend)
+  if (frame.Translucent == strata::HeightFieldShaderComposer::Translucency::Blend)
     program->SetUniformi("uNumHorizons", this->Layers);
   if (!frame.Peel)
     return;
@@ -1304,7 +1304,8 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
-  in.Draw(renWin, program, frame.Translucent != vtkHeightFieldShaderComposer::Translucency::Blend);
+  in.Draw(
+    renWin, program, frame.Translucent != strata::HeightFieldShaderComposer::Translucency::Blend);
   in.UnbindData(renWin, frame);
   if (in.LastKey.Feedback)
   {

@@ -5,7 +5,7 @@
  *
  * The single-pass stacked height-field ray caster of Lux and Froehlich: a global min-max
  * quadtree over tiles of the lateral grid (empty-space skipping) whose nodes carry sorted lists
- * of disjoint depth intervals naming the horizons inside them (vtkMinMaxQuadtree). A ray walks
+ * of disjoint depth intervals naming the horizons inside them (strata::MinMaxQuadtree). A ray walks
  * the tree top-down, evaluates a leaf's intervals front-to-back or back-to-front by its vertical
  * direction, and stops at the first hit; inside a tile it searches each candidate horizon
  * linearly (step LinearSearchStep cells) and refines the crossing by bisection.
@@ -19,7 +19,7 @@
  * the actor's vtkProperty (ambient, diffuse, specular) and the renderer's lights.
  *
  * Out of core: when the inputs are vtkPagePoolReader outputs of tile pools, the mapper pages
- * the horizons itself (vtkHeightFieldPager): the readers only serve their coarsest level, a
+ * the horizons itself (strata::HeightFieldPager): the readers only serve their coarsest level, a
  * RAM cache filled by worker threads (PageCacheBudget) feeds a GPU atlas of tiles
  * (AtlasBudget, PagesPerFrame uploads per frame), the shader reads heights through a page
  * table, and the quadtree describes the resident data. Tiles of different levels are stitched
@@ -30,7 +30,7 @@
  * a lookup table over its depth (SetHorizonLookupTable) or over a second grid on the same
  * lateral grid, a point array of its input such as the thickness to the next horizon or an
  * amplitude extracted along it (SetHorizonColorArray), bilinear over the valid corners of the
- * hit cell (vtkHeightFieldStack::Interpolate), its no-data points in the table's NaN colour.
+ * hit cell (strata::HeightFieldStack::Interpolate), its no-data points in the table's NaN colour.
  *
  * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
  * table code with solid colours, no per-horizon sources unless a horizon has one, no attribute
@@ -47,22 +47,25 @@
  * renderer->AddActor(actor);
  * @endcode
  *
- * @sa vtkMinMaxQuadtree vtkHeightFieldStack vtkHeightFieldReferenceCaster
+ * @sa strata::MinMaxQuadtree strata::HeightFieldStack strata::HeightFieldReferenceCaster
  */
 #ifndef vtkStackedHeightFieldMapper_h
 #define vtkStackedHeightFieldMapper_h
 
-#include "StrataRenderingModule.h" // For export macro
-#include "vtkHeightFieldPager.h"   // For vtkHeightFieldPager::Statistics
+#include "StrataHeightFieldPager.h" // For strata::HeightFieldPager::Statistics
+#include "StrataRegion.h"           // For strata::Region
+#include "StrataRenderingModule.h"  // For export macro
 #include "vtkMapper.h"
-#include "vtkStrataRegion.h" // For vtkStrataRegion
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
 class vtkFieldData;
-class vtkHeightFieldStack;
+namespace strata
+{
+class HeightFieldStack;
+}
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkScalarsToColors;
@@ -188,7 +191,7 @@ public:
    * drawn by the renderer's passes; give the actor to the volume ray caster too
    * (vtkMultiVolumeRayCastMapper::AddTranslucentActor; it stays in the renderer for its opaque
    * horizons), which composites each translucent horizon where a ray crosses it, in ray order
-   * with the volume samples and the other translucent surfaces (vtkVolumeSurfaceLayers: this
+   * with the volume samples and the other translucent surfaces (strata::VolumeSurfaceLayers: this
    * mapper's rays find, per peel, the first translucent hit behind the last layer; translucent
    * horizons that touch, equal where the ray meets them, are one layer, composited in index
    * order). Opaque horizons of the same stack still hide what lies behind them. With horizon
@@ -225,7 +228,7 @@ public:
   /**
    * Frames over which a refined tile blends from its parent's surface to its own (default 4;
    * 0: at once). Levels are stitched, so no cut shows a crack; this keeps a refinement from
-   * popping too: frame k of n shows parent + (own - parent) k / n (vtkHeightFieldPager::
+   * popping too: frame k of n shows parent + (own - parent) k / n (strata::HeightFieldPager::
    * SetMorphFrames). The price: a blending tile is uploaded every frame, and settling takes n
    * more frames.
    */
@@ -241,7 +244,7 @@ public:
    * reduced to a (tile, pixels) list that drives the cut, so tiles hidden under other horizons
    * or out of view stay coarse. Off: every tile is refined by its screen-space error.
    * FeedbackOpenCL (default on): reduce the buffer with OpenCL when a device is found, else on
-   * the CPU (vtkFeedbackReduction; both give the same list).
+   * the CPU (strata::FeedbackReduction; both give the same list).
    */
   vtkSetMacro(LevelOfDetailFeedback, bool);
   vtkGetMacro(LevelOfDetailFeedback, bool);
@@ -278,9 +281,9 @@ public:
   ///@}
 
   /// What paging did in the last frame (all zero when the inputs are in core).
-  /// The pager's statistics (vtkHeightFieldPager::Statistics: cut, cache, reads, failures) and
+  /// The pager's statistics (strata::HeightFieldPager::Statistics: cut, cache, reads, failures) and
   /// what the mapper adds on the GPU side.
-  struct PagingStatistics : vtkHeightFieldPager::Statistics
+  struct PagingStatistics : strata::HeightFieldPager::Statistics
   {
     bool Paged = false;
     int AtlasSlots = 0;                ///< tiles the atlas holds
@@ -292,7 +295,7 @@ public:
     template<typename Visit>
     void ForEachField(Visit&& visit) const
     {
-      vtkHeightFieldPager::Statistics::ForEachField(visit);
+      strata::HeightFieldPager::Statistics::ForEachField(visit);
       visit("Paged", this->Paged);
       visit("AtlasSlots", this->AtlasSlots);
       visit("BytesUploaded", this->BytesUploaded);
@@ -303,7 +306,7 @@ public:
   };
   PagingStatistics GetPagingStatistics() const;
   /// The same statistics as one-value arrays named as the fields ("Paged", "CutTiles",
-  /// "BytesRead", ...; vtkStrataRenderUtilities::ToFieldData), for Python and ParaView.
+  /// "BytesRead", ...; strata::RenderUtilities::ToFieldData), for Python and ParaView.
   void GetPagingStatistics(vtkFieldData* statistics) const;
   /// Forgets failed page loads so that they are tried again.
   void RetryFailedPages();
@@ -312,7 +315,7 @@ public:
   /// True when the inputs are paged from tile pools (after a render or GetBounds).
   bool GetPaged() const;
   /// The pager (cut, page table, CPU reference of the lookup); meaningful when GetPaged().
-  const vtkHeightFieldPager* GetPager() const;
+  const strata::HeightFieldPager* GetPager() const;
 
   vtkTypeBool ProcessRequest(vtkInformation* request,
     vtkInformationVector** inputVector,
@@ -325,7 +328,7 @@ public:
   /**
    * Shader sources built and programs compiled (handed to VTK's shader cache, or compiled
    * again after a release) since the mapper was made, counted by its composer
-   * (vtkHeightFieldShaderComposer): a frame that draws what the last one drew adds nothing.
+   * (strata::HeightFieldShaderComposer): a frame that draws what the last one drew adds nothing.
    */
   int GetNumberOfShaderSourcesBuilt() const;
   int GetNumberOfShaderCompilations() const;
@@ -352,7 +355,7 @@ public:
   void GetGridToWorld(double m[16]);
 
   /// The stack as the renderer sees it (after a render or GetBounds); null before.
-  const vtkHeightFieldStack* GetStack();
+  const strata::HeightFieldStack* GetStack();
 
   void Render(vtkRenderer* ren, vtkActor* actor) override;
   void ReleaseGraphicsResources(vtkWindow* win) override;
@@ -378,7 +381,7 @@ private:
   void SetPooledInputsToCoarsest();
   void ComputeBounds();
 
-  vtkStrataRegion Region;
+  strata::Region Region;
   int TileSize = 64;
   double LinearSearchStep = 0.5;
   double HeightScale = 1.0;

@@ -8,15 +8,15 @@
 
 #include "vtkStackedHeightFieldMapper.h"
 
+#include "StrataFeedbackBuffer.h"
 #include "StrataGraphicsResources.h"
-#include "vtkFeedbackBuffer.h"
-#include "vtkHeightFieldPager.h"
-#include "vtkHeightFieldShaderComposer.h"
-#include "vtkHeightFieldStack.h"
-#include "vtkHeightFieldStackBuffers.h"
-#include "vtkHeightFieldTileAtlas.h"
-#include "vtkMinMaxQuadtree.h"
-#include "vtkVolumeSurfaceLayers.h"
+#include "StrataHeightFieldPager.h"
+#include "StrataHeightFieldShaderComposer.h"
+#include "StrataHeightFieldStack.h"
+#include "StrataHeightFieldStackBuffers.h"
+#include "StrataHeightFieldTileAtlas.h"
+#include "StrataMinMaxQuadtree.h"
+#include "StrataVolumeSurfaceLayers.h"
 
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -49,8 +49,8 @@ public:
   }
 
   // CPU side
-  vtkHeightFieldStack Stack;
-  vtkMinMaxQuadtree Tree;
+  strata::HeightFieldStack Stack;
+  strata::MinMaxQuadtree Tree;
   std::vector<vtkSmartPointer<vtkDataArray>> Arrays; // keep borrowed layers alive
   vtkNew<vtkMatrix4x4> GridToWorld;
   vtkMTimeType BuildTime = 0;
@@ -62,7 +62,7 @@ public:
   // Per horizon: a colour array (its name) and a lookup table; the arrays' values in core.
   std::map<int, std::string> ColorArrays;
   std::map<int, vtkSmartPointer<vtkScalarsToColors>> HorizonLuts;
-  vtkHeightFieldStack Attributes;
+  strata::HeightFieldStack Attributes;
   std::vector<int> AttributeLayer; ///< per horizon: its layer of Attributes, or -1
   vtkTimeStamp ColorsModified;
   // What the renderer draws, in core or paged: grid size, horizons, value range, holes.
@@ -72,7 +72,7 @@ public:
 
   // Paging (tile pools behind the inputs): the pager and the readers' coarsest levels as roots.
   bool Paged = false;
-  vtkHeightFieldPager Pager;
+  strata::HeightFieldPager Pager;
   std::vector<std::vector<float>> RootValues;
   bool TreeDirty = true; ///< the pager's quadtree changed since it was uploaded
   // Level-of-detail feedback: the lattice phase, the view the queued buffer was written from.
@@ -86,11 +86,11 @@ public:
 
   // GPU side: the parts, and what of the data they hold.
   strata::GraphicsResources<Self> GraphicsResources;
-  vtkHeightFieldStackBuffers Buffers;
-  vtkHeightFieldTileAtlas Atlas;
-  vtkFeedbackBuffer Feedback{ false };
-  vtkHeightFieldShaderComposer Composer;
-  vtkHeightFieldShaderComposer::Key LastKey;
+  strata::HeightFieldStackBuffers Buffers;
+  strata::HeightFieldTileAtlas Atlas;
+  strata::FeedbackBuffer Feedback{ false };
+  strata::HeightFieldShaderComposer Composer;
+  strata::HeightFieldShaderComposer::Key LastKey;
   bool HasLastKey = false;
   vtkMTimeType UploadTime = 0;
   vtkMTimeType ColorTime = 0;
@@ -103,8 +103,8 @@ public:
     bool PerHorizon = false; ///< some horizon has its own table or colour array
     bool Lit = false;
     /// Skip in the opaque pass of a stack with translucent horizons, Layer in a peel.
-    vtkHeightFieldShaderComposer::Translucency Translucent =
-      vtkHeightFieldShaderComposer::Translucency::None;
+    strata::HeightFieldShaderComposer::Translucency Translucent =
+      strata::HeightFieldShaderComposer::Translucency::None;
     vtkVolumeSurfacePeelPass* Peel = nullptr; ///< the peel drawing this frame's layer
     double LutRange[2] = { 0.0, 1.0 };
     vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;

@@ -1,13 +1,14 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkSubsurfacePicker.h"
 
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
+#include "StrataHeightFieldReferenceCaster.h"
+#include "StrataHeightFieldStack.h"
+#include "StrataTransferFunctionTable.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkStackedHeightFieldMapper.h"
-#include "vtkTransferFunctionTable.h"
 
 #include "StrataImageSampling.h"
+#include "StrataPagePoolFile.h"
 #include "StrataPagePoolSet.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkAssemblyPath.h"
@@ -19,7 +20,6 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPagePoolProtocol.h"
 #include "vtkPointData.h"
 #include "vtkProp3D.h"
@@ -106,7 +106,7 @@ vtkSmartPointer<vtkImageData> ReadPooled(const std::string& pool,
     vtkGenericWarningMacro("Cannot pick in the page pool: " << error);
     return nullptr;
   }
-  const vtkPagePoolFormat::Header& h = set.GetFile().GetHeader();
+  const strata::PagePoolFormat::Header& h = set.GetFile().GetHeader();
   const int whole[6] = {
     0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, set.IsTilePool() ? 0 : h.Dimensions[2] - 1
   };
@@ -352,7 +352,7 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
     return VTK_DOUBLE_MAX;
   int dims[3];
   images[0]->GetDimensions(dims);
-  vtkHeightFieldStack stack;
+  strata::HeightFieldStack stack;
   if (!stack.Initialize(dims[0], dims[1]))
     return VTK_DOUBLE_MAX;
   const std::string arrayName = mapper->GetHeightArrayName() ? mapper->GetHeightArrayName() : "";
@@ -392,8 +392,8 @@ double vtkSubsurfacePicker::PickHorizons(const double p1[3],
   Apply(mapperToGrid, p2, b);
   for (int c = 0; c < 3; ++c)
     dir[c] = b[c] - a[c];
-  const vtkHeightFieldReferenceCaster caster(stack);
-  const vtkHeightFieldReferenceCaster::Hit hit = caster.Cast(a, dir, 0.0, 1.0);
+  const strata::HeightFieldReferenceCaster caster(stack);
+  const strata::HeightFieldReferenceCaster::Hit hit = caster.Cast(a, dir, 0.0, 1.0);
   if (hit.Layer < 0 || !(hit.T < this->HorizonT))
     return hit.Layer < 0 ? VTK_DOUBLE_MAX : hit.T;
   double mapperPos[3];
@@ -475,8 +475,8 @@ double vtkSubsurfacePicker::PickVolumes(const double p1[3],
     vtkMatrix4x4::Invert(v->IndexToMapper, v->MapperToIndex);
     vtkVolumeProperty* p = member->GetProperty();
     v->Nearest = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION;
-    vtkTransferFunctionTable::TabulateExtinction(
-      p, vtkTransferFunctionTable::TableSize, v->Range, v->RgbTau, v->Opacity);
+    strata::TransferFunctionTable::TabulateExtinction(
+      p, strata::TransferFunctionTable::TableSize, v->Range, v->RgbTau, v->Opacity);
     double a[3], b[3], lo[3], hi[3];
     Apply(v->MapperToIndex, p1, a);
     Apply(v->MapperToIndex, p2, b);

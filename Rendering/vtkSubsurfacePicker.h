@@ -9,7 +9,7 @@
  * plane through every pickable prop, and GetPickPosition(), GetProp3D(), GetMapper() and
  * GetPickedPositions() answer as VTK's pickers do, for the nearest of
  * - a horizon of a vtkStackedHeightFieldMapper (vtkActor): the exact first hit of the ray with
- *   the stack's bilinear patches in double precision (vtkHeightFieldReferenceCaster, the
+ *   the stack's bilinear patches in double precision (strata::HeightFieldReferenceCaster, the
  *   surfaces the GPU draws: the mapper's HeightScale, HeightArrayName and null value, the
  *   actor's transform); GetHorizonId() is the input index, GetHorizonValue() the horizon's
  *   value there (a depth or a time);
@@ -30,7 +30,7 @@
  * full resolution from their pools, only the pages under the ray: the pick is the one of the
  * in-core data, whatever is resident on the GPU.
  *
- * @sa vtkPicker vtkHeightFieldReferenceCaster vtkMultiVolumeReferenceIntegrator
+ * @sa vtkPicker strata::HeightFieldReferenceCaster strata::MultiVolumeReferenceIntegrator
  */
 #ifndef vtkSubsurfacePicker_h
 #define vtkSubsurfacePicker_h

@@ -1,7 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkVolumeSurfacePeelPass.h"
 
-#include "vtkStrataRenderUtilities.h"
+#include "StrataRenderUtilities.h"
 
 #include "vtkActor.h"
 #include "vtkObjectFactory.h"
@@ -61,5 +61,5 @@ bool vtkVolumeSurfacePeelPass::SetShaderParameters(vtkShaderProgram* program,
 
 vtkVolumeSurfacePeelPass* vtkVolumeSurfacePeelPass::Find(vtkActor* actor)
 {
-  return vtkStrataRenderUtilities::FindRenderPass<vtkVolumeSurfacePeelPass>(actor);
+  return strata::RenderUtilities::FindRenderPass<vtkVolumeSurfacePeelPass>(actor);
 }

@@ -6,9 +6,9 @@
  * Set on an actor's vtkOpenGLRenderPass::RenderPasses() key: a fragment survives pass k only in
  * front of the opaque scene and, for k > 0, behind layer k - 1; the depth test keeps the nearest
  * survivor. Mappers with their own shaders (vtkStackedHeightFieldMapper) find it on their actor and
- * read the same textures. vtkVolumeSurfaceLayers owns one and sets it up in Peel.
+ * read the same textures. strata::VolumeSurfaceLayers owns one and sets it up in Peel.
  *
- * @sa vtkVolumeSurfaceLayers
+ * @sa strata::VolumeSurfaceLayers
  */
 #ifndef vtkVolumeSurfacePeelPass_h
 #define vtkVolumeSurfacePeelPass_h

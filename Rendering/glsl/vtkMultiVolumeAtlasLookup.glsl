@@ -1,5 +1,5 @@
 // Strata multi-volume ray caster, the brick atlas's lookup of volume @n@ (written by
-// vtkBrickAtlasTexture, which owns the atlas and the index textures): index coordinates (point
+// strata::BrickAtlasTexture, which owns the atlas and the index textures): index coordinates (point
 // (i, j, k) at (i, j, k)) to the entry f of the level-0 brick holding them (nearest, clamped to
 // the table), resolved on the CPU: the atlas texel of the covering node's origin (xyz) and its
 // scale 2^-level (w). The node's brick has a one-voxel border, so trilinear lookups are exact

@@ -1,6 +1,6 @@
 // Strata multi-volume ray caster: volume @n@'s four dependent components (IndependentComponents
 // off): RGB the first three, over the scalars that map to 0 and 1 (as VTK 9.1's textures
-// normalise the data type: vtkMultiVolumeInput::GetColorRange), clamped, and the extinction of
+// normalise the data type: strata::MultiVolumeInput::GetColorRange), clamped, and the extinction of
 // the fourth from the transfer table.
 uniform sampler2D uTransfer@n@;
 uniform vec3 uTableRange@n@;

@@ -1,5 +1,5 @@
 // Strata multi-volume ray caster: volume @n@'s segment from its full pre-integration table
-// (vtkPreIntegrationTable, M x M entries at the sample distance uPreStep), x = (s - min) *
+// (strata::PreIntegrationTable, M x M entries at the sample distance uPreStep), x = (s - min) *
 // scale in [0, 1] over the table's scalar range, read bilinearly at texel centres.
 uniform sampler2D uPreTable@n@;
 uniform vec3 uPreRange@n@; // min, scale, M

@@ -1,5 +1,5 @@
 // Strata multi-volume ray caster: volume @n@'s segment by the two-integral form of
-// pre-integration (vtkPreIntegrationTable's 1-D integral table, M entries, read with texelFetch
+// pre-integration (strata::PreIntegrationTable's 1-D integral table, M entries, read with texelFetch
 // and mixed in float: filter weights would be amplified by the division), any segment length.
 // Colour is clamped at uPreMaxColor times the extinction.
 uniform sampler2D uPreTable@n@;

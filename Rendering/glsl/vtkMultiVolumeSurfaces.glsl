@@ -1,4 +1,4 @@
-// Strata multi-volume ray caster: the pixel's translucent surface layers (vtkVolumeSurfaceLayers),
+// Strata multi-volume ray caster: the pixel's translucent surface layers (strata::VolumeSurfaceLayers),
 // front to back, premultiplied, at their t on the ray (3e38: none). gSurfaceNext is the ray's
 // first layer not composited yet: the ones before it went in with earlier fragments
 // (uSurfaceProgress counts them). A layer goes in where the ray crosses it: the lattice step

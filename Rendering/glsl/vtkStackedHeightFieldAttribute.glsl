@@ -2,7 +2,7 @@
 uniform sampler2DArray uAttributes;
 // Bilinear over the valid corners of the cell at g, their weights renormalised (a point on a
 // hole corner: the mean of the valid ones); false when all four are holes
-// (vtkHeightFieldStack::Interpolate).
+// (strata::HeightFieldStack::Interpolate).
 bool strataAttribute(int layer, vec2 g, out float value)
 {
   value = 0.0; // written on every path (an out parameter is copied back even when not set)
@@ -14,7 +14,7 @@ bool strataAttribute(int layer, vec2 g, out float value)
     texelFetch(uAttributes, ivec3(c + ivec2(0, 1), layer), 0).r,
     texelFetch(uAttributes, ivec3(c + ivec2(1, 1), layer), 0).r);
   vec4 w = vec4((1.0 - uv.x) * (1.0 - uv.y), uv.x * (1.0 - uv.y), (1.0 - uv.x) * uv.y, uv.x * uv.y);
-  bvec4 ok = not(strataIsNaN(a)); // on the bits, as vtkHeightFieldStack::Interpolate's isnan
+  bvec4 ok = not(strataIsNaN(a)); // on the bits, as strata::HeightFieldStack::Interpolate's isnan
   a = mix(vec4(0.0), a, ok); // a selection, so a NaN corner leaves no NaN behind
   vec4 valid = vec4(ok);
   float weight = dot(w, valid);

@@ -6,7 +6,7 @@ bvec4 strataIsNaN(vec4 v)
   return greaterThan(floatBitsToUint(v) & uvec4(0x7fffffffu), uvec4(0x7f800000u));
 }
 
-// Which of four heights are holes: NaN in core (vtkHeightFieldStack), BIG where a paged tile is
+// Which of four heights are holes: NaN in core (strata::HeightFieldStack), BIG where a paged tile is
 // missing, and, as on the CPU, every height of magnitude 1e30 or more (Inf among them, by its
 // bits: exponent all ones).
 bvec4 strataHoles(vec4 h)

@@ -4,7 +4,7 @@
 // slot) and level l holds every 2^l-th point, so the height is level l interpolated
 // bilinearly at p / 2^l; at level 0 it is a single fetch of the data itself. Tiles of
 // different levels meet without cracks because the atlas holds them stitched: a finer tile's
-// border texels lie on its coarser neighbour's border (vtkHeightFieldPager), so this lookup and
+// border texels lie on its coarser neighbour's border (strata::HeightFieldPager), so this lookup and
 // the layer's search, which walks each tile's own texels, see one surface.
 uniform sampler2DArray uAtlas;      // one B x B tile per layer (slot)
 uniform usampler2DArray uPageTable; // per level-0 tile and horizon: slot x, y, z and level

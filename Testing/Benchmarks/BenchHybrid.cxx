@@ -5,7 +5,7 @@
 // full-resolution rendering (vtkMultiVolumeRayCastMapper) is the reference; the plain
 // down-sampled volumes (factors 2 and 4, cubic) and the hybrids (factor, error threshold, error
 // grid, squares or splats) are rendered from the same view and measured against it: points,
-// bytes on disk (vtkHybridVolumeFile: header + float low-resolution volume + 16 bytes per
+// bytes on disk (strata::HybridVolumeFile: header + float low-resolution volume + 16 bytes per
 // point), ms per frame, RMS and 99th-percentile pixel error. The headline compares at equal
 // bytes: every factor-4 hybrid against the original resampled (cubic, vtkImageResample) to a
 // float volume of the same bytes; "hybrid-budget" rows also fill exactly the bytes of the plain
@@ -22,8 +22,8 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataHybridVolumeFile.h"
 #include "vtkChart.h"
-#include "vtkHybridVolumeFile.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkHybridVolumeMapper.h"
 #include "vtkImageData.h"
@@ -103,8 +103,8 @@ Measure Render(vtkRenderWindow* win,
 
 double Bytes(vtkImageData* low, vtkIdType points)
 {
-  return vtkHybridVolumeFile::HeaderSize + 4.0 * low->GetNumberOfPoints() +
-         double(vtkHybridVolumeFile::PointSize) * points;
+  return strata::HybridVolumeFile::HeaderSize + 4.0 * low->GetNumberOfPoints() +
+         double(strata::HybridVolumeFile::PointSize) * points;
 }
 
 int Run(const std::string& name, const strata_test::TestPaths& paths)
@@ -132,7 +132,7 @@ int Run(const std::string& name, const strata_test::TestPaths& paths)
   full->SetSampleDistance(sampleDistance);
   std::vector<unsigned char> reference;
   const Measure f = Render(win, volume, full, nullptr, &reference);
-  const double fullBytes = vtkHybridVolumeFile::HeaderSize + 4.0 * image->GetNumberOfPoints();
+  const double fullBytes = strata::HybridVolumeFile::HeaderSize + 4.0 * image->GetNumberOfPoints();
   std::printf("%s,full,1,,,,,0,%.0f,%.2f,0,0,,%dx%dx%d original\n",
     name.c_str(),
     fullBytes,
@@ -216,8 +216,8 @@ int Run(const std::string& name, const strata_test::TestPaths& paths)
     const double bytes = Bytes(low, points->GetNumberOfPoints());
     if (std::string(method) != "hybrid-budget" && factor == 4 && points->GetNumberOfPoints() >= 100)
     {
-      const double r =
-        std::cbrt(4.0 * image->GetNumberOfPoints() / (bytes - vtkHybridVolumeFile::HeaderSize));
+      const double r = std::cbrt(
+        4.0 * image->GetNumberOfPoints() / (bytes - strata::HybridVolumeFile::HeaderSize));
       vtkNew<vtkImageResample> resample;
       resample->SetInputData(image);
       resample->SetMagnificationFactors(1.0 / r, 1.0 / r, 1.0 / r);
@@ -257,7 +257,7 @@ int Run(const std::string& name, const strata_test::TestPaths& paths)
   {
     auto probe = build(factor, 1, 1e30, 0, false);
     const double room = plainBytes[factor / 2] - Bytes(probe->GetLowResolutionOutput(), 0);
-    const vtkIdType budget = static_cast<vtkIdType>(room / vtkHybridVolumeFile::PointSize);
+    const vtkIdType budget = static_cast<vtkIdType>(room / strata::HybridVolumeFile::PointSize);
     for (const char* method : { "hybrid-budget", "hybrid-tf-budget" })
       hybridRows(method,
         factor,

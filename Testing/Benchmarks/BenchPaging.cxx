@@ -17,7 +17,7 @@
 //                                     which the render thread read pages (the mapper itself or
 //                                     a reader's pipeline update); level-of-detail feedback at
 //                                     1/4 unless no-feedback
-//   BenchPaging feedback           -> the feedback reduction (vtkFeedbackReduction) on buffers
+//   BenchPaging feedback           -> the feedback reduction (strata::FeedbackReduction) on buffers
 //                                     of 1/2, 1/4 and 1/8 of a 1920 x 1080 viewport: CPU and
 //                                     OpenCL times and whether their lists are identical
 //   BenchPaging accuracy-header    -> the CSV header of `accuracy`
@@ -42,11 +42,11 @@
 #include "StrataTestHelpers.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataFeedbackReduction.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChart.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkFeedbackReduction.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
@@ -672,7 +672,7 @@ int Report(const std::string& csv, const std::string& png)
 int Feedback()
 {
   std::printf("case,scale,pixels,entries,cpu_ms,opencl_ms,identical,device\n");
-  vtkFeedbackReduction reduction;
+  strata::FeedbackReduction reduction;
   const bool cl = reduction.IsOpenCLAvailable();
   for (int scale : { 2, 4, 8 })
   {
@@ -686,13 +686,13 @@ int Feedback()
         state = state * 1664525u + 1013904223u;
         const bool empty = (state >> 24) < 26;
         const int level = std::min(5, (bx + by) / 16);
-        ids[size_t(y) * w + x] = empty
-                                   ? 0u
-                                   : vtkFeedbackReduction::PackPage((bx / 16 + 3 * (by / 16)) % 9,
-                                       level,
-                                       static_cast<uint32_t>((bx * 131 + by * 71) % 32768));
+        ids[size_t(y) * w + x] =
+          empty ? 0u
+                : strata::FeedbackReduction::PackPage((bx / 16 + 3 * (by / 16)) % 9,
+                    level,
+                    static_cast<uint32_t>((bx * 131 + by * 71) % 32768));
       }
-    std::vector<vtkFeedbackReduction::Entry> cpu, gpu;
+    std::vector<strata::FeedbackReduction::Entry> cpu, gpu;
     std::vector<double> cpuMs, clMs;
     for (int r = 0; r < 5; ++r)
     {

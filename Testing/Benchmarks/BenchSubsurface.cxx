@@ -15,13 +15,13 @@
 #include "StrataHeightFieldScenes.h"
 #include "StrataTestPaths.h"
 
+#include "StrataHeightFieldStack.h"
 #include "StrataImageSampling.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkChart.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkHorizonVolumeSampler.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
@@ -218,7 +218,7 @@ Row Measure(vtkImageData* volume,
   row.FrameMs = Median(ms);
   auto r = strata_test::CompareWithReference(
     s.Win, s.Ren, s.Actor, s.Mapper, s.Images, "subsurface-drape", temp);
-  vtkHeightFieldStack attributes;
+  strata::HeightFieldStack attributes;
   int dims[3];
   draped->GetDimensions(dims);
   attributes.Initialize(dims[0], dims[1]);

@@ -4,8 +4,8 @@
 // 0.3 each, undulating, 4 m apart) through two overlapping volumes at UTM coordinates, given to
 // vtkMultiVolumeRayCastMapper (AddTranslucentActor) with TranslucentLayers K = 1 .. 7. Each
 // frame is compared, pixel by pixel, with the double-precision reference that composites every
-// crossing of every horizon at its exact depth (vtkHeightFieldReferenceCaster::CastAll through
-// vtkMultiVolumeReferenceIntegrator::AddSurfaceCrossings); below six layers the farthest
+// crossing of every horizon at its exact depth (strata::HeightFieldReferenceCaster::CastAll through
+// strata::MultiVolumeReferenceIntegrator::AddSurfaceCrossings); below six layers the farthest
 // crossings are dropped. Time: median of 7 frames (128^2, llvmpipe), read back.
 // Usage: BenchSubsurfaceLayers header | run | report <csv> <png>  (-T <temporary folder>)
 #include "StrataBenchChart.h"
@@ -41,7 +41,7 @@
 namespace
 {
 using namespace strata_test;
-using Ref = vtkMultiVolumeReferenceIntegrator;
+using Ref = strata::MultiVolumeReferenceIntegrator;
 const char* Header = "case,layers,horizons,frame_ms,rms_error,max_error";
 const double OX = 456000.0, OY = 6780000.0;
 constexpr int Horizons = 6;

@@ -23,7 +23,7 @@
 //   BenchVolume layers                      -> TranslucentLayers 1 .. 7 with six translucent
 //                                              planes through two volumes, against the reference
 //   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
-//   BenchVolume bsp <volumes> [ring|grid]   -> ms per vtkVolumeBSPTree::Build
+//   BenchVolume bsp <volumes> [ring|grid]   -> ms per strata::VolumeBSPTree::Build
 //   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
 //   BenchVolume report <csv> <png>          -> summary tables and the RMS-vs-time plot
 // Each prints CSV rows on stdout and progress on stderr. Data: bucky, tooth, engine, bonsai,
@@ -47,6 +47,8 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
+#include "StrataVolumeBSPTree.h"
 #include "vtkAxis.h"
 #include "vtkCamera.h"
 #include "vtkChartXY.h"
@@ -60,7 +62,6 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
 #include "vtkMultiVolumeRayCastMapper.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNrrdReader.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
@@ -70,7 +71,6 @@
 #include "vtkRenderer.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
-#include "vtkVolumeBSPTree.h"
 #include "vtkVolumeProperty.h"
 #include "vtkXMLImageDataReader.h"
 
@@ -328,7 +328,7 @@ void SnapRuns(std::vector<double>& table, size_t stride, size_t offset)
 }
 
 /// ToReferenceVolume with its tables' runs made exact (SnapRuns).
-vtkMultiVolumeReferenceIntegrator::Volume ReferenceVolume(vtkImageData* image,
+strata::MultiVolumeReferenceIntegrator::Volume ReferenceVolume(vtkImageData* image,
   vtkVolume* member,
   vtkMultiVolumeRayCastMapper* mapper = nullptr)
 {
@@ -350,7 +350,7 @@ Reference ComputeReference(vtkRenderer* ren,
   vtkMultiVolumeRayCastMapper* blendOf = nullptr)
 {
   const auto t0 = Clock::now();
-  vtkMultiVolumeReferenceIntegrator integrator;
+  strata::MultiVolumeReferenceIntegrator integrator;
   integrator.SetStepFraction(stepFraction);
   for (const auto& v : volumes)
   {
@@ -1014,7 +1014,7 @@ int Layers()
   s.Multi->VisibilityOn();
   const double colours[3][3] = { { 1.0, 0.2, 0.1 }, { 0.1, 0.3, 1.0 }, { 0.9, 0.9, 0.2 } };
   std::vector<std::unique_ptr<TranslucentPlane>> planes;
-  std::vector<vtkMultiVolumeReferenceIntegrator::Surface> surfaces;
+  std::vector<strata::MultiVolumeReferenceIntegrator::Surface> surfaces;
   for (int k = 0; k < 6; ++k)
   {
     const double y = 2.0 + 6.0 * k;
@@ -1188,7 +1188,7 @@ int Multi(int n)
 /// Rebuild time of the BSP tree for n overlapping 96^3 boxes, each turned differently.
 int Bsp(int n, const std::string& layout)
 {
-  std::vector<vtkVolumeBSPTree::Box> boxes;
+  std::vector<strata::VolumeBSPTree::Box> boxes;
   for (int i = 0; i < n; ++i)
   {
     vtkNew<vtkTransform> t;
@@ -1210,12 +1210,12 @@ int Bsp(int n, const std::string& layout)
     }
     t->Scale(96, 96, 96);
     t->Translate(-0.5, -0.5, -0.5);
-    vtkVolumeBSPTree::Box box;
+    strata::VolumeBSPTree::Box box;
     std::copy(t->GetMatrix()->GetData(), t->GetMatrix()->GetData() + 16, box.Matrix.begin());
     box.VolumeId = i;
     boxes.push_back(box);
   }
-  vtkVolumeBSPTree tree;
+  strata::VolumeBSPTree tree;
   tree.SetBoxes(boxes);
   tree.Build(); // warm-up
   int builds = 0;
@@ -1232,7 +1232,7 @@ int Bsp(int n, const std::string& layout)
   row.Volumes = n;
   row.Fragments = tree.GetNumberOfFragments();
   std::ostringstream note;
-  note << "ms per vtkVolumeBSPTree::Build over " << builds << " builds; " << layout
+  note << "ms per strata::VolumeBSPTree::Build over " << builds << " builds; " << layout
        << " of 96^3 boxes; depth " << tree.GetDepth() << "; max overlap "
        << tree.GetMaximumOverlap();
   row.Note = note.str();

@@ -25,6 +25,7 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataPagePoolFormat.h"
 #include "vtkAlgorithm.h"
 #include "vtkFloatArray.h"
 #include "vtkHorizonColumnReader.h"
@@ -34,7 +35,6 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkNew.h"
 #include "vtkNumpyGridReader.h"
-#include "vtkPagePoolFormat.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkSegyVolumeReader.h"
@@ -218,7 +218,7 @@ void PutLE(std::string& s, size_t offset, T v)
   std::memcpy(&s[offset], &v, sizeof(T)); // the format is little-endian, as this machine
 }
 
-/// A version-1 hybrid header (vtkHybridVolumeFile's layout) for an n^3 volume at factor f
+/// A version-1 hybrid header (strata::HybridVolumeFile's layout) for an n^3 volume at factor f
 /// announcing `points` points, followed by `lowValues` floats.
 std::string Hybrid(int n, int f, int low, uint64_t points, size_t lowValues)
 {
@@ -296,7 +296,7 @@ void PagePoolLimit(const std::string& dir)
   // 16^3).
   std::ifstream in(pool, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  using Format = vtkPagePoolFormat;
+  using Format = strata::PagePoolFormat;
   Format::Header h;
   Format::DecodeHeader(reinterpret_cast<const unsigned char*>(bytes.data()), h);
   const int absurd[2][3] = { { 1 << 21, 64, 64 }, { 1 << 20, 1 << 20, 1 << 20 } };

@@ -2,7 +2,7 @@
 //
 // Atlas slot layouts from budgets, LRU order, pinning of the current frame's bricks, and a
 // long random run against a plain reference LRU (no slot handed out twice, exact counts).
-#include "vtkBrickAtlasAllocator.h"
+#include "StrataBrickAtlasAllocator.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -26,7 +26,7 @@ void Check(bool ok, const std::string& what)
   failures += ok ? 0 : 1;
 }
 
-using Key = vtkBrickAtlasAllocator::Key;
+using Key = strata::BrickAtlasAllocator::Key;
 Key K(int volume, int level, int64_t brick)
 {
   Key k;
@@ -45,7 +45,7 @@ std::string Num(double v)
 
 void CheckLayout(double mib, int B, int bpv, int maxTex, int x, int y, int z, const char* why)
 {
-  const auto l = vtkBrickAtlasAllocator::ComputeLayout(mib, B, bpv, maxTex);
+  const auto l = strata::BrickAtlasAllocator::ComputeLayout(mib, B, bpv, maxTex);
   Check(l[0] == x && l[1] == y && l[2] == z,
     Num(mib) + " MiB, B=" + std::to_string(B) + ", " + std::to_string(bpv) +
       " B/voxel, max texture " + std::to_string(maxTex) + " -> " + std::to_string(l[0]) + "x" +
@@ -65,7 +65,7 @@ int TestBrickAtlasAllocator(int, char*[])
   CheckLayout(1e6, 64, 4, 2048, 32, 32, 32, "capped by the texture size");
   CheckLayout(0.1, 64, 1, 2048, 0, 0, 0, "less than one brick");
 
-  vtkBrickAtlasAllocator atlas;
+  strata::BrickAtlasAllocator atlas;
   Check(!atlas.InitializeFromBudget(0.1, 64, 1) && atlas.GetNumberOfSlots() == 0,
     "a budget below one brick gives no atlas");
   Check(atlas.InitializeFromBudget(1, 32, 4) && atlas.GetNumberOfSlots() == 8 &&
@@ -119,7 +119,7 @@ int TestBrickAtlasAllocator(int, char*[])
   atlas.ReleaseVolume(1);
   Check(atlas.GetNumberOfUsedSlots() == 1 && atlas.Find(K(1, 2, 10)) == -1,
     "releasing a volume frees all its slots");
-  vtkBrickAtlasAllocator::Key held;
+  strata::BrickAtlasAllocator::Key held;
   Check(atlas.GetSlotKey(2, held) && held == K(2, 0, 0) && !atlas.GetSlotKey(1, held),
     "slot keys: slot 2 holds (2,0,0), slot 1 is free");
 
@@ -179,7 +179,7 @@ int TestBrickAtlasAllocator(int, char*[])
     }
     for (const auto& e : residentSlot)
     {
-      vtkBrickAtlasAllocator::Key k;
+      strata::BrickAtlasAllocator::Key k;
       unique =
         unique && atlas.GetSlotKey(e.second, k) && tup(k) == e.first && atlas.Find(k) == e.second;
     }

@@ -31,6 +31,8 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataPagePoolFile.h"
+#include "StrataPagePoolFormat.h"
 #include "vtkAsciiGridReader.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -47,8 +49,6 @@
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
 #include "vtkNumpyGridReader.h"
-#include "vtkPagePoolFile.h"
-#include "vtkPagePoolFormat.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkSegyVolumeReader.h"
@@ -363,7 +363,7 @@ void KilledConversion(const std::string& tool, const std::string& dataDir, const
   // The next conversion to the same name removes the dead process's temporary.
   const std::string bucky = dataDir + "/volumes/bucky.raw";
   const int rc = Run({ tool, bucky, output, "--raw", "32", "32", "32", "uint8" });
-  vtkPagePoolFile pool;
+  strata::PagePoolFile pool;
   Check(rc == 0 && pool.Open(output) && !vtksys::SystemTools::FileExists(temp),
     "the next conversion succeeds and removes the stale temporary");
   std::remove(raw.c_str());
@@ -804,9 +804,9 @@ void ComponentsVti(const std::string& tool, const std::string& dir)
   for (vtkIdType i = 0; same && i < image->GetNumberOfPoints(); ++i)
     same = scalars->GetComponent(i, 0) == v[2 * i] && scalars->GetComponent(i, 1) == v[2 * i + 1];
   std::cout << "  two-component .vti: exit " << rc << ", component 1 in "
-            << vtkPagePoolFormat::GetComponentFileName(pool, 1) << "\n";
-  Check(
-    rc == 0 && vtksys::SystemTools::FileExists(vtkPagePoolFormat::GetComponentFileName(pool, 1)),
+            << strata::PagePoolFormat::GetComponentFileName(pool, 1) << "\n";
+  Check(rc == 0 &&
+          vtksys::SystemTools::FileExists(strata::PagePoolFormat::GetComponentFileName(pool, 1)),
     "strata-convert, .vti of two components: a pool per component");
   Check(same, "strata-convert, .vti of two components: read back bit-exact, both components");
 }

@@ -4,7 +4,7 @@
 // the OpenCL reduction against the CPU one (identical lists) on random, coherent and
 // adversarial buffers, ancestor propagation, and the time of both at 480x270 (a quarter of
 // 1920x1080 per axis, the feedback size of the stacked height-field paper).
-#include "vtkFeedbackReduction.h"
+#include "StrataFeedbackReduction.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,7 +27,7 @@ void Check(bool ok, const std::string& what)
   failures += ok ? 0 : 1;
 }
 
-using Entry = vtkFeedbackReduction::Entry;
+using Entry = strata::FeedbackReduction::Entry;
 using Buffer = std::vector<uint32_t>;
 
 std::vector<Entry> Reference(const Buffer& b)
@@ -35,7 +35,7 @@ std::vector<Entry> Reference(const Buffer& b)
   std::map<uint32_t, uint32_t> m;
   for (uint32_t id : b)
   {
-    if (id != vtkFeedbackReduction::NoPage)
+    if (id != strata::FeedbackReduction::NoPage)
     {
       ++m[id];
     }
@@ -71,12 +71,12 @@ struct IdPool
   std::vector<uint32_t> Ids;
   IdPool(size_t distinct, std::mt19937& rng)
   {
-    std::uniform_int_distribution<int> ds(0, vtkFeedbackReduction::MaxDataSets - 1);
-    std::uniform_int_distribution<int> lv(0, vtkFeedbackReduction::MaxLevels - 1);
-    std::uniform_int_distribution<uint32_t> pg(0, vtkFeedbackReduction::MaxPagesPerLevel - 1);
+    std::uniform_int_distribution<int> ds(0, strata::FeedbackReduction::MaxDataSets - 1);
+    std::uniform_int_distribution<int> lv(0, strata::FeedbackReduction::MaxLevels - 1);
+    std::uniform_int_distribution<uint32_t> pg(0, strata::FeedbackReduction::MaxPagesPerLevel - 1);
     for (size_t i = 0; i < distinct; ++i)
     {
-      this->Ids.push_back(vtkFeedbackReduction::PackPage(ds(rng), lv(rng), pg(rng)));
+      this->Ids.push_back(strata::FeedbackReduction::PackPage(ds(rng), lv(rng), pg(rng)));
     }
   }
 };
@@ -118,7 +118,7 @@ Buffer CoherentBuffer(int w, int h, int layers)
         }
         const uint32_t page = static_cast<uint32_t>((y / block) * 1024 + x / block);
         b[(static_cast<size_t>(l) * h + y) * w + x] =
-          vtkFeedbackReduction::PackPage(l, level, page);
+          strata::FeedbackReduction::PackPage(l, level, page);
       }
     }
   }
@@ -139,10 +139,11 @@ Buffer CollidingBuffer(size_t texels, size_t distinct)
     return x;
   };
   std::vector<uint32_t> ids;
-  for (uint32_t page = 0; ids.size() < distinct && page < vtkFeedbackReduction::MaxPagesPerLevel;
+  for (uint32_t page = 0;
+       ids.size() < distinct && page < strata::FeedbackReduction::MaxPagesPerLevel;
        ++page)
   {
-    const uint32_t id = vtkFeedbackReduction::PackPage(3, 4, page);
+    const uint32_t id = strata::FeedbackReduction::PackPage(3, 4, page);
     if ((hash(id) & 1023u) == 77u)
     {
       ids.push_back(id);
@@ -159,7 +160,7 @@ Buffer CollidingBuffer(size_t texels, size_t distinct)
 void CheckPacking()
 {
   std::cout << "Page id packing (6 bits data set + 1, 5 bits level, 21 bits page index)\n";
-  using R = vtkFeedbackReduction;
+  using R = strata::FeedbackReduction;
   bool roundTrip = true;
   for (int d : { 0, 1, 31, R::MaxDataSets - 1 })
   {
@@ -190,7 +191,7 @@ void CheckPacking()
     "GLSL pack function has the same shifts");
 }
 
-void RunCase(vtkFeedbackReduction& r, bool haveCL, const std::string& name, const Buffer& b)
+void RunCase(strata::FeedbackReduction& r, bool haveCL, const std::string& name, const Buffer& b)
 {
   std::vector<Entry> cpu, cl;
   const std::vector<Entry> ref = Reference(b);
@@ -210,7 +211,7 @@ void RunCase(vtkFeedbackReduction& r, bool haveCL, const std::string& name, cons
 void CheckPropagation()
 {
   std::cout << "Ancestor propagation (quadtree of one data set, level 0 finest)\n";
-  using R = vtkFeedbackReduction;
+  using R = strata::FeedbackReduction;
   // Level l has 2^(3-l) x 2^(3-l) pages, x fastest; the parent of (l, i, j) is (l+1, i/2, j/2).
   auto parent = [](uint32_t id) -> uint32_t
   {
@@ -247,7 +248,7 @@ double Median(std::vector<double> v)
   return v[v.size() / 2];
 }
 
-void Time(vtkFeedbackReduction& r, bool haveCL, const std::string& name, const Buffer& b)
+void Time(strata::FeedbackReduction& r, bool haveCL, const std::string& name, const Buffer& b)
 {
   const int runs = 15;
   std::vector<double> cpu, cl;
@@ -278,7 +279,7 @@ int TestFeedbackReduction(int, char*[])
   CheckPacking();
   CheckPropagation();
 
-  vtkFeedbackReduction r;
+  strata::FeedbackReduction r;
   const bool haveCL = r.IsOpenCLAvailable();
   if (haveCL)
   {
@@ -295,7 +296,7 @@ int TestFeedbackReduction(int, char*[])
   std::mt19937 rng(20261122);
   RunCase(r, haveCL, "empty (0 texels)", Buffer());
   RunCase(r, haveCL, "1x1 no page", Buffer(1, 0));
-  RunCase(r, haveCL, "1x1 one page", Buffer(1, vtkFeedbackReduction::PackPage(2, 3, 4)));
+  RunCase(r, haveCL, "1x1 one page", Buffer(1, strata::FeedbackReduction::PackPage(2, 3, 4)));
   RunCase(r, haveCL, "64x64 all zero", Buffer(64 * 64, 0));
   const struct
   {
@@ -315,7 +316,7 @@ int TestFeedbackReduction(int, char*[])
   RunCase(r,
     haveCL,
     "480x270 all texels one id",
-    Buffer(quarterHD, vtkFeedbackReduction::PackPage(5, 0, 777)));
+    Buffer(quarterHD, strata::FeedbackReduction::PackPage(5, 0, 777)));
   Buffer allDifferent(quarterHD);
   for (size_t i = 0; i < quarterHD; ++i)
   {

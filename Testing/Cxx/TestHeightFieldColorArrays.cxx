@@ -6,17 +6,17 @@
 // (holes in the upper two show the lower ones);
 // at UTM coordinates on a rotated grid, unlit so that the colour is the source's alone. The
 // reference takes the reference caster's exact hit, the attribute's bilinear value there over
-// valid corners (vtkHeightFieldStack::Interpolate) and the colour function itself, unquantised.
-// Also: only the colouring the scene uses is compiled.
+// valid corners (strata::HeightFieldStack::Interpolate) and the colour function itself,
+// unquantised. Also: only the colouring the scene uses is compiled.
 #include "StrataHeightFieldCase.h"
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataHeightFieldStack.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
@@ -149,7 +149,7 @@ int TestHeightFieldColorArrays(int argc, char* argv[])
   const std::string source = s.Mapper->GetFragmentShaderSource();
 
   // The reference colour of every pixel the reference hits.
-  vtkHeightFieldStack attributes;
+  strata::HeightFieldStack attributes;
   attributes.Initialize(n, n);
   attributes.AddLayer(thickness.data());
   std::vector<std::vector<double>> expected(static_cast<size_t>(w) * h, { 0.0, 0.0, 0.0 });

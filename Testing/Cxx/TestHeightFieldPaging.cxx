@@ -9,7 +9,7 @@
 //  2. converged, the paged image equals the in-core image of the same data, shaded and in
 //     horizon ids, with level-of-detail feedback (the default) and without; with feedback the
 //     tiles hidden under other horizons stay coarse, and out-of-view tiles stay coarse when
-//     zoomed in. Paged and in core are two programs (vtkHeightFieldShaderComposer::Key::Paged:
+//     zoomed in. Paged and in core are two programs (strata::HeightFieldShaderComposer::Key::Paged:
 //     heights through the tile atlas's page table, or one array texture): the shaded images
 //     may differ by ImagePolicy::TwoProgramsMax (1 of 255, StrataImagePolicy.h rule 2); the
 //     horizon ids are discrete and stay exact;
@@ -28,16 +28,16 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h" // For ImageError
 
+#include "StrataHeightFieldPager.h"
+#include "StrataPagePoolFile.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldPager.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
@@ -66,7 +66,7 @@ const int Page = 33; // stride 32: the quadtree's 32-cell leaves never straddle 
 std::vector<vtkSmartPointer<vtkImageData>> CutAsImages(vtkStackedHeightFieldMapper* paged,
   const std::vector<vtkSmartPointer<vtkImageData>>& full)
 {
-  const vtkHeightFieldPager* pager = paged->GetPager();
+  const strata::HeightFieldPager* pager = paged->GetPager();
   std::vector<vtkSmartPointer<vtkImageData>> out;
   for (size_t k = 0; k < full.size(); ++k)
   {
@@ -103,7 +103,7 @@ void PagedFrom(const std::vector<std::string>& pools,
 
 // Points on tile lines where the pages of the two (or four) tiles meeting there disagree: a
 // crack the ray could pass through. Stitching makes it 0 for every cut.
-long Seams(const vtkHeightFieldPager* pager, double tolerance)
+long Seams(const strata::HeightFieldPager* pager, double tolerance)
 {
   const int S = pager->GetPageSize() - 1;
   const int* tiles = pager->GetTiles();
@@ -273,7 +273,7 @@ void ReekPaged(const std::string& dataDir, const std::string& dir)
   FrameReekScene(ren, actor, 2.4);
   vtkCamera* cam = ren->GetActiveCamera();
 
-  // Levels are built around holes (vtkPagePoolWriter), so the roots alone already cover all
+  // Levels are built around holes (strata::PagePoolWriter), so the roots alone already cover all
   // the full data cover: no hole that the rays could not see through to ask for detail.
   const long coveredFull = Compare(render(incore), render(incore), background).Covered;
   const std::vector<unsigned char> roots = render(paged);
@@ -400,7 +400,7 @@ void PoolsAndReferences(HFPagingFixture& fx)
     Check(writer->Write(), "tile pool written");
     pools.push_back(pool);
   }
-  vtkPagePoolFile probe;
+  strata::PagePoolFile probe;
   probe.Open(pools[0]);
   std::cout << "HFPaging: " << scene.Horizons.size() << " pools of " << probe.GetNumberOfPages()
             << " tiles in " << probe.GetNumberOfLevels() << " levels\n";
@@ -610,7 +610,7 @@ void BlendedRefinement(HFPagingFixture& fx)
       for (int f = 0; f < 300 && !m->GetPagingStatistics().Converged; ++f)
       {
         render(m);
-        const vtkHeightFieldPager* pg = m->GetPager();
+        const strata::HeightFieldPager* pg = m->GetPager();
         std::vector<float> now;
         for (int k = 0; k < pg->GetNumberOfHorizons(); ++k)
           for (int j = 0; j < pg->GetNY(); ++j)
@@ -752,7 +752,7 @@ void TruncatedWhileRendering(HFPagingFixture& fx)
       errors->Watch(r);
     render(m);
     {
-      vtkPagePoolFile file;
+      strata::PagePoolFile file;
       file.Open(shrinking);
       const auto firstPage = file.GetPageEntry(0).Offset;
       file.Close();

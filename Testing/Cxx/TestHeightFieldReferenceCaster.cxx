@@ -2,8 +2,8 @@
 //
 // The double-precision reference against closed-form hits: a tilted plane (bilinear patches
 // of a plane are the plane), a saddle z = xy (exact bilinear), holes, and the nearer of two.
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
+#include "StrataHeightFieldReferenceCaster.h"
+#include "StrataHeightFieldStack.h"
 
 #include <cmath>
 #include <iostream>
@@ -32,10 +32,10 @@ int TestHeightFieldReferenceCaster(int, char*[])
       holed[j * n + i] = (i >= 10 && i < 20) ? std::numeric_limits<float>::quiet_NaN() : 30.0f;
     }
   }
-  vtkHeightFieldStack stack;
+  strata::HeightFieldStack stack;
   stack.Initialize(n, n);
   stack.AddLayer(plane.data());
-  vtkHeightFieldReferenceCaster caster(stack);
+  strata::HeightFieldReferenceCaster caster(stack);
 
   // Ray straight down onto the plane at (7.3, 11.6): z = 0.25*7.3 + 0.5*11.6 + 1.
   {
@@ -59,10 +59,10 @@ int TestHeightFieldReferenceCaster(int, char*[])
   }
 
   // Saddle: z = (x-16)(y-16)/16 + 20 is exactly bilinear in every cell.
-  vtkHeightFieldStack s2;
+  strata::HeightFieldStack s2;
   s2.Initialize(n, n);
   s2.AddLayer(saddle.data());
-  vtkHeightFieldReferenceCaster c2(s2);
+  strata::HeightFieldReferenceCaster c2(s2);
   {
     // Ray o = (2, 3, 40), d = (1, 1, -1): 40 - t = (t-14)(t-13)/16 + 20 -> t^2 - 11 t - 138 = 0
     const double o[3] = { 2.0, 3.0, 40.0 }, d[3] = { 1.0, 1.0, -1.0 };
@@ -72,11 +72,11 @@ int TestHeightFieldReferenceCaster(int, char*[])
   }
 
   // Holes and ordering: a holed layer above the plane; a ray through the hole hits the plane.
-  vtkHeightFieldStack s3;
+  strata::HeightFieldStack s3;
   s3.Initialize(n, n);
   s3.AddLayer(plane.data());
   s3.AddLayer(holed.data());
-  vtkHeightFieldReferenceCaster c3(s3);
+  strata::HeightFieldReferenceCaster c3(s3);
   {
     const double o[3] = { 15.0, 5.0, 100.0 }, d[3] = { 0.0, 0.0, -1.0 };
     auto hit = c3.Cast(o, d, 0.0, 1000.0);

@@ -1,15 +1,15 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // The hybrid point/volume preprocessing against a brute-force computation written here from
-// the definitions in vtkHybridVolumeBuilder.h: low-resolution values, error field, exact point
+// the definitions in StrataHybridVolumeBuilder.h: low-resolution values, error field, exact point
 // sets (threshold, budget, error-grid step, planted spike), the optimized filter's bound,
 // constant volumes, dimensions not divisible by the factor, bounded memory, and the file
 // format (bit-exact round trip, corrupt files rejected).
 #include "StrataSubTests.h"
 #include "StrataTestPaths.h"
 
-#include "vtkHybridVolumeBuilder.h"
-#include "vtkHybridVolumeFile.h"
+#include "StrataHybridVolumeBuilder.h"
+#include "StrataHybridVolumeFile.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,7 +26,7 @@
 
 namespace
 {
-using Filter = vtkHybridVolumeFile::FilterType;
+using Filter = strata::HybridVolumeFile::FilterType;
 int failures = 0;
 void Check(bool ok, const std::string& what)
 {
@@ -62,7 +62,7 @@ Volume Smooth(int nx, int ny, int nz, bool noise)
   return v;
 }
 
-void Configure(vtkHybridVolumeBuilder& b, const Volume& v, int reads[1] = nullptr)
+void Configure(strata::HybridVolumeBuilder& b, const Volume& v, int reads[1] = nullptr)
 {
   const double spacing[3] = { 1, 1, 2 }, origin[3] = { 0, 0, 0 };
   b.SetInput(v.N,
@@ -167,7 +167,7 @@ struct Errors
   std::vector<double> E;
 };
 
-Errors BruteErrors(const Volume& v, const vtkHybridVolumeFile& out, const int step[3])
+Errors BruteErrors(const Volume& v, const strata::HybridVolumeFile& out, const int step[3])
 {
   Errors e;
   for (int z = 0; z < v.N[2]; z += step[2])
@@ -181,7 +181,7 @@ Errors BruteErrors(const Volume& v, const vtkHybridVolumeFile& out, const int st
   return e;
 }
 
-std::vector<std::tuple<int, int, int>> Positions(const vtkHybridVolumeFile& out)
+std::vector<std::tuple<int, int, int>> Positions(const strata::HybridVolumeFile& out)
 {
   std::vector<std::tuple<int, int, int>> p;
   for (const auto& q : out.Points)
@@ -191,12 +191,12 @@ std::vector<std::tuple<int, int, int>> Positions(const vtkHybridVolumeFile& out)
   return p;
 }
 
-bool SameOutput(const vtkHybridVolumeFile& a, const vtkHybridVolumeFile& b)
+bool SameOutput(const strata::HybridVolumeFile& a, const strata::HybridVolumeFile& b)
 {
   return a.LowResolution == b.LowResolution && a.Points.size() == b.Points.size() &&
          std::memcmp(a.Points.data(),
            b.Points.data(),
-           a.Points.size() * sizeof(vtkHybridVolumeFile::Point)) == 0;
+           a.Points.size() * sizeof(strata::HybridVolumeFile::Point)) == 0;
 }
 
 std::string Slurp(const std::string& path)
@@ -219,12 +219,12 @@ void LowResolutionVolume(const Volume& v, const int factors[3])
                "storage of values of magnitude ~1.5, and a different summation order)\n";
   for (Filter filter : { Filter::Box, Filter::Linear, Filter::Cubic, Filter::Optimized })
   {
-    vtkHybridVolumeBuilder b;
+    strata::HybridVolumeBuilder b;
     Configure(b, v);
     b.SetFactor(factors[0], factors[1], factors[2]);
     b.SetFilter(filter);
     b.SetOverestimationBound(0.1);
-    vtkHybridVolumeFile out;
+    strata::HybridVolumeFile out;
     const bool built = b.Build(out);
     const std::vector<double> ref = BruteLow(v, filter, factors, 0.1);
     double worst = built ? 0 : 1e9;
@@ -245,13 +245,13 @@ void ErrorFieldAndPointCounts(const Volume& v, const int factors[3])
   for (const int step : { 1, 2 })
   {
     const int steps[3] = { step, step + 1, 1 };
-    vtkHybridVolumeBuilder b;
+    strata::HybridVolumeBuilder b;
     Configure(b, v);
     b.SetFactor(factors[0], factors[1], factors[2]);
     b.SetFilter(Filter::Linear);
     b.SetErrorGridStep(steps[0], steps[1], steps[2]);
     double threshold = 0.2;
-    vtkHybridVolumeFile ref;
+    strata::HybridVolumeFile ref;
     b.Build(ref); // only its low-resolution volume, checked above, is used here
     Errors e = BruteErrors(v, ref, steps);
     // Move the threshold off any error value so rounding cannot change the count.
@@ -263,7 +263,7 @@ void ErrorFieldAndPointCounts(const Volume& v, const int factors[3])
       }
     }
     b.SetThreshold(threshold);
-    vtkHybridVolumeFile out;
+    strata::HybridVolumeFile out;
     b.Build(out);
     std::vector<std::tuple<int, int, int>> expected;
     for (size_t i = 0; i < e.E.size(); ++i)
@@ -302,7 +302,7 @@ void ErrorFieldAndPointCounts(const Volume& v, const int factors[3])
     const uint64_t budget = expected.size() / 3;
     b.SetPointBudget(budget);
     b.SetThreshold(0);
-    vtkHybridVolumeFile top;
+    strata::HybridVolumeFile top;
     b.Build(top);
     std::vector<size_t> order(e.E.size());
     for (size_t i = 0; i < order.size(); ++i)
@@ -336,12 +336,12 @@ void PlantedSpike()
   std::cout << "Planted spike in a constant volume (box filter, factor 4)\n";
   Volume s{ { 17, 16, 15 }, std::vector<float>(17 * 16 * 15, 2.0f) };
   s.V[(static_cast<size_t>(7) * 16 + 6) * 17 + 5] = 10.0f;
-  vtkHybridVolumeBuilder b;
+  strata::HybridVolumeBuilder b;
   Configure(b, s);
   b.SetFactor(4);
   b.SetFilter(Filter::Box);
   b.SetPointBudget(1);
-  vtkHybridVolumeFile out;
+  strata::HybridVolumeFile out;
   b.Build(out);
   Check(out.Points.size() == 1 && out.Points[0].Position[0] == 5 &&
           out.Points[0].Position[1] == 6 && out.Points[0].Position[2] == 7 &&
@@ -372,7 +372,7 @@ void PlantedSpike()
     if (p.Position[0] == 6 && p.Position[1] == 6 && p.Position[2] == 7)
     {
       double n[3];
-      vtkHybridVolumeFile::DecodeNormal(p.Normal, n);
+      strata::HybridVolumeFile::DecodeNormal(p.Normal, n);
       normal = n[0] < -0.999;
     }
   }
@@ -386,12 +386,12 @@ void OptimizedFilterBound(const Volume& v)
   {
     for (const int f : { 2, 4 })
     {
-      vtkHybridVolumeBuilder b;
+      strata::HybridVolumeBuilder b;
       Configure(b, v);
       b.SetFactor(f);
       b.SetFilter(Filter::Optimized);
       b.SetOverestimationBound(bound);
-      vtkHybridVolumeFile out;
+      strata::HybridVolumeFile out;
       b.Build(out);
       double over = -1e9;
       for (int z = 0; z < v.N[2]; ++z)
@@ -414,11 +414,11 @@ void ConstantVolume(const int factors[3])
   for (Filter filter : { Filter::Box, Filter::Linear, Filter::Cubic, Filter::Optimized })
   {
     Volume c{ { 10, 9, 7 }, std::vector<float>(630, 0.37f) };
-    vtkHybridVolumeBuilder b;
+    strata::HybridVolumeBuilder b;
     Configure(b, c);
     b.SetFactor(8, 4, 2);
     b.SetFilter(filter);
-    vtkHybridVolumeFile out;
+    strata::HybridVolumeFile out;
     const bool built = b.Build(out);
     Check(built && out.Points.empty() && out.LowDimensions[0] == 3,
       "filter " + std::to_string(static_cast<int>(filter)) +
@@ -430,14 +430,14 @@ void BoundedMemory()
 {
   std::cout << "Bounded memory: a limit of a few slices gives the same output\n";
   const Volume big = Smooth(48, 40, 30, true); // 7680 bytes a slice, 230400 in all
-  vtkHybridVolumeBuilder b;
+  strata::HybridVolumeBuilder b;
   int reads = 0;
   Configure(b, big, &reads);
   b.SetFactor(4);
   b.SetThreshold(0.3);
   std::vector<double> progress;
   b.SetProgressCallback([&](double p) { progress.push_back(p); });
-  vtkHybridVolumeFile whole, bounded;
+  strata::HybridVolumeFile whole, bounded;
   b.Build(whole);
   const size_t wholePeak = b.GetPeakSlicesHeld();
   bool monotone = !progress.empty() && progress.back() == 1.0;
@@ -475,7 +475,8 @@ void NormalEncoding()
     }
     const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double n[3];
-    vtkHybridVolumeFile::DecodeNormal(vtkHybridVolumeFile::EncodeNormal(d[0], d[1], d[2]), n);
+    strata::HybridVolumeFile::DecodeNormal(
+      strata::HybridVolumeFile::EncodeNormal(d[0], d[1], d[2]), n);
     const double dot = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / l;
     worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / 3.14159265358979);
   }
@@ -485,13 +486,13 @@ void NormalEncoding()
 void FileRoundTrip(const Volume& v, const strata_test::TestPaths& paths)
 {
   std::cout << "File round trip and validation\n";
-  vtkHybridVolumeBuilder b;
+  strata::HybridVolumeBuilder b;
   Configure(b, v);
   b.SetFactor(2, 4, 2);
   b.SetFilter(Filter::Optimized);
   b.SetOverestimationBound(0.05);
   b.SetThreshold(0.1);
-  vtkHybridVolumeFile out, back;
+  strata::HybridVolumeFile out, back;
   b.Build(out);
   const std::string path = paths.Output + "/TestHybridVolumeBuilder.shv";
   const bool written = out.Write(path);
@@ -518,7 +519,7 @@ void FileRoundTrip(const Volume& v, const strata_test::TestPaths& paths)
   auto rejects = [&](const std::string& content, const std::string& what)
   {
     Spit(bad, content);
-    vtkHybridVolumeFile f;
+    strata::HybridVolumeFile f;
     const bool ok = f.Read(bad);
     Check(!ok && !f.GetErrorMessage().empty() && f.Points.empty(),
       what + ": " + f.GetErrorMessage().substr(f.GetErrorMessage().find(": ") + 2));
@@ -543,7 +544,7 @@ void FileRoundTrip(const Volume& v, const strata_test::TestPaths& paths)
   version[8] = 7;
   rejects(version, "unknown version");
   rejects(std::string(), "empty file");
-  vtkHybridVolumeFile missing;
+  strata::HybridVolumeFile missing;
   const bool missingRefused = !missing.Read(path + ".missing");
   Check(missingRefused, "missing file: " + missing.GetErrorMessage());
   std::remove(bad.c_str());
@@ -553,9 +554,9 @@ void FileRoundTrip(const Volume& v, const strata_test::TestPaths& paths)
 void BadSettings(const Volume& v)
 {
   std::cout << "Bad settings are refused\n";
-  vtkHybridVolumeBuilder b;
+  strata::HybridVolumeBuilder b;
   Configure(b, v);
-  vtkHybridVolumeFile out;
+  strata::HybridVolumeFile out;
   b.SetFactor(3);
   bool refused = !b.Build(out);
   Check(refused, b.GetErrorMessage());

@@ -3,7 +3,7 @@
 // vtkHybridVolumeFilter, vtkHybridVolumeReader and strata-hybrid on a generated 33 x 20 x 17
 // uint16 volume (dimensions not divisible by the factor, a planted spike, non-unit spacing and
 // a non-zero origin):
-// - the filter's outputs equal vtkHybridVolumeBuilder's result exactly (low-resolution values,
+// - the filter's outputs equal strata::HybridVolumeBuilder's result exactly (low-resolution values,
 //   geometry, point count, world positions, values, errors, normals), also for an extent that
 //   does not start at 0 and for a two-component float input (its first component);
 // - progress events are non-decreasing and end at 1;
@@ -19,13 +19,13 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataHybridVolumeBuilder.h"
+#include "StrataHybridVolumeFile.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
-#include "vtkHybridVolumeBuilder.h"
-#include "vtkHybridVolumeFile.h"
 #include "vtkHybridVolumeFilter.h"
 #include "vtkHybridVolumeReader.h"
 #include "vtkImageData.h"
@@ -148,7 +148,7 @@ bool Empty(vtkHybridVolumeAlgorithm* algorithm)
 }
 
 /// The filter's outputs against the builder's result, value by value.
-bool MatchesBuilder(vtkHybridVolumeFilter* filter, const vtkHybridVolumeFile& ref)
+bool MatchesBuilder(vtkHybridVolumeFilter* filter, const strata::HybridVolumeFile& ref)
 {
   vtkImageData* low = filter->GetLowResolutionOutput();
   vtkDataArray* lowValues = low->GetPointData()->GetScalars();
@@ -175,10 +175,10 @@ bool MatchesBuilder(vtkHybridVolumeFilter* filter, const vtkHybridVolumeFile& re
   same = same && value && error && normals && codes && pd->GetScalars() == value;
   for (vtkIdType i = 0; same && i < n; ++i)
   {
-    const vtkHybridVolumeFile::Point& p = ref.Points[static_cast<size_t>(i)];
+    const strata::HybridVolumeFile::Point& p = ref.Points[static_cast<size_t>(i)];
     double x[3], normal[3];
     points->GetPoint(i, x);
-    vtkHybridVolumeFile::DecodeNormal(p.Normal, normal);
+    strata::HybridVolumeFile::DecodeNormal(p.Normal, normal);
     for (int a = 0; a < 3; ++a)
     {
       same = same && x[a] == Origin[a] + p.Position[a] * Spacing[a] &&
@@ -219,12 +219,12 @@ int Run(const std::string& command)
   return std::system(command.c_str());
 }
 
-bool SameFile(const vtkHybridVolumeFile& a, const vtkHybridVolumeFile& b)
+bool SameFile(const strata::HybridVolumeFile& a, const strata::HybridVolumeFile& b)
 {
   return a.LowResolution == b.LowResolution && a.Points.size() == b.Points.size() &&
          std::memcmp(a.Points.data(),
            b.Points.data(),
-           a.Points.size() * sizeof(vtkHybridVolumeFile::Point)) == 0;
+           a.Points.size() * sizeof(strata::HybridVolumeFile::Point)) == 0;
 }
 }
 
@@ -237,7 +237,7 @@ struct FilterFixture
   std::string Dir;
   std::vector<uint16_t> Values;
   vtkSmartPointer<vtkImageData> Image;
-  vtkHybridVolumeFile Ref;
+  strata::HybridVolumeFile Ref;
   std::string Shv;
   vtkNew<vtkHybridVolumeFilter> Filter;
   vtkNew<ErrorCounter> FilterErrors;
@@ -251,12 +251,12 @@ struct FilterFixture
 void BuilderReference(FilterFixture& fx)
 {
   const std::vector<uint16_t>& values = fx.Values;
-  vtkHybridVolumeFile& ref = fx.Ref;
+  strata::HybridVolumeFile& ref = fx.Ref;
   // The reference: the builder fed from the same values.
   {
     vtkNew<vtkHybridVolumeFilter> settings;
     Configure(settings);
-    vtkHybridVolumeBuilder builder;
+    strata::HybridVolumeBuilder builder;
     settings->ConfigureBuilder(builder);
     const std::vector<float> floats(values.begin(), values.end());
     builder.SetInput(Dims,
@@ -276,7 +276,7 @@ void FilterAgainstBuilder(FilterFixture& fx)
 {
   const std::string& dir = fx.Dir;
   vtkImageData* image = fx.Image;
-  vtkHybridVolumeFile& ref = fx.Ref;
+  strata::HybridVolumeFile& ref = fx.Ref;
   vtkHybridVolumeFilter* filter = fx.Filter;
   ErrorCounter* filterErrors = fx.FilterErrors;
   std::vector<double>& progress = fx.Progress;
@@ -416,7 +416,7 @@ void ConstantVolume(FilterFixture& fx)
 void Errors(FilterFixture& fx)
 {
   const std::string& dir = fx.Dir;
-  vtkHybridVolumeFile& ref = fx.Ref;
+  strata::HybridVolumeFile& ref = fx.Ref;
   const std::string& shv = fx.Shv;
   vtkHybridVolumeFilter* filter = fx.Filter;
   ErrorCounter* filterErrors = fx.FilterErrors;
@@ -475,7 +475,7 @@ void StrataHybridTool(FilterFixture& fx)
   const std::string& dir = fx.Dir;
   const std::vector<uint16_t>& values = fx.Values;
   vtkImageData* image = fx.Image;
-  vtkHybridVolumeFile& ref = fx.Ref;
+  strata::HybridVolumeFile& ref = fx.Ref;
   vtkHybridVolumeFilter* filter = fx.Filter;
   vtkHybridVolumeReader* reader = fx.Reader;
   std::cout << "strata-hybrid\n";
@@ -499,7 +499,7 @@ void StrataHybridTool(FilterFixture& fx)
     const std::string options = " --factor 2 --filter cubic --threshold 20 --memory-limit 0.02";
     const int rc = Run("\"" + tool + "\" \"" + raw + "\" \"" + fromRaw +
                        "\" --raw 33 20 17 uint16 --spacing 0.5 1 2 --little" + options);
-    vtkHybridVolumeFile back;
+    strata::HybridVolumeFile back;
     const bool read = back.Read(fromRaw);
     Check(rc == 0 && read && SameFile(back, ref) && back.Origin[0] == 0.0,
       "raw input: exit 0, the builder's low-resolution volume and points, origin 0");

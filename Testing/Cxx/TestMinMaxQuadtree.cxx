@@ -1,8 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
 // Exact structure of the min-max quadtree and its interval lists on hand-made stacks.
-#include "vtkHeightFieldStack.h"
-#include "vtkMinMaxQuadtree.h"
+#include "StrataHeightFieldStack.h"
+#include "StrataMinMaxQuadtree.h"
 
 #include <cmath>
 #include <iostream>
@@ -36,7 +36,7 @@ int TestMinMaxQuadtree(int, char*[])
       c[j * nx + i] = i < 4 ? std::numeric_limits<float>::quiet_NaN() : float(3 + j); // holes left
     }
   }
-  vtkHeightFieldStack stack;
+  strata::HeightFieldStack stack;
   Check(stack.Initialize(nx, ny), "initialize");
   stack.AddLayer(a.data());
   stack.AddLayer(b.data());
@@ -44,7 +44,7 @@ int TestMinMaxQuadtree(int, char*[])
   Check(stack.HasHoles(), "stack has holes");
   Check(stack.GetNumberOfHoles(2) == 4u * ny, "hole count of layer 2");
 
-  vtkMinMaxQuadtree tree;
+  strata::MinMaxQuadtree tree;
   tree.Build(stack, 2);
   Check(tree.GetNumberOfLevels() == 3, "three levels");
   Check(tree.GetLevelNX(0) == 4 && tree.GetLevelNY(0) == 2, "4 x 2 leaves");
@@ -113,7 +113,7 @@ int TestMinMaxQuadtree(int, char*[])
   }
 
   // A 1 x N grid becomes a ribbon two points wide, offset by half a spacing.
-  vtkHeightFieldStack ribbon;
+  strata::HeightFieldStack ribbon;
   std::vector<float> line = { 1, 2, 3, 4 };
   ribbon.Initialize(1, 4);
   ribbon.AddLayer(line.data());
@@ -121,12 +121,12 @@ int TestMinMaxQuadtree(int, char*[])
           ribbon.GetHeight(0, 1, 3) == 4.0f,
     "1 x N ribbon expansion");
   // Null values become holes; absurd sizes are refused.
-  vtkHeightFieldStack nulls;
+  strata::HeightFieldStack nulls;
   std::vector<double> withNull = { 1.0, -999.25, 3.0, 1e30 };
   nulls.Initialize(2, 2);
   nulls.AddLayer(withNull.data(), true, -999.25);
   Check(nulls.GetNumberOfHoles(0) == 2 && std::isnan(nulls.GetHeight(0, 1, 0)), "null values");
-  vtkHeightFieldStack absurd;
+  strata::HeightFieldStack absurd;
   Check(
     !absurd.Initialize(100000, 100000) && !absurd.GetErrorMessage().empty(), "absurd size refused");
   Check(!absurd.Initialize(0, 5), "empty grid refused");

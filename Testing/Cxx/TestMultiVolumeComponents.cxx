@@ -31,7 +31,7 @@
 //   over the fourth component's range at that value: here each component spans [0, 255] (unsigned
 //   char) or [0, 1] (float), where that is the fourth component's own value, as Strata reads it.
 //
-// Paged: a set of component pools (one brick pool per component, vtkPagePoolFormat), each
+// Paged: a set of component pools (one brick pool per component, strata::PagePoolFormat), each
 // component a volume of one scalar in the atlas; in core beside a paged volume, the same from a
 // brick tree per component. Bounds: the reference's; paged against the in-core image (plain
 // texture, float channels) within 1 of 255: two programs (the atlas and a lookup per component
@@ -48,12 +48,12 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -75,7 +75,7 @@
 namespace
 {
 using namespace strata_test;
-using Ref = vtkMultiVolumeReferenceIntegrator;
+using Ref = strata::MultiVolumeReferenceIntegrator;
 
 enum class Mode
 {
@@ -362,7 +362,7 @@ void Undefined(const TestPaths& paths)
   }
 }
 
-// Paged from a set of component pools of 8^3 pages (vtkPagePoolFormat, Components), converged:
+// Paged from a set of component pools of 8^3 pages (strata::PagePoolFormat, Components), converged:
 // each component a volume of one scalar in the atlas, read by its own lookup. Against the
 // in-core image (plain texture of a float channel per component) and the reference.
 void Paged(const TestPaths& paths, Mode mode)

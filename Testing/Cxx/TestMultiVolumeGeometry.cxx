@@ -8,9 +8,9 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkActor.h"
 #include "vtkImageData.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -60,7 +60,7 @@ int TestMultiVolumeGeometry(int argc, char* argv[])
   s.Multi->VisibilityOn();
   s.Win->Render();
   const auto gpu = ReadRGB(s.Win);
-  vtkMultiVolumeReferenceIntegrator ref;
+  strata::MultiVolumeReferenceIntegrator ref;
   ref.AddVolume(ToReferenceVolume(image, s.Volumes[0]));
   std::vector<double> stop(sceneDepth.begin(), sceneDepth.end()), rgba;
   ref.IntegrateImage(ClipToWorld(s.Ren)->GetData(),

@@ -1,6 +1,6 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
-// The lean atlas (vtkBrickAtlasFormat): 8- and 16-bit volumes stored in R8 / R16 bricks, int16
+// The lean atlas (strata::BrickAtlasFormat): 8- and 16-bit volumes stored in R8 / R16 bricks, int16
 // offset into R16, decoded in the shader. For uint8, uint16 and int16 copies of the blob volume
 // (its transfer functions mapped alike), in core and paged:
 // - the atlas's type and bytes per brick, and 4x / 2x the slots of float storage in one budget;

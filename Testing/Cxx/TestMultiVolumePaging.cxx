@@ -19,12 +19,12 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataPagePoolFile.h"
 #include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPagePoolReader.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -521,7 +521,7 @@ void TruncatedWhileRendering(PagingFixture& fx)
     errors->Watch(m);
     s.Render(m); // opened, root read
     {
-      vtkPagePoolFile file;
+      strata::PagePoolFile file;
       file.Open(shrinking);
       const auto firstPage = file.GetPageEntry(0).Offset;
       file.Close();

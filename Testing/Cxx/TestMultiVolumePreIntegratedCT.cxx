@@ -13,7 +13,7 @@
 // down to 0 and crossed the whole visible band the data never reach there. The atlas then
 // differed from the plain texture by up to 3 of 255 and exceeded the bound (5 pixels over 2,
 // max 2.32; on the engine CT with the band 60-140 at 1/2 voxel: 161 pixels, max 4.14), while
-// post-classification and the plain texture stayed at 1.2. vtkVolumeCut's halo now stores
+// post-classification and the plain texture stayed at 1.2. strata::VolumeCut's halo now stores
 // the bricks next to visible ones in pre-integration, so both ends of every segment that
 // touches visible data read true scalars.
 #include "StrataImagePolicy.h"

@@ -21,11 +21,11 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -43,7 +43,7 @@
 namespace
 {
 using namespace strata_test;
-using Ref = vtkMultiVolumeReferenceIntegrator;
+using Ref = strata::MultiVolumeReferenceIntegrator;
 
 /// The reference of the scene's volumes, each description changed by `change` (its port, its
 /// description), through the scene's camera over mid grey, in 8-bit units.

@@ -9,7 +9,7 @@
 // (h) per-pixel start and stop depths. Every checked number is printed with its bound.
 #include "StrataSubTests.h"
 
-#include "vtkMultiVolumeReferenceIntegrator.h"
+#include "StrataMultiVolumeReferenceIntegrator.h"
 
 #include <algorithm>
 #include <array>
@@ -21,9 +21,9 @@
 
 namespace
 {
-using Integrator = vtkMultiVolumeReferenceIntegrator;
-using Volume = vtkMultiVolumeReferenceIntegrator::Volume;
-using TransferFunction = vtkMultiVolumeReferenceIntegrator::TransferFunction;
+using Integrator = strata::MultiVolumeReferenceIntegrator;
+using Volume = strata::MultiVolumeReferenceIntegrator::Volume;
+using TransferFunction = strata::MultiVolumeReferenceIntegrator::TransferFunction;
 using RGBA = std::array<double, 4>;
 
 int Failures = 0;

@@ -8,12 +8,12 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -124,7 +124,7 @@ int TestMultiVolumeShaded(int argc, char* argv[])
   std::cout << "Shaded: |N.L| " << nl << ", |N.H| " << nh << ": colour x " << factor << " + "
             << spec << "\n";
 
-  vtkMultiVolumeReferenceIntegrator ref;
+  strata::MultiVolumeReferenceIntegrator ref;
   auto rv = ToReferenceVolume(image, s.Volumes[0]);
   for (double& c : rv.Classification.Color)
     c = c * factor + spec;

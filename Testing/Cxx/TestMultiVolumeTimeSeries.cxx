@@ -41,6 +41,7 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataPagePoolFormat.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -50,7 +51,6 @@
 #include "vtkInformation.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
-#include "vtkPagePoolFormat.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -549,7 +549,7 @@ void Components(Fixture& fx)
   for (const std::string& pool : pools)
   {
     std::remove(pool.c_str());
-    std::remove(vtkPagePoolFormat::GetComponentFileName(pool, 1).c_str());
+    std::remove(strata::PagePoolFormat::GetComponentFileName(pool, 1).c_str());
   }
 }
 

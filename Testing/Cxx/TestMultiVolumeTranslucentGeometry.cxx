@@ -3,7 +3,7 @@
 // Translucent geometry among the volumes (vtkMultiVolumeRayCastMapper::AddTranslucentActor):
 // planes of opacity 0.4 crossing two overlapping volumes, in front of them, behind them, and
 // with opaque geometry, compared pixel by pixel with the reference integrator, whose surfaces
-// are composited at their exact depths (vtkMultiVolumeReferenceIntegrator::Surface); and the
+// are composited at their exact depths (strata::MultiVolumeReferenceIntegrator::Surface); and the
 // two crossing planes with the first volume drawn in each other blend mode (MIP, MinIP,
 // average, additive: its reduced layer composited at its own depth in ray order with the
 // surfaces; isosurface).
@@ -39,10 +39,10 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkActor.h"
 #include "vtkContourValues.h"
 #include "vtkImageData.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -63,7 +63,7 @@
 namespace
 {
 using namespace strata_test;
-using Ref = vtkMultiVolumeReferenceIntegrator;
+using Ref = strata::MultiVolumeReferenceIntegrator;
 
 using Plane = TranslucentPlane;
 

@@ -4,8 +4,8 @@
 // horizons (vtkStackedHeightFieldMapper) crossing two overlapping volumes at UTM coordinates,
 // its actor in the renderer (the opaque horizons) and given to the volume ray caster
 // (AddTranslucentActor: the translucent ones, peeled into its surface layers). Compared pixel
-// by pixel with the double-precision reference: vtkMultiVolumeReferenceIntegrator with the
-// horizons' every crossing (vtkHeightFieldReferenceCaster::CastAll) composited at its exact
+// by pixel with the double-precision reference: strata::MultiVolumeReferenceIntegrator with the
+// horizons' every crossing (strata::HeightFieldReferenceCaster::CastAll) composited at its exact
 // depth, stopped at the opaque scene's depth.
 //
 // The stack, on a 2 m grid around the volumes: H0 (opacity 0.45) a tilted, undulating surface
@@ -34,11 +34,11 @@
 #include "StrataTestPaths.h"
 #include "StrataVolumeScenes.h"
 
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkActor.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageToPagePoolWriter.h"
-#include "vtkMultiVolumeReferenceIntegrator.h"
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h"
 #include "vtkPointData.h"
@@ -61,7 +61,7 @@
 namespace
 {
 using namespace strata_test;
-using Ref = vtkMultiVolumeReferenceIntegrator;
+using Ref = strata::MultiVolumeReferenceIntegrator;
 
 const double OX = 456000.0, OY = 6780000.0; // UTM easting, northing of the volumes' corner
 const double Colors[3][3] = { { 0.95, 0.35, 0.15 }, { 0.15, 0.45, 0.95 }, { 0.35, 0.8, 0.3 } };

@@ -7,7 +7,7 @@
 // with work queued and loads in flight. Loads are synthetic: page contents derive from the key.
 #include "StrataSubTests.h"
 
-#include "vtkPageCache.h"
+#include "StrataPageCache.h"
 
 #include <algorithm>
 #include <atomic>
@@ -36,7 +36,7 @@ void Check(bool ok, const std::string& what)
   failures += ok ? 0 : 1;
 }
 
-using Key = vtkPageCache::Key;
+using Key = strata::PageCache::Key;
 using Clock = std::chrono::steady_clock;
 
 Key K(int dataset, int level, int64_t page)
@@ -63,7 +63,7 @@ void Fill(const Key& k, size_t bytes, std::vector<uint8_t>& out)
   }
 }
 
-bool Matches(const Key& k, size_t bytes, const vtkPageCache::Page& page)
+bool Matches(const Key& k, size_t bytes, const strata::PageCache::Page& page)
 {
   if (!page || page->size() != bytes)
   {
@@ -133,7 +133,7 @@ private:
   std::map<uint64_t, int> Count;
 };
 
-bool WaitForInFlight(vtkPageCache& cache, size_t n)
+bool WaitForInFlight(strata::PageCache& cache, size_t n)
 {
   const auto end = Clock::now() + std::chrono::seconds(10);
   while (cache.GetStatistics().InFlight != n)
@@ -157,8 +157,9 @@ void TestKeys()
   Check(!K(1 << 24, 0, 0).IsValid() && !K(0, 256, 0).IsValid() &&
           !K(0, 0, int64_t(1) << 32).IsValid() && !K(-1, 0, 0).IsValid(),
     "keys outside 24/8/32 bits are invalid");
-  vtkPageCache cache;
-  Check(cache.Request(K(-1, 0, 0), 1) == vtkPageCache::State::Invalid && !cache.Find(K(-1, 0, 0)),
+  strata::PageCache cache;
+  Check(
+    cache.Request(K(-1, 0, 0), 1) == strata::PageCache::State::Invalid && !cache.Find(K(-1, 0, 0)),
     "an invalid key is refused, not queued");
   Check(!cache.Start(), "Start() without a loader fails");
 }
@@ -177,7 +178,7 @@ void TestGridNeighbours()
   // Level 2 of 4 x 3 x 2 bricks, its parents 2 x 2 x 1: brick (1, 2, 1) = 1 + 4 (2 + 3 * 1) = 21.
   const int grid[3] = { 4, 3, 2 }, coarse[3] = { 2, 2, 1 };
   std::vector<Key> more;
-  vtkPageCache::AddGridNeighbours(K(5, 2, 21), grid, coarse, more);
+  strata::PageCache::AddGridNeighbours(K(5, 2, 21), grid, coarse, more);
   const std::vector<std::pair<int, int64_t>> expected = {
     { 2, 9 }, { 2, 17 }, { 2, 20 }, { 2, 22 }, { 3, 2 }
   };
@@ -185,11 +186,11 @@ void TestGridNeighbours()
     "a brick's face neighbours inside the grid (x -1/+1, y -1, z -1) and its parent (0, 1, 0)");
   more.clear();
   const int tiles[3] = { 3, 1, 1 };
-  vtkPageCache::AddGridNeighbours(K(0, 4, 0), tiles, nullptr, more);
+  strata::PageCache::AddGridNeighbours(K(0, 4, 0), tiles, nullptr, more);
   Check(pages(more) == std::vector<std::pair<int, int64_t>>{ { 4, 1 } },
     "a corner tile of the coarsest level: one neighbour, no parent");
   more.clear();
-  vtkPageCache::AddGridNeighbours(K(0, 0, 3), tiles, nullptr, more);
+  strata::PageCache::AddGridNeighbours(K(0, 0, 3), tiles, nullptr, more);
   Check(more.empty(), "a page outside the grid has none");
 }
 
@@ -242,7 +243,7 @@ void TestAgainstReference()
 {
   std::cout << "Single-threaded LRU against a reference (1 worker, pages of 1000 B, 8 fit)\n";
   const size_t pageBytes = 1000;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(1);
   cache.SetBudgetBytes(8 * pageBytes + 999); // 8 pages fit, 9 do not
   cache.SetLoadFunction(
@@ -266,7 +267,7 @@ void TestAgainstReference()
       ++ref.Frame;
     }
     const Key k = K(1, 0, static_cast<int64_t>(rng() % 20));
-    vtkPageCache::Page page = cache.Find(k);
+    strata::PageCache::Page page = cache.Find(k);
     const bool refHit = ref.Find(k.Pack());
     hitMismatch += (page != nullptr) != refHit;
     if (page)
@@ -277,7 +278,7 @@ void TestAgainstReference()
     else
     {
       ++misses;
-      notQueued += cache.Request(k, 1.0) != vtkPageCache::State::Queued;
+      notQueued += cache.Request(k, 1.0) != strata::PageCache::State::Queued;
       cache.WaitForIdle(10);
       ref.Insert(k.Pack());
     }
@@ -286,7 +287,7 @@ void TestAgainstReference()
       residentMismatch += cache.IsResident(K(1, 0, p)) != ref.Contains(K(1, 0, p).Pack());
     }
   }
-  const vtkPageCache::Statistics s = cache.GetStatistics();
+  const strata::PageCache::Statistics s = cache.GetStatistics();
   Check(hitMismatch == 0,
     "3000 random finds over 20 keys: hit/miss as the reference (" + std::to_string(hits) +
       " hits, " + std::to_string(misses) + " misses)");
@@ -303,7 +304,7 @@ void TestReferencedAndPinned()
 {
   std::cout << "Referenced and pinned pages (budget 4 pages)\n";
   const size_t pageBytes = 1000;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(1);
   cache.SetBudgetBytes(4 * pageBytes);
   cache.SetLoadFunction(
@@ -317,7 +318,7 @@ void TestReferencedAndPinned()
   const Key held = K(2, 0, 0);
   cache.Request(held, 1);
   cache.WaitForIdle(10);
-  vtkPageCache::Page page = cache.Find(held);
+  strata::PageCache::Page page = cache.Find(held);
   for (int64_t p = 1; p <= 12; ++p)
   {
     cache.BeginFrame();
@@ -345,13 +346,14 @@ void TestReferencedAndPinned()
   const int64_t deferredBefore = cache.GetStatistics().Deferred;
   cache.Request(K(2, 0, 99), 1);
   cache.WaitForIdle(10);
-  vtkPageCache::Statistics s = cache.GetStatistics();
+  strata::PageCache::Statistics s = cache.GetStatistics();
   Check(!cache.IsResident(K(2, 0, 99)) && s.Deferred == deferredBefore + 1,
     "all pinned: the loaded page is deferred (counted), nothing pinned is evicted");
-  Check(cache.Request(K(2, 0, 99), 1) == vtkPageCache::State::Deferred,
+  Check(cache.Request(K(2, 0, 99), 1) == strata::PageCache::State::Deferred,
     "a deferred key is not queued again in the same frame");
   cache.BeginFrame();
-  Check(cache.Request(K(2, 0, 99), 1) == vtkPageCache::State::Queued, "next frame it is queued");
+  Check(
+    cache.Request(K(2, 0, 99), 1) == strata::PageCache::State::Queued, "next frame it is queued");
   cache.WaitForIdle(10);
   s = cache.GetStatistics();
   Check(cache.IsResident(K(2, 0, 99)) && s.CurrentBytes <= 4 * pageBytes,
@@ -367,7 +369,7 @@ void TestForget()
 {
   std::cout << "Forget a data set\n";
   const size_t pageBytes = 1000;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(1);
   cache.SetBudgetBytes(16 * pageBytes);
   std::atomic<int> generation{ 0 };
@@ -388,7 +390,7 @@ void TestForget()
     cache.Request(K(5, 0, p), 1);
   }
   cache.WaitForIdle(10);
-  vtkPageCache::Page held = cache.Find(K(4, 0, 0)); // pinned this frame and held
+  strata::PageCache::Page held = cache.Find(K(4, 0, 0)); // pinned this frame and held
   slow = true;
   cache.Request(K(4, 0, 7), 1); // in flight when forgotten
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -406,7 +408,7 @@ void TestForget()
   cache.BeginFrame();
   cache.Request(K(4, 0, 0), 1);
   cache.WaitForIdle(10);
-  vtkPageCache::Page again = cache.Find(K(4, 0, 0));
+  strata::PageCache::Page again = cache.Find(K(4, 0, 0));
   Check(again && (*again)[0] == 1, "asked again, the page is loaded from the new file");
 }
 
@@ -415,7 +417,7 @@ void TestPriorityOrder()
   std::cout << "Priority order of loads (1 worker held busy while the queue fills)\n";
   Gate gate;
   LoadLog log;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(1);
   cache.SetLoadFunction(
     [&](const Key& k, std::vector<uint8_t>& out, std::string&)
@@ -459,7 +461,7 @@ void TestCancelStale()
   std::cout << "Cancellation of stale requests\n";
   Gate gate;
   LoadLog log;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(1);
   cache.SetLoadFunction(
     [&](const Key& k, std::vector<uint8_t>& out, std::string&)
@@ -486,7 +488,7 @@ void TestCancelStale()
   Check(
     dropped == 3 && cache.GetStatistics().QueueLength == 2 && cache.GetStatistics().Cancelled == 3,
     "3 requests not renewed this frame dropped, 2 renewed kept");
-  Check(cache.Request(K(9, 0, 0), 1) == vtkPageCache::State::Loading,
+  Check(cache.Request(K(9, 0, 0), 1) == strata::PageCache::State::Loading,
     "the load in flight is untouched (state Loading)");
   gate.Open();
   cache.WaitForIdle(10);
@@ -499,7 +501,7 @@ void TestFailures()
 {
   std::cout << "Failed loads: reported once, not retried, coarser level still there\n";
   LoadLog log;
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetNumberOfThreads(2);
   cache.SetBudgetBytes(100000);
   cache.SetLoadFunction(
@@ -525,7 +527,7 @@ void TestFailures()
     cache.Request(k, 1);
   }
   cache.WaitForIdle(10);
-  const std::vector<vtkPageCache::Failure> failed = cache.GetFailedPages();
+  const std::vector<strata::PageCache::Failure> failed = cache.GetFailedPages();
   std::string e1, e2, e3;
   cache.GetError(missing, e1);
   cache.GetError(throwing, e2);
@@ -545,8 +547,8 @@ void TestFailures()
   for (int f = 0; f < 20; ++f)
   {
     cache.BeginFrame();
-    allFailed = allFailed && cache.Request(missing, 1) == vtkPageCache::State::Failed &&
-                cache.Request(throwing, 1) == vtkPageCache::State::Failed;
+    allFailed = allFailed && cache.Request(missing, 1) == strata::PageCache::State::Failed &&
+                cache.Request(throwing, 1) == strata::PageCache::State::Failed;
     cache.CancelStale(cache.GetFrame());
     cache.WaitForIdle(10);
   }
@@ -554,7 +556,8 @@ void TestFailures()
     "20 more frames of requests: state Failed, the loader was not called again");
   Check(cache.Find(parent) != nullptr, "the coarser parent page is still found");
   cache.Retry(missing);
-  Check(cache.Request(missing, 1) == vtkPageCache::State::Queued, "after Retry() it is queued");
+  Check(
+    cache.Request(missing, 1) == strata::PageCache::State::Queued, "after Retry() it is queued");
   cache.WaitForIdle(10);
   Check(log.CountOf(missing) == 2 && cache.TakeNewFailures().size() == 1,
     "loaded again, failed again, reported again");
@@ -585,7 +588,7 @@ void TestStress()
   auto bytesOf = [](const Key& k) { return size_t(256 + (k.Pack() % 7) * 128); };
   auto fails = [](const Key& k) { return k.Pack() % 53 == 7; };
 
-  auto cache = std::unique_ptr<vtkPageCache>(new vtkPageCache);
+  auto cache = std::unique_ptr<strata::PageCache>(new strata::PageCache);
   cache->SetNumberOfThreads(threads);
   cache->SetBudgetBytes(budget);
   cache->SetLoadFunction(
@@ -618,7 +621,7 @@ void TestStress()
   std::vector<double> times;
   int badContent = 0, overBudget = 0;
   int64_t found = 0;
-  std::vector<std::pair<Key, vtkPageCache::Page>> held, next;
+  std::vector<std::pair<Key, strata::PageCache::Page>> held, next;
   for (int f = 0; f < frames; ++f)
   {
     cache->BeginFrame();
@@ -637,7 +640,7 @@ void TestStress()
       auto t0 = Clock::now();
       cache->Request(k, static_cast<double>(rng() % 1000));
       auto t1 = Clock::now();
-      vtkPageCache::Page p = cache->Find(k);
+      strata::PageCache::Page p = cache->Find(k);
       auto t2 = Clock::now();
       const double dr = std::chrono::duration<double, std::micro>(t1 - t0).count();
       const double df = std::chrono::duration<double, std::micro>(t2 - t1).count();
@@ -661,7 +664,7 @@ void TestStress()
     std::this_thread::sleep_for(std::chrono::microseconds(300));
   }
   held.clear();
-  const vtkPageCache::Statistics s = cache->GetStatistics();
+  const strata::PageCache::Statistics s = cache->GetStatistics();
   std::sort(times.begin(), times.end());
   const double p99 = times[times.size() * 99 / 100];
   const auto over1ms = times.end() - std::upper_bound(times.begin(), times.end(), 1000.0);
@@ -711,7 +714,7 @@ void TestShutdownInFlight()
   std::cout << "Destruction while slow loads are in flight\n";
   std::atomic<int> started(0), finished(0);
   {
-    vtkPageCache cache;
+    strata::PageCache cache;
     cache.SetNumberOfThreads(2);
     cache.SetLoadFunction(
       [&](const Key& k, std::vector<uint8_t>& out, std::string&)
@@ -731,7 +734,7 @@ void TestShutdownInFlight()
   }
   Check(started == 2 && finished == 2,
     "both loads in flight returned before the destructor did; the 8 queued never started");
-  vtkPageCache cache;
+  strata::PageCache cache;
   cache.SetLoadFunction(
     [](const Key& k, std::vector<uint8_t>& out, std::string&)
     {

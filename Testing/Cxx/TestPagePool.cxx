@@ -1,16 +1,16 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
-// Page pools on disk: every page written by vtkPagePoolWriter and read back by vtkPagePoolFile
-// must equal, bit for bit, vtkVolumeBrickTree::ExtractBrick of the same node (volumes) or a
-// direct 2-D evaluation of the same filter (tile pools); per-page min/max and value ranges
-// must match; compression and the memory limit must not change what is read (the limit must
-// not even change the bytes of the file); and every fault must give a clear error.
+// Page pools on disk: every page written by strata::PagePoolWriter and read back by
+// strata::PagePoolFile must equal, bit for bit, strata::VolumeBrickTree::ExtractBrick of the same
+// node (volumes) or a direct 2-D evaluation of the same filter (tile pools); per-page min/max and
+// value ranges must match; compression and the memory limit must not change what is read (the limit
+// must not even change the bytes of the file); and every fault must give a clear error.
 #include "StrataSubTests.h"
 #include "StrataTestPaths.h"
 
-#include "vtkPagePoolFile.h"
-#include "vtkPagePoolFormat.h"
-#include "vtkPagePoolWriter.h"
-#include "vtkVolumeBrickTree.h"
+#include "StrataPagePoolFile.h"
+#include "StrataPagePoolFormat.h"
+#include "StrataPagePoolWriter.h"
+#include "StrataVolumeBrickTree.h"
 
 #include <algorithm>
 #include <atomic>
@@ -32,7 +32,7 @@
 
 namespace
 {
-using Format = vtkPagePoolFormat;
+using Format = strata::PagePoolFormat;
 int Failures = 0;
 
 void Check(bool ok, const std::string& what)
@@ -90,18 +90,18 @@ int CountTempFiles(const std::string& dir)
   return count;
 }
 
-vtkVolumeBrickTree::ScalarType TreeType(Format::ScalarType t)
+strata::VolumeBrickTree::ScalarType TreeType(Format::ScalarType t)
 {
   switch (t)
   {
     case Format::ScalarType::UInt8:
-      return vtkVolumeBrickTree::ScalarType::UInt8;
+      return strata::VolumeBrickTree::ScalarType::UInt8;
     case Format::ScalarType::UInt16:
-      return vtkVolumeBrickTree::ScalarType::UInt16;
+      return strata::VolumeBrickTree::ScalarType::UInt16;
     case Format::ScalarType::Int16:
-      return vtkVolumeBrickTree::ScalarType::Int16;
+      return strata::VolumeBrickTree::ScalarType::Int16;
     default:
-      return vtkVolumeBrickTree::ScalarType::Float32;
+      return strata::VolumeBrickTree::ScalarType::Float32;
   }
 }
 
@@ -172,7 +172,7 @@ bool WritePool(const std::vector<T>& data,
   const int dims[3],
   const std::string& path,
   const WriteOptions& opt,
-  vtkPagePoolWriter& writer,
+  strata::PagePoolWriter& writer,
   std::vector<double>* progress = nullptr)
 {
   writer.SetFileName(path);
@@ -235,10 +235,10 @@ void CheckVolume(const std::string& dir, const char* name, const int dims[3], in
     B,
     compress ? "zstd" : "raw");
   const std::vector<T> data = MakeData<T>(dims, 17u * dims[0] + B);
-  vtkVolumeBrickTree tree;
+  strata::VolumeBrickTree tree;
   tree.Build(data.data(), TreeType(TypeOf<T>()), dims, B);
   const std::string path = dir + "/" + name + (compress ? "-z" : "") + ".spp";
-  vtkPagePoolWriter writer;
+  strata::PagePoolWriter writer;
   WriteOptions opt;
   opt.PageSize = B;
   opt.Compress = compress;
@@ -256,7 +256,7 @@ void CheckVolume(const std::string& dir, const char* name, const int dims[3], in
   Check(
     !progress.empty() && progress.back() == 1.0 && std::is_sorted(progress.begin(), progress.end()),
     "progress is non-decreasing and ends at 1");
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   if (!file.Open(path))
   {
     Check(false, "open: " + file.GetErrorMessage());
@@ -265,7 +265,7 @@ void CheckVolume(const std::string& dir, const char* name, const int dims[3], in
   Check(file.GetNumberOfLevels() == tree.GetNumberOfLevels() &&
           file.GetNumberOfPages() == static_cast<uint64_t>(tree.GetNumberOfNodes()),
     "levels (" + std::to_string(file.GetNumberOfLevels()) + ") and pages (" +
-      std::to_string(file.GetNumberOfPages()) + ") as vtkVolumeBrickTree");
+      std::to_string(file.GetNumberOfPages()) + ") as strata::VolumeBrickTree");
   const size_t values = static_cast<size_t>(B) * B * B;
   std::vector<T> expectNative(values), gotNative(values);
   std::vector<float> expectFloat(values), gotFloat(values);
@@ -273,7 +273,7 @@ void CheckVolume(const std::string& dir, const char* name, const int dims[3], in
   float lo = std::numeric_limits<float>::infinity(), hi = -lo;
   for (int id = 0; id < tree.GetNumberOfNodes(); ++id)
   {
-    const vtkVolumeBrickTree::Node& node = tree.GetNode(id);
+    const strata::VolumeBrickTree::Node& node = tree.GetNode(id);
     const uint64_t index = static_cast<uint64_t>(id - tree.GetLevelOffset(node.Level));
     tree.ExtractBrickNative(id, expectNative.data());
     tree.ExtractBrick(id, expectFloat.data());
@@ -314,14 +314,14 @@ void CheckTiles(const std::string& dir, int nx, int ny, int layers, int B)
   const int dims[3] = { nx, ny, layers };
   std::vector<T> data = MakeData<T>(dims, 5u);
   const std::string path = dir + "/tiles.spp";
-  vtkPagePoolWriter writer;
+  strata::PagePoolWriter writer;
   WriteOptions opt;
   opt.PoolKind = Format::Kind::TilePool;
   opt.PageSize = B;
   opt.Compress = true;
   const bool written = WritePool(data, dims, path, opt, writer);
   Check(written, "written " + (written ? "" : writer.GetErrorMessage()));
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   if (!file.Open(path))
   {
     Check(false, "open: " + file.GetErrorMessage());
@@ -421,7 +421,7 @@ void CheckTiles(const std::string& dir, int nx, int ny, int layers, int B)
     "all " + std::to_string(file.GetNumberOfLevels()) +
       " levels of tiles equal the 2-D reference bit for bit");
   Check(ranges, "every tile min/max (NaN excluded) as expected");
-  vtkPagePoolWriter bounded;
+  strata::PagePoolWriter bounded;
   opt.LimitMB = 0.05;
   const bool rewritten = WritePool(data, dims, dir + "/tiles-bounded.spp", opt, bounded);
   Check(rewritten && bounded.GetStatistics().SourceCalls > 1 &&
@@ -448,7 +448,7 @@ std::string OpenEdited(const std::string& good, const std::string& bad, F edit, 
     edit(h, bytes);
   }
   WriteBytes(bad, bytes);
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   return file.Open(bad) ? std::string("(opened!)") : file.GetErrorMessage();
 }
 }
@@ -481,7 +481,7 @@ void MemoryLimit(const std::string& dir)
   const std::vector<uint16_t> data = MakeData<uint16_t>(dims, 99u);
   WriteOptions opt;
   opt.PageSize = 16;
-  vtkPagePoolWriter free, bounded, tooSmall;
+  strata::PagePoolWriter free, bounded, tooSmall;
   const bool a = WritePool(data, dims, dir + "/free.spp", opt, free);
   opt.LimitMB = 1.5;
   const bool b = WritePool(data, dims, dir + "/bounded.spp", opt, bounded);
@@ -517,7 +517,7 @@ void MemoryLimit(const std::string& dir)
 void ConcurrentReads(const std::string& dir)
 {
   // Several threads reading all pages at once get the same bytes as one thread.
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   const bool opened = file.Open(dir + "/free.spp");
   std::vector<std::vector<uint16_t>> serial(file.GetNumberOfPages());
   for (int l = 0; opened && l < file.GetNumberOfLevels(); ++l)
@@ -569,7 +569,7 @@ void FileFaults(const std::string& dir)
   const std::string good = dir + "/u16.spp";
   const std::string goodZ = dir + "/u16-z.spp";
   const std::string bad = dir + "/bad.spp";
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   const bool missing = !file.Open(dir + "/does-not-exist.spp");
   Check(missing && Contains(file.GetErrorMessage(), "cannot open") &&
           Contains(file.GetErrorMessage(), "No such file"),
@@ -586,7 +586,7 @@ void FileFaults(const std::string& dir)
 
   for (const std::string& src : { good, goodZ })
   {
-    vtkPagePoolFile ok;
+    strata::PagePoolFile ok;
     ok.Open(src);
     const Format::PageEntry e = ok.GetPageEntry(3);
     std::vector<unsigned char> flipped = ReadBytes(src);
@@ -632,12 +632,12 @@ void HeaderFaults(const std::string& dir)
   msg = OpenEdited(good, bad, set(3, 3));
   Check(Contains(msg, "component 3 of 3"), "component 3 of 3: " + msg);
   {
-    vtkPagePoolFile edited;
+    strata::PagePoolFile edited;
     OpenEdited(good, bad, set(3, 2));
     Check(
       edited.Open(bad) && edited.GetHeader().Components == 3 && edited.GetHeader().Component == 2,
       "component 2 of 3 opens (version 2)");
-    vtkPagePoolFile plain;
+    strata::PagePoolFile plain;
     Check(plain.Open(good) && plain.GetHeader().Version == 1 && plain.GetHeader().Components == 1 &&
             plain.GetHeader().Component == 0,
       "a version 1 pool is one component");
@@ -692,7 +692,7 @@ void FailingWriters(const std::string& dir)
   WriteOptions opt;
   opt.FailAtSlab = 33;
   opt.LimitMB = 0.1; // several source calls: pages are already in the temporary file
-  vtkPagePoolWriter writer;
+  strata::PagePoolWriter writer;
   const bool ok = WritePool(data, dims, path, opt, writer);
   Check(!ok && Contains(writer.GetErrorMessage(), "source failed") && !Exists(path) &&
           CountTempFiles(dir) == 0 && writer.GetStatistics().SourceCalls >= 1,

@@ -17,7 +17,9 @@
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
 
+#include "StrataPagePoolFile.h"
 #include "StrataPagePoolSet.h"
+#include "StrataPagedPools.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -29,10 +31,8 @@
 #include "vtkIrapBinaryGridReader.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
-#include "vtkPagePoolFile.h"
 #include "vtkPagePoolProtocol.h"
 #include "vtkPagePoolReader.h"
-#include "vtkPagedPools.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedShortArray.h"
@@ -319,7 +319,7 @@ void Reek(const std::string& out, const strata_test::TestPaths& paths)
   RoundTrip("reek_01_topreek_rota.gri", gr->GetOutput(), path);
 }
 
-// A set of component pools (vtkPagePoolFormat, Components): written from a streaming reader of
+// A set of component pools (strata::PagePoolFormat, Components): written from a streaming reader of
 // a raw 4-component file (one pass per component), read back whole and in part bit-exact; a
 // missing, foreign or wrongly named component is an error, never a volume of fewer components.
 void Components(const std::string& out)
@@ -348,11 +348,11 @@ void Components(const std::string& out)
   rr->SetDataSpacing(0.5, 1.0, 2.0);
   const std::string path = out + "/rgba.spp";
   Convert(rr, nullptr, path, 16);
-  std::vector<vtkPagePoolFormat::Header> headers;
+  std::vector<strata::PagePoolFormat::Header> headers;
   for (int c = 0; c < 4; ++c)
   {
-    vtkPagePoolFile f;
-    const std::string name = vtkPagePoolFormat::GetComponentFileName(path, c);
+    strata::PagePoolFile f;
+    const std::string name = strata::PagePoolFormat::GetComponentFileName(path, c);
     Check(f.Open(name) && f.GetHeader().Version == 2 && f.GetHeader().Components == 4 &&
             f.GetHeader().Component == c,
       "component " + std::to_string(c) + ": " + name + ", version 2, component " +
@@ -365,7 +365,7 @@ void Components(const std::string& out)
   vtkDataArray* scalars = back->GetPointData()->GetScalars();
   Check(scalars && scalars->GetNumberOfComponents() == 4, "read back with 4 components");
   Check(SameValues(vol, back, true), "4 components: full-resolution read is bit-exact");
-  vtkPagePoolFile first;
+  strata::PagePoolFile first;
   first.Open(path);
   Check(
     reader->GetNumberOfPagesRead() ==
@@ -398,14 +398,14 @@ void Components(const std::string& out)
       what + ": error and empty output");
     return errors->First;
   };
-  const std::string c1 = vtkPagePoolFormat::GetComponentFileName(path, 1);
+  const std::string c1 = strata::PagePoolFormat::GetComponentFileName(path, 1);
   Check(readError(c1, "component 1 opened").find("open its component 0") != std::string::npos,
     "naming component 1 says to open component 0");
   // A component of another write of the same structure.
   const std::string other = out + "/rgba-other.spp";
   Convert(rr, nullptr, other, 16);
-  const std::string c2 = vtkPagePoolFormat::GetComponentFileName(path, 2);
-  vtksys::SystemTools::CopyAFile(vtkPagePoolFormat::GetComponentFileName(other, 2), c2);
+  const std::string c2 = strata::PagePoolFormat::GetComponentFileName(path, 2);
+  vtksys::SystemTools::CopyAFile(strata::PagePoolFormat::GetComponentFileName(other, 2), c2);
   Check(readError(path, "a foreign component").find("its tag") != std::string::npos,
     "a component of another write is refused");
   vtksys::SystemTools::RemoveFile(c2);
@@ -424,8 +424,8 @@ void Components(const std::string& out)
   const bool wrote = writer->Write();
   bool left = false;
   for (int c = 1; c < 4; ++c)
-    left =
-      left || vtksys::SystemTools::FileExists(vtkPagePoolFormat::GetComponentFileName(blocked, c));
+    left = left || vtksys::SystemTools::FileExists(
+                     strata::PagePoolFormat::GetComponentFileName(blocked, c));
   std::cout << "component 0 unwritable: \"" << werrors->First << "\"\n";
   Check(!wrote && werrors->Errors > 0 && !left,
     "a set whose component 0 cannot be written: an error, and no component left behind");
@@ -450,7 +450,7 @@ void Errors(const std::string& out, vtkImageData* vol, const std::string& volPat
   vtksys::SystemTools::CopyAFile(volPath, bad);
   uint64_t offset = 0;
   {
-    vtkPagePoolFile f;
+    strata::PagePoolFile f;
     Check(f.Open(bad), "copy opens");
     offset = f.GetPageEntry(0).Offset;
   }
@@ -511,14 +511,14 @@ void Errors(const std::string& out, vtkImageData* vol, const std::string& volPat
 
 }
 
-/// A pool is opened once per process (vtkPagePoolFile::OpenShared): a reader's information
+/// A pool is opened once per process (strata::PagePoolFile::OpenShared): a reader's information
 /// and data passes, a second reader, the pagers' pools and the picker's set share one open
 /// file; a file replaced on disk is opened afresh, and the last holder's release closes it.
 void OpenedOnce(vtkImageData* vol, const std::string& out)
 {
   const std::string path = out + "/shared.spp";
   Convert(nullptr, vol, path, 16);
-  const long long before = vtkPagePoolFile::GetNumberOfOpens();
+  const long long before = strata::PagePoolFile::GetNumberOfOpens();
   vtkNew<vtkPagePoolReader> reader;
   reader->SetFileName(path.c_str());
   reader->SetResolution(0.0);
@@ -526,21 +526,21 @@ void OpenedOnce(vtkImageData* vol, const std::string& out)
   vtkNew<vtkPagePoolReader> second;
   second->SetFileName(path.c_str());
   second->Update();
-  vtkPagedPools pools;
+  strata::PagedPools pools;
   std::string error;
-  std::shared_ptr<vtkPagePoolFile> paged = pools.OpenPool(0, path, error);
+  std::shared_ptr<strata::PagePoolFile> paged = pools.OpenPool(0, path, error);
   strata::PagePoolSet set;
   Check(paged && set.Open(path, error) && &set.GetFile() == paged.get(),
     "the pager and a picker's set get the reader's file");
-  const long long opens = vtkPagePoolFile::GetNumberOfOpens() - before;
+  const long long opens = strata::PagePoolFile::GetNumberOfOpens() - before;
   std::cout << "opened once: " << opens << " open(s) for two readers, a pager and a set\n";
   Check(opens == 1, "two readers, a pager and a set open the pool once");
   // Replaced on disk (a new file under the name): the next opener gets the new file.
   const std::string next = out + "/shared-next.spp";
   Convert(nullptr, vol, next, 16);
   Check(std::rename(next.c_str(), path.c_str()) == 0, "the pool replaced on disk");
-  std::shared_ptr<vtkPagePoolFile> fresh = vtkPagePoolFile::OpenShared(path, error);
-  Check(fresh && fresh != paged && vtkPagePoolFile::GetNumberOfOpens() - before == 2,
+  std::shared_ptr<strata::PagePoolFile> fresh = strata::PagePoolFile::OpenShared(path, error);
+  Check(fresh && fresh != paged && strata::PagePoolFile::GetNumberOfOpens() - before == 2,
     "a pool replaced on disk is opened afresh, not served from the old descriptor");
 }
 

@@ -13,12 +13,12 @@
 //   about once; the bound leaves room for pages evicted after a collapse and read again later
 //   (unfixed, the livelock read 112 and 171 times the pools in 2 x FrameCap frames);
 // - the inconsistent budgets are reported once, and consistent ones are not (and converge).
+#include "StrataHeightFieldPager.h"
+#include "StrataPagePoolFile.h"
+#include "StrataPagePoolWriter.h"
 #include "StrataSubTests.h"
 #include "StrataTestPaths.h"
-#include "vtkHeightFieldPager.h"
-#include "vtkPagePoolFile.h"
-#include "vtkPagePoolWriter.h"
-#include "vtkVolumePager.h"
+#include "StrataVolumePager.h"
 
 #include <algorithm>
 #include <array>
@@ -47,21 +47,21 @@ void Check(bool ok, const std::string& what)
 
 // A pool of float values v(i, j, k) written by the core's writer: `dims` points, page `b`.
 std::string WritePool(const std::string& path,
-  vtkPagePoolFormat::Kind kind,
+  strata::PagePoolFormat::Kind kind,
   const int dims[3],
   int b)
 {
-  vtkPagePoolWriter writer;
+  strata::PagePoolWriter writer;
   writer.SetFileName(path);
   writer.SetKind(kind);
-  writer.SetScalarType(vtkPagePoolFormat::ScalarType::Float32);
+  writer.SetScalarType(strata::PagePoolFormat::ScalarType::Float32);
   writer.SetDimensions(dims[0], dims[1], dims[2]);
   writer.SetPageSize(b);
   writer.SetSource(
     [dims, kind](int first, int count, void* buffer)
     {
       // Bricks: slices [first, first + count) of rows; tiles: per layer, rows [first, ...).
-      const bool tiles = kind == vtkPagePoolFormat::Kind::TilePool;
+      const bool tiles = kind == strata::PagePoolFormat::Kind::TilePool;
       const int outer = tiles ? dims[2] : count, rows = tiles ? count : dims[1];
       float* out = static_cast<float*>(buffer);
       for (int s = 0; s < outer; ++s)
@@ -79,7 +79,7 @@ std::string WritePool(const std::string& path,
 
 double PoolBytes(const std::string& path)
 {
-  vtkPagePoolFile pool;
+  strata::PagePoolFile pool;
   if (!pool.Open(path))
     return 0.0;
   return static_cast<double>(pool.GetNumberOfPages()) * pool.GetPageValues() * sizeof(float);
@@ -126,8 +126,8 @@ void CheckOutcome(const Outcome& o, double poolBytes, bool consistent)
 // close above its middle, then a corner: every tile wants level 0, those below most.
 Outcome RunHorizons(const std::string& pool, int slots, double cacheMiB)
 {
-  vtkHeightFieldPager pager;
-  vtkHeightFieldPager::Source source;
+  strata::HeightFieldPager pager;
+  strata::HeightFieldPager::Source source;
   source.FileName = pool;
   Check(pager.Open({ source }), "horizon pool opened " + pager.GetErrorMessage());
   pager.SetAtlasSlots(slots);
@@ -135,10 +135,10 @@ Outcome RunHorizons(const std::string& pool, int slots, double cacheMiB)
   pager.SetPagesPerFrame(64);
   const double gridToWorld[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   Outcome o;
-  std::vector<vtkHeightFieldPager::Upload> uploads;
+  std::vector<strata::HeightFieldPager::Upload> uploads;
   for (const Pose& pose : { Pose{ 512, 512, 100 }, Pose{ 100, 900, 60 } })
   {
-    vtkVolumeCut::Camera camera;
+    strata::VolumeCut::Camera camera;
     std::copy_n(pose.data(), 3, camera.Position);
     camera.PixelsPerRadian = 1e5;
     int converged = -1;
@@ -153,7 +153,7 @@ Outcome RunHorizons(const std::string& pool, int slots, double cacheMiB)
     }
     o.Frames = converged < 0 || o.Frames < -1 ? -2 : std::max(o.Frames, converged);
   }
-  const vtkHeightFieldPager::Statistics s = pager.GetStatistics();
+  const strata::HeightFieldPager::Statistics s = pager.GetStatistics();
   o.BytesRead = s.BytesRead;
   o.Finest = s.FinestTiles;
   o.Cut = s.CutTiles;
@@ -164,21 +164,21 @@ Outcome RunHorizons(const std::string& pool, int slots, double cacheMiB)
 // just off a corner, then the opposite one: every brick wants level 0, those near most.
 Outcome RunVolumes(const std::string& pool, double atlasMiB, double cacheMiB)
 {
-  vtkVolumePager pager;
+  strata::VolumePager pager;
   std::string error;
   Check(pager.OpenPool(0, pool, error) != nullptr, "volume pool opened " + error);
-  vtkVolumePager::Volume volume;
+  strata::VolumePager::Volume volume;
   volume.Port = 0;
   bool rebuilt = false;
   Check(pager.SetVolumes({ volume }, 8, atlasMiB, 2048, rebuilt, error), "volumes set " + error);
-  vtkVolumePager::Settings settings;
+  strata::VolumePager::Settings settings;
   settings.CacheBudgetMiB = cacheMiB;
   settings.PagesPerFrame = 64;
   Outcome o;
-  std::vector<vtkVolumeCut::Upload> uploads;
+  std::vector<strata::VolumeCut::Upload> uploads;
   for (const Pose& pose : { Pose{ -4, -4, -4 }, Pose{ 68, 68, 68 } })
   {
-    vtkVolumeCut::Camera camera;
+    strata::VolumeCut::Camera camera;
     std::copy_n(pose.data(), 3, camera.Position);
     camera.PixelsPerRadian = 1e5;
     int converged = -1;
@@ -206,7 +206,7 @@ Outcome RunVolumes(const std::string& pool, double atlasMiB, double cacheMiB)
 // the port opens again as new.
 void ClosePool(const std::string& pool)
 {
-  vtkVolumePager pager;
+  strata::VolumePager pager;
   std::string error;
   Check(pager.OpenPool(0, pool, error) != nullptr && pager.GetPoolTree(0) != nullptr,
     "the pool opens " + error);
@@ -224,10 +224,10 @@ int TestPagingBudgets(int argc, char* argv[])
   const std::string stem = paths.Output + "/TestPagingBudgets-" + std::to_string(::getpid());
   const int tileDims[3] = { 1025, 1025, 1 };
   const std::string tiles =
-    WritePool(stem + "-h.spp", vtkPagePoolFormat::Kind::TilePool, tileDims, 33);
+    WritePool(stem + "-h.spp", strata::PagePoolFormat::Kind::TilePool, tileDims, 33);
   const int brickDims[3] = { 64, 64, 64 };
   const std::string bricks =
-    WritePool(stem + "-v.spp", vtkPagePoolFormat::Kind::BrickPool, brickDims, 8);
+    WritePool(stem + "-v.spp", strata::PagePoolFormat::Kind::BrickPool, brickDims, 8);
   const double tileBytes = PoolBytes(tiles), brickBytes = PoolBytes(bricks);
 
   const int result = strata_test::RunSubTests(

@@ -1,12 +1,12 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 //
-// vtkPreIntegrationTable against an independent double-precision integrator (composite Simpson
+// strata::PreIntegrationTable against an independent double-precision integrator (composite Simpson
 // with exact exponentials): (a) full-table entries and Integrate(); (b) a 1-D ray crossing a TF
 // spike, pre-integrated at step d versus post-classified at d/4; (c) no NaN/Inf, and the
 // s_b -> s_f limit continuous down to 1 ulp; (d) rebuilds only on changed inputs.
 #include "StrataSubTests.h"
 
-#include "vtkPreIntegrationTable.h"
+#include "StrataPreIntegrationTable.h"
 
 #include <algorithm>
 #include <array>
@@ -136,7 +136,7 @@ TransferFunction Spike(int n, double spikeX, double spikeTau)
   return tf;
 }
 
-void Load(vtkPreIntegrationTable& table, const TransferFunction& tf)
+void Load(strata::PreIntegrationTable& table, const TransferFunction& tf)
 {
   Check(table.SetTransferFunction(tf.SMin, tf.SMax, tf.N(), tf.Rgb.data(), tf.Tau.data()),
     "SetTransferFunction accepts a valid TF");
@@ -215,7 +215,7 @@ double Seconds(std::chrono::steady_clock::time_point start)
 void TestAccuracy(const char* name, const TransferFunction& tf, std::mt19937& rng)
 {
   const int m = 256;
-  vtkPreIntegrationTable table;
+  strata::PreIntegrationTable table;
   Load(table, tf);
   table.SetTableSize(m);
   std::uniform_int_distribution<int> index(0, m - 1);
@@ -278,10 +278,10 @@ void TestSpikeRay()
   const TransferFunction tf = Spike(256, 0.6, 400.0);
   auto s = [&](double t)
   { return tf.S(0.5 + 0.3 * std::sin(2 * Pi * 2.3 * t + 0.5) + 0.1 * std::sin(2 * Pi * 5.1 * t)); };
-  vtkPreIntegrationTable table;
+  strata::PreIntegrationTable table;
   Load(table, tf);
   table.UpdateIntegralTable();
-  vtkPreIntegrationTable fine; // how the table's own resolution limits it
+  strata::PreIntegrationTable fine; // how the table's own resolution limits it
   Load(fine, tf);
   fine.SetTableSize(1024);
   // Reference: exact segment integrals over steps short enough that s is linear on them.
@@ -382,7 +382,7 @@ std::vector<LimitCase> LimitCases()
   for (size_t j = 0; j < opaque.Tau.size(); ++j)
   {
     opaque.Tau[j] =
-      vtkPreIntegrationTable::OpacityToExtinction(j % 8 < 4 ? 1.0 : 0.0, 0.01); // 0 or 1
+      strata::PreIntegrationTable::OpacityToExtinction(j % 8 < 4 ? 1.0 : 0.0, 0.01); // 0 or 1
   }
   cases.push_back({ "opacity-1", opaque });
   TransferFunction huge = Spike(256, 0.3, 1e30);
@@ -403,7 +403,7 @@ struct Jumps
 
 /// Integrate() and both lookups at s_b == s_f = S(x) against s_b one step (1e-7 of the range or
 /// one ulp) away, within their Lipschitz bounds; the two-integral lookup across its threshold.
-void ContinuityAt(const vtkPreIntegrationTable& table,
+void ContinuityAt(const strata::PreIntegrationTable& table,
   const TransferFunction& tf,
   const char* name,
   double x,
@@ -467,7 +467,7 @@ void ContinuityAt(const vtkPreIntegrationTable& table,
 
 /// One step length d: the tables finite and bounded, the diagonal equal to Classify, continuity
 /// at 47 s_f (7 chosen, 40 drawn from `rng`), out-of-range scalars finite.
-void LimitsAtStep(vtkPreIntegrationTable& table,
+void LimitsAtStep(strata::PreIntegrationTable& table,
   const TransferFunction& tf,
   const char* name,
   double d,
@@ -537,7 +537,7 @@ void TestLimits(std::mt19937& rng)
   {
     Jumps jumps;
     const TransferFunction& tf = c.TF;
-    vtkPreIntegrationTable table;
+    strata::PreIntegrationTable table;
     Load(table, tf);
     table.SetTableSize(m);
     table.UpdateIntegralTable();
@@ -568,7 +568,7 @@ void TestLimits(std::mt19937& rng)
 void TestRebuild()
 {
   const TransferFunction tf = Smooth(128);
-  vtkPreIntegrationTable table;
+  strata::PreIntegrationTable table;
   Load(table, tf);
   table.SetTableSize(64);
   table.SetStepLength(0.5);
@@ -598,9 +598,9 @@ void TestRebuild()
     "(d) TF table is (r, g, b, tau) per entry");
 
   const double alpha = 0.3, u = 2.0, d = 0.7;
-  const double tau = vtkPreIntegrationTable::OpacityToExtinction(alpha, u);
+  const double tau = strata::PreIntegrationTable::OpacityToExtinction(alpha, u);
   const double vtk = 1.0 - std::pow(1.0 - alpha, d / u);
-  const double opaque = vtkPreIntegrationTable::OpacityToExtinction(1.0, u);
+  const double opaque = strata::PreIntegrationTable::OpacityToExtinction(1.0, u);
   std::printf("(d) rebuild checks done; tau(alpha=0.3, u=2) = %.6f, 1 - exp(-d tau) - VTK's "
               "1 - (1 - alpha)^(d/u) = %.1e; tau(alpha=1, u=2) = %.4f\n",
     tau,
@@ -613,7 +613,7 @@ void TestRebuild()
 /// Build time at the largest TF the project expects.
 void BuildTime()
 {
-  vtkPreIntegrationTable big;
+  strata::PreIntegrationTable big;
   Load(big, Smooth(4096));
   const auto start = std::chrono::steady_clock::now();
   big.UpdateFullTable();

@@ -5,13 +5,13 @@
 // above them whose values are a linear function of world position (trilinear interpolation
 // reproduces it exactly), in core and paged (tile pools and a brick pool read through
 // vtkPagePoolReader). On a 12 x 10 grid of pixel centres of a 96 x 80 window:
-// - horizons: the picked horizon is the one vtkHeightFieldReferenceCaster finds for that pixel
+// - horizons: the picked horizon is the one strata::HeightFieldReferenceCaster finds for that pixel
 //   in CompareWithReference (rays built there from VTK's camera, independently of the picker),
 //   and the picked point's window depth equals the reference's within 1e-6; the GPU's
 //   HorizonId image agrees with both wherever it agrees with the reference;
 // - volume (horizons not pickable): every sample's value equals the linear function at the
 //   sample's world position (1e-3: float storage of values near 50); where the ray reaches the
-//   opacity threshold 0.5, vtkMultiVolumeReferenceIntegrator composites the ray from the near
+//   opacity threshold 0.5, strata::MultiVolumeReferenceIntegrator composites the ray from the near
 //   plane to the picked point to opacity 0.5 +- 0.01 (the mapper's own sampling, 1/4 voxel at
 //   midpoints, against the reference at 1/16: StrataMultiVolumeCase.h's max bound, 2 / 255);
 //   elsewhere the last sample's accumulated opacity is the reference's for the whole ray +-0.01;
@@ -219,7 +219,7 @@ bool CheckHorizons(Scene& s, const std::string& out)
             << gpuAgree << " of " << gpuChecked << "\n";
   const bool ok = hits >= 50 && wrongId == 0 && worstDepth < 1e-6 && gpuAgree == gpuChecked;
   if (!ok)
-    std::cerr << "FAILED: horizon picks against vtkHeightFieldReferenceCaster and the GPU\n";
+    std::cerr << "FAILED: horizon picks against strata::HeightFieldReferenceCaster and the GPU\n";
   return ok;
 }
 
@@ -229,7 +229,7 @@ bool CheckVolume(Scene& s, std::vector<PickResult>& picks)
   vtkNew<vtkSubsurfacePicker> picker;
   picker->PickFromListOn();
   picker->AddPickList(s.Prop);
-  vtkMultiVolumeReferenceIntegrator ref;
+  strata::MultiVolumeReferenceIntegrator ref;
   ref.AddVolume(ToReferenceVolume(s.Volume, s.Prop));
   long hits = 0, misses = 0, samples = 0;
   double worstValue = 0.0, worstAlpha = 0.0;
@@ -272,7 +272,8 @@ bool CheckVolume(Scene& s, std::vector<PickResult>& picks)
   const bool ok =
     hits > 5 && misses > 5 && samples > 1000 && worstValue < 1e-3 && worstAlpha < 0.01;
   if (!ok)
-    std::cerr << "FAILED: volume picks against the field and vtkMultiVolumeReferenceIntegrator\n";
+    std::cerr
+      << "FAILED: volume picks against the field and strata::MultiVolumeReferenceIntegrator\n";
   return ok;
 }
 
@@ -358,7 +359,7 @@ bool CheckMultiVolume(const std::string& out)
   vtkNew<vtkSubsurfacePicker> picker;
   picker->PickFromListOn();
   picker->AddPickList(multi);
-  vtkMultiVolumeReferenceIntegrator ref;
+  strata::MultiVolumeReferenceIntegrator ref;
   ref.AddVolume(ToReferenceVolume(s.Volume, a));
   ref.AddVolume(ToReferenceVolume(second, b));
   long hits = 0, both = 0, samples = 0;

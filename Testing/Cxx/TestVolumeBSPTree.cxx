@@ -5,7 +5,7 @@
 // points, fragment volumes against the union, and front-to-back order along random rays.
 #include "StrataSubTests.h"
 
-#include "vtkVolumeBSPTree.h"
+#include "StrataVolumeBSPTree.h"
 
 #include <glm/glm.hpp>
 
@@ -21,7 +21,7 @@
 
 namespace
 {
-using Tree = vtkVolumeBSPTree;
+using Tree = strata::VolumeBSPTree;
 using glm::dmat3;
 using glm::dvec3;
 

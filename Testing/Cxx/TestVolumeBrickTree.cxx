@@ -5,7 +5,7 @@
 // relations that tile every level exactly once.
 #include "StrataSubTests.h"
 
-#include "vtkVolumeBrickTree.h"
+#include "StrataVolumeBrickTree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ std::string Dims(const int* d)
 }
 
 // Brick counts of every level, coarsest last, as "4x2x1 2x1x1 1x1x1".
-std::string BrickCounts(const vtkVolumeBrickTree& tree)
+std::string BrickCounts(const strata::VolumeBrickTree& tree)
 {
   std::string s;
   for (int l = 0; l < tree.GetNumberOfLevels(); ++l)
@@ -52,7 +52,7 @@ void CheckCounts(int nx, int ny, int nz, int B, const std::string& expected)
 {
   std::vector<uint8_t> v(static_cast<size_t>(nx) * ny * nz, 1);
   const int dims[3] = { nx, ny, nz };
-  vtkVolumeBrickTree tree;
+  strata::VolumeBrickTree tree;
   const bool built = tree.Build(v.data(), dims, B);
   const std::string got = built ? BrickCounts(tree) : "(build failed)";
   // Coarser levels have ceil(half) the bricks of the finer one: the octree is exact.
@@ -81,7 +81,7 @@ struct HashedTree
 {
   int Dims[3] = { 70, 50, 41 };
   std::vector<uint16_t> Field;
-  vtkVolumeBrickTree Tree;
+  strata::VolumeBrickTree Tree;
   std::vector<std::vector<float>> Bricks;
 };
 
@@ -104,7 +104,7 @@ void BuildHashedTree(HashedTree& h)
 {
   const int* dims = h.Dims;
   std::vector<uint16_t>& field = h.Field;
-  vtkVolumeBrickTree& tree = h.Tree;
+  strata::VolumeBrickTree& tree = h.Tree;
   field.assign(static_cast<size_t>(dims[0]) * dims[1] * dims[2], 0);
   for (int z = 0; z < dims[2]; ++z)
     for (int y = 0; y < dims[1]; ++y)
@@ -123,7 +123,7 @@ void BuildHashedTree(HashedTree& h)
 
 void Extraction(const HashedTree& h)
 {
-  const vtkVolumeBrickTree& tree = h.Tree;
+  const strata::VolumeBrickTree& tree = h.Tree;
   const std::vector<std::vector<float>>& bricks = h.Bricks;
   const size_t B3 = static_cast<size_t>(B) * B * B;
   auto at = [&](int id, int a, int b, int c) { return bricks[id][(c * B + b) * B + a]; };
@@ -155,7 +155,7 @@ void Extraction(const HashedTree& h)
 
 void SharedLayer(const HashedTree& h)
 {
-  const vtkVolumeBrickTree& tree = h.Tree;
+  const strata::VolumeBrickTree& tree = h.Tree;
   const std::vector<std::vector<float>>& bricks = h.Bricks;
   auto at = [&](int id, int a, int b, int c) { return bricks[id][(c * B + b) * B + a]; };
   // Shared layer: the last layer of a brick is the first of its neighbour, on every level.
@@ -190,7 +190,7 @@ void SharedLayer(const HashedTree& h)
 
 void Ranges(const HashedTree& h)
 {
-  const vtkVolumeBrickTree& tree = h.Tree;
+  const strata::VolumeBrickTree& tree = h.Tree;
   const std::vector<std::vector<float>>& bricks = h.Bricks;
   // Ranges against brute force over the extracted B^3 voxels; subtree ranges by recursion.
   bool ranges = true;
@@ -223,7 +223,7 @@ void Ranges(const HashedTree& h)
 void ParentsAndChildren(const HashedTree& h)
 {
   const int* dims = h.Dims;
-  const vtkVolumeBrickTree& tree = h.Tree;
+  const strata::VolumeBrickTree& tree = h.Tree;
   const std::vector<std::vector<float>>& bricks = h.Bricks;
   // Parent/child: every brick of level l-1 is a child of exactly one brick of level l, its
   // parent; each level's bricks own every voxel exactly once ([I S, (I+1) S), the last brick
@@ -324,7 +324,7 @@ void DownSampling(const HashedTree& h)
     for (int y = 0; y < ld[1]; ++y)
       for (int x = 0; x < ld[0]; ++x)
         lin[(static_cast<size_t>(z) * ld[1] + y) * ld[0] + x] = static_cast<float>(f(x, y, z));
-  vtkVolumeBrickTree linear;
+  strata::VolumeBrickTree linear;
   linear.Build(lin.data(), ld, 8);
   const int* cd = linear.GetLevelDimensions(1);
   bool exact = cd[0] == 17 && cd[1] == 9 && cd[2] == 5;
@@ -347,7 +347,7 @@ void DownSampling(const HashedTree& h)
   const int id[3] = { 12, 12, 12 };
   std::vector<uint8_t> imp(static_cast<size_t>(id[0]) * id[1] * id[2], 0);
   imp[(4 * 12 + 4) * 12 + 4] = 64;
-  vtkVolumeBrickTree even;
+  strata::VolumeBrickTree even;
   even.Build(imp.data(), id, 4);
   double sum = 0;
   for (int z = 0; z < 7; ++z)
@@ -357,7 +357,7 @@ void DownSampling(const HashedTree& h)
   Check(even.GetVoxel(1, 2, 2, 2) == 8 && sum == 8, "impulse 64 at (4,4,4) -> 8 at (2,2,2) only");
   imp[(4 * 12 + 4) * 12 + 4] = 0;
   imp[(4 * 12 + 4) * 12 + 5] = 64;
-  vtkVolumeBrickTree odd;
+  strata::VolumeBrickTree odd;
   odd.Build(imp.data(), id, 4);
   Check(
     odd.GetVoxel(1, 2, 2, 2) == 4 && odd.GetVoxel(1, 3, 2, 2) == 4 && odd.GetVoxel(1, 1, 2, 2) == 0,
@@ -374,7 +374,7 @@ void DownSampling(const HashedTree& h)
   // A negative int16 constant stays exact; a flat axis stays one point.
   const int fd[3] = { 40, 30, 1 };
   std::vector<int16_t> neg(static_cast<size_t>(fd[0]) * fd[1], -7);
-  vtkVolumeBrickTree flat;
+  strata::VolumeBrickTree flat;
   flat.Build(neg.data(), fd, 8);
   bool constant = true;
   for (int l = 0; l < flat.GetNumberOfLevels(); ++l)
@@ -393,7 +393,7 @@ void InputChecks(const HashedTree& h)
   const std::vector<uint16_t>& field = h.Field;
   std::cout << "Input checks\n";
   const int bad[3] = { 4, 0, 4 };
-  vtkVolumeBrickTree refused;
+  strata::VolumeBrickTree refused;
   Check(!refused.Build(field.data(), bad, 8) && !refused.GetErrorMessage().empty() &&
           !refused.Build(field.data(), dims, 1) &&
           !refused.Build(static_cast<const float*>(nullptr), dims, 8),

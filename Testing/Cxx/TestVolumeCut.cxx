@@ -6,9 +6,9 @@
 // and end to end through a CPU copy of the atlas.
 #include "StrataSubTests.h"
 
-#include "vtkBrickAtlasAllocator.h"
-#include "vtkVolumeBrickTree.h"
-#include "vtkVolumeCut.h"
+#include "StrataBrickAtlasAllocator.h"
+#include "StrataVolumeBrickTree.h"
+#include "StrataVolumeCut.h"
 
 #include <algorithm>
 #include <array>
@@ -50,9 +50,9 @@ void Translation(double x, double y, double z, double m[16])
 }
 
 // Every level-0 brick has exactly one node of the cut on its path to the root.
-bool CoversOnce(const vtkVolumeCut& cut, int v)
+bool CoversOnce(const strata::VolumeCut& cut, int v)
 {
-  const vtkVolumeBrickTree* tree = cut.GetTree(v);
+  const strata::VolumeBrickTree* tree = cut.GetTree(v);
   const int* nb = tree->GetLevelBricks(0);
   for (int id = 0; id < nb[0] * nb[1] * nb[2]; ++id)
   {
@@ -65,7 +65,7 @@ bool CoversOnce(const vtkVolumeCut& cut, int v)
   return true;
 }
 
-bool AllCoverOnce(const vtkVolumeCut& cut)
+bool AllCoverOnce(const strata::VolumeCut& cut)
 {
   bool ok = true;
   for (int v = 0; v < cut.GetNumberOfVolumes(); ++v)
@@ -74,7 +74,7 @@ bool AllCoverOnce(const vtkVolumeCut& cut)
 }
 
 // Mean level of a volume's resident cut nodes.
-double MeanLevel(const vtkVolumeCut& cut, int v)
+double MeanLevel(const strata::VolumeCut& cut, int v)
 {
   double sum = 0;
   int count = 0;
@@ -90,13 +90,13 @@ double MeanLevel(const vtkVolumeCut& cut, int v)
 }
 
 // Converged greedy: no node left unsplit is worth more than any node that was split.
-bool Ordered(const vtkVolumeCut& cut, double& lowestSplit, double& highestLeaf)
+bool Ordered(const strata::VolumeCut& cut, double& lowestSplit, double& highestLeaf)
 {
   lowestSplit = 1e300;
   highestLeaf = 0;
   for (int v = 0; v < cut.GetNumberOfVolumes(); ++v)
   {
-    const vtkVolumeBrickTree* tree = cut.GetTree(v);
+    const strata::VolumeBrickTree* tree = cut.GetTree(v);
     for (int n = 0; n < tree->GetNumberOfNodes(); ++n)
     {
       bool onOrBelow = false; // the node or an ancestor is in the cut
@@ -111,7 +111,7 @@ bool Ordered(const vtkVolumeCut& cut, double& lowestSplit, double& highestLeaf)
   return lowestSplit >= highestLeaf;
 }
 
-std::set<std::pair<int, int>> CutSet(const vtkVolumeCut& cut)
+std::set<std::pair<int, int>> CutSet(const strata::VolumeCut& cut)
 {
   std::set<std::pair<int, int>> s;
   for (int v = 0; v < cut.GetNumberOfVolumes(); ++v)
@@ -149,7 +149,7 @@ double Trilinear(const std::vector<float>& data, const int d[3], const double u[
 }
 
 // The same sample read from a tree level through GetVoxel.
-double TrilinearLevel(const vtkVolumeBrickTree& tree, int l, const double u[3])
+double TrilinearLevel(const strata::VolumeBrickTree& tree, int l, const double u[3])
 {
   const int* d = tree.GetLevelDimensions(l);
   int i0[3];
@@ -179,14 +179,14 @@ double TrilinearLevel(const vtkVolumeBrickTree& tree, int l, const double u[3])
 
 namespace
 {
-void Limits(const vtkVolumeBrickTree& tree,
+void Limits(const strata::VolumeBrickTree& tree,
   int finest,
-  const vtkVolumeCut::Camera& camera,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Limits\n";
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.SetBudget(finest);
   cut.Update(camera);
@@ -207,7 +207,7 @@ void Limits(const vtkVolumeBrickTree& tree,
   cut.Update(camera);
   Check(cut.GetCost() == 8 && CoversOnce(cut, 0), "budget 8: the root's eight children");
 
-  vtkVolumeCut two;
+  strata::VolumeCut two;
   two.AddVolume(&tree, identity);
   two.AddVolume(&tree, far);
   two.SetBudget(2 * finest);
@@ -220,15 +220,15 @@ void Limits(const vtkVolumeBrickTree& tree,
     "budget 0: both roots stay (reported over budget)");
 }
 
-void SharedBudget(const vtkVolumeBrickTree& tree,
-  vtkVolumeCut::Camera& camera,
+void SharedBudget(const strata::VolumeBrickTree& tree,
+  strata::VolumeCut::Camera& camera,
   const double identity[16])
 {
   std::cout << "Shared budget between a near and a far volume (paper Fig. 2)\n";
   // Side by side as in the figure: the eye 150 in front of the first, 250 from the second.
   double side[16];
   Translation(260, 0, 0, side);
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.AddVolume(&tree, side);
   const int budget = 150;
@@ -279,13 +279,13 @@ void SharedBudget(const vtkVolumeBrickTree& tree,
   camera.Position[0] -= 260;
 }
 
-void RandomCamerasAndBudgets(const vtkVolumeBrickTree& tree,
-  const vtkVolumeCut::Camera& camera,
+void RandomCamerasAndBudgets(const strata::VolumeBrickTree& tree,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Random cameras and budgets\n";
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.AddVolume(&tree, far);
   double scaled[16];
@@ -298,7 +298,7 @@ void RandomCamerasAndBudgets(const vtkVolumeBrickTree& tree,
   bool within = true, covered = true, orderedAll = true;
   for (int step = 0; step < 60; ++step)
   {
-    vtkVolumeCut::Camera c = camera;
+    strata::VolumeCut::Camera c = camera;
     c.Position[0] = pos(rng);
     c.Position[1] = pos(rng) * 0.3;
     c.Position[2] = pos(rng) * 0.3 - 200;
@@ -321,7 +321,7 @@ void RandomCamerasAndBudgets(const vtkVolumeBrickTree& tree,
 void EmptySpaceSkipping(const std::vector<uint8_t>& field,
   const int dims[3],
   int finest,
-  const vtkVolumeCut::Camera& camera,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16])
 {
   std::cout << "Empty-space skipping\n";
@@ -332,11 +332,11 @@ void EmptySpaceSkipping(const std::vector<uint8_t>& field,
       for (int x = 0; x < N; ++x)
         half[(static_cast<size_t>(z) * N + y) * N + x] =
           static_cast<uint8_t>(x < 60 ? 0 : 100 + (x + y + z) % 100);
-  vtkVolumeBrickTree halfTree;
+  strata::VolumeBrickTree halfTree;
   halfTree.Build(half.data(), dims, B);
   const double tf[8] = { 0, 0, 50, 0, 100, 1, 255, 1 };
   auto opacity = [&tf](double lo, double hi)
-  { return vtkVolumeCut::MaxOfPiecewiseLinear(tf, 4, lo, hi); };
+  { return strata::VolumeCut::MaxOfPiecewiseLinear(tf, 4, lo, hi); };
   Check(opacity(0, 49) == 0 && opacity(0, 50) == 0 && opacity(0, 75) == 0.5 &&
           opacity(60, 80) == 0.6 && opacity(120, 130) == 1 && opacity(-5, 300) == 1,
     "max of the piecewise-linear opacity over value ranges is exact");
@@ -349,7 +349,7 @@ void EmptySpaceSkipping(const std::vector<uint8_t>& field,
     halfTree.GetNodeBounds(id, b);
     visibleBricks += b[1] >= 60 ? 1 : 0;
   }
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&halfTree, identity);
   cut.SetVolumeOpacity(0, opacity);
   cut.SetBudget(visibleBricks);
@@ -387,10 +387,10 @@ void EmptySpaceSkipping(const std::vector<uint8_t>& field,
     std::to_string(emptyNodes) + " empty cut nodes (" + std::to_string(coarseEmpty) +
       " coarser than level 0, never split), every voxel under them transparent");
 
-  vtkBrickAtlasAllocator atlas;
+  strata::BrickAtlasAllocator atlas;
   atlas.Initialize(8, 8, 8, B);
   atlas.BeginFrame();
-  std::vector<vtkVolumeCut::Upload> uploads;
+  std::vector<strata::VolumeCut::Upload> uploads;
   const int failed = cut.AssignSlots(atlas, uploads);
   bool emptyNoSlot = true;
   for (int n : cut.GetCutNodes(0))
@@ -402,7 +402,7 @@ void EmptySpaceSkipping(const std::vector<uint8_t>& field,
   {
     double b[6];
     halfTree.GetNodeBounds(id, b);
-    emptyCodes = emptyCodes && (table[4 * id + 3] == vtkVolumeCut::EmptyLevel) == (b[1] < 60);
+    emptyCodes = emptyCodes && (table[4 * id + 3] == strata::VolumeCut::EmptyLevel) == (b[1] < 60);
   }
   Check(failed == 0 && static_cast<int>(uploads.size()) == visibleBricks &&
           atlas.GetNumberOfUsedSlots() == visibleBricks && emptyNoSlot && emptyCodes,
@@ -416,17 +416,17 @@ void EmptySpaceSkipping(const std::vector<uint8_t>& field,
     "all transparent: the cut is the empty root, cost 0");
 }
 
-void FrustumAndParallelProjection(const vtkVolumeBrickTree& tree,
+void FrustumAndParallelProjection(const strata::VolumeBrickTree& tree,
   int finest,
-  const vtkVolumeCut::Camera& camera,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Frustum and parallel projection\n";
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.SetBudget(finest);
-  vtkVolumeCut::Camera c = camera;
+  strata::VolumeCut::Camera c = camera;
   c.UseFrustum = true;
   for (int q = 0; q < 6; ++q) // all planes pass; the first keeps x <= 50 only
   {
@@ -453,10 +453,10 @@ void FrustumAndParallelProjection(const vtkVolumeBrickTree& tree,
     "nodes wholly outside the frustum get priority 0 and are never split (cost " +
       std::to_string(cut.GetCost()) + " of " + std::to_string(finest) + ")");
 
-  vtkVolumeCut parallel;
+  strata::VolumeCut parallel;
   parallel.AddVolume(&tree, identity);
   parallel.AddVolume(&tree, far);
-  vtkVolumeCut::Camera p = camera;
+  strata::VolumeCut::Camera p = camera;
   p.PixelsPerUnit = 2.0;
   parallel.SetBudget(2 + 7 * 18); // both roots and all 16 level-2 nodes split
   parallel.Update(p);
@@ -465,9 +465,9 @@ void FrustumAndParallelProjection(const vtkVolumeBrickTree& tree,
 }
 
 /// Copies the bricks of `uploads` into `texels`, a CPU copy of the atlas texture (size `tex`).
-void Upload(const vtkVolumeCut& cut,
-  const vtkBrickAtlasAllocator& atlas,
-  const std::vector<vtkVolumeCut::Upload>& uploads,
+void Upload(const strata::VolumeCut& cut,
+  const strata::BrickAtlasAllocator& atlas,
+  const std::vector<strata::VolumeCut::Upload>& uploads,
   const std::array<int, 3>& tex,
   std::vector<float>& texels)
 {
@@ -488,9 +488,9 @@ void Upload(const vtkVolumeCut& cut,
 /// The index tables of both volumes of `cut` against the tree (every level-0 brick's entry is its
 /// cut node's slot and level, no slot shared) and end to end through `texels`; `inside` says
 /// whether every lookup stayed within its slot's texel centres.
-bool CheckTables(const vtkVolumeCut& cut,
-  const vtkBrickAtlasAllocator& atlas,
-  const vtkVolumeBrickTree& tree,
+bool CheckTables(const strata::VolumeCut& cut,
+  const strata::BrickAtlasAllocator& atlas,
+  const strata::VolumeBrickTree& tree,
   int finest,
   const std::vector<float>& texels,
   const std::array<int, 3>& tex,
@@ -533,7 +533,7 @@ bool CheckTables(const vtkVolumeCut& cut,
       double at[3];
       int level = -1;
       const int* nb = tree.GetLevelBricks(0);
-      if (!vtkVolumeCut::MapToAtlas(table.data(), nb, B, p, at, level))
+      if (!strata::VolumeCut::MapToAtlas(table.data(), nb, B, p, at, level))
       {
         entries = false;
         continue;
@@ -560,12 +560,12 @@ bool CheckTables(const vtkVolumeCut& cut,
       p[q % 3] = q % 2 ? -0.5 : N - 0.5;
       double at[3];
       int level = -1;
-      vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, p, at, level);
+      strata::VolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, p, at, level);
       const double clamped[3] = { std::clamp(p[0], 0.0, N - 1.0),
         std::clamp(p[1], 0.0, N - 1.0),
         std::clamp(p[2], 0.0, N - 1.0) };
       double at2[3];
-      vtkVolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, clamped, at2, level);
+      strata::VolumeCut::MapToAtlas(table.data(), tree.GetLevelBricks(0), B, clamped, at2, level);
       inside = inside && at[0] == at2[0] && at[1] == at2[1] && at[2] == at2[2];
     }
   }
@@ -573,25 +573,25 @@ bool CheckTables(const vtkVolumeCut& cut,
   return entries && unique;
 }
 
-void IndexTableAndAtlasLookup(const vtkVolumeBrickTree& tree,
+void IndexTableAndAtlasLookup(const strata::VolumeBrickTree& tree,
   int finest,
-  const vtkVolumeCut::Camera& camera,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Index table and atlas lookup\n";
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.AddVolume(&tree, far);
-  vtkBrickAtlasAllocator atlas;
+  strata::BrickAtlasAllocator atlas;
   atlas.Initialize(8, 8, 4, B); // 256 slots
   cut.SetBudget(atlas.GetNumberOfSlots());
-  vtkVolumeCut::Camera c = camera;
+  strata::VolumeCut::Camera c = camera;
   c.Position[2] = -20.7; // close: several levels in the near volume
   cut.Update(c);
   const auto tex = atlas.GetTextureSize();
   std::vector<float> texels(static_cast<size_t>(tex[0]) * tex[1] * tex[2], -1.0f);
-  std::vector<vtkVolumeCut::Upload> uploads;
+  std::vector<strata::VolumeCut::Upload> uploads;
   atlas.BeginFrame();
   const int failed = cut.AssignSlots(atlas, uploads);
   Upload(cut, atlas, uploads, tex, texels);
@@ -627,14 +627,14 @@ void IndexTableAndAtlasLookup(const vtkVolumeBrickTree& tree,
       " uploads, " + std::to_string(st.Evictions) + " evictions; tables and samples still exact");
 }
 
-void PriorityFunction(const vtkVolumeBrickTree& tree,
-  const vtkVolumeCut::Camera& camera,
+void PriorityFunction(const strata::VolumeBrickTree& tree,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16])
 {
   // --- A priority function (what a renderer with level-of-detail feedback gives): rays asked
   // for the level-0 bricks of the slab i == 0 only; a node's priority is the number of asked
   // bricks strictly below it. Exactly the nodes with demand are split, nothing else.
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.SetBudget(tree.GetNumberOfNodes());
   std::vector<double> demand(tree.GetNumberOfNodes(), 0.0);
@@ -677,7 +677,7 @@ void PriorityFunction(const vtkVolumeBrickTree& tree,
 
 // The halo of pre-integration: one visible spot inside level-0 brick (3, 3, 3); with the
 // halo exactly its 3 x 3 x 3 block of bricks is non-empty, without it the brick alone.
-void Halo(const int dims[3], const vtkVolumeCut::Camera& camera, const double identity[16])
+void Halo(const int dims[3], const strata::VolumeCut::Camera& camera, const double identity[16])
 {
   std::cout << "Halo\n";
   std::vector<uint8_t> spot(static_cast<size_t>(N) * N * N, 0);
@@ -685,13 +685,13 @@ void Halo(const int dims[3], const vtkVolumeCut::Camera& camera, const double id
     for (int y = 50; y <= 54; ++y)
       for (int x = 50; x <= 54; ++x)
         spot[(static_cast<size_t>(z) * N + y) * N + x] = 200;
-  vtkVolumeBrickTree spotTree;
+  strata::VolumeBrickTree spotTree;
   spotTree.Build(spot.data(), dims, B);
   const double tf[6] = { 0, 0, 100, 0, 200, 1 };
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&spotTree, identity);
-  cut.SetVolumeOpacity(
-    0, [&tf](double lo, double hi) { return vtkVolumeCut::MaxOfPiecewiseLinear(tf, 3, lo, hi); });
+  cut.SetVolumeOpacity(0,
+    [&tf](double lo, double hi) { return strata::VolumeCut::MaxOfPiecewiseLinear(tf, 3, lo, hi); });
   cut.SetBudget(1000);
   const int* bricks = spotTree.GetLevelBricks(0);
   for (bool halo : { false, true })
@@ -721,13 +721,13 @@ void Halo(const int dims[3], const vtkVolumeCut::Camera& camera, const double id
 // The page budget bounds the pages a pager holds for the cut (resident cut nodes and their
 // ancestors) in the volumes with an availability function only; an in-core volume beside them
 // counts against the slots alone.
-void PageBudget(const vtkVolumeBrickTree& tree,
-  const vtkVolumeCut::Camera& camera,
+void PageBudget(const strata::VolumeBrickTree& tree,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Page budget\n";
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.AddVolume(&tree, far);
   cut.SetVolumeAvailability(0, [](int, double) { return true; });
@@ -739,7 +739,7 @@ void PageBudget(const vtkVolumeBrickTree& tree,
   bool within = true, covered = true, bound = false;
   for (int step = 0; step < 40; ++step)
   {
-    vtkVolumeCut::Camera c = camera;
+    strata::VolumeCut::Camera c = camera;
     c.Position[0] = pos(rng);
     c.Position[2] = pos(rng) * 0.3 - 200;
     cut.SetPageBudget(9 + static_cast<int>(rng() % 200));
@@ -765,13 +765,13 @@ void PageBudget(const vtkVolumeBrickTree& tree,
 // by the margin and one voxel of their level, misses are empty, so the cut holds only the
 // box's share. 121^3 voxels in bricks of 16 (stride 15): 8 columns of level-0 bricks along x,
 // column i over x in [15 i, 15 i + 15].
-void Region(const vtkVolumeBrickTree& tree,
-  const vtkVolumeCut::Camera& camera,
+void Region(const strata::VolumeBrickTree& tree,
+  const strata::VolumeCut::Camera& camera,
   const double identity[16],
   const double far[16])
 {
   std::cout << "Region\n";
-  auto levelZeroInside = [&](const vtkVolumeCut& cut, int v, double hiX)
+  auto levelZeroInside = [&](const strata::VolumeCut& cut, int v, double hiX)
   {
     int count = 0;
     bool within = true;
@@ -786,10 +786,10 @@ void Region(const vtkVolumeBrickTree& tree,
     }
     return within ? count : -1;
   };
-  vtkVolumeCut::Camera boxed = camera;
+  strata::VolumeCut::Camera boxed = camera;
   const double region[6] = { -1e3, 60.0, -1e3, 1e3, -1e3, 1e3 };
   boxed.Region.Set(region);
-  vtkVolumeCut cut;
+  strata::VolumeCut cut;
   cut.AddVolume(&tree, identity);
   cut.SetBudget(512);
   cut.Update(boxed);
@@ -804,7 +804,7 @@ void Region(const vtkVolumeBrickTree& tree,
   const double farBox[6] = { 1000.0 + 62.0, 1e4, -1e3, 1e3, -1e3, 1e3 };
   boxed.Region.Set(farBox);
   boxed.RegionMargin = 0.0;
-  vtkVolumeCut two;
+  strata::VolumeCut two;
   two.AddVolume(&tree, identity);
   two.AddVolume(&tree, far);
   two.SetBudget(1024);
@@ -826,15 +826,15 @@ int TestVolumeCut(int, char*[])
       for (int x = 0; x < N; ++x)
         field[(static_cast<size_t>(z) * N + y) * N + x] =
           static_cast<uint8_t>((x * 7 + y * 13 + z * 29 + (x * y) % 17) % 256);
-  vtkVolumeBrickTree tree;
+  strata::VolumeBrickTree tree;
   tree.Build(field.data(), dims, B);
   const int finest =
     tree.GetLevelBricks(0)[0] * tree.GetLevelBricks(0)[1] * tree.GetLevelBricks(0)[2];
   std::cout << "Volumes of 121^3 voxels, B=16: " << finest << " level-0 bricks, "
             << tree.GetNumberOfNodes() << " nodes, " << tree.GetNumberOfLevels() << " levels\n";
 
-  vtkVolumeCut::Camera camera;
-  camera.PixelsPerRadian = vtkVolumeCut::PixelsPerRadian(1000, 30.0);
+  strata::VolumeCut::Camera camera;
+  camera.PixelsPerRadian = strata::VolumeCut::PixelsPerRadian(1000, 30.0);
   // Generic positions: no two nodes at exactly the same distance, so no ties in priority.
   camera.Position[0] = 57.3;
   camera.Position[1] = 61.9;

@@ -3,7 +3,7 @@
 // The skip grid against brute force: every cell's range over voxels c C .. (c + 1) C, the
 // visible-cell count for an opacity function, and every cell's chessboard distance to the
 // nearest visible cell; also a NaN cell, a one-point-thick axis and a grid with nothing visible.
-#include "vtkVolumeSkipGrid.h"
+#include "StrataVolumeSkipGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +34,7 @@ void CheckGrid(const std::vector<float>& v,
   double level,
   const std::string& name)
 {
-  vtkVolumeSkipGrid grid;
+  strata::VolumeSkipGrid grid;
   grid.Build(v.data(), dims, C);
   const long long visible =
     grid.Classify([level](double lo, double hi) { return Step(level, lo, hi); });

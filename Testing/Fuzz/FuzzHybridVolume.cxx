@@ -4,7 +4,7 @@
 // it (sizes, points) instead of stopping at the checksum.
 #include "StrataFuzz.h"
 
-#include "vtkHybridVolumeFile.h"
+#include "StrataHybridVolumeFile.h"
 #include "vtkHybridVolumeReader.h"
 #include "vtkNew.h"
 
@@ -13,7 +13,7 @@
 
 namespace
 {
-// vtkHybridVolumeFile's FNV-1a over the header before the checksum field and all that follows
+// strata::HybridVolumeFile's FNV-1a over the header before the checksum field and all that follows
 // the header.
 constexpr size_t ChecksumOffset = 152;
 
@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   strata_fuzz::SilenceVTK();
   std::vector<uint8_t> bytes(data, data + size);
-  const size_t header = vtkHybridVolumeFile::HeaderSize;
+  const size_t header = strata::HybridVolumeFile::HeaderSize;
   if (size >= header)
   {
     uint64_t hash = Fnv(bytes.data(), ChecksumOffset, 1469598103934665603ull);

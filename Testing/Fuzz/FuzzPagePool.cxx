@@ -1,23 +1,23 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
-// Page pools (.spp, brick and tile pools): the header and page table through vtkPagePoolFile,
+// Page pools (.spp, brick and tile pools): the header and page table through strata::PagePoolFile,
 // every page of every level read (as float and native), then vtkPagePoolReader at full or at
 // the coarsest resolution. The checksums of the pages, the table and the header are made to
 // match the fuzzed bytes before they are written, so that mutations reach the checks behind
 // them (levels, offsets, sizes, zstd frames) instead of stopping at a checksum.
 #include "StrataFuzz.h"
 
+#include "StrataPagePoolFile.h"
+#include "StrataPagePoolFormat.h"
 #include "vtkNew.h"
-#include "vtkPagePoolFile.h"
-#include "vtkPagePoolFormat.h"
 #include "vtkPagePoolReader.h"
 
 #include <vector>
 
 namespace
 {
-using Format = vtkPagePoolFormat;
+using Format = strata::PagePoolFormat;
 
-// Where the encodings keep their checksums (vtkPagePoolFormat.cxx).
+// Where the encodings keep their checksums (StrataPagePoolFormat.cxx).
 constexpr size_t TableChecksumOffset = 232;
 constexpr size_t HeaderChecksumOffset = 252;
 constexpr size_t EntryChecksumOffset = 32;
@@ -63,12 +63,12 @@ void FixChecksums(std::vector<uint8_t>& bytes)
 /// Every page of every level through the file interface, both conversions.
 void ReadAllPages(const std::string& path)
 {
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   if (!file.Open(path))
   {
     return;
   }
-  // The format allows pages of up to 1 GB (vtkPagePoolFormat::MaxPageBytes), and a compressed
+  // The format allows pages of up to 1 GB (strata::PagePoolFormat::MaxPageBytes), and a compressed
   // page of a few bytes may declare one (found: a 400-byte tile pool of 6 x 5 nodes and 24577
   // layers, one 567 MB page). Reading it is correct and costs its size; this pass, which holds two
   // copies beside the file's own buffer, leaves such pools to the reader below.

@@ -4,8 +4,8 @@
 // <corpus>/page_pool/ and <corpus>/hybrid_volume/ (the other seeds come from make-seeds.py):
 //   strata-fuzz-seeds Testing/Fuzz/corpus
 // Each is a few KB: 8-value pages, a few levels, one page compressed, holes in a tile pool.
-#include "vtkHybridVolumeFile.h"
-#include "vtkPagePoolWriter.h"
+#include "StrataHybridVolumeFile.h"
+#include "StrataPagePoolWriter.h"
 
 #include <cmath>
 #include <cstdio>
@@ -15,8 +15,8 @@
 
 namespace
 {
-using Kind = vtkPagePoolWriter::Kind;
-using ScalarType = vtkPagePoolWriter::ScalarType;
+using Kind = strata::PagePoolWriter::Kind;
+using ScalarType = strata::PagePoolWriter::ScalarType;
 
 /// A pool of `dims` (x fastest) of a smooth pattern in `type`; NaN holes in float tiles.
 bool WritePool(const std::string& path,
@@ -26,7 +26,7 @@ bool WritePool(const std::string& path,
   bool zstd,
   int components = 1)
 {
-  vtkPagePoolWriter writer;
+  strata::PagePoolWriter writer;
   writer.SetFileName(path);
   writer.SetComponent(0, components, 0x5eedu); // a set's component 0: a version 2 header
   writer.SetKind(kind);
@@ -87,13 +87,13 @@ bool WritePool(const std::string& path,
 
 bool WriteHybrid(const std::string& path, int points)
 {
-  vtkHybridVolumeFile file;
+  strata::HybridVolumeFile file;
   const int dims[3] = { 9, 7, 5 };
   for (int a = 0; a < 3; ++a)
   {
     file.Dimensions[a] = dims[a];
     file.Factor[a] = 2;
-    file.LowDimensions[a] = vtkHybridVolumeFile::GetLowResolutionDimension(dims[a], 2);
+    file.LowDimensions[a] = strata::HybridVolumeFile::GetLowResolutionDimension(dims[a], 2);
     file.ErrorGridStep[a] = 2;
   }
   file.LowResolution.resize(
@@ -104,11 +104,11 @@ bool WriteHybrid(const std::string& path, int points)
   }
   for (int p = 0; p < points; ++p)
   {
-    vtkHybridVolumeFile::Point point;
+    strata::HybridVolumeFile::Point point;
     point.Position[0] = static_cast<uint16_t>(p % dims[0]);
     point.Position[1] = static_cast<uint16_t>(p % dims[1]);
     point.Position[2] = static_cast<uint16_t>(p % dims[2]);
-    point.Normal = vtkHybridVolumeFile::EncodeNormal(0.3, -0.4, 0.8);
+    point.Normal = strata::HybridVolumeFile::EncodeNormal(0.3, -0.4, 0.8);
     point.Value = 1.5f * p;
     point.Error = 0.1f * p;
     file.Points.push_back(point);

@@ -5,7 +5,7 @@
 so a missing texture barrier or a NaN test that fast math folds away passes every image test
 here and fails on NVIDIA. This test reads the sources instead:
 
-1. Clears. Every clear in Rendering/ goes through vtkStrataRenderUtilities::ClearForReadBack
+1. Clears. Every clear in Rendering/ goes through RenderUtilities::ClearForReadBack
    (clear, then texture barrier), or says on the lines above why its target needs no barrier
    ("No barrier needed: ..."). ClearForReadBack's clear is followed by TextureBarrier(), the
    only place that issues the barrier.
@@ -82,7 +82,7 @@ def function_lines(code, qualified_name):
 def check_clears(name, code):
     """Rule 1 on one C++ source: clears outside ClearForReadBack need the exemption comment."""
     problems = []
-    helper = function_lines(code, "vtkStrataRenderUtilities::ClearForReadBack")
+    helper = function_lines(code, "RenderUtilities::ClearForReadBack")
     lines = code.split("\n")
     for number, line in enumerate(lines, 1):
         stripped = line.split("//")[0]
@@ -95,19 +95,19 @@ def check_clears(name, code):
                 f"{line.strip()}")
     for number, line in enumerate(lines, 1):
         if BARRIER_CALL.search(line.split("//")[0]) and not name.endswith(
-                "vtkStrataRenderUtilities.cxx"):
+                "StrataRenderUtilities.cxx"):
             problems.append(f"{name}:{number}: glTextureBarrier outside "
-                            "vtkStrataRenderUtilities::TextureBarrier")
+                            "RenderUtilities::TextureBarrier")
     return problems
 
 
 def check_helpers(code):
     """Rule 1: ClearForReadBack clears, then calls TextureBarrier(), which issues the barrier."""
     problems = []
-    clear = function_body(code, "vtkStrataRenderUtilities::ClearForReadBack")
-    barrier = function_body(code, "vtkStrataRenderUtilities::TextureBarrier")
+    clear = function_body(code, "RenderUtilities::ClearForReadBack")
+    barrier = function_body(code, "RenderUtilities::TextureBarrier")
     if clear is None or barrier is None:
-        return ["vtkStrataRenderUtilities.cxx: ClearForReadBack or TextureBarrier not found"]
+        return ["StrataRenderUtilities.cxx: ClearForReadBack or TextureBarrier not found"]
     c = CLEAR.search(clear)
     b = clear.find("TextureBarrier()")
     if not c or b < c.start():
@@ -126,7 +126,7 @@ def check_read_back_draw(code):
     if draw < 0:
         return ["DrawFragment: its draw (Geometry.Draw) not found"]
     after = body[draw:]
-    m = re.search(r"if\s*\(([^)]*)\)\s*\n?\s*vtkStrataRenderUtilities::TextureBarrier\(\)", after)
+    m = re.search(r"if\s*\(([^)]*)\)\s*\n?\s*(?:strata::)?RenderUtilities::TextureBarrier\(\)", after)
     if not m:
         return ["DrawFragment: no TextureBarrier() after the draw"]
     missing = [k for k in ("key.Barrier", "key.Reduce", "key.Surfaces") if k not in m.group(1)]
@@ -185,11 +185,11 @@ void DrawFragments(vtkOpenGLState* state)
 }
 """
 BAD_HELPER = """
-void vtkStrataRenderUtilities::TextureBarrier()
+void RenderUtilities::TextureBarrier()
 {
   glTextureBarrier();
 }
-void vtkStrataRenderUtilities::ClearForReadBack(vtkOpenGLState* state)
+void RenderUtilities::ClearForReadBack(vtkOpenGLState* state)
 {
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
 }
@@ -199,7 +199,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self, int f)
 {
   this->Geometry.Draw(f);
   if (key.Barrier || key.Reduce)
-    vtkStrataRenderUtilities::TextureBarrier();
+    RenderUtilities::TextureBarrier();
   return true;
 }
 """
@@ -261,7 +261,7 @@ def main():
         name = os.path.relpath(path, args.source)
         clears += sum(1 for line in code.split("\n") if CLEAR.search(line.split("//")[0]))
         problems += check_clears(name, code)
-        if path.endswith("vtkStrataRenderUtilities.cxx"):
+        if path.endswith("StrataRenderUtilities.cxx"):
             problems += check_helpers(code)
         if path.endswith("vtkMultiVolumeRayCastMapper.cxx"):
             problems += check_read_back_draw(code)
@@ -271,10 +271,10 @@ def main():
         name = os.path.relpath(path, args.source)
         problems += check_glsl(name, open(path, encoding="utf-8").read(),
                                vertex=path.endswith("VS.glsl"))
-    pack = os.path.join(args.source, "Module", "vtkFeedbackReduction.cxx")
-    problems += check_cxx_glsl("Module/vtkFeedbackReduction.cxx GetGLSLPackFunction",
+    pack = os.path.join(args.source, "Module", "StrataFeedbackReduction.cxx")
+    problems += check_cxx_glsl("Module/StrataFeedbackReduction.cxx GetGLSLPackFunction",
                                function_body(open(pack, encoding="utf-8").read(),
-                                             "vtkFeedbackReduction::GetGLSLPackFunction") or "")
+                                             "FeedbackReduction::GetGLSLPackFunction") or "")
     tests = 0
     if args.build:
         tests, wiring = check_wiring(args.ctest, args.build)

@@ -1,14 +1,14 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataHeightFieldScenes.h"
 
+#include "StrataHeightFieldReferenceCaster.h"
+#include "StrataHeightFieldStack.h"
 #include "StrataImageHelpers.h"
 #include "StrataImagePolicy.h"
 #include "StrataTestHelpers.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -140,7 +140,7 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
   vtkImageData* first = images[0];
   int dims[3];
   first->GetDimensions(dims);
-  vtkHeightFieldStack stack;
+  strata::HeightFieldStack stack;
   stack.Initialize(dims[0], dims[1]);
   for (const auto& image : images)
   {
@@ -170,7 +170,7 @@ ReferenceResult CompareWithReference(vtkRenderWindow* win,
     gridToClip);
   vtkMatrix4x4::Invert(gridToClip, clipToGrid);
 
-  vtkHeightFieldReferenceCaster caster(stack);
+  strata::HeightFieldReferenceCaster caster(stack);
   std::vector<double> points;
   caster.CastImage(clipToGrid->GetData(), w, h, r.RefIds, points);
   r.RefPoints = points;

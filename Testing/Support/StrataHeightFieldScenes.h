@@ -56,7 +56,7 @@ struct ReferenceResult
 };
 
 /// Renders `mapper` (switched to HorizonId output) in `win`/`ren` and compares ids and depth,
-/// pixel by pixel, with vtkHeightFieldReferenceCaster on rays built from VTK's camera in
+/// pixel by pixel, with strata::HeightFieldReferenceCaster on rays built from VTK's camera in
 /// double precision. `images` are the mapper's inputs (for the grid geometry). Writes both id
 /// images as <imageDirectory>/<name>-gpu.png and -ref.png.
 ReferenceResult CompareWithReference(vtkRenderWindow* win,

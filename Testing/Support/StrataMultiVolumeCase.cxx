@@ -183,7 +183,7 @@ TranslucentPlane::TranslucentPlane(const double o[3],
   this->Surface.Color[3] = 0.4;
 }
 
-void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, bool volumes)
+void AddSceneVolumes(VolumeScene& s, strata::MultiVolumeReferenceIntegrator& ref, bool volumes)
 {
   ref.SetStepFraction(1.0 / 16.0);
   for (size_t i = 0; i < s.Images.size(); ++i)
@@ -196,12 +196,12 @@ void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, boo
 }
 
 std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
-  const std::vector<vtkMultiVolumeReferenceIntegrator::Surface>& surfaces,
+  const std::vector<strata::MultiVolumeReferenceIntegrator::Surface>& surfaces,
   bool volumes,
   const double* stop,
   std::vector<bool>* edges)
 {
-  using Ref = vtkMultiVolumeReferenceIntegrator;
+  using Ref = strata::MultiVolumeReferenceIntegrator;
   const int rays = s.Mapper->GetRaysPerPixel(), n = MultiVolumeCaseSize;
   Ref ref;
   AddSceneVolumes(s, ref, volumes);

@@ -15,10 +15,10 @@
 
 #include "StrataVolumeScenes.h" // For VolumeComparison
 
-#include "vtkActor.h"                          // For vtkActor
-#include "vtkMultiVolume.h"                    // For vtkNew<vtkMultiVolume>
-#include "vtkMultiVolumeRayCastMapper.h"       // For vtkNew<vtkMultiVolumeRayCastMapper>
-#include "vtkMultiVolumeReferenceIntegrator.h" // For Surface
+#include "StrataMultiVolumeReferenceIntegrator.h" // For Surface
+#include "vtkActor.h"                             // For vtkActor
+#include "vtkMultiVolume.h"                       // For vtkNew<vtkMultiVolume>
+#include "vtkMultiVolumeRayCastMapper.h"          // For vtkNew<vtkMultiVolumeRayCastMapper>
 #include "vtkNew.h"
 #include "vtkPagePoolReader.h" // For WritePagedTwin's reader
 #include "vtkPlaneSource.h"    // For vtkPlaneSource
@@ -131,13 +131,15 @@ struct TranslucentPlane
   vtkNew<vtkPlaneSource> Source;
   vtkNew<vtkPolyDataMapper> Mapper;
   vtkNew<vtkActor> Actor;
-  vtkMultiVolumeReferenceIntegrator::Surface Surface;
+  strata::MultiVolumeReferenceIntegrator::Surface Surface;
   TranslucentPlane(const double o[3], const double p1[3], const double p2[3], const double rgb[3]);
 };
 
 /// `s`'s volumes into the reference `ref` (step 1/16 of the sample distance); with `volumes`
 /// false every one fully transparent (for the surfaces alone).
-void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, bool volumes = true);
+void AddSceneVolumes(VolumeScene& s,
+  strata::MultiVolumeReferenceIntegrator& ref,
+  bool volumes = true);
 
 /**
  * The reference of `s`'s volumes with `surfaces` (with `volumes` false: every volume fully
@@ -145,7 +147,7 @@ void AddSceneVolumes(VolumeScene& s, vtkMultiVolumeReferenceIntegrator& ref, boo
  * rays. `edges`: pixels whose sub-pixel rays differ (a surface's edge).
  */
 std::vector<double> ReferenceWithSurfaces(VolumeScene& s,
-  const std::vector<vtkMultiVolumeReferenceIntegrator::Surface>& surfaces,
+  const std::vector<strata::MultiVolumeReferenceIntegrator::Surface>& surfaces,
   bool volumes,
   const double* stop,
   std::vector<bool>* edges = nullptr);

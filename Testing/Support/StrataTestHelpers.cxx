@@ -1,8 +1,8 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "StrataTestHelpers.h"
 
+#include "StrataPagePoolFile.h"
 #include "vtkObjectFactory.h"
-#include "vtkPagePoolFile.h"
 
 #include <sys/resource.h>
 
@@ -88,7 +88,7 @@ bool CopyFile(const std::string& from, const std::string& to, double fraction)
 
 bool CorruptPage(const std::string& pool, uint64_t page, int offset)
 {
-  vtkPagePoolFile file;
+  strata::PagePoolFile file;
   if (!file.Open(pool) || page >= file.GetNumberOfPages())
     return false;
   const auto position = static_cast<std::streamoff>(file.GetPageEntry(page).Offset + offset);

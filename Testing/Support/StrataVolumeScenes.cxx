@@ -3,20 +3,21 @@
 #include "StrataImageHelpers.h"
 #include "StrataTestHelpers.h"
 
+#include "StrataHeightFieldReferenceCaster.h"
+#include "StrataHeightFieldStack.h"
+#include "StrataMultiVolumeInput.h"
+#include "StrataTransferFunctionTable.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkHeightFieldReferenceCaster.h"
-#include "vtkHeightFieldStack.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiVolume.h"
-#include "vtkMultiVolumeInput.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -26,7 +27,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkStackedHeightFieldMapper.h"
-#include "vtkTransferFunctionTable.h"
 #include "vtkTransform.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -172,12 +172,14 @@ vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step)
 namespace
 {
 // Component c's functions exactly as the mapper tabulates them.
-vtkMultiVolumeReferenceIntegrator::TransferFunction ReferenceFunction(vtkVolumeProperty* p, int c)
+strata::MultiVolumeReferenceIntegrator::TransferFunction ReferenceFunction(vtkVolumeProperty* p,
+  int c)
 {
-  vtkMultiVolumeReferenceIntegrator::TransferFunction tf;
+  strata::MultiVolumeReferenceIntegrator::TransferFunction tf;
   double range[2];
   std::vector<float> rgb, alpha;
-  vtkTransferFunctionTable::Tabulate(p, vtkTransferFunctionTable::TableSize, range, rgb, alpha, c);
+  strata::TransferFunctionTable::Tabulate(
+    p, strata::TransferFunctionTable::TableSize, range, rgb, alpha, c);
   tf.Range[0] = range[0];
   tf.Range[1] = range[1];
   tf.Opacity.assign(alpha.begin(), alpha.end());
@@ -188,11 +190,11 @@ vtkMultiVolumeReferenceIntegrator::TransferFunction ReferenceFunction(vtkVolumeP
 
 // The components of `v` (scalars already copied, interleaved) under `p`, as the mapper reads
 // them: independent functions and weights, or RGBA colour ranges by the data type.
-void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v,
+void ReferenceComponents(strata::MultiVolumeReferenceIntegrator::Volume& v,
   vtkVolumeProperty* p,
   vtkDataArray* scalars)
 {
-  using Components = vtkMultiVolumeReferenceIntegrator::Components;
+  using Components = strata::MultiVolumeReferenceIntegrator::Components;
   const int nc = v.NumberOfComponents;
   if (nc == 1)
     return;
@@ -209,16 +211,16 @@ void ReferenceComponents(vtkMultiVolumeReferenceIntegrator::Volume& v,
   }
   v.ComponentMode = nc == 2 ? Components::ColorOpacity : Components::RGBA;
   for (int c = 0; nc == 4 && c < 3; ++c)
-    vtkMultiVolumeInput::GetColorRange(scalars, c, v.ColorRange[c]);
+    strata::MultiVolumeInput::GetColorRange(scalars, c, v.ColorRange[c]);
 }
 }
 
-vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
+strata::MultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   vtkVolume* member,
   vtkMultiVolumeRayCastMapper* mapper,
   int port)
 {
-  vtkMultiVolumeReferenceIntegrator::Volume v;
+  strata::MultiVolumeReferenceIntegrator::Volume v;
   image->GetDimensions(v.Dimensions);
   image->GetOrigin(v.Origin);
   image->GetSpacing(v.Spacing);
@@ -237,25 +239,26 @@ vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   vtkVolumeProperty* p = member->GetProperty();
   ReferenceComponents(v, p, s);
   v.Sampling = p->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
-                 ? vtkMultiVolumeReferenceIntegrator::Interpolation::Nearest
-                 : vtkMultiVolumeReferenceIntegrator::Interpolation::Linear;
+                 ? strata::MultiVolumeReferenceIntegrator::Interpolation::Nearest
+                 : strata::MultiVolumeReferenceIntegrator::Interpolation::Linear;
   // Exactly the mapper's table.
   double range[2];
   std::vector<float> rgb, alpha;
-  vtkTransferFunctionTable::Tabulate(p, vtkTransferFunctionTable::TableSize, range, rgb, alpha);
+  strata::TransferFunctionTable::Tabulate(
+    p, strata::TransferFunctionTable::TableSize, range, rgb, alpha);
   v.Classification.Range[0] = range[0];
   v.Classification.Range[1] = range[1];
   v.Classification.Opacity.assign(alpha.begin(), alpha.end());
   v.Classification.Color.assign(rgb.begin(), rgb.end());
   v.Classification.UnitDistance = p->GetScalarOpacityUnitDistance(0);
   std::vector<float> gradient;
-  if (vtkTransferFunctionTable::TabulateGradientOpacity(
+  if (strata::TransferFunctionTable::TabulateGradientOpacity(
         p, 256, v.Classification.GradientRange, gradient))
     v.Classification.GradientOpacity.assign(gradient.begin(), gradient.end());
   if (mapper)
   {
-    v.BlendMode =
-      static_cast<vtkMultiVolumeReferenceIntegrator::Blend>(mapper->GetEffectiveBlendMode(port));
+    v.BlendMode = static_cast<strata::MultiVolumeReferenceIntegrator::Blend>(
+      mapper->GetEffectiveBlendMode(port));
     vtkContourValues* iso = p->GetIsoSurfaceValues();
     for (int i = 0; iso && i < iso->GetNumberOfContours(); ++i)
       v.IsoValues.push_back(iso->GetValue(i));
@@ -286,7 +289,7 @@ VolumeComparison CompareVolumesWithReference(vtkRenderWindow* win,
   win->Render();
   r.Gpu = ReadRGB(win);
   const int w = win->GetSize()[0], h = win->GetSize()[1];
-  vtkMultiVolumeReferenceIntegrator ref;
+  strata::MultiVolumeReferenceIntegrator ref;
   ref.SetStepFraction(stepFraction);
   for (size_t i = 0; i < volumes.size(); ++i)
   {
@@ -527,12 +530,12 @@ bool CheckVolumeComparison(const VolumeComparison& c,
   return ok;
 }
 
-vtkMultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
+strata::MultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
   vtkStackedHeightFieldMapper* mapper,
   const std::vector<std::array<double, 3>>& colors)
 {
-  using Ref = vtkMultiVolumeReferenceIntegrator;
-  const vtkHeightFieldStack* stack = mapper->GetStack();
+  using Ref = strata::MultiVolumeReferenceIntegrator;
+  const strata::HeightFieldStack* stack = mapper->GetStack();
   double gridToWorld[16];
   mapper->GetGridToWorld(gridToWorld);
   vtkNew<vtkMatrix4x4> worldToGrid;
@@ -566,7 +569,7 @@ vtkMultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
         dg[r] += m[4 * r + c] * d[c];
       }
     }
-    for (const auto& hit : vtkHeightFieldReferenceCaster(*stack).CastAll(og, dg, t0, t1))
+    for (const auto& hit : strata::HeightFieldReferenceCaster(*stack).CastAll(og, dg, t0, t1))
     {
       const std::array<double, 4>& c = premultiplied[hit.Layer];
       if (c[3] <= 0.0)

@@ -2,11 +2,11 @@
 //
 // Volume scenes and the GPU-versus-reference comparison shared by the multi-volume tests and the
 // volume benchmark: analytic volumes, VTK transfer functions, and their exact counterparts for
-// vtkMultiVolumeReferenceIntegrator (the same tables the mapper samples).
+// strata::MultiVolumeReferenceIntegrator (the same tables the mapper samples).
 #ifndef StrataVolumeScenes_h
 #define StrataVolumeScenes_h
 
-#include "vtkMultiVolumeReferenceIntegrator.h"
+#include "StrataMultiVolumeReferenceIntegrator.h"
 #include "vtkSmartPointer.h"
 
 #include <array>
@@ -56,7 +56,7 @@ vtkSmartPointer<vtkPolyData> MakeHybridPointLine(int n, double step);
 /// float, and the transfer function tabulated exactly as vtkMultiVolumeRayCastMapper does; with
 /// `mapper` and `port`, the blend mode and cropping it draws that input with (its isovalues from
 /// the member's property, the mapper's AverageIPScalarRange).
-vtkMultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
+strata::MultiVolumeReferenceIntegrator::Volume ToReferenceVolume(vtkImageData* image,
   vtkVolume* member,
   vtkMultiVolumeRayCastMapper* mapper = nullptr,
   int port = 0);
@@ -140,9 +140,9 @@ vtkSmartPointer<vtkVolume> AddVolumeDemoScene(vtkRenderer* ren,
 
 /// The translucent horizons of `mapper` (opacity below 1; read after a render) as the reference's
 /// surface crossings, in world coordinates: every crossing of horizon k
-/// (vtkHeightFieldReferenceCaster::CastAll) in `colors`[k] (unlit) times its opacity. The
+/// (strata::HeightFieldReferenceCaster::CastAll) in `colors`[k] (unlit) times its opacity. The
 /// stack is read at each call: keep the mapper unchanged while the reference integrates.
-vtkMultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
+strata::MultiVolumeReferenceIntegrator::CrossingFunction HorizonCrossings(
   vtkStackedHeightFieldMapper* mapper,
   const std::vector<std::array<double, 3>>& colors);
 
