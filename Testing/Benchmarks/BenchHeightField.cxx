@@ -4,11 +4,15 @@
 // grid as a triangle mesh through vtkPolyDataMapper). One process per (case, method), so that
 // peak RSS belongs to that method alone; scripts/bench heightfield runs them all and collects
 // the CSV. Usage:
-//   BenchHeightField frame <points-per-horizon> <raycast|mesh>  -> one CSV line
+//   BenchHeightField frame <points-per-horizon> <raycast|mesh> [<w>x<h>]
+//                      -> one CSV line: case, method, wall ms per frame, peak RSS MB, GPU ms
+//                         (GL_TIME_ELAPSED; -1 without timer queries), render-thread CPU ms,
+//                         viewport width and height, stage (StrataFrameTimer.h)
 //   BenchHeightField accuracy <points-per-horizon>             -> step vs error vs ms lines
 // STRATA_BENCH_TILE and STRATA_BENCH_STEP override the mapper's tile size and linear-search step
 // in `frame` runs with the ray caster; `accuracy` writes its id images to `-T <dir>` (default the
 // current directory, StrataTestPaths.h).
+#include "StrataFrameTimer.h"
 #include "StrataHeightFieldScenes.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -87,24 +91,27 @@ void PlaceCamera(vtkRenderer* ren, double extent, int view)
   ren->ResetCameraClippingRange();
 }
 
-double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views)
+/// Median times of two frames in each of `views` views, after each view's first frame
+/// (uploads, shader compile).
+strata_bench::FrameTime MedianTimes(vtkRenderWindow* win,
+  vtkRenderer* ren,
+  double extent,
+  int views)
 {
-  std::vector<double> ms;
+  std::vector<strata_bench::FrameTime> frames;
   for (int v = 0; v < views; ++v)
   {
     PlaceCamera(ren, extent, v);
-    win->Render(); // first frame of a view: uploads, shader compile
+    win->Render();
     for (int r = 0; r < 2; ++r)
-    {
-      const auto t0 = std::chrono::steady_clock::now();
-      win->Render();
-      win->WaitForCompletion();
-      ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
+      frames.push_back(strata_bench::FrameTimer::Time(win));
   }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
+  return strata_bench::FrameTimer::Median(frames);
+}
+
+double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views)
+{
+  return MedianTimes(win, ren, extent, views).WallMs;
 }
 }
 
@@ -113,7 +120,8 @@ int main(int argc, char* argv[])
   const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
   if (argc < 3)
   {
-    std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> | accuracy <points>\n";
+    std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> [<width>x<height>] | "
+                 "accuracy <points>\n";
     return 2;
   }
   const std::string mode = argv[1];
@@ -122,9 +130,16 @@ int main(int argc, char* argv[])
   const int ny = static_cast<int>(points / nx);
   const double spacing = 2000.0 / nx; // a 2 km x 1.5 km survey whatever the resolution
   auto horizons = strata_test::MakeDemoHorizons(nx, ny, 0, 0, spacing, 0);
+  // The viewport of `frame` runs (512 x 512 by default; 1920x1080 as a data-center GPU's view).
+  int width = 512, height = 512;
+  if (mode == "frame" && argc > 4 && std::sscanf(argv[4], "%dx%d", &width, &height) != 2)
+  {
+    std::cerr << "BenchHeightField: the viewport is <width>x<height>, not " << argv[4] << "\n";
+    return 2;
+  }
   vtkSmartPointer<vtkRenderWindow> win;
   vtkSmartPointer<vtkRenderer> ren;
-  strata_test::MakeWindow(win, ren, 512, 512);
+  strata_test::MakeWindow(win, ren, width, height);
   const std::string label = "3x" + std::to_string((points + 500000) / 1000000) + "M";
 
   if (mode == "frame")
@@ -156,8 +171,19 @@ int main(int argc, char* argv[])
       a->SetMapper(m);
       ren->AddActor(a);
     }
-    const double ms = MedianMs(win, ren, 2000.0, 3);
-    std::printf("%s,%s,%.1f,%.0f\n", label.c_str(), method.c_str(), ms, PeakRssMB());
+    const strata_bench::FrameTime t = MedianTimes(win, ren, 2000.0, 3);
+    // The ray caster runs as a fragment shader (its only stage so far); the mesh is VTK's.
+    const char* stage = method == "mesh" ? "vtk" : "fragment";
+    std::printf("%s,%s,%.1f,%.0f,%.2f,%.2f,%d,%d,%s\n",
+      label.c_str(),
+      method.c_str(),
+      t.WallMs,
+      PeakRssMB(),
+      t.GpuMs,
+      t.CpuMs,
+      width,
+      height,
+      stage);
     return 0;
   }
   // Accuracy: linear-search step against the fraction of pixels that differ from the exact
