@@ -11,9 +11,11 @@
 //                                              against the reference
 //   BenchVolume blend <data>                -> every blend mode at two sample distances, each
 //                                              against the reference of that mode
-//   BenchVolume frame <single|sparse> <data> [<method>=<MB>,...]
-//                                           -> strata, strata-no-atlas and VTK at 512 x 512,
-//                                              timed interleaved; peak RSS from `memory`
+//   BenchVolume frame <single|sparse> <data> [<method>=<MB>,...] [--viewport <w>x<h>]
+//                                           -> strata, strata-no-atlas and VTK at 512 x 512
+//                                              (or the viewport), timed interleaved: wall, GPU
+//                                              (GL_TIME_ELAPSED) and render-thread CPU ms per
+//                                              frame and the stage; peak RSS from `memory`
 //   BenchVolume memory <single|sparse> <data> <strata|strata-no-atlas|vtk>
 //                                           -> "<method>=<peak RSS MB>", one mapper alone
 //   BenchVolume storage <data>              -> the lean atlas: the data as uint8, uint16, int16
@@ -39,6 +41,7 @@
 // with the integrator fed ToReferenceVolume's float tables as they are (see SnapRuns).
 #include "BenchVolumeReport.h"
 #include "StrataBenchChart.h"
+#include "StrataFrameTimer.h"
 #include "StrataHeightFieldScenes.h" // For MakeWindow
 #include "StrataImageHelpers.h"
 #include "StrataMultiVolumeCase.h"
@@ -110,7 +113,11 @@ const double ReferenceStep = 1.0 / 16.0;
 
 const char* const Header = "case,method,ms_per_frame,rms_error,classification,order,rays,coherence,"
                            "sample_distance,volumes,rms_error_same_rays,width,height,fragments,"
-                           "peak_rss_mb,blend_mode,note";
+                           "peak_rss_mb,blend_mode,note,gpu_ms,cpu_ms,stage";
+
+/// The viewport of the frame and memory cases (--viewport <width>x<height>; 512 x 512 unless
+/// given): a data-center GPU's view is 1920 x 1080.
+int Viewport[2] = { 512, 512 };
 
 /// One CSV row; NaN or negative fields are written empty.
 struct Row
@@ -126,6 +133,8 @@ struct Row
   double PeakRss = NaN;
   std::string BlendMode; ///< empty: composite (every row but the blend-mode grid's)
   std::string Note;
+  double GpuMs = NaN, CpuMs = NaN; ///< per frame: GL_TIME_ELAPSED, the render thread's CPU
+  std::string Stage;               ///< fragment (Strata's), vtk (VTK's mapper); empty: untimed
 
   std::string Csv() const
   {
@@ -162,7 +171,10 @@ struct Row
     s << this->BlendMode << ',';
     std::string note = this->Note;
     std::replace(note.begin(), note.end(), ',', ';'); // one field, unquoted
-    s << note;
+    s << note << ',';
+    num(this->GpuMs, 3);
+    num(this->CpuMs, 3);
+    s << this->Stage;
     return s.str();
   }
 };
@@ -598,6 +610,7 @@ struct Contender
   vtkMultiVolumeRayCastMapper* Strata = nullptr; ///< when the mapper is Strata's
   int WarmupFrames = 0;
   std::vector<double> Ms;
+  std::vector<strata_bench::FrameTime> Times; ///< the same frames: wall, GPU, CPU
 };
 
 void WarmUp(Contender& c)
@@ -617,9 +630,16 @@ Row SingleVolumeRow(const std::string& name, const std::string& method, const Co
   row.Classification = "post";
   row.SampleDistance = 0.5;
   row.Volumes = 1;
-  row.Width = row.Height = 512;
+  row.Width = Viewport[0];
+  row.Height = Viewport[1];
   if (c)
+  {
     row.Ms = Median(c->Ms);
+    const strata_bench::FrameTime t = strata_bench::FrameTimer::Median(c->Times);
+    row.GpuMs = t.GpuMs >= 0.0 ? t.GpuMs : NaN;
+    row.CpuMs = t.CpuMs;
+    row.Stage = c->Strata ? "fragment" : "vtk";
+  }
   if (c && c->Strata)
   {
     row.Order = "front-to-back";
@@ -644,10 +664,8 @@ void TimeInterleaved(std::vector<Contender>& contenders, int frames)
     for (size_t k = 0; k < n; ++k)
     {
       Contender& c = contenders[(k + round) % n];
-      const auto t0 = Clock::now();
-      c.Win->Render();
-      c.Win->WaitForCompletion();
-      c.Ms.push_back(1000.0 * Seconds(t0));
+      c.Times.push_back(strata_bench::FrameTimer::Time(c.Win));
+      c.Ms.push_back(c.Times.back().WallMs);
     }
 }
 
@@ -660,7 +678,7 @@ Contender MakeSingle(const std::string& method,
 {
   Contender c;
   c.Method = method == "vtk" ? "vtkGPUVolumeRayCastMapper" : method;
-  strata_test::MakeWindow(c.Win, c.Ren, 512, 512);
+  strata_test::MakeWindow(c.Win, c.Ren, Viewport[0], Viewport[1]);
   c.Ren->SetBackground(Grey, Grey, Grey);
   vtkSmartPointer<vtkGPUVolumeRayCastMapper> mapper;
   if (method == "vtk")
@@ -709,7 +727,8 @@ int Memory(const std::string& kind,
 }
 
 /**
- * One volume at 512 x 512, sample distance 0.5 voxel, the three mappers in one process and
+ * One volume at 512 x 512 (or --viewport), sample distance 0.5 voxel, the three mappers in one
+ * process and
  * timed interleaved (TimeInterleaved). `memory` lists "<method>=<MB>" from `memory` runs, for
  * the peak_rss_mb column.
  */
@@ -718,7 +737,11 @@ int FrameCase(const std::string& kind,
   const std::string& memory,
   const strata_test::TestPaths& paths)
 {
-  const std::string name = kind + "-" + data;
+  // A viewport other than 512 x 512 is its own case, so the report's tables keep both apart.
+  const bool other = Viewport[0] != 512 || Viewport[1] != 512;
+  const std::string name =
+    kind + "-" + data +
+    (other ? "@" + std::to_string(Viewport[0]) + "x" + std::to_string(Viewport[1]) : "");
   std::map<std::string, std::string> rss;
   std::stringstream list(memory);
   std::string item;
@@ -771,7 +794,11 @@ int FrameCase(const std::string& kind,
     note << load;
     row.Note = note.str();
     Emit(row);
-    MaybeWriteImages(name + "-" + SingleMethods[k], strata_test::ReadRGB(c.Win), nullptr, 512, 512);
+    MaybeWriteImages(name + "-" + SingleMethods[k],
+      strata_test::ReadRGB(c.Win),
+      nullptr,
+      Viewport[0],
+      Viewport[1]);
     std::cerr << name << " " << row.Method << ": " << row.Ms << " ms\n";
   }
   return 0;
@@ -1386,6 +1413,20 @@ int main(int argc, char* argv[])
     return Accuracy(argv[2], paths);
   if (mode == "blend" && argc > 2)
     return Blend(argv[2], paths);
+  for (int i = 2; i + 1 < argc; ++i)
+    if (std::string(argv[i]) == "--viewport")
+    {
+      if (std::sscanf(argv[i + 1], "%dx%d", &Viewport[0], &Viewport[1]) != 2 || Viewport[0] < 1 ||
+          Viewport[1] < 1)
+      {
+        std::cerr << "BenchVolume: --viewport takes <width>x<height>, not " << argv[i + 1] << "\n";
+        return 2;
+      }
+      for (int j = i; j + 2 < argc; ++j)
+        argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
   if (mode == "frame" && argc > 3)
     return FrameCase(argv[2], argv[3], argc > 4 ? argv[4] : "", paths);
   if (mode == "memory" && argc > 4)

@@ -294,7 +294,7 @@ void StorageTable(const std::vector<std::map<std::string, std::string>>& rows)
       continue;
     if (!header)
       std::printf("\nAtlas bytes per brick by scalar type (one budget; RMS against float32 with "
-                  "room for every brick)\n%-16s %-16s %-8s %14s %10s %6s %9s %9s %9s\n",
+                  "room for every brick)\n%-24s %-24s %-8s %14s %10s %6s %9s %9s %9s\n",
         "case",
         "method",
         "atlas",
@@ -305,7 +305,7 @@ void StorageTable(const std::vector<std::map<std::string, std::string>>& rows)
         "rms",
         "ms");
     header = true;
-    std::printf("%-16s %-16s %-8s %14s %10s %6s %9s %9s %9s\n",
+    std::printf("%-24s %-24s %-8s %14s %10s %6s %9s %9s %9s\n",
       Get(r, "case").c_str(),
       Get(r, "method").c_str(),
       m[1].str().c_str(),
@@ -325,7 +325,7 @@ void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
 {
   std::printf("\nBrick atlas vs one plain texture (ratio = strata ms / strata-no-atlas ms, "
               "target <= 1.05)\n");
-  std::printf("%-16s %9s %12s %7s %5s\n", "case", "atlas_ms", "no_atlas_ms", "ratio", "met");
+  std::printf("%-24s %9s %12s %7s %5s\n", "case", "atlas_ms", "no_atlas_ms", "ratio", "met");
   for (const auto& c : cases)
   {
     if (c.rfind("single-", 0) != 0 && c.rfind("sparse-", 0) != 0)
@@ -340,7 +340,7 @@ void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
           plain = Number(r, "ms_per_frame");
       }
     const double ratio = atlas / plain;
-    std::printf("%-16s %9.1f %12.1f %7.2f %5s\n",
+    std::printf("%-24s %9.1f %12.1f %7.2f %5s\n",
       c.c_str(),
       atlas,
       plain,
@@ -351,6 +351,34 @@ void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
   }
 }
 
+/// Where a frame's time goes, for every row timed with the frame timer (StrataFrameTimer.h):
+/// wall, GPU (GL_TIME_ELAPSED; llvmpipe undercounts fragment work) and render-thread CPU ms.
+void FrameTimeTable(const std::vector<std::map<std::string, std::string>>& rows)
+{
+  std::printf("\nWhere a frame's time goes (wall, GPU by GL_TIME_ELAPSED, render thread's CPU)\n");
+  std::printf("%-24s %-26s %10s %9s %9s %9s  %s\n",
+    "case",
+    "method",
+    "viewport",
+    "wall_ms",
+    "gpu_ms",
+    "cpu_ms",
+    "stage");
+  for (const auto& r : rows)
+  {
+    if (Get(r, "stage").empty())
+      continue;
+    const std::string viewport = Get(r, "width") + "x" + Get(r, "height");
+    std::printf("%-24s %-26s %10s %9.1f %9.2f %9.2f  %s\n",
+      Get(r, "case").c_str(),
+      Get(r, "method").c_str(),
+      viewport.c_str(),
+      Number(r, "ms_per_frame"),
+      Number(r, "gpu_ms"),
+      Number(r, "cpu_ms"),
+      Get(r, "stage").c_str());
+  }
+}
 }
 
 int Report(const std::string& csv, const std::string& png)
@@ -447,7 +475,7 @@ int Report(const std::string& csv, const std::string& png)
   // 2. Strata against VTK: time ratio against its target.
   std::printf("\nStrata vs vtkGPUVolumeRayCastMapper (same sample distance, property, camera; "
               "ratio = Strata ms / VTK ms)\n");
-  std::printf("%-16s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
+  std::printf("%-24s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
     "case",
     "size",
     "strata_ms",
@@ -501,7 +529,7 @@ int Report(const std::string& csv, const std::string& png)
     for (auto* r : { s, v, plain })
       if (r && Get(*r, "ms_per_frame").empty() && !Get(*r, "note").empty())
         note = Get(*r, "note");
-    std::printf("%-16s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
+    std::printf("%-24s %6s %9s %9s %7s %8s %5s %12s %9s %9s %8s %8s  %s\n",
       c.c_str(),
       s ? Get(*s, "width").c_str() : "-",
       fmt(sm, "%.1f").c_str(),
@@ -520,6 +548,7 @@ int Report(const std::string& csv, const std::string& png)
   }
 
   AtlasCostTable(rows, cases);
+  FrameTimeTable(rows);
   StorageTable(rows);
   ComponentsTable(rows);
   bool layersHeader = false;
