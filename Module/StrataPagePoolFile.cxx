@@ -151,21 +151,6 @@ long long PagePoolFile::GetNumberOfOpens()
   return Opens.load();
 }
 
-bool PagePoolFile::OpenComponent(const PagePoolFile& first, int c)
-{
-  const std::string path = strata::PagePoolFormat::GetComponentFileName(first.Path, c);
-  if (!this->Open(path))
-    return false;
-  std::string error;
-  if (!strata::PagePoolFormat::CheckComponent(first.PoolHeader, this->PoolHeader, c, error))
-  {
-    this->Close();
-    this->ErrorMessage = "page pool '" + path + "': " + error;
-    return false;
-  }
-  return true;
-}
-
 bool PagePoolFile::Open(const std::string& path)
 {
   this->Close();

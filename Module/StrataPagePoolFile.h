@@ -46,12 +46,6 @@ public:
    * values), leaving the object closed. Not to be called concurrently with reads.
    */
   bool Open(const std::string& path);
-  /**
-   * Opens component `c` of the set of components `first` heads (its component 0;
-   * strata::PagePoolFormat, Components) and checks that it belongs to it (CheckComponent); false,
-   * with GetErrorMessage() naming the file and what differs, otherwise.
-   */
-  bool OpenComponent(const PagePoolFile& first, int c);
   void Close();
 
   ///@{
@@ -64,7 +58,11 @@ public:
    * its output, which know nothing of each other, hold one descriptor and one page table.)
    */
   static std::shared_ptr<PagePoolFile> OpenShared(const std::string& path, std::string& error);
-  /// OpenShared of component `c` of the set `first` heads, checked as OpenComponent does.
+  /**
+   * OpenShared of component `c` of the set of components `first` heads (its component 0;
+   * strata::PagePoolFormat, Components), checked to belong to it (CheckComponent); null, with
+   * `error` naming the file and what differs, otherwise.
+   */
   static std::shared_ptr<PagePoolFile> OpenSharedComponent(const PagePoolFile& first,
     int c,
     std::string& error);

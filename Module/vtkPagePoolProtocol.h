@@ -55,6 +55,12 @@ public:
     int TimeStep = 0;                ///< the step of Series shown (0 without a series)
     std::vector<std::string> Series; ///< every step's pool in time order (empty without)
     bool IsValid() const { return !this->FileName.empty(); }
+    bool operator==(const Identity& other) const
+    {
+      return this->FileName == other.FileName && this->Layer == other.Layer &&
+             this->TimeStep == other.TimeStep && this->Series == other.Series;
+    }
+    bool operator!=(const Identity& other) const { return !(*this == other); }
   };
 
   /// "This connection's data is a page pool's coarse view": on a pool source's output

@@ -174,12 +174,11 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::CollectVolumes(Self* self,
     const double* s = image->GetSpacing();
     const double* d = image->GetDirectionMatrix()->GetData();
     // (The image handed over is a transformed copy: the pool is read from the input's data.)
-    const std::string pool = vtkPagePoolProtocol::GetInputPool(
-      self->GetInputInformation(port, 0), self->GetInputDataObject(port, 0))
-                               .FileName;
-    if (!pool.empty())
+    const vtkPagePoolProtocol::Identity pool = vtkPagePoolProtocol::GetInputPool(
+      self->GetInputInformation(port, 0), self->GetInputDataObject(port, 0));
+    if (pool.IsValid())
     {
-      const strata::PagePoolFile* file = this->OpenPool(self, port, 0, pool.c_str());
+      const strata::PagePoolFile* file = this->OpenPool(self, port, 0, pool);
       if (!file)
         continue;
       const strata::PagePoolFile::Header& h = file->GetHeader();
@@ -253,7 +252,7 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& fr
 {
   std::set<int> paged;
   for (const FrameVolume& e : frame.Volumes)
-    for (int c = 0; !e.Pool.empty() &&
+    for (int c = 0; e.Pool.IsValid() &&
                     c < strata::MultiVolumeShaderComposer::GetNumberOfComponents(e.ComponentMode);
          ++c)
       paged.insert(strata::VolumePager::GetChannel(e.Port, c));
@@ -276,14 +275,12 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::CloseUnusedPools(const Frame& fr
 const strata::PagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(Self* self,
   int port,
   int component,
-  const char* pool)
+  const vtkPagePoolProtocol::Identity& pool)
 {
-  const vtkPagePoolProtocol::Identity identity =
-    vtkPagePoolProtocol::GetIdentity(self->GetInputDataObject(port, 0));
-  const int step = identity.TimeStep;
-  const int steps = static_cast<int>(identity.Series.size());
+  const int step = pool.TimeStep;
+  const int steps = static_cast<int>(pool.Series.size());
   const int channel = strata::VolumePager::GetChannel(port, component);
-  const std::string name = strata::PagePoolFormat::GetComponentFileName(pool, component);
+  const std::string name = strata::PagePoolFormat::GetComponentFileName(pool.FileName, component);
   std::string error;
   const strata::PagePoolFile* file = this->Pager.OpenPool(channel, name, error, step);
   if (!file)
@@ -299,7 +296,7 @@ const strata::PagePoolFile* vtkMultiVolumeRayCastMapper::vtkInternals::OpenPool(
   const int next = self->PrefetchTimeSteps ? followed : -1;
   const std::string nextName =
     next >= 0 && next < steps
-      ? strata::PagePoolFormat::GetComponentFileName(identity.Series[next], component)
+      ? strata::PagePoolFormat::GetComponentFileName(pool.Series[next], component)
       : std::string();
   if (!this->Pager.SetNextStep(channel, next, nextName, error) && error != warned)
     vtkWarningWithObjectMacro(self, "Cannot prefetch time step " << next << ": " << error);
@@ -318,13 +315,13 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::OpenComponentPools(Self* self,
   if (first.GetHeader().Components != count)
   {
     vtkErrorWithObjectMacro(self,
-      "The volume on port " << e.Port << " has " << count << " components and its pool \"" << e.Pool
-                            << "\" " << first.GetHeader().Components << ".");
+      "The volume on port " << e.Port << " has " << count << " components and its pool \""
+                            << e.Pool.FileName << "\" " << first.GetHeader().Components << ".");
     return false;
   }
   for (int c = 1; c < count; ++c)
   {
-    const strata::PagePoolFile* file = this->OpenPool(self, e.Port, c, e.Pool.c_str());
+    const strata::PagePoolFile* file = this->OpenPool(self, e.Port, c, e.Pool);
     std::string error;
     if (!file ||
         !strata::PagePoolFormat::CheckComponent(first.GetHeader(), file->GetHeader(), c, error))
@@ -374,7 +371,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
   for (const FrameVolume& e : frame.Volumes)
   {
     strata::MultiVolumeInput& input = this->Inputs[e.Port];
-    if (e.Pool.empty() && !input.HasScalarsOf(e.Input))
+    if (!e.Pool.IsValid() && !input.HasScalarsOf(e.Input))
     {
       int cellFlag = 0;
       vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
@@ -386,9 +383,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
       }
       input.UpdateScalars(e.Input, scalars, renWin);
     }
-    else if (!e.Pool.empty() && e.ComponentMode == Components::RGBA)
+    else if (e.Pool.IsValid() && e.ComponentMode == Components::RGBA)
       input.UpdateColorRanges(e.Input->GetPointData()->GetScalars());
-    if (e.Pool.empty() && frame.Atlas)
+    if (!e.Pool.IsValid() && frame.Atlas)
     {
       std::string error;
       const int built = input.UpdateTree(
@@ -426,7 +423,9 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateInputs(Self* self,
     if (self->EmptySpaceSkipping && opacity >= 0)
       this->Inputs[e.Port].UpdateSkipGrid(
         this->Pager.GetPoolTree(strata::VolumePager::GetChannel(e.Port, pool)),
-        e.Pool.empty() ? e.Pool : strata::PagePoolFormat::GetComponentFileName(e.Pool, pool),
+        e.Pool.FileName.empty()
+          ? e.Pool.FileName
+          : strata::PagePoolFormat::GetComponentFileName(e.Pool.FileName, pool),
         e.Dims,
         self->SkipCellSize,
         opacity);
@@ -506,7 +505,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     const int c = pagerVolume[1];
     strata::VolumePager::Volume v;
     v.Port = strata::VolumePager::GetChannel(e.Port, c);
-    v.Tree = e.Pool.empty() ? this->Inputs[e.Port].GetTree(c) : nullptr;
+    v.Tree = !e.Pool.IsValid() ? this->Inputs[e.Port].GetTree(c) : nullptr;
     std::copy(e.IndexToWorld->GetData(), e.IndexToWorld->GetData() + 16, v.IndexToWorld);
     const strata::MultiVolumeInput* input = &this->Inputs[e.Port];
     const Components mode = e.ComponentMode;
@@ -515,7 +514,7 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::UpdateAtlas(Self* self,
     // Pre-integrated segments read both ends: no end may fall on an empty brick's stand-in
     // next to visible data.
     v.Halo = self->Classification != Classifications::PostClassification;
-    if (!e.Pool.empty())
+    if (e.Pool.IsValid())
     {
       // The reader's coarsest level is the root page: the pager takes it without a read.
       vtkImageData* image = e.Input;

@@ -22,6 +22,7 @@
 
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPagePoolProtocol.h"
 #include "vtkSmartPointer.h"
 
 #include <array>
@@ -55,7 +56,8 @@ struct FrameVolume
   vtkSmartPointer<vtkMatrix4x4> IndexToWorld; ///< prop * image (origin, direction, spacing)
   float LocalToIndex[16];                     ///< the inverse from the local frame, for the GPU
   int Dims[3] = { 0, 0, 0 };
-  std::string Pool; ///< the page pool the volume is paged from; Input is then a coarse stand-in
+  /// The page pool the volume is paged from (invalid in core); Input is then a coarse stand-in.
+  vtkPagePoolProtocol::Identity Pool;
   int Mode = vtkVolumeMapper::COMPOSITE_BLEND; ///< its effective blend mode
   bool Cropped = false;
   float CropLo[3], CropHi[3]; ///< the crop planes in index coordinates
@@ -154,7 +156,10 @@ public:
   std::map<int, std::array<std::string, 2>> ShownPools;
 
   bool CollectVolumes(Self* self, vtkVolume* vol, Frame& frame);
-  const strata::PagePoolFile* OpenPool(Self* self, int port, int component, const char* pool);
+  const strata::PagePoolFile* OpenPool(Self* self,
+    int port,
+    int component,
+    const vtkPagePoolProtocol::Identity& pool);
   bool OpenComponentPools(Self* self, const strata::PagePoolFile& first, const FrameVolume& e);
   /// Closes the pools of the channels the frame does not page (strata::VolumePager::ClosePool).
   void CloseUnusedPools(const Frame& frame);

@@ -15,9 +15,9 @@ vtkStandardNewMacro(vtkStrataPooledProducer);
 void vtkStrataPooledProducer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "PoolFileName: " << this->PoolFileName << "\n";
-  os << indent << "PoolLayer: " << this->PoolLayer << "\n";
-  os << indent << "PoolTimeStep: " << this->PoolTimeStep << " of " << this->PoolSeries.size()
+  os << indent << "PoolFileName: " << this->Pool.FileName << "\n";
+  os << indent << "PoolLayer: " << this->Pool.Layer << "\n";
+  os << indent << "PoolTimeStep: " << this->Pool.TimeStep << " of " << this->Pool.Series.size()
      << "\n";
 }
 
@@ -25,17 +25,9 @@ void vtkStrataPooledProducer::PrintSelf(ostream& os, vtkIndent indent)
 void vtkStrataPooledProducer::SetOutput(vtkDataObject* output)
 {
   vtkPagePoolProtocol::Identity pool = vtkPagePoolProtocol::GetIdentity(output);
-  const std::string& name = pool.FileName;
-  const int layer = pool.Layer;
-  const int step = pool.TimeStep;
-  std::vector<std::string>& series = pool.Series;
-  if (name != this->PoolFileName || layer != this->PoolLayer || step != this->PoolTimeStep ||
-      series != this->PoolSeries)
+  if (pool != this->Pool)
   {
-    this->PoolFileName = name;
-    this->PoolLayer = layer;
-    this->PoolTimeStep = step;
-    this->PoolSeries = std::move(series);
+    this->Pool = std::move(pool);
     this->Modified();
   }
   this->Superclass::SetOutput(output);
@@ -50,7 +42,7 @@ vtkTypeBool vtkStrataPooledProducer::ProcessRequest(vtkInformation* request,
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
   {
     vtkInformation* info = outInfo->GetInformationObject(0);
-    if (this->PoolFileName.empty())
+    if (!this->Pool.IsValid())
       info->Remove(vtkPagePoolProtocol::PAGE_POOL());
     else
       info->Set(vtkPagePoolProtocol::PAGE_POOL(), 1);

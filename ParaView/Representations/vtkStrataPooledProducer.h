@@ -17,6 +17,7 @@
 #define vtkStrataPooledProducer_h
 
 #include "StrataParaViewModule.h" // For export macro
+#include "vtkPagePoolProtocol.h"  // For the pool's identity
 #include "vtkTrivialProducer.h"
 
 #include <string> // For std::string
@@ -33,11 +34,11 @@ public:
   void SetOutput(vtkDataObject* output) override;
 
   /// The pool behind the output ("" when none) and its layer.
-  const char* GetPoolFileName() const { return this->PoolFileName.c_str(); }
-  int GetPoolLayer() const { return this->PoolLayer; }
+  const char* GetPoolFileName() const { return this->Pool.FileName.c_str(); }
+  int GetPoolLayer() const { return this->Pool.Layer; }
   /// Of a time series: the step shown (0 without one) and every step's pool (empty without).
-  int GetPoolTimeStep() const { return this->PoolTimeStep; }
-  const std::vector<std::string>& GetPoolSeries() const { return this->PoolSeries; }
+  int GetPoolTimeStep() const { return this->Pool.TimeStep; }
+  const std::vector<std::string>& GetPoolSeries() const { return this->Pool.Series; }
 
   vtkTypeBool ProcessRequest(vtkInformation* request,
     vtkInformationVector** inInfo,
@@ -51,10 +52,7 @@ private:
   vtkStrataPooledProducer(const vtkStrataPooledProducer&) = delete;
   void operator=(const vtkStrataPooledProducer&) = delete;
 
-  std::string PoolFileName;
-  int PoolLayer = 0;
-  int PoolTimeStep = 0;
-  std::vector<std::string> PoolSeries;
+  vtkPagePoolProtocol::Identity Pool;
 };
 
 #endif
