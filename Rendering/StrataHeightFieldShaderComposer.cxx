@@ -320,6 +320,38 @@ vtkShaderProgram* HeightFieldShaderComposer::ReadyProgram(vtkOpenGLRenderWindow*
     });
 }
 
+vtkShaderProgram* HeightFieldShaderComposer::ReadyComputeProgram(vtkOpenGLRenderWindow* window,
+  const Key& key,
+  const std::function<std::string()>& lightingUniforms,
+  std::string& error)
+{
+  return this->Internals->Programs.ReadyCompute(
+    window,
+    key,
+    [&lightingUniforms](const Key& k, std::string& cs, std::string& reason)
+    {
+      cs = strata::ComputeStage::FromFragment(
+        BuildFragmentShader(k, k.Lit ? lightingUniforms() : std::string()),
+        GetComputeOutputs(k),
+        reason);
+    },
+    error);
+}
+
+strata::ComputeStage::Outputs HeightFieldShaderComposer::GetComputeOutputs(const Key& key)
+{
+  strata::ComputeStage::Outputs outputs;
+  outputs.Count = key.Translucent == Translucency::Blend ? 2 : 1;
+  outputs.Staged = true;
+  return outputs;
+}
+
+std::string HeightFieldShaderComposer::GetComputeSource(const Key& key) const
+{
+  const auto* entry = this->Internals->Programs.FindCompute(key);
+  return entry ? entry->Source : std::string();
+}
+
 std::string HeightFieldShaderComposer::GetFragmentSource(const Key& key) const
 {
   const auto* entry = this->Internals->Programs.Find(key);

@@ -21,6 +21,7 @@
 #ifndef StrataHeightFieldShaderComposer_h
 #define StrataHeightFieldShaderComposer_h
 
+#include "StrataComputeStage.h"    // For strata::ComputeStage::Outputs
 #include "StrataRenderingModule.h" // For export macro
 
 #include <functional> // For std::function
@@ -78,11 +79,24 @@ public:
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
     const Key& key,
     const std::function<std::string()>& lightingUniforms);
+  /**
+   * Binds the compute stage's program of `key` (strata::ComputeStage: the fragment source
+   * rewritten, its colours and depth staged for strata::ComputeStaging); null, with the log in
+   * `error`, if it fails.
+   */
+  vtkShaderProgram* ReadyComputeProgram(vtkOpenGLRenderWindow* window,
+    const Key& key,
+    const std::function<std::string()>& lightingUniforms,
+    std::string& error);
   /// The fragment source of `key`, empty if it was never built.
   std::string GetFragmentSource(const Key& key) const;
+  /// The compute source of `key`, empty if it was never built.
+  std::string GetComputeSource(const Key& key) const;
 
   /// The fragment shader source for `key`.
   static std::string BuildFragmentShader(const Key& key, const std::string& lightingUniforms);
+  /// What a compute program of `key` stages: one colour (two for VTK's translucent pass).
+  static strata::ComputeStage::Outputs GetComputeOutputs(const Key& key);
 
   /// Sources built and programs compiled since construction.
   int GetNumberOfSourcesBuilt() const;

@@ -1145,6 +1145,42 @@ vtkShaderProgram* MultiVolumeShaderComposer::ReadyCompositeProgram(vtkOpenGLRend
     });
 }
 
+vtkShaderProgram* MultiVolumeShaderComposer::ReadyComputeProgram(vtkOpenGLRenderWindow* window,
+  const FragmentKey& key,
+  std::string& error)
+{
+  return this->Internals->Fragments.ReadyCompute(
+    window,
+    key,
+    [](const FragmentKey& k, std::string& cs, std::string& reason) {
+      cs = strata::ComputeStage::FromFragment(BuildFragmentShader(k), GetComputeOutputs(k), reason);
+    },
+    error);
+}
+
+strata::ComputeStage::Outputs MultiVolumeShaderComposer::GetComputeOutputs(const FragmentKey& key)
+{
+  strata::ComputeStage::Outputs outputs;
+  outputs.Count = key.Rays + (key.Surfaces > 0 ? 1 : 0);
+  outputs.Blending = key.Reduce        ? strata::ComputeStage::Blend::None
+                     : key.FrontToBack ? strata::ComputeStage::Blend::FrontToBack
+                                       : strata::ComputeStage::Blend::Over;
+  return outputs;
+}
+
+std::string MultiVolumeShaderComposer::BuildComputeShader(const FragmentKey& key)
+{
+  std::string error;
+  return strata::ComputeStage::FromFragment(
+    BuildFragmentShader(key), GetComputeOutputs(key), error);
+}
+
+std::string MultiVolumeShaderComposer::GetComputeSource(const FragmentKey& key) const
+{
+  const auto* entry = this->Internals->Fragments.FindCompute(key);
+  return entry ? entry->Source : std::string();
+}
+
 std::string MultiVolumeShaderComposer::GetFragmentSource(const FragmentKey& key) const
 {
   const auto* entry = this->Internals->Fragments.Find(key);

@@ -24,6 +24,7 @@
 #ifndef StrataMultiVolumeShaderComposer_h
 #define StrataMultiVolumeShaderComposer_h
 
+#include "StrataComputeStage.h"          // For strata::ComputeStage::Outputs
 #include "StrataRenderingModule.h"       // For export macro
 #include "vtkMultiVolumeRayCastMapper.h" // For Classifications
 
@@ -105,6 +106,14 @@ public:
 
   /// Binds the program of `key` (built and compiled the first time); null if it fails.
   vtkShaderProgram* ReadyFragmentProgram(vtkOpenGLRenderWindow* window, const FragmentKey& key);
+  /**
+   * Binds the compute stage's program of `key` (strata::ComputeStage: the fragment source
+   * rewritten, its outputs blended into the images of GetComputeOutputs); null, with the log
+   * in `error`, if it fails.
+   */
+  vtkShaderProgram* ReadyComputeProgram(vtkOpenGLRenderWindow* window,
+    const FragmentKey& key,
+    std::string& error);
   /// Binds the program that blends the integration buffers of `rays` rays over the scene,
   /// with the `surfaces` surface layers no fragment composited behind each ray's colour.
   vtkShaderProgram* ReadyCompositeProgram(vtkOpenGLRenderWindow* window,
@@ -114,8 +123,19 @@ public:
   /// The fragment source of `key`, empty if it was never built.
   std::string GetFragmentSource(const FragmentKey& key) const;
 
+  /// The compute source of `key`, empty if it was never built.
+  std::string GetComputeSource(const FragmentKey& key) const;
+
   /// The fragment shader source for `key` (what ReadyFragmentProgram compiles).
   static std::string BuildFragmentShader(const FragmentKey& key);
+  /// The compute shader source for `key` (what ReadyComputeProgram compiles).
+  static std::string BuildComputeShader(const FragmentKey& key);
+  /**
+   * What a compute program of `key` writes: ray r's integration buffer as output r and the
+   * surface progress after them, blended as the fragment stage blends them (front to back,
+   * back to front, or stored by a reduction).
+   */
+  static strata::ComputeStage::Outputs GetComputeOutputs(const FragmentKey& key);
   /// The composite shader source for `rays` rays and `surfaces` surface layers.
   static std::string BuildCompositeShader(int rays, int surfaces = 0);
 
@@ -123,7 +143,7 @@ public:
   int GetNumberOfSourcesBuilt() const;
   int GetNumberOfCompilations() const;
 
-  /// Forgets the programs (the window's shader cache owns them).
+  /// Forgets the programs (the window's shader cache owns them) and deletes the compute ones.
   void ReleaseGraphicsResources();
 
 private:

@@ -5,6 +5,7 @@
 #include "StrataBrickAtlasAllocator.h"
 #include "StrataBrickAtlasFormat.h"
 #include "StrataBrickAtlasTexture.h"
+#include "StrataComputeStage.h"
 #include "StrataFeedbackBuffer.h"
 #include "StrataFeedbackReduction.h"
 #include "StrataGraphicsResources.h"
@@ -765,6 +766,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
   // The fragments read these buffers back (prior opacity, surface progress) from the first
   // draw on, so the clear is followed by a texture barrier.
   strata::RenderUtilities::ClearForReadBack(state);
+  if (frame.Compute)
+    this->BindComputeTargets(this->Buffers, frame, true);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglEnable(GL_BLEND);
@@ -801,6 +804,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
     this->Buffers.Bind(renWin, frame.Rays, this->SurfaceLayers.GetProgress());
     state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
     state->vtkglEnable(GL_BLEND);
+    if (frame.Compute)
+      this->BindComputeTargets(this->Buffers, frame, true);
   }
   for (int f : order)
   {
@@ -808,6 +813,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragments(Self* self,
       break;
   }
   state->vtkglCullFace(GL_BACK); // VTK's default; its actors set their own
+  if (frame.Compute)
+    UnbindComputeTargets(frame);
   this->Buffers.Unbind(renWin);
   if (frame.Feedback)
   {
@@ -838,6 +845,8 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::DrawReductions(Self* self,
     state->vtkglViewport(0, 0, frame.Viewport[2], frame.Viewport[3]);
     // The first fragment reads the cleared state back ("not met"): a barrier after the clear.
     strata::RenderUtilities::ClearForReadBack(state);
+    if (frame.Compute)
+      this->BindComputeTargets(layer, frame, false);
     for (int f : order)
     {
       const auto& boxes = this->Geometry.GetTree().GetFragment(f).BoxIndices;
@@ -954,18 +963,22 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   }
   const strata::MultiVolumeShaderComposer::FragmentKey key =
     this->MakeKey(self, volumes, reduce >= 0, frame);
-  vtkShaderProgram* program = this->Composer.ReadyFragmentProgram(renWin, key);
+  std::string log;
+  vtkShaderProgram* program = frame.Compute ? this->Composer.ReadyComputeProgram(renWin, key, log)
+                                            : this->Composer.ReadyFragmentProgram(renWin, key);
   if (!program)
   {
-    vtkErrorWithObjectMacro(
-      self, "The multi-volume shader for " << k << " volumes did not compile or link.");
+    vtkErrorWithObjectMacro(self,
+      "The multi-volume " << (frame.Compute ? "compute" : "fragment") << " shader for " << k
+                          << " volumes did not compile or link. " << log);
     return false;
   }
   if (reduce >= 0)
     this->LastReduceKeys[frame.Volumes[reduce].Mode] = key;
   else
     this->LastKeys[k] = key;
-  this->Geometry.Bind(program);
+  if (!frame.Compute)
+    this->Geometry.Bind(program);
   this->SetFragmentUniforms(self, program, f, volumes, key, frame);
   vtkTextureObject* depth = this->Buffers.GetSceneDepth();
   depth->Activate();
@@ -1037,16 +1050,23 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
     b.Dims = e.Dims;
     this->Inputs[e.Port].Bind(renWin, program, i, e.Property, b, rawUnits);
   }
-  this->Geometry.Draw(f);
-  if (frame.Feedback)
+  if (frame.Compute)
   {
-    // The next fragment's comparison must see this one's reports.
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    this->DispatchFragment(program, f, frame); // with the barriers the next one needs
   }
-  // The next fragment reads what this one wrote into the bound buffers (its opacity, the
-  // surface progress, the reduction state): a texture barrier between the two draws.
-  if (key.Barrier || key.Reduce || key.Surfaces > 0)
-    strata::RenderUtilities::TextureBarrier();
+  else
+  {
+    this->Geometry.Draw(f);
+    if (frame.Feedback)
+    {
+      // The next fragment's comparison must see this one's reports.
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    // The next fragment reads what this one wrote into the bound buffers (its opacity, the
+    // surface progress, the reduction state): a texture barrier between the two draws.
+    if (key.Barrier || key.Reduce || key.Surfaces > 0)
+      strata::RenderUtilities::TextureBarrier();
+  }
   for (int i = 0; i < k; ++i)
     this->Inputs[frame.Volumes[volumes[i]].Port].Unbind(bindings[i]);
   for (vtkTextureObject* texture : readBack)
@@ -1059,7 +1079,8 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self,
   }
   this->SurfaceLayers.Deactivate();
   depth->Deactivate();
-  this->Geometry.Unbind();
+  if (!frame.Compute)
+    this->Geometry.Unbind();
   this->LastFragments += reduce < 0 ? 1 : 0;
   return true;
 }
@@ -1169,6 +1190,7 @@ vtkMultiVolumeRayCastMapper::vtkMultiVolumeRayCastMapper()
   // A fixed sample distance unless the user asks otherwise: accuracy is a setting, not a
   // by-product of the frame rate.
   this->AutoAdjustSampleDistances = 0;
+  this->Stage = static_cast<Stages>(strata::ComputeStage::DefaultStage());
 }
 
 vtkMultiVolumeRayCastMapper::~vtkMultiVolumeRayCastMapper()
@@ -1365,6 +1387,7 @@ void vtkMultiVolumeRayCastMapper::GPURender(vtkRenderer* ren, vtkVolume* vol)
     this->TranslucentLayers,
     frame.Rays,
     frame.Barrier);
+  in.ChooseStage(this, renWin, frame);
   in.DrawFragments(this, ren, renWin, frame);
   in.Composite(renWin, frame);
   vtkOpenGLCheckErrorMacro("failed after multi-volume ray casting");
@@ -1385,6 +1408,8 @@ void vtkMultiVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BrickSize: " << this->BrickSize << "\n";
   os << indent << "AtlasBudget: " << this->AtlasBudget << " MB\n";
   os << indent << "RaysPerPixel: " << this->RaysPerPixel << "\n";
+  os << indent << "Stage: " << strata::ComputeStage::StageName(static_cast<int>(this->Stage))
+     << " (last frame: " << this->GetStageInUseAsString() << ")\n";
   os << indent << "RayCoherence: " << this->RayCoherence << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
   os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";

@@ -320,6 +320,36 @@ public:
   vtkBooleanMacro(HoldCut, bool);
   ///@}
 
+  /// The stage the rays are cast in (the values of strata::ComputeStage::Stages).
+  enum class Stages
+  {
+    Auto,     ///< the faster of the two on this device, by a probe at the first render
+    Fragment, ///< fragment shaders over each BSP fragment's back faces
+    Compute,  ///< compute shaders over each BSP fragment's screen rectangle
+  };
+
+  ///@{
+  /**
+   * The stage (default Auto, or the environment's STRATA_RAY_CASTING_STAGE: Auto, Fragment or
+   * Compute). Both stages run the same composed program, feature for feature; data-centre GPUs
+   * run compute shaders many times faster than fragment shaders. Auto times the same kernel in
+   * both once per device (GL_RENDERER) and process; Compute falls back to Fragment, with a
+   * warning, without OpenGL 4.3 or where the rays' buffers need more image units than the
+   * device has (2 + rays per pixel, + 1 with translucent surfaces).
+   */
+  void SetStage(Stages stage);
+  Stages GetStage() const { return this->Stage; }
+  void SetStageToAuto() { this->SetStage(Stages::Auto); }
+  void SetStageToFragment() { this->SetStage(Stages::Fragment); }
+  void SetStageToCompute() { this->SetStage(Stages::Compute); }
+  ///@}
+
+  /// The stage the last frame was cast in (Fragment or Compute; Auto before the first frame).
+  Stages GetStageInUse() const;
+  const char* GetStageInUseAsString() const;
+  /// Auto's probe on this device: compute / fragment time of the same kernel (0 if not probed).
+  double GetStageProbeRatio() const;
+
   ///@{
   /**
    * Rays per pixel, 1 to 8 (default 1): anti-aliasing. Ray r starts at a sub-pixel position of a
@@ -503,14 +533,20 @@ public:
   int GetNumberOfShaderCompilations() const;
   ///@}
 
+  ///@{
   /**
-   * Fragment shader source for a fragment covered by `numberOfVolumes` volumes with the current
-   * settings, as the last render generated it (empty if no such fragment was drawn). For tests:
-   * a fragment of one unshaded volume must carry no loop over other volumes.
+   * The source of the program the last render ran for a fragment covered by `numberOfVolumes`
+   * volumes, in its stage (GetStageInUse: a fragment or a compute shader), empty if no such
+   * fragment was drawn; the fragment stage's or the compute stage's source of that program
+   * (empty if never built). For tests: a fragment of one unshaded volume must carry no loop
+   * over other volumes, in either stage.
    */
+  std::string GetShaderSource(int numberOfVolumes) const;
   std::string GetFragmentShaderSource(int numberOfVolumes) const;
-  /// The reduction pass's source for blend mode `blendMode` as the last render generated it
-  /// (empty if no volume of that mode was drawn).
+  std::string GetComputeShaderSource(int numberOfVolumes) const;
+  ///@}
+  /// The reduction pass's source for blend mode `blendMode` as the last render ran it, in its
+  /// stage (empty if no volume of that mode was drawn).
   std::string GetReductionShaderSource(int blendMode) const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
@@ -534,6 +570,7 @@ protected:
   Classifications Classification = Classifications::PostClassification;
   int PreIntegrationTableSize = 256;
   int RaysPerPixel = 1;
+  Stages Stage = Stages::Auto;
   bool UseBrickAtlas = true;
   ScalarStorages ScalarStorage = ScalarStorages::Normalized16;
   int BrickSize = 32;

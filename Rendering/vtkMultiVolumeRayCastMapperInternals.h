@@ -98,6 +98,7 @@ struct Frame
   bool Barrier = false;
   bool AnyReduced = false; ///< some volume is drawn as a layer by its own reduction pass
   int Surfaces = 0;        ///< translucent surface layers peeled this frame
+  bool Compute = false;    ///< the compute stage: fragments dispatched, not drawn
   bool Lit = false;
   std::vector<float> LightDirections, LightColors;
   // Feedback uniforms: threshold x pixel size = x + y * distance, the eye, and per volume
@@ -136,10 +137,13 @@ public:
     LastKeys; ///< by volumes, last frame
   std::map<int, strata::MultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
   int LastFragments = 0;
+  int StageInUse = 0;           ///< strata::ComputeStage::Stages of the last frame (0 before one)
+  double StageProbeRatio = 0.0; ///< Auto's probe, compute / fragment (0 if not probed)
   int ResidentBricks = 0;
   int Max3DTexture = 0;   ///< the GPU's, asked once
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
+  bool StageWarned = false; ///< Compute asked for where it cannot run (warned once)
   bool ComponentLimitsWarned = false;
   bool SampleDistanceWarned = false;
   ViewKey FeedbackView{};                  ///< the view the queued feedback was rendered from
@@ -189,6 +193,15 @@ public:
     int f,
     Frame& frame,
     int reduce = -1);
+  /// The frame's stage (Self::Stage, the device, the image units its outputs need).
+  void ChooseStage(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  /// The compute stage's targets on their image units: `buffers`' rays, and the surface progress.
+  void BindComputeTargets(strata::VolumeIntegrationBuffers& buffers,
+    const Frame& frame,
+    bool progress);
+  static void UnbindComputeTargets(const Frame& frame);
+  /// Fragment f dispatched over its screen rectangle with the bound compute program.
+  void DispatchFragment(vtkShaderProgram* program, int f, const Frame& frame);
   void SetFragmentUniforms(Self* self,
     vtkShaderProgram* program,
     int f,

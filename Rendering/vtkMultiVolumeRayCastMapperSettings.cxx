@@ -197,10 +197,18 @@ int vtkMultiVolumeRayCastMapper::GetEffectiveBlendMode(int port) const
 
 std::string vtkMultiVolumeRayCastMapper::GetReductionShaderSource(int blendMode) const
 {
-  auto it = this->Internals->LastReduceKeys.find(blendMode);
-  return it == this->Internals->LastReduceKeys.end()
-           ? std::string()
-           : this->Internals->Composer.GetFragmentSource(it->second);
+  const vtkInternals& in = *this->Internals;
+  auto it = in.LastReduceKeys.find(blendMode);
+  if (it == in.LastReduceKeys.end())
+    return std::string();
+  return this->GetStageInUse() == Stages::Compute ? in.Composer.GetComputeSource(it->second)
+                                                  : in.Composer.GetFragmentSource(it->second);
+}
+
+std::string vtkMultiVolumeRayCastMapper::GetShaderSource(int numberOfVolumes) const
+{
+  return this->GetStageInUse() == Stages::Compute ? this->GetComputeShaderSource(numberOfVolumes)
+                                                  : this->GetFragmentShaderSource(numberOfVolumes);
 }
 
 std::string vtkMultiVolumeRayCastMapper::GetFragmentShaderSource(int numberOfVolumes) const
@@ -209,6 +217,14 @@ std::string vtkMultiVolumeRayCastMapper::GetFragmentShaderSource(int numberOfVol
   return it == this->Internals->LastKeys.end()
            ? std::string()
            : this->Internals->Composer.GetFragmentSource(it->second);
+}
+
+std::string vtkMultiVolumeRayCastMapper::GetComputeShaderSource(int numberOfVolumes) const
+{
+  auto it = this->Internals->LastKeys.find(numberOfVolumes);
+  return it == this->Internals->LastKeys.end()
+           ? std::string()
+           : this->Internals->Composer.GetComputeSource(it->second);
 }
 
 void vtkMultiVolumeRayCastMapper::GetReductionRatio(double ratio[3])

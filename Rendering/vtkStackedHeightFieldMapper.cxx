@@ -2,6 +2,7 @@
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkStackedHeightFieldMapperInternals.h"
 
+#include "StrataComputeStage.h"
 #include "StrataFeedbackBuffer.h"
 #include "StrataFeedbackReduction.h"
 #include "StrataGraphicsResources.h"
@@ -91,6 +92,7 @@ vtkStackedHeightFieldMapper::vtkStackedHeightFieldMapper()
   this->SetNumberOfInputPorts(1);
   this->Static = 0;
   this->Internals->ColorsModified.Modified();
+  this->Stage = static_cast<Stages>(strata::ComputeStage::DefaultStage());
 }
 
 vtkStackedHeightFieldMapper::~vtkStackedHeightFieldMapper()
@@ -215,10 +217,22 @@ void vtkStackedHeightFieldMapper::SetHeightLookupTable(vtkScalarsToColors* lut)
   this->Modified();
 }
 
+std::string vtkStackedHeightFieldMapper::GetShaderSource() const
+{
+  return this->GetStageInUse() == Stages::Compute ? this->GetComputeShaderSource()
+                                                  : this->GetFragmentShaderSource();
+}
+
 std::string vtkStackedHeightFieldMapper::GetFragmentShaderSource() const
 {
   const vtkInternals& in = *this->Internals;
   return in.HasLastKey ? in.Composer.GetFragmentSource(in.LastKey) : std::string();
+}
+
+std::string vtkStackedHeightFieldMapper::GetComputeShaderSource() const
+{
+  const vtkInternals& in = *this->Internals;
+  return in.HasLastKey ? in.Composer.GetComputeSource(in.LastKey) : std::string();
 }
 
 int vtkStackedHeightFieldMapper::GetNumberOfShaderSourcesBuilt() const
@@ -910,11 +924,16 @@ vtkShaderProgram* vtkStackedHeightFieldMapper::vtkInternals::ReadyProgram(Self* 
   key.LightingComplexity = frame.Lit ? oglRen->GetLightingComplexity() : 0;
   key.LightCount = frame.Lit ? oglRen->GetLightingCount() : 0;
   key.Translucent = frame.Translucent;
-  vtkShaderProgram* program =
-    this->Composer.ReadyProgram(renWin, key, [oglRen] { return oglRen->GetLightingUniforms(); });
+  std::string log;
+  auto lighting = [oglRen] { return oglRen->GetLightingUniforms(); };
+  vtkShaderProgram* program = frame.Compute
+                                ? this->Composer.ReadyComputeProgram(renWin, key, lighting, log)
+                                : this->Composer.ReadyProgram(renWin, key, lighting);
   if (!program)
   {
-    vtkErrorWithObjectMacro(self, "The height-field ray casting shader did not compile or link.");
+    vtkErrorWithObjectMacro(self,
+      "The height-field ray casting " << (frame.Compute ? "compute" : "fragment")
+                                      << " shader did not compile or link. " << log);
     return nullptr;
   }
   this->LastKey = key;
@@ -1254,6 +1273,7 @@ void vtkStackedHeightFieldMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Atlas.ReleaseGraphicsResources();
   in.Feedback.ReleaseGraphicsResources();
   in.Composer.ReleaseGraphicsResources();
+  in.Staging.ReleaseGraphicsResources(win);
   in.UploadTime = 0;
   in.ColorTime = 0;
   this->Superclass::ReleaseGraphicsResources(win);
@@ -1289,6 +1309,7 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   in.UpdateColors(this, renWin, frame);
   frame.Lit =
     frame.Shaded && actor->GetProperty()->GetLighting() && oglRen->GetLightingComplexity() > 0;
+  in.ChooseStage(this, renWin, frame);
   vtkShaderProgram* program = in.ReadyProgram(this, renWin, oglRen, frame);
   if (!program || !in.SetUniforms(this, ren, actor, program, frame))
   {
@@ -1304,8 +1325,12 @@ void vtkStackedHeightFieldMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     in.PrepareFeedback(this, renWin, program, frame);
   }
-  in.Draw(
-    renWin, program, frame.Translucent != strata::HeightFieldShaderComposer::Translucency::Blend);
+  const bool writeDepth =
+    frame.Translucent != strata::HeightFieldShaderComposer::Translucency::Blend;
+  if (frame.Compute)
+    in.DrawCompute(renWin, program, frame, writeDepth);
+  else
+    in.Draw(renWin, program, writeDepth);
   in.UnbindData(renWin, frame);
   if (in.LastKey.Feedback)
   {
@@ -1339,6 +1364,8 @@ void vtkStackedHeightFieldMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "LinearSearchStep: " << this->LinearSearchStep << "\n";
+  os << indent << "Stage: " << strata::ComputeStage::StageName(static_cast<int>(this->Stage))
+     << " (last frame: " << this->GetStageInUseAsString() << ")\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "NullValue: " << this->NullValue << "\n";
   os << indent << "UseNullValue: " << this->UseNullValue << "\n";

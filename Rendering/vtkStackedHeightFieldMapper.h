@@ -35,7 +35,7 @@
  * Only what the scene uses is compiled: no lighting code when lighting is off, no lookup
  * table code with solid colours, no per-horizon sources unless a horizon has one, no attribute
  * sampling unless a horizon is coloured by a grid, no hole test when no horizon has holes.
- * GetFragmentShaderSource returns the source last used.
+ * GetShaderSource returns the source last used.
  *
  * @code
  * vtkNew<vtkStackedHeightFieldMapper> mapper;
@@ -117,6 +117,36 @@ public:
   vtkSetClampMacro(LinearSearchStep, double, 1e-3, 1.0);
   vtkGetMacro(LinearSearchStep, double);
   ///@}
+
+  /// The stage the rays are cast in (the values of strata::ComputeStage::Stages).
+  enum class Stages
+  {
+    Auto,     ///< the faster of the two on this device, by a probe at the first render
+    Fragment, ///< a fragment shader over the stack's box
+    Compute,  ///< one compute dispatch over the box's screen rectangle
+  };
+
+  ///@{
+  /**
+   * The stage (default Auto, or the environment's STRATA_RAY_CASTING_STAGE: Auto, Fragment or
+   * Compute). Both stages run the same composed program, feature for feature: the compute stage
+   * leaves its colours and depths in images, which one fragment pass writes into the frame
+   * buffer under the same depth test and blending. Auto times the same kernel in both stages
+   * once per device (GL_RENDERER) and process; Compute falls back to Fragment, with a warning,
+   * without OpenGL 4.3.
+   */
+  void SetStage(Stages stage);
+  Stages GetStage() const { return this->Stage; }
+  void SetStageToAuto() { this->SetStage(Stages::Auto); }
+  void SetStageToFragment() { this->SetStage(Stages::Fragment); }
+  void SetStageToCompute() { this->SetStage(Stages::Compute); }
+  ///@}
+
+  /// The stage the last frame was cast in (Fragment or Compute; Auto before the first frame).
+  Stages GetStageInUse() const;
+  const char* GetStageInUseAsString() const;
+  /// Auto's probe on this device: compute / fragment time of the same kernel (0 if not probed).
+  double GetStageProbeRatio() const;
 
   ///@{
   /**
@@ -321,8 +351,16 @@ public:
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  /// The fragment shader source of the last render (empty before).
+  ///@{
+  /**
+   * The source of the program the last render ran, in its stage (GetStageInUse: a fragment or
+   * a compute shader); the fragment stage's or the compute stage's source of that program
+   * (empty if never built). Empty before the first render.
+   */
+  std::string GetShaderSource() const;
   std::string GetFragmentShaderSource() const;
+  std::string GetComputeShaderSource() const;
+  ///@}
 
   ///@{
   /**
@@ -384,6 +422,7 @@ private:
   strata::Region Region;
   int TileSize = 64;
   double LinearSearchStep = 0.5;
+  Stages Stage = Stages::Auto;
   double HeightScale = 1.0;
   double NullValue = -999.25;
   bool UseNullValue = false;

@@ -8,6 +8,7 @@
 
 #include "vtkStackedHeightFieldMapper.h"
 
+#include "StrataComputeStaging.h"
 #include "StrataFeedbackBuffer.h"
 #include "StrataGraphicsResources.h"
 #include "StrataHeightFieldPager.h"
@@ -92,6 +93,10 @@ public:
   strata::HeightFieldShaderComposer Composer;
   strata::HeightFieldShaderComposer::Key LastKey;
   bool HasLastKey = false;
+  strata::ComputeStaging Staging; ///< the compute stage's pixels before they are resolved
+  int StageInUse = 0;             ///< strata::ComputeStage::Stages of the last frame
+  double StageProbeRatio = 0.0;   ///< Auto's probe, compute / fragment (0 if not probed)
+  bool StageWarned = false;       ///< Compute asked for where it cannot run (warned once)
   vtkMTimeType UploadTime = 0;
   vtkMTimeType ColorTime = 0;
 
@@ -109,6 +114,7 @@ public:
     double LutRange[2] = { 0.0, 1.0 };
     vtkNew<vtkMatrix4x4> GridToClip, ClipToGrid, GridToView;
     int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height in the window
+    bool Compute = false;             ///< the compute stage: one dispatch, staged, then resolved
   };
 
   bool ReadAttributes(Self* self, const std::vector<vtkImageData*>& images);
@@ -147,6 +153,14 @@ public:
     const Frame& frame);
   /// writeDepth: false in the translucent pass (what lies behind stays visible to the rest).
   void Draw(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program, bool writeDepth);
+  /// The frame's stage (Self::Stage, the device, the image units the pass needs).
+  void ChooseStage(Self* self, vtkOpenGLRenderWindow* renWin, Frame& frame);
+  /// The compute stage's draw: one dispatch over the box's screen rectangle into the staging
+  /// images, resolved into the frame buffer under the fragment stage's depth test and blending.
+  void DrawCompute(vtkOpenGLRenderWindow* renWin,
+    vtkShaderProgram* program,
+    const Frame& frame,
+    bool writeDepth);
   void ReadFeedback(Self* self);
   /// The stack's textures (the tile atlas when paged, else the height array), the normals
   /// and the attributes bound for `program`; UnbindData undoes it.

@@ -146,7 +146,7 @@ int TestHeightFieldColorArrays(int argc, char* argv[])
   s.Win->Render();
   const std::vector<unsigned char> rgb = ReadRGB(s.Win);
   WritePNG(paths.Output + "/ColorArrays-color.png", rgb, w, h);
-  const std::string source = s.Mapper->GetFragmentShaderSource();
+  const std::string source = s.Mapper->GetShaderSource();
 
   // The reference colour of every pixel the reference hits.
   strata::HeightFieldStack attributes;
@@ -222,11 +222,11 @@ int TestHeightFieldColorArrays(int argc, char* argv[])
   const bool hasAttributes = source.find("strataAttribute") != std::string::npos;
   s.Mapper->SetHorizonColorArray(0, nullptr);
   s.Win->Render();
-  const std::string tablesOnly = s.Mapper->GetFragmentShaderSource();
+  const std::string tablesOnly = s.Mapper->GetShaderSource();
   s.Mapper->SetHorizonLookupTable(0, nullptr);
   s.Mapper->SetHorizonLookupTable(1, nullptr);
   s.Win->Render();
-  const std::string plain = s.Mapper->GetFragmentShaderSource();
+  const std::string plain = s.Mapper->GetShaderSource();
   const bool lean = tablesOnly.find("strataHorizonColor") != std::string::npos &&
                     tablesOnly.find("uAttributes") == std::string::npos &&
                     plain.find("strataHorizonColor") == std::string::npos &&

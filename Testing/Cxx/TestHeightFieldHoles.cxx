@@ -57,7 +57,7 @@ int TestHeightFieldHoles(int argc, char* argv[])
     std::cerr << "FAILED: too few rays pass through the holes\n";
     ok = false;
   }
-  if (s.Mapper->GetFragmentShaderSource().find("valid = !any(strataHoles(h))") == std::string::npos)
+  if (s.Mapper->GetShaderSource().find("valid = !any(strataHoles(h))") == std::string::npos)
   {
     std::cerr << "FAILED: a stack with holes must be drawn with the hole test\n";
     ok = false;

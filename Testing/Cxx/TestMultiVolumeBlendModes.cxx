@@ -172,7 +172,7 @@ void ShaderSource(const TestPaths& paths)
   const double pos[3] = { -40, -60, 50 }, foc[3] = { 12, 10, 10 };
   s.Camera(pos, foc);
   s.Win->Render();
-  const std::string composite = s.Mapper->GetFragmentShaderSource(1);
+  const std::string composite = s.Mapper->GetShaderSource(1);
   Check(!composite.empty(), "a composite source was generated");
   Check(!has(composite, "gLayerT") && !has(composite, "strataIso") && !has(composite, "gState") &&
           s.Mapper->GetReductionShaderSource(vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND).empty(),
@@ -181,7 +181,7 @@ void ShaderSource(const TestPaths& paths)
   s.Win->Render();
   const std::string mip =
     s.Mapper->GetReductionShaderSource(vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND);
-  const std::string layer = s.Mapper->GetFragmentShaderSource(1);
+  const std::string layer = s.Mapper->GetShaderSource(1);
   Check(has(mip, "s > state.x") && !has(mip, "s < state.x") && !has(mip, "state.y += len"),
     "the MIP reduction keeps the maximum and nothing else");
   Check(!has(mip, "strataSegment") && !has(mip, "uTerminationOpacity"),
@@ -191,7 +191,7 @@ void ShaderSource(const TestPaths& paths)
     "the integration reads the MIP volume as a layer without sampling it");
   s.Mapper->SetBlendMode(vtkVolumeMapper::ISOSURFACE_BLEND);
   s.Win->Render();
-  const std::string iso = s.Mapper->GetFragmentShaderSource(1);
+  const std::string iso = s.Mapper->GetShaderSource(1);
   Check(has(iso, "strataIso0") && !has(iso, "strataSegment(") && !has(iso, "gLayerT"),
     "an isosurface volume has contour code and no medium or layer");
 }

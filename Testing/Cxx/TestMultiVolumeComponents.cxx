@@ -313,7 +313,7 @@ void ShaderSource(const TestPaths& paths)
     s.UseSingleVolume();
     s.Camera(Pos, Focal);
     s.Win->Render();
-    const std::string one = s.Mapper->GetFragmentShaderSource(1);
+    const std::string one = s.Mapper->GetShaderSource(1);
     Check(!one.empty() && !has(one, "strataComponents") && !has(one, "strataMedium") &&
             !has(one, "uWeights") && !has(one, "uColorScale"),
       "a scene of one-component volumes has no component code");
@@ -327,7 +327,7 @@ void ShaderSource(const TestPaths& paths)
     s.UseSingleVolume();
     s.Camera(Pos, Focal);
     s.Win->Render();
-    const std::string src = s.Mapper->GetFragmentShaderSource(1);
+    const std::string src = s.Mapper->GetShaderSource(1);
     const int m = static_cast<int>(mode);
     bool others = false;
     for (int k = 0; k < 3; ++k)
@@ -387,7 +387,7 @@ void Paged(const TestPaths& paths, Mode mode)
     toInCore.Max <= ImagePolicy::TwoProgramsMax, name + " is the in-core image within 1 of 255");
   Check(
     CheckVolumeComparison(s.Compare(name), name, 0.4, 2, 2500), name + " matches the reference");
-  const std::string src = s.Mapper->GetFragmentShaderSource(1);
+  const std::string src = s.Mapper->GetShaderSource(1);
   const int count = Count(mode);
   // Independent4's component 3 weighs 0 (ComponentProperty): no lookup, no table.
   const int read = mode == Mode::Independent4 ? 3 : count;

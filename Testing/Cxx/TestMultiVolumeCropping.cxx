@@ -104,7 +104,7 @@ void PerVolume(const TestPaths& paths)
   s.Camera(pos, foc);
   Check(CheckVolumeComparison(s.Compare("CropPerVolume"), "CropPerVolume", 0.6, 12, 3000),
     "one of two overlapping volumes cropped matches the reference");
-  const std::string two = s.Mapper->GetFragmentShaderSource(2);
+  const std::string two = s.Mapper->GetShaderSource(2);
   Check(
     two.find("strataCrop1") != std::string::npos && two.find("strataCrop0") == std::string::npos,
     "only the cropped volume has crop code");
@@ -112,7 +112,7 @@ void PerVolume(const TestPaths& paths)
   s.Mapper->RemoveInputCropping(1);
   s.Mapper->CroppingOff();
   s.Win->Render();
-  Check(s.Mapper->GetFragmentShaderSource(2).find("strataCrop") == std::string::npos,
+  Check(s.Mapper->GetShaderSource(2).find("strataCrop") == std::string::npos,
     "without cropping no crop code");
 }
 

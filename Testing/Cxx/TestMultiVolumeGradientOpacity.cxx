@@ -65,11 +65,11 @@ void Single(const TestPaths& paths)
   const ChannelError change = ImageError(with.Gpu, without.Gpu);
   std::cout << "GradientOpacitySingle: RMS " << change.Rms << " from the image without it\n";
   Check(change.Rms > 2.0, "gradient opacity changes the image by more than RMS 2");
-  const std::string src = s.Mapper->GetFragmentShaderSource(1);
+  const std::string src = s.Mapper->GetShaderSource(1);
   Check(src.find("strataGradientTau0") != std::string::npos, "its source has gradient opacity");
   s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PreIntegrated);
   s.Win->Render();
-  Check(s.Mapper->GetFragmentShaderSource(1).find("strataGradientTau") == std::string::npos,
+  Check(s.Mapper->GetShaderSource(1).find("strataGradientTau") == std::string::npos,
     "pre-integration has no gradient opacity code (documented: not supported there)");
 }
 
@@ -118,7 +118,7 @@ void Mixed(const TestPaths& paths)
   Check(
     CheckVolumeComparison(s.Compare("GradientOpacityMixed"), "GradientOpacityMixed", 0.5, 3, 3000),
     "volumes with and without gradient opacity in one scene match the reference");
-  const std::string two = s.Mapper->GetFragmentShaderSource(2);
+  const std::string two = s.Mapper->GetShaderSource(2);
   Check(two.find("strataGradientTau0") != std::string::npos &&
           two.find("strataGradientTau1") == std::string::npos,
     "only the volume with gradient opacity has its code");

@@ -121,7 +121,7 @@ void TypedVolume(const TypedCase& c, const TestPaths& paths, bool& ok)
     tag + ": a brick takes 16^3 texels of its type");
   Check(mx <= c.MaxToFloat,
     tag + ": the native image equals float storage's (max <= " + Of255(c.MaxToFloat) + ")");
-  Check(s.Mapper->GetFragmentShaderSource(1).find("uDecode0") != std::string::npos,
+  Check(s.Mapper->GetShaderSource(1).find("uDecode0") != std::string::npos,
     tag + ": the normalised atlas is decoded");
   ok = CheckVolumeComparison(s.Compare(tag), tag, 0.4, 2, 3000) && ok;
 
@@ -196,8 +196,7 @@ void MixedTypes(const TestPaths& paths, bool& ok)
   s.Mapper->SetScalarStorage(vtkMultiVolumeRayCastMapper::ScalarStorages::Float32);
   s.Win->Render();
   const auto floats = ReadRGB(s.Win);
-  const bool floatDecodes =
-    s.Mapper->GetFragmentShaderSource(2).find("uDecode") != std::string::npos;
+  const bool floatDecodes = s.Mapper->GetShaderSource(2).find("uDecode") != std::string::npos;
   s.Mapper->SetScalarStorage(vtkMultiVolumeRayCastMapper::ScalarStorages::Native);
   s.Win->Render();
   const int mx = MaxDifference(native, floats);

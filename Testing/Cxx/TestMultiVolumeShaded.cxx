@@ -97,7 +97,7 @@ int TestMultiVolumeShaded(int argc, char* argv[])
   light->SetFocalPoint(0, 0, 0);
   s.Ren->AddLight(light);
   s.Win->Render();
-  const std::string src = s.Mapper->GetFragmentShaderSource(1);
+  const std::string src = s.Mapper->GetShaderSource(1);
   Check(src.find("strataShade0") != std::string::npos &&
           src.find("uLightDirection") != std::string::npos,
     "a shaded volume's shader has gradient and lighting code");

@@ -41,8 +41,8 @@ int TestMultiVolumeShaderSource(int argc, char* argv[])
   const double pos[3] = { -40, -60, 50 }, foc[3] = { 15, 10, 10 };
   s.Camera(pos, foc);
   s.Win->Render();
-  const std::string one = s.Mapper->GetFragmentShaderSource(1);
-  const std::string two = s.Mapper->GetFragmentShaderSource(2);
+  const std::string one = s.Mapper->GetShaderSource(1);
+  const std::string two = s.Mapper->GetShaderSource(2);
   auto has = [](const std::string& src, const char* what)
   { return src.find(what) != std::string::npos; };
   std::cout << "ShaderSource: " << s.Mapper->GetNumberOfFragments()
@@ -63,15 +63,35 @@ int TestMultiVolumeShaderSource(int argc, char* argv[])
   s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PreIntegrated);
   s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
   s.Win->Render();
-  const std::string pre = s.Mapper->GetFragmentShaderSource(1);
+  const std::string pre = s.Mapper->GetShaderSource(1);
   Check(has(pre, "uPreTable0") && !has(pre, "uTransfer0"),
     "pre-integrated shader reads the table, not the TF");
+  // The stage the frames ran in: its own entry point and output, and nothing of the other.
+  const bool compute = s.Mapper->GetStageInUse() == vtkMultiVolumeRayCastMapper::Stages::Compute;
+  std::cout << "ShaderSource: frames ran in the " << s.Mapper->GetStageInUseAsString()
+            << " stage\n";
+  for (const std::string* src : { &one, &two, &pre })
+    Check(compute ? has(*src, "layout(local_size_x") && !has(*src, "gl_Frag")
+                  : has(*src, "gl_FragData[0]") && !has(*src, "gl_GlobalInvocationID"),
+      "the source is the stage's own");
+  Check(!compute || (has(one, "strataFragData[0] * (1.0 - dst.a) + dst") &&
+                      has(pre, "strataFragData[0] + dst * (1.0 - strataFragData[0].a)")),
+    "compute: front to back blends under, back to front over");
   Check(!has(pre, "uTerminationOpacity"), "back-to-front: no early termination code");
   // Level-of-detail feedback exists only where something is paged: in-core scenes carry no
   // image load/store, no extension line and no feedback lookups.
+  // (The compute stage stores its outputs with imageStore into uStrataOutput<r>: those only.)
+  auto feedbackStores = [](const std::string& src)
+  {
+    int n = 0;
+    for (size_t at = src.find("imageStore("); at != std::string::npos;
+         at = src.find("imageStore(", at + 1))
+      n += src.compare(at + 11, 13, "uStrataOutput") != 0 ? 1 : 0;
+    return n;
+  };
   for (const std::string* src : { &one, &two, &pre })
     Check(!has(*src, "#extension") && !has(*src, "uFeedback") && !has(*src, "gLack") &&
-            !has(*src, "imageAtomic") && !has(*src, "imageStore"),
+            !has(*src, "imageAtomic") && feedbackStores(*src) == 0,
       "in core: no feedback code");
   // The same two volumes paged from pools: the shaders report the costliest lacking brick
   // of the feedback rays (fragments compare through the score image; front to back the
@@ -93,7 +113,7 @@ int TestMultiVolumeShaderSource(int argc, char* argv[])
   s.Mapper->SetClassification(vtkMultiVolumeRayCastMapper::Classifications::PostClassification);
   s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::FrontToBack);
   s.Win->Render();
-  const std::string paged = s.Mapper->GetFragmentShaderSource(2);
+  const std::string paged = s.Mapper->GetShaderSource(2);
   Check(has(paged, "#extension GL_ARB_shader_image_load_store : require") &&
           has(paged, "gLackVolume = better ? 1") && !has(paged, "uFeedbackSet2") &&
           has(paged, "gLackScore > imageLoad(uFeedbackScore") &&
@@ -102,14 +122,14 @@ int TestMultiVolumeShaderSource(int argc, char* argv[])
     "paged: the 2-volume shader reports lacking bricks of both volumes into the feedback image");
   s.Mapper->SetCompositeOrder(vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront);
   s.Win->Render();
-  const std::string pagedBack = s.Mapper->GetFragmentShaderSource(1);
+  const std::string pagedBack = s.Mapper->GetShaderSource(1);
   Check(has(pagedBack, "gLackScore >= imageLoad(uFeedbackScore") &&
           !has(pagedBack, "gTransmittance = (1.0 - prior)"),
     "paged, back to front: on equal cost the nearer (later) report wins; no transmittance is "
     "known");
   s.Mapper->LevelOfDetailFeedbackOff();
   s.Win->Render();
-  const std::string pagedOff = s.Mapper->GetFragmentShaderSource(1);
+  const std::string pagedOff = s.Mapper->GetShaderSource(1);
   Check(!pagedOff.empty() && !has(pagedOff, "#extension") && !has(pagedOff, "uFeedback"),
     "paged with feedback off: no feedback code");
   for (int i = 0; i < 2; ++i)

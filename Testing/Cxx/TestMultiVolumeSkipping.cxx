@@ -89,12 +89,12 @@ int TestMultiVolumeSkipping(int argc, char* argv[])
         Check(covered > 3000 && mx <= ImagePolicy::TwoProgramsMax,
           "skipping leaves the image unchanged (" + what + ")");
       }
-  const std::string src = s.Mapper->GetFragmentShaderSource(1);
+  const std::string src = s.Mapper->GetShaderSource(1);
   Check(
     src.find("strataEmptyUntil") != std::string::npos, "the skipping shader probes the skip grid");
   s.Mapper->EmptySpaceSkippingOff();
   s.Win->Render();
-  Check(s.Mapper->GetFragmentShaderSource(1).find("uSkip") == std::string::npos,
+  Check(s.Mapper->GetShaderSource(1).find("uSkip") == std::string::npos,
     "skipping off: no skipping code");
   s.Mapper->EmptySpaceSkippingOn();
   s.Mapper->SetClassification(C::PostClassification);

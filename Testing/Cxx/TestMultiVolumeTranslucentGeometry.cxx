@@ -163,7 +163,7 @@ int TestMultiVolumeTranslucentGeometry(int argc, char* argv[])
 
   // No translucent actor: no surface code in the shaders.
   s.Win->Render();
-  Check(s.Mapper->GetFragmentShaderSource(2).find("Surface") == std::string::npos,
+  Check(s.Mapper->GetShaderSource(2).find("Surface") == std::string::npos,
     "without translucent actors the two-volume fragment has no surface code");
 
   // Two planes through both volumes: a vertical one across the overlap and a tilted one.
@@ -181,7 +181,7 @@ int TestMultiVolumeTranslucentGeometry(int argc, char* argv[])
     true,
     2.0,
     crossing);
-  const std::string source = s.Mapper->GetFragmentShaderSource(2);
+  const std::string source = s.Mapper->GetShaderSource(2);
   Check(source.find("strataSurfacesBefore") != std::string::npos,
     "with translucent actors the two-volume fragment composites surface layers");
 

@@ -248,7 +248,7 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   const double down[3] = { OX - 50, OY - 70, 80 }, focal[3] = { OX + 30, OY + 25, 14 };
   s.Camera(down, focal);
   s.Win->Render();
-  const std::string opaque = hf->GetFragmentShaderSource();
+  const std::string opaque = hf->GetShaderSource();
   Check(!opaque.empty() && opaque.find("strataHorizonOpacity(layer) < 1.0") == std::string::npos &&
           opaque.find("uPeel") == std::string::npos &&
           opaque.find("layerAlpha") == std::string::npos,
@@ -257,10 +257,10 @@ int TestMultiVolumeTranslucentHorizons(int argc, char* argv[])
   hf->SetHorizonOpacity(0, 0.45);
   hf->SetHorizonOpacity(1, 0.35);
   CheckCase(Render(s, hf, actor, true, "HorizonsDown"), "HorizonsDown", true);
-  const std::string layer = hf->GetFragmentShaderSource();
+  const std::string layer = hf->GetShaderSource();
   Check(layer.find("uPeelPrevious") != std::string::npos,
     "a peel of translucent horizons reads the previous layer's depth");
-  Check(s.Mapper->GetFragmentShaderSource(2).find("strataSurfacesBefore") != std::string::npos,
+  Check(s.Mapper->GetShaderSource(2).find("strataSurfacesBefore") != std::string::npos,
     "with translucent horizons the two-volume fragment composites surface layers");
 
   // From below, all three translucent: the layers come in the reverse order.
