@@ -21,6 +21,8 @@
 #include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkStrataHorizonsRepresentation);
 
 //------------------------------------------------------------------------------
@@ -241,6 +243,19 @@ void vtkStrataHorizonsRepresentation::SetTileSize(int size)
 void vtkStrataHorizonsRepresentation::SetLinearSearchStep(double step)
 {
   this->Mapper->SetLinearSearchStep(step);
+}
+void vtkStrataHorizonsRepresentation::SetStage(int stage)
+{
+  this->Mapper->SetStage(
+    static_cast<vtkStackedHeightFieldMapper::Stages>(std::min(2, std::max(0, stage))));
+}
+int vtkStrataHorizonsRepresentation::GetStageInUse()
+{
+  return static_cast<int>(this->Mapper->GetStageInUse());
+}
+double vtkStrataHorizonsRepresentation::GetStageProbeRatio()
+{
+  return this->Mapper->GetStageProbeRatio();
 }
 void vtkStrataHorizonsRepresentation::SetPageCacheBudget(double megabytes)
 {

@@ -60,6 +60,12 @@ public:
   void SetUseNullValue(bool use);
   void SetTileSize(int size);
   void SetLinearSearchStep(double step);
+  /// 0 Auto, 1 Fragment, 2 Compute (vtkStackedHeightFieldMapper::Stages).
+  void SetStage(int stage);
+  /// After a render: the stage the stack was ray cast in (1 Fragment, 2 Compute; 0 before a
+  /// render) and Auto's probe of this device, compute / fragment (0 if not probed).
+  int GetStageInUse();
+  double GetStageProbeRatio();
   void SetPageCacheBudget(double megabytes);
   void SetAtlasBudget(double megabytes);
   void SetPagesPerFrame(int pages);

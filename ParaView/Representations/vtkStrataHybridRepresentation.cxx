@@ -18,6 +18,8 @@
 #include "vtkTrivialProducer.h"
 #include "vtkVolume.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkStrataHybridRepresentation);
 
 //------------------------------------------------------------------------------
@@ -176,6 +178,15 @@ void vtkStrataHybridRepresentation::SetPointSpacing(double spacing)
 void vtkStrataHybridRepresentation::SetSampleDistance(double distance)
 {
   this->Mapper->GetVolumeMapper()->SetSampleDistance(distance);
+}
+void vtkStrataHybridRepresentation::SetStage(int stage)
+{
+  this->Mapper->GetVolumeMapper()->SetStage(
+    static_cast<vtkMultiVolumeRayCastMapper::Stages>(std::min(2, std::max(0, stage))));
+}
+int vtkStrataHybridRepresentation::GetStageInUse()
+{
+  return static_cast<int>(this->Mapper->GetVolumeMapper()->GetStageInUse());
 }
 int vtkStrataHybridRepresentation::GetNumberOfPointsDrawn()
 {

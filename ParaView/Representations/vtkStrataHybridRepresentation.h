@@ -40,6 +40,10 @@ public:
   void SetNumberOfSlabs(int slabs);
   void SetPointSpacing(double spacing);
   void SetSampleDistance(double distance);
+  /// The volume part's stage: 0 Auto, 1 Fragment, 2 Compute (vtkMultiVolumeRayCastMapper::Stages).
+  void SetStage(int stage);
+  /// After a render: the stage the volume part was ray cast in (1 Fragment, 2 Compute).
+  int GetStageInUse();
   ///@}
 
   /// Points the last render drew.

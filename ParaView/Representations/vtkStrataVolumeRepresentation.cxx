@@ -200,6 +200,7 @@ void vtkStrataVolumeRepresentation::vtkScene::Apply(const Settings& s)
     std::min(2, std::max(0, s.Classification))));
   m->SetPreIntegrationTableSize(s.PreIntegrationTableSize);
   m->SetRaysPerPixel(s.RaysPerPixel);
+  m->SetStage(static_cast<vtkMultiVolumeRayCastMapper::Stages>(std::min(2, std::max(0, s.Stage))));
   m->SetRayCoherence(s.RayCoherence);
   m->SetCompositeOrder(s.CompositeOrder == 1
                          ? vtkMultiVolumeRayCastMapper::CompositeOrders::BackToFront
@@ -438,6 +439,18 @@ void vtkStrataVolumeRepresentation::MapComponents()
 }
 
 //------------------------------------------------------------------------------
+int vtkStrataVolumeRepresentation::GetStageInUse()
+{
+  return this->Scene ? static_cast<int>(this->Scene->Mapper->GetStageInUse()) : 0;
+}
+
+//------------------------------------------------------------------------------
+double vtkStrataVolumeRepresentation::GetStageProbeRatio()
+{
+  return this->Scene ? this->Scene->Mapper->GetStageProbeRatio() : 0.0;
+}
+
+//------------------------------------------------------------------------------
 int vtkStrataVolumeRepresentation::GetPaged()
 {
   return *this->Producer->GetPoolFileName() ? 1 : 0;
@@ -528,6 +541,7 @@ STRATA_SETTING(double, SampleDistance)
 STRATA_SETTING(int, Classification)
 STRATA_SETTING(int, PreIntegrationTableSize)
 STRATA_SETTING(int, RaysPerPixel)
+STRATA_SETTING(int, Stage)
 STRATA_SETTING(bool, RayCoherence)
 STRATA_SETTING(int, CompositeOrder)
 STRATA_SETTING(double, TerminationOpacity)

@@ -75,6 +75,7 @@ public:
     bool LevelOfDetailFeedback = true;
     int FeedbackScale = 4;
     double LevelOfDetailThreshold = 0.0;
+    int Stage = 0; ///< 0 Auto, 1 Fragment, 2 Compute (vtkMultiVolumeRayCastMapper::Stages)
   };
 
   ///@{
@@ -98,6 +99,7 @@ public:
   void SetLevelOfDetailFeedback(bool value);
   void SetFeedbackScale(int value);
   void SetLevelOfDetailThreshold(double value);
+  void SetStage(int value);
   ///@}
   const Settings& GetSettings() const { return this->Options; }
 
@@ -107,6 +109,13 @@ public:
   int GetPagingConverged();
   int GetNumberOfVolumesInScene();
   int GetPaged();
+  ///@}
+
+  ///@{
+  /// After a render: the stage the view's volumes were ray cast in (1 Fragment, 2 Compute; 0
+  /// before a render) and Auto's probe of this device, compute / fragment (0 if not probed).
+  int GetStageInUse();
+  double GetStageProbeRatio();
   ///@}
 
   ///@{

@@ -249,6 +249,29 @@ TOOTH_COLORS = [(0, 0.5, 0.5, 0.5), (140, 0.8, 0.35, 0.25), (200, 1.0, 0.9, 0.8)
 TOOTH_OPACITIES = [(0, 0.0), (110, 0.0), (150, 0.03), (255, 0.5)]
 
 
+def compare_in_stages(view, camera, args, scene, displays, prefix):
+    """The scene in each ray-casting stage against the same reference: the stage the render
+    used is the one asked for; then Auto, which reports its probe of this device."""
+    for value, name in ((1, "Fragment"), (2, "Compute")):
+        for display in displays:
+            setattr(display, prefix + "Stage", name)
+        Render(view)
+        displays[0].UpdatePropertyInformation()
+        used = displays[0].GetPropertyValue(prefix + "StageInUse")
+        check(used == value, "%s: rendered in the %s stage (%d)" % (scene, name, used))
+        compare(view, camera, args.work, scene, args.tolerance)
+    for display in displays:
+        setattr(display, prefix + "Stage", "Auto")
+    Render(view)
+    displays[0].UpdatePropertyInformation()
+    ratio = displays[0].GetPropertyValue(prefix + "StageProbeRatio")
+    used = displays[0].GetPropertyValue(prefix + "StageInUse")
+    print("%s: Auto's probe, compute / fragment %.3f; chose %s" %
+          (scene, ratio, {1: "Fragment", 2: "Compute"}.get(used, "?")))
+    check(ratio > 0 and used == (2 if ratio < 1 else 1),
+          "%s: Auto took the stage its probe measured faster" % scene)
+
+
 def volumes(args, camera):
     """Two overlapping volumes, each with its own transfer function, in one ray cast: the
     tooth (ParaView's own NRRD reader) and the shell around it (a .vti)."""
@@ -265,6 +288,7 @@ def volumes(args, camera):
         check(display.GetPropertyValue("StrataVolumeNumberOfVolumesInScene") == 2,
               "both volumes in the view's one ray cast")
     compare(view, camera, args.work, "volumes", args.tolerance)
+    compare_in_stages(view, camera, args, "volumes", [first, second], "StrataVolume")
     # Hiding one leaves the other alone in the ray cast.
     Hide(shell, view)
     Render(view)
@@ -317,6 +341,12 @@ def hybrid(args, camera):
     print("hybrid: %d points drawn" % drawn)
     check(drawn > 0, "the hybrid representation draws its points")
     compare(view, camera, args.work, "hybrid", args.tolerance)
+    display.StrataHybridStage = "Compute"
+    Render(view)
+    display.UpdatePropertyInformation()
+    check(display.GetPropertyValue("StrataHybridStageInUse") == 2,
+          "the hybrid's volume part rendered in the compute stage")
+    compare(view, camera, args.work, "hybrid", args.tolerance)
 
 
 def show_reek(stack, view, paged):
@@ -343,6 +373,7 @@ def horizons(args, camera):
           "four horizons in the stack")
     check(display.GetPropertyValue("StrataHorizonsNumberOfPagedHorizons") == 0, "none paged")
     compare(view, camera, args.work, "horizons", args.tolerance)
+    compare_in_stages(view, camera, args, "horizons", [display], "StrataHorizons")
 
 
 def paged_horizons(args, camera):

@@ -4,10 +4,12 @@
 // grid as a triangle mesh through vtkPolyDataMapper). One process per (case, method), so that
 // peak RSS belongs to that method alone; scripts/bench heightfield runs them all and collects
 // the CSV. Usage:
-//   BenchHeightField frame <points-per-horizon> <raycast|mesh> [<w>x<h>]
+//   BenchHeightField frame <points-per-horizon> <raycast|mesh> [<w>x<h>] [--stage <s>]
 //                      -> one CSV line: case, method, wall ms per frame, peak RSS MB, GPU ms
 //                         (GL_TIME_ELAPSED; -1 without timer queries), render-thread CPU ms,
-//                         viewport width and height, stage (StrataFrameTimer.h)
+//                         viewport width and height, stage (StrataFrameTimer.h): the ray
+//                         caster's stage in use (fragment or compute; --stage fragment, compute
+//                         or auto, default fragment), vtk for the mesh
 //   BenchHeightField accuracy <points-per-horizon>             -> step vs error vs ms lines
 // STRATA_BENCH_TILE and STRATA_BENCH_STEP override the mapper's tile size and linear-search step
 // in `frame` runs with the ray caster; `accuracy` writes its id images to `-T <dir>` (default the
@@ -118,10 +120,24 @@ double MedianMs(vtkRenderWindow* win, vtkRenderer* ren, double extent, int views
 int main(int argc, char* argv[])
 {
   const strata_test::TestPaths paths = strata_test::TestPaths::TakeFromArguments(argc, argv);
+  // --stage <fragment|compute|auto>, taken out of the arguments.
+  auto stage = vtkStackedHeightFieldMapper::Stages::Fragment;
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::strcmp(argv[i], "--stage") == 0)
+    {
+      const std::string value = argv[i + 1];
+      stage = value == "compute" ? vtkStackedHeightFieldMapper::Stages::Compute
+              : value == "auto"  ? vtkStackedHeightFieldMapper::Stages::Auto
+                                 : vtkStackedHeightFieldMapper::Stages::Fragment;
+      for (int j = i; j + 2 <= argc; ++j)
+        argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
   if (argc < 3)
   {
-    std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> [<width>x<height>] | "
-                 "accuracy <points>\n";
+    std::cerr << "usage: BenchHeightField frame <points> <raycast|mesh> [<width>x<height>] "
+                 "[--stage fragment|compute|auto] | accuracy <points>\n";
     return 2;
   }
   const std::string mode = argv[1];
@@ -158,9 +174,10 @@ int main(int argc, char* argv[])
       }
       horizons.clear(); // the user keeps only the meshes
     }
-    else
+    vtkNew<vtkStackedHeightFieldMapper> m;
+    if (method != "mesh")
     {
-      vtkNew<vtkStackedHeightFieldMapper> m;
+      m->SetStage(stage);
       for (auto& h : horizons)
         m->AddInputDataObject(h);
       if (const char* tile = std::getenv("STRATA_BENCH_TILE"))
@@ -172,8 +189,11 @@ int main(int argc, char* argv[])
       ren->AddActor(a);
     }
     const strata_bench::FrameTime t = MedianTimes(win, ren, 2000.0, 3);
-    // The ray caster runs as a fragment shader (its only stage so far); the mesh is VTK's.
-    const char* stage = method == "mesh" ? "vtk" : "fragment";
+    // The ray caster's stage in use; the mesh is VTK's.
+    const char* used = method == "mesh" ? "vtk"
+                       : m->GetStageInUse() == vtkStackedHeightFieldMapper::Stages::Compute
+                         ? "compute"
+                         : "fragment";
     std::printf("%s,%s,%.1f,%.0f,%.2f,%.2f,%d,%d,%s\n",
       label.c_str(),
       method.c_str(),
@@ -183,7 +203,7 @@ int main(int argc, char* argv[])
       t.CpuMs,
       width,
       height,
-      stage);
+      used);
     return 0;
   }
   // Accuracy: linear-search step against the fraction of pixels that differ from the exact

@@ -12,11 +12,12 @@
 //   BenchVolume blend <data>                -> every blend mode at two sample distances, each
 //                                              against the reference of that mode
 //   BenchVolume frame <single|sparse> <data> [<method>=<MB>,...] [--viewport <w>x<h>]
-//                                           -> strata, strata-no-atlas and VTK at 512 x 512
-//                                              (or the viewport), timed interleaved: wall, GPU
+//                                           -> strata, strata-no-atlas (each in the fragment
+//                                              and the compute stage, -compute) and VTK at 512 x
+//                                              512 (or the viewport), timed interleaved: wall, GPU
 //                                              (GL_TIME_ELAPSED) and render-thread CPU ms per
 //                                              frame and the stage; peak RSS from `memory`
-//   BenchVolume memory <single|sparse> <data> <strata|strata-no-atlas|vtk>
+//   BenchVolume memory <single|sparse> <data> <strata[-no-atlas][-compute]|vtk>
 //                                           -> "<method>=<peak RSS MB>", one mapper alone
 //   BenchVolume storage <data>              -> the lean atlas: the data as uint8, uint16, int16
 //                                              and float32 under one atlas budget
@@ -24,8 +25,8 @@
 //                                              and paged from component pools
 //   BenchVolume layers                      -> TranslucentLayers 1 .. 7 with six translucent
 //                                              planes through two volumes, against the reference
-//   BenchVolume multi <2-4>                 -> Strata and VTK's vtkMultiVolume, 96^3 volumes
-//   BenchVolume bsp <volumes> [ring|grid]   -> ms per strata::VolumeBSPTree::Build
+//   BenchVolume multi <2-4>                 -> Strata (both stages) and VTK's vtkMultiVolume, 96^3
+//   volumes BenchVolume bsp <volumes> [ring|grid]   -> ms per strata::VolumeBSPTree::Build
 //   BenchVolume converge <data> [1/h 1/h']  -> reference at step 1/16 against 1/32 of a voxel
 //   BenchVolume report <csv> <png>          -> summary tables and the RMS-vs-time plot
 // Each prints CSV rows on stdout and progress on stderr. Data: bucky, tooth, engine, bonsai,
@@ -134,7 +135,7 @@ struct Row
   std::string BlendMode; ///< empty: composite (every row but the blend-mode grid's)
   std::string Note;
   double GpuMs = NaN, CpuMs = NaN; ///< per frame: GL_TIME_ELAPSED, the render thread's CPU
-  std::string Stage;               ///< fragment (Strata's), vtk (VTK's mapper); empty: untimed
+  std::string Stage; ///< fragment or compute (Strata's), vtk (VTK's mapper); empty: untimed
 
   std::string Csv() const
   {
@@ -600,6 +601,23 @@ int Accuracy(const std::string& data, const strata_test::TestPaths& paths)
   return 0;
 }
 
+/// A method named "...-compute" ray casts in the compute stage, the others in the fragment stage.
+void SetStage(vtkMultiVolumeRayCastMapper* mapper, const std::string& method)
+{
+  const std::string suffix = "-compute";
+  const bool compute = method.size() > suffix.size() &&
+                       method.compare(method.size() - suffix.size(), suffix.size(), suffix) == 0;
+  mapper->SetStage(compute ? vtkMultiVolumeRayCastMapper::Stages::Compute
+                           : vtkMultiVolumeRayCastMapper::Stages::Fragment);
+}
+
+/// The stage the mapper's last frame ran in: "fragment" or "compute".
+std::string StageOf(vtkMultiVolumeRayCastMapper* mapper)
+{
+  return mapper->GetStageInUse() == vtkMultiVolumeRayCastMapper::Stages::Compute ? "compute"
+                                                                                 : "fragment";
+}
+
 /// One way of rendering a scene, in its own window, and its frame times.
 struct Contender
 {
@@ -638,7 +656,7 @@ Row SingleVolumeRow(const std::string& name, const std::string& method, const Co
     const strata_bench::FrameTime t = strata_bench::FrameTimer::Median(c->Times);
     row.GpuMs = t.GpuMs >= 0.0 ? t.GpuMs : NaN;
     row.CpuMs = t.CpuMs;
-    row.Stage = c->Strata ? "fragment" : "vtk";
+    row.Stage = c->Strata ? StageOf(c->Strata) : "vtk";
   }
   if (c && c->Strata)
   {
@@ -687,7 +705,8 @@ Contender MakeSingle(const std::string& method,
   {
     c.Strata = vtkMultiVolumeRayCastMapper::New();
     mapper.TakeReference(c.Strata);
-    c.Strata->SetUseBrickAtlas(method != "strata-no-atlas");
+    c.Strata->SetUseBrickAtlas(method.find("no-atlas") == std::string::npos);
+    SetStage(c.Strata, method);
   }
   mapper->SetInputData(image);
   mapper->AutoAdjustSampleDistancesOff();
@@ -703,7 +722,12 @@ Contender MakeSingle(const std::string& method,
   return c;
 }
 
-const char* const SingleMethods[] = { "strata", "strata-no-atlas", "vtk" };
+const char* const SingleMethods[] = { "strata",
+  "strata-compute",
+  "strata-no-atlas",
+  "strata-no-atlas-compute",
+  "vtk" };
+constexpr size_t NumberOfSingleMethods = sizeof(SingleMethods) / sizeof(SingleMethods[0]);
 
 /// Peak RSS of one mapper alone on the single-volume scene, one process per mapper: prints
 /// "<method>=<MB>" for `frame` to put in its rows.
@@ -759,7 +783,7 @@ int FrameCase(const std::string& kind,
     std::cerr << name << ": skipped: " << why << "\n";
   TimeInterleaved(contenders, TimedFrames(7));
   const std::string load = LoadNote();
-  for (size_t k = 0; k < 3; ++k)
+  for (size_t k = 0; k < NumberOfSingleMethods; ++k)
   {
     Row row = SingleVolumeRow(name,
       SingleMethods[k] == std::string("vtk") ? "vtkGPUVolumeRayCastMapper" : SingleMethods[k],
@@ -1134,19 +1158,21 @@ int Multi(int n)
   };
   // Each in its own window, the same camera: close, as the blobs fill the middle of their boxes
   // and the boxes' corners are empty.
-  std::vector<Contender> contenders(2);
-  std::vector<std::vector<vtkSmartPointer<vtkVolume>>> members(2);
+  // Strata in both stages and VTK's mapper.
+  std::vector<Contender> contenders(3);
+  std::vector<std::vector<vtkSmartPointer<vtkVolume>>> members(3);
   const double dir[3] = { -0.5, -1.0, 0.6 }, up[3] = { 0, 0, 1 };
   std::vector<std::pair<vtkImageData*, vtkVolume*>> list;
-  for (int k = 0; k < 2; ++k)
+  for (int k = 0; k < 3; ++k)
   {
     Contender& c = contenders[k];
     vtkSmartPointer<vtkGPUVolumeRayCastMapper> mapper;
-    if (k == 0)
+    if (k < 2)
     {
-      c.Method = "strata";
+      c.Method = k == 0 ? "strata" : "strata-compute";
       c.Strata = vtkMultiVolumeRayCastMapper::New();
       mapper.TakeReference(c.Strata);
+      SetStage(c.Strata, c.Method);
     }
     else
     {
@@ -1187,6 +1213,10 @@ int Multi(int n)
     row.Case = name;
     row.Method = c.Method;
     row.Ms = Median(c.Ms);
+    const strata_bench::FrameTime t = strata_bench::FrameTimer::Median(c.Times);
+    row.GpuMs = t.GpuMs >= 0.0 ? t.GpuMs : NaN;
+    row.CpuMs = t.CpuMs;
+    row.Stage = strata ? StageOf(c.Strata) : "vtk";
     const auto gpu = strata_test::ReadRGB(c.Win);
     double mx = 0.0;
     row.Rms = Rms(gpu, ref, &mx);
@@ -1203,10 +1233,10 @@ int Multi(int n)
     row.Width = row.Height = size;
     std::ostringstream note;
     note.precision(3);
-    note << "max error " << mx << "; timed interleaved with the other" << load;
+    note << "max error " << mx << "; timed interleaved with the others" << load;
     row.Note = note.str();
     Emit(row);
-    MaybeWriteImages(name + "-" + (strata ? "strata" : "vtk"), gpu, &ref, size, size);
+    MaybeWriteImages(name + "-" + (strata ? c.Method : "vtk"), gpu, &ref, size, size);
     std::cerr << name << " " << row.Method << ": " << row.Ms << " ms, RMS " << row.Rms << "\n";
   }
   return 0;

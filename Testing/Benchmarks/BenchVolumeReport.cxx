@@ -351,6 +351,57 @@ void AtlasCostTable(const std::vector<std::map<std::string, std::string>>& rows,
   }
 }
 
+/// The compute stage against the fragment stage (issue 28: GPU time compute / fragment <= 0.1
+/// on an H200, compute's GPU time <= 0.1 of vtkGPUVolumeRayCastMapper's, atlas / no atlas <=
+/// 1.05), from the rows timed side by side in one run. On llvmpipe GL_TIME_ELAPSED undercounts
+/// fragment work: compare the stages there by wall clock.
+void StageTable(const std::vector<std::map<std::string, std::string>>& rows,
+  const std::vector<std::string>& cases)
+{
+  std::printf("\nCompute vs fragment stage (ratios compute / fragment; vs VTK: compute / "
+              "vtkGPUVolumeRayCastMapper)\n");
+  std::printf("%-28s %-16s %9s %9s %10s %10s %9s\n",
+    "case",
+    "method",
+    "wall_ms",
+    "gpu_ms",
+    "wall_ratio",
+    "gpu_ratio",
+    "gpu_vs_vtk");
+  for (const auto& c : cases)
+  {
+    std::map<std::string, const std::map<std::string, std::string>*> by;
+    for (const auto& r : rows)
+      if (Get(r, "case") == c && !Get(r, "ms_per_frame").empty())
+        by[Get(r, "method")] = &r;
+    const auto* vtk =
+      by.count("vtkGPUVolumeRayCastMapper") ? by["vtkGPUVolumeRayCastMapper"] : nullptr;
+    for (const std::string base : { "strata", "strata-no-atlas" })
+    {
+      if (!by.count(base) || !by.count(base + "-compute"))
+        continue;
+      const auto& f = *by[base];
+      const auto& k = *by[base + "-compute"];
+      const double gpuVtk = vtk ? Number(k, "gpu_ms") / Number(*vtk, "gpu_ms") : NaN;
+      std::printf("%-28s %-16s %9.1f %9.2f %10.2f %10.2f %9.2f\n",
+        c.c_str(),
+        base.c_str(),
+        Number(k, "ms_per_frame"),
+        Number(k, "gpu_ms"),
+        Number(k, "ms_per_frame") / Number(f, "ms_per_frame"),
+        Number(k, "gpu_ms") / Number(f, "gpu_ms"),
+        gpuVtk);
+    }
+    if (by.count("strata-compute") && by.count("strata-no-atlas-compute"))
+      std::printf("%-28s %-16s atlas / no atlas in the compute stage: wall %.2f, GPU %.2f\n",
+        c.c_str(),
+        "",
+        Number(*by["strata-compute"], "ms_per_frame") /
+          Number(*by["strata-no-atlas-compute"], "ms_per_frame"),
+        Number(*by["strata-compute"], "gpu_ms") / Number(*by["strata-no-atlas-compute"], "gpu_ms"));
+  }
+}
+
 /// Where a frame's time goes, for every row timed with the frame timer (StrataFrameTimer.h):
 /// wall, GPU (GL_TIME_ELAPSED; llvmpipe undercounts fragment work) and render-thread CPU ms.
 void FrameTimeTable(const std::vector<std::map<std::string, std::string>>& rows)
@@ -511,7 +562,7 @@ int Report(const std::string& csv, const std::string& png)
           s = &r;
         else if (m == "strata-no-atlas")
           plain = &r;
-        else
+        else if (m == "vtkGPUVolumeRayCastMapper")
           v = &r;
       }
     auto fmt = [](double x, const char* f)
@@ -548,6 +599,7 @@ int Report(const std::string& csv, const std::string& png)
   }
 
   AtlasCostTable(rows, cases);
+  StageTable(rows, cases);
   FrameTimeTable(rows);
   StorageTable(rows);
   ComponentsTable(rows);
