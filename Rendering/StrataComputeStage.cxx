@@ -48,7 +48,10 @@ std::string Declarations(const ComputeStage::Outputs& outputs)
       << "vec4 strataFragCoord = vec4(0.0);\n"
       << "float strataFragDepth = 0.0;\n"
       << "bool strataDiscarded = false;\n"
-      << "vec4 strataFragData[" << outputs.Count << "];\n";
+      << "vec4 strataFragData[" << outputs.Count << "] = vec4[" << outputs.Count << "](";
+  for (int i = 0; i < outputs.Count; ++i)
+    dec << (i ? ", " : "") << "vec4(0.0)";
+  dec << ");\n";
   const char* access =
     outputs.Staged || outputs.Blending == ComputeStage::Blend::None ? "writeonly " : "";
   for (int i = 0; i < outputs.Count; ++i)

@@ -19,6 +19,10 @@ here and fails on NVIDIA. This test reads the sources instead:
    fragment code runs in ray loops, non-uniform flow.
 4. The suite's wiring of GL debug output: every C++ test runs with STRATA_GL_DEBUG=1 and fails
    on "Strata GL debug:" (read from ctest's own listing of the build tree).
+5. Compute dispatches (the compute stage, strata::ComputeStage). Every glDispatchCompute (but
+   the one inside ComputeStage::Dispatch) and every call of ComputeStage::Dispatch is followed, within the next lines of its function, by
+   a glMemoryBarrier or by ComputeStaging::Resolve, whose first GL command is the barrier
+   before its texture reads of what the dispatch stored.
 
 Each rule is first run on a known-bad fixture (the code as it was before the H200 findings),
 which it must flag: a rule that flags nothing there is broken, and the test fails.
@@ -134,6 +138,40 @@ def check_read_back_draw(code):
             ] if missing else []
 
 
+DISPATCH = re.compile(r"\b(?:glDispatchCompute|ComputeStage::Dispatch)\s*\(")
+DISPATCH_WINDOW = 12  # lines after a dispatch in which its barrier must come
+
+
+def check_dispatches(name, code):
+    """Rule 5: a dispatch is followed by glMemoryBarrier (or Resolve, which starts with one)."""
+    problems = []
+    lines = code.split("\n")
+    # The helper's own dispatch: its callers are checked instead.
+    helper = function_lines(code, "ComputeStage::Dispatch")
+    for number, line in enumerate(lines, 1):
+        stripped = line.split("//")[0]
+        if (not DISPATCH.search(stripped) or number in helper or
+                re.search(r"^\s*void\s+ComputeStage::Dispatch", stripped)):
+            continue
+        after = "\n".join(l.split("//")[0] for l in lines[number - 1 : number + DISPATCH_WINDOW])
+        tail = after[DISPATCH.search(after).end():]
+        if "glMemoryBarrier(" not in tail and ".Resolve(" not in tail:
+            problems.append(f"{name}:{number}: a dispatch without glMemoryBarrier (or Resolve) "
+                            f"in the {DISPATCH_WINDOW} lines after it: {line.strip()}")
+    return problems
+
+
+def check_resolve(code):
+    """Rule 5: ComputeStaging::Resolve's barrier comes before its draw."""
+    body = function_body(code, "ComputeStaging::Resolve")
+    if body is None:
+        return ["StrataComputeStaging.cxx: ComputeStaging::Resolve not found"]
+    barrier, draw = body.find("glMemoryBarrier("), body.find("glDrawArrays(")
+    if barrier < 0 or draw < 0 or draw < barrier:
+        return ["ComputeStaging::Resolve: no glMemoryBarrier before its draw"]
+    return []
+
+
 GLSL_RULES = [
     (re.compile(r"\bis(?:nan|inf)\s*\("), "isnan/isinf (fast math may fold it to false)"),
     (re.compile(r"(?<![\w.])([A-Za-z_][\w.\[\]]*)\s*!=\s*\1(?![\w.\[])"),
@@ -203,6 +241,19 @@ bool vtkMultiVolumeRayCastMapper::vtkInternals::DrawFragment(Self* self, int f)
   return true;
 }
 """
+BAD_DISPATCH = """
+void DispatchFragment(vtkShaderProgram* program, const int rect[4])
+{
+  strata::ComputeStage::Dispatch(program, rect, origin);
+}
+"""
+BAD_RESOLVE = """
+bool ComputeStaging::Resolve(vtkOpenGLRenderWindow* window, const int rect[4])
+{
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  return true;
+}
+"""
 BAD_GLSL = {
     "x != x": "if (h != h) { continue; }",
     "negated <=": "if (!(abs(h - hHit) <= uZEps)) // NaN (a hole) is not coincident",
@@ -222,6 +273,10 @@ def self_test():
         failures.append("rule 1 missed a ClearForReadBack without barrier")
     if not check_read_back_draw(BAD_DRAW):
         failures.append("rule 2 missed a barrier that skips key.Surfaces")
+    if not check_dispatches("fixture.cxx", BAD_DISPATCH):
+        failures.append("rule 5 missed a dispatch without barrier")
+    if not check_resolve(BAD_RESOLVE):
+        failures.append("rule 5 missed a resolve without barrier")
     for what, line in BAD_GLSL.items():
         if not check_glsl("fixture.glsl", line, vertex=False):
             failures.append(f"rule 3 missed {what}")
@@ -255,7 +310,7 @@ def main():
 
     problems = [f"self-test: {f}" for f in self_test()]
     cxx = sorted(glob.glob(os.path.join(args.source, "Rendering", "*.cxx")))
-    clears = 0
+    clears = dispatches = 0
     for path in cxx:
         code = open(path, encoding="utf-8").read()
         name = os.path.relpath(path, args.source)
@@ -265,6 +320,11 @@ def main():
             problems += check_helpers(code)
         if path.endswith("vtkMultiVolumeRayCastMapper.cxx"):
             problems += check_read_back_draw(code)
+        if path.endswith("StrataComputeStaging.cxx"):
+            problems += check_resolve(code)
+        found = sum(1 for line in code.split("\n") if DISPATCH.search(line.split("//")[0]))
+        dispatches += found
+        problems += check_dispatches(name, code)
         problems += check_cxx_glsl(name, code)
     shaders = sorted(glob.glob(os.path.join(args.source, "Rendering", "glsl", "*.glsl")))
     for path in shaders:
@@ -281,9 +341,10 @@ def main():
         problems += wiring
     for p in problems:
         print("FAILED:", p)
-    print(f"gpu rules: {clears} clears in {len(cxx)} C++ sources, {len(shaders)} GLSL templates "
+    print(f"gpu rules: {clears} clears and {dispatches} dispatch lines in {len(cxx)} C++ "
+          f"sources, {len(shaders)} GLSL templates "
           f"and the GLSL of the C++ sources, {tests} C++ tests' debug wiring; "
-          f"{len(BAD_GLSL) + 3} known-bad fixtures flagged: "
+          f"{len(BAD_GLSL) + 5} known-bad fixtures flagged: "
           + ("ok" if not problems else f"{len(problems)} problems"))
     return 1 if problems else 0
 
