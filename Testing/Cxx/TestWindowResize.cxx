@@ -8,6 +8,7 @@
 // Strata Volume vanished in ParaView's GUI when its view was resized (issue 29).
 #include "StrataHeightFieldScenes.h"
 #include "StrataImageHelpers.h"
+#include "StrataMultiVolumeCase.h"
 #include "StrataSubTests.h"
 #include "StrataTestHelpers.h"
 #include "StrataTestPaths.h"
@@ -18,6 +19,7 @@
 #include "vtkImageData.h"
 #include "vtkMultiVolumeRayCastMapper.h"
 #include "vtkNew.h"
+#include "vtkPagePoolReader.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
@@ -51,7 +53,20 @@ struct Scene
 {
   vtkSmartPointer<vtkRenderWindow> Win;
   vtkSmartPointer<vtkRenderer> Ren;
+  vtkMultiVolumeRayCastMapper* Paged = nullptr; ///< a paged volume's mapper: render until settled
 };
+
+// Renders; a paged scene until its cut has settled (the pages between frames), as a user's view
+// refines.
+void Render(const Scene& s)
+{
+  s.Win->Render();
+  for (int f = 0; s.Paged && f < 200 && !s.Paged->GetPagingStatistics().Converged; ++f)
+  {
+    s.Paged->WaitForPages(1.0);
+    s.Win->Render();
+  }
+}
 
 // Renders a scene made by `make` at sizes[0], then resized to each later size in turn, and
 // compares every render with a fresh window of that size.
@@ -64,10 +79,10 @@ void CheckResizes(const std::string& name,
   {
     const int w = sizes[k][0], h = sizes[k][1];
     resized.Win->SetSize(w, h);
-    resized.Win->Render();
+    Render(resized);
     const std::vector<unsigned char> mine = ReadRGB(resized.Win);
     Scene fresh = make(w, h);
-    fresh.Win->Render();
+    Render(fresh);
     const std::vector<unsigned char> theirs = ReadRGB(fresh.Win);
     long differing = 0, drawn = 0;
     for (size_t p = 0; p + 2 < theirs.size() && mine.size() == theirs.size(); p += 3)
@@ -93,7 +108,7 @@ const std::vector<std::array<int, 2>> Sizes = { { 160, 128 },
   { 96, 144 },
   { 160, 128 } };
 
-Scene VolumeScene(int w, int h, vtkMultiVolumeRayCastMapper::Stages stage, int rays)
+Scene InCoreVolumeScene(int w, int h, vtkMultiVolumeRayCastMapper::Stages stage, int rays)
 {
   Scene s;
   MakeWindow(s.Win, s.Ren, w, h);
@@ -107,6 +122,38 @@ Scene VolumeScene(int w, int h, vtkMultiVolumeRayCastMapper::Stages stage, int r
   volume->SetMapper(mapper);
   volume->SetProperty(MakeVolumeProperty(0));
   s.Ren->AddVolume(volume);
+  const double focal[3] = { 20.0, 18.0, 16.0 }, position[3] = { -60.0, -90.0, 70.0 };
+  PlaceCamera(s.Ren, focal, position);
+  return s;
+}
+
+// The volume of InCoreVolumeScene paged from a pool of 16^3 pages (written once), with feedback,
+// rendered until its cut settles.
+Scene PagedVolumeScene(int w,
+  int h,
+  vtkMultiVolumeRayCastMapper::Stages stage,
+  const std::string& directory)
+{
+  static vtkSmartPointer<vtkPagePoolReader> pool;
+  if (!pool)
+  {
+    const double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
+    pool = WritePagedTwin(
+      MakeBlobVolume(40, 36, 32, spacing, origin, 1), directory + "/window-resize.spp", 16);
+  }
+  Scene s;
+  MakeWindow(s.Win, s.Ren, w, h);
+  vtkNew<vtkPagePoolReader> reader;
+  reader->SetFileName(pool->GetFileName());
+  vtkNew<vtkMultiVolumeRayCastMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  mapper->SetStage(stage);
+  mapper->SetSampleDistance(0.5);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(MakeVolumeProperty(0));
+  s.Ren->AddVolume(volume);
+  s.Paged = mapper;
   const double focal[3] = { 20.0, 18.0, 16.0 }, position[3] = { -60.0, -90.0, 70.0 };
   PlaceCamera(s.Ren, focal, position);
   return s;
@@ -145,7 +192,15 @@ int TestWindowResize(int argc, char* argv[])
       {
         CheckResizes(
           "volume, " + std::string(stage == V::Compute ? "compute" : "fragment"),
-          [stage](int w, int h) { return VolumeScene(w, h, stage, 1); },
+          [stage](int w, int h) { return InCoreVolumeScene(w, h, stage, 1); },
+          Sizes);
+      } });
+    parts.push_back({ "paged volume, " + s,
+      [stage, s, &paths]
+      {
+        CheckResizes(
+          "paged volume, " + s,
+          [stage, &paths](int w, int h) { return PagedVolumeScene(w, h, stage, paths.Output); },
           Sizes);
       } });
     parts.push_back({ "volume, 2 rays, " + s,
@@ -153,7 +208,7 @@ int TestWindowResize(int argc, char* argv[])
       {
         CheckResizes(
           "volume, 2 rays, " + std::string(stage == V::Compute ? "compute" : "fragment"),
-          [stage](int w, int h) { return VolumeScene(w, h, stage, 2); },
+          [stage](int w, int h) { return InCoreVolumeScene(w, h, stage, 2); },
           Sizes);
       } });
   }
@@ -168,6 +223,5 @@ int TestWindowResize(int argc, char* argv[])
       } });
   }
   parts.push_back({ "no VTK errors or warnings", [output] { CheckNoVtkMessages(output); } });
-  (void)paths;
   return RunSubTests(parts, Failures);
 }
