@@ -121,7 +121,8 @@ struct ProbeObjects
 GLuint ProbeProgram(const char* vertex, const char* fragmentOrCompute)
 {
   const GLuint program = glCreateProgram();
-  const GLenum types[2] = { GL_VERTEX_SHADER, vertex ? GL_FRAGMENT_SHADER : GL_COMPUTE_SHADER };
+  const GLenum types[2] = { GL_VERTEX_SHADER,
+    static_cast<GLenum>(vertex ? GL_FRAGMENT_SHADER : GL_COMPUTE_SHADER) };
   const char* sources[2] = { vertex, fragmentOrCompute };
   for (int s = 0; s < 2; ++s)
   {
