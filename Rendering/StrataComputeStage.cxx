@@ -3,6 +3,7 @@
 
 #include "StrataShaderCache.h"
 #include "vtkMatrix4x4.h"
+#include "vtkObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -399,13 +400,42 @@ int ComputeStage::GetNumberOfProbes()
 
 int ComputeStage::Choose(vtkOpenGLRenderWindow* window, int requested, int images)
 {
-  const int units = GetMaxImageUnits(window);
+  return Choose(window, requested, images, GetMaxImageUnits(window));
+}
+
+int ComputeStage::Choose(vtkOpenGLRenderWindow* window, int requested, int images, int units)
+{
   if (units == 0 || images > units || requested == Fragment)
     return Fragment;
   if (requested == Compute)
     return Compute;
   const ProbeResult probe = Probe(window);
   return probe.Measured && probe.ComputeMs < probe.FragmentMs ? Compute : Fragment;
+}
+
+int ComputeStage::Choice::Choose(vtkObject* mapper,
+  vtkOpenGLRenderWindow* window,
+  int requested,
+  int images)
+{
+  if (window != this->Window)
+  {
+    this->Window = window;
+    this->Units = GetMaxImageUnits(window);
+  }
+  const int stage = ComputeStage::Choose(window, requested, images, this->Units);
+  if (requested == Compute && stage != requested && !this->Warned)
+  {
+    vtkWarningWithObjectMacro(mapper,
+      "The compute stage needs OpenGL 4.3 and " << images
+                                                << " image units here: ray casting in fragment "
+                                                   "shaders.");
+    this->Warned = true;
+  }
+  if (requested == Auto)
+    this->ProbeRatio = Probe(window).Ratio();
+  this->InUse = stage;
+  return stage;
 }
 
 int ComputeStage::DefaultStage()

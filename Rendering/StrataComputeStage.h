@@ -34,6 +34,7 @@
 #include <string> // For std::string
 
 class vtkMatrix4x4;
+class vtkObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 
@@ -130,6 +131,29 @@ public:
    * programs cannot run here or would need more than the device's image units (`images`).
    */
   static int Choose(vtkOpenGLRenderWindow* window, int requested, int images);
+  /// The same with the device's image units already known (`units`, GetMaxImageUnits).
+  static int Choose(vtkOpenGLRenderWindow* window, int requested, int images, int units);
+
+  /**
+   * A mapper's choice of stage, frame by frame: the stage its last frame used, Auto's probe
+   * ratio, and the warning (once) when Compute was asked for where it cannot run. The
+   * device's image units are asked once per window, not every frame.
+   */
+  class STRATARENDERING_EXPORT Choice
+  {
+  public:
+    /// The frame's stage for `requested` with `images` image units; warns through `mapper`.
+    int Choose(vtkObject* mapper, vtkOpenGLRenderWindow* window, int requested, int images);
+    int GetStageInUse() const { return this->InUse; }
+    double GetProbeRatio() const { return this->ProbeRatio; }
+
+  private:
+    int InUse = Auto;
+    double ProbeRatio = 0.0;
+    bool Warned = false;
+    vtkOpenGLRenderWindow* Window = nullptr; ///< whose units Units holds
+    int Units = 0;
+  };
 
   /// The stage named in STRATA_RAY_CASTING_STAGE (Auto, Fragment or Compute), else Auto.
   static int DefaultStage();

@@ -10,6 +10,7 @@
 #include "vtkMultiVolumeRayCastMapper.h"
 
 #include "StrataBrickAtlasTexture.h"
+#include "StrataComputeStage.h"
 #include "StrataFeedbackBuffer.h"
 #include "StrataGraphicsResources.h"
 #include "StrataMultiVolumeInput.h"
@@ -137,13 +138,11 @@ public:
     LastKeys; ///< by volumes, last frame
   std::map<int, strata::MultiVolumeShaderComposer::FragmentKey> LastReduceKeys; ///< by blend mode
   int LastFragments = 0;
-  int StageInUse = 0;           ///< strata::ComputeStage::Stages of the last frame (0 before one)
-  double StageProbeRatio = 0.0; ///< Auto's probe, compute / fragment (0 if not probed)
+  strata::ComputeStage::Choice Stage; ///< the stage of the last frame, Auto's probe ratio
   int ResidentBricks = 0;
   int Max3DTexture = 0;   ///< the GPU's, asked once
   bool HeldValid = false; ///< the cut, atlas and index textures are complete for HoldCut
   bool FeedbackUnsupportedWarned = false;
-  bool StageWarned = false; ///< Compute asked for where it cannot run (warned once)
   bool ComponentLimitsWarned = false;
   bool SampleDistanceWarned = false;
   ViewKey FeedbackView{};                  ///< the view the queued feedback was rendered from

@@ -28,17 +28,17 @@ void vtkMultiVolumeRayCastMapper::SetStage(Stages stage)
 
 vtkMultiVolumeRayCastMapper::Stages vtkMultiVolumeRayCastMapper::GetStageInUse() const
 {
-  return static_cast<Stages>(this->Internals->StageInUse);
+  return static_cast<Stages>(this->Internals->Stage.GetStageInUse());
 }
 
 const char* vtkMultiVolumeRayCastMapper::GetStageInUseAsString() const
 {
-  return strata::ComputeStage::StageName(this->Internals->StageInUse);
+  return strata::ComputeStage::StageName(this->Internals->Stage.GetStageInUse());
 }
 
 double vtkMultiVolumeRayCastMapper::GetStageProbeRatio() const
 {
-  return this->Internals->StageProbeRatio;
+  return this->Internals->Stage.GetProbeRatio();
 }
 
 void vtkMultiVolumeRayCastMapper::vtkInternals::ChooseStage(Self* self,
@@ -46,21 +46,11 @@ void vtkMultiVolumeRayCastMapper::vtkInternals::ChooseStage(Self* self,
   Frame& frame)
 {
   const int outputs = frame.Rays + (frame.Surfaces > 0 ? 1 : 0);
-  const int requested = static_cast<int>(self->Stage);
-  const int stage =
-    strata::ComputeStage::Choose(renWin, requested, strata::ComputeStage::FirstImageUnit + outputs);
-  if (requested == strata::ComputeStage::Compute && stage != requested && !this->StageWarned)
-  {
-    vtkWarningWithObjectMacro(self,
-      "The compute stage needs OpenGL 4.3 and " << strata::ComputeStage::FirstImageUnit + outputs
-                                                << " image units here: ray casting in fragment "
-                                                   "shaders.");
-    this->StageWarned = true;
-  }
-  if (requested == strata::ComputeStage::Auto)
-    this->StageProbeRatio = strata::ComputeStage::Probe(renWin).Ratio();
-  frame.Compute = stage == strata::ComputeStage::Compute;
-  this->StageInUse = stage;
+  frame.Compute =
+    this->Stage.Choose(self,
+      renWin,
+      static_cast<int>(self->Stage),
+      strata::ComputeStage::FirstImageUnit + outputs) == strata::ComputeStage::Compute;
 }
 
 void vtkMultiVolumeRayCastMapper::vtkInternals::BindComputeTargets(

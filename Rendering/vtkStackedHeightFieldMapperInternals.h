@@ -8,6 +8,7 @@
 
 #include "vtkStackedHeightFieldMapper.h"
 
+#include "StrataComputeStage.h"
 #include "StrataComputeStaging.h"
 #include "StrataFeedbackBuffer.h"
 #include "StrataGraphicsResources.h"
@@ -93,10 +94,8 @@ public:
   strata::HeightFieldShaderComposer Composer;
   strata::HeightFieldShaderComposer::Key LastKey;
   bool HasLastKey = false;
-  strata::ComputeStaging Staging; ///< the compute stage's pixels before they are resolved
-  int StageInUse = 0;             ///< strata::ComputeStage::Stages of the last frame
-  double StageProbeRatio = 0.0;   ///< Auto's probe, compute / fragment (0 if not probed)
-  bool StageWarned = false;       ///< Compute asked for where it cannot run (warned once)
+  strata::ComputeStaging Staging;     ///< the compute stage's pixels before they are resolved
+  strata::ComputeStage::Choice Stage; ///< the stage of the last frame, Auto's probe ratio
   vtkMTimeType UploadTime = 0;
   vtkMTimeType ColorTime = 0;
 

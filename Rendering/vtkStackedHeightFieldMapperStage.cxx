@@ -25,17 +25,17 @@ void vtkStackedHeightFieldMapper::SetStage(Stages stage)
 
 vtkStackedHeightFieldMapper::Stages vtkStackedHeightFieldMapper::GetStageInUse() const
 {
-  return static_cast<Stages>(this->Internals->StageInUse);
+  return static_cast<Stages>(this->Internals->Stage.GetStageInUse());
 }
 
 const char* vtkStackedHeightFieldMapper::GetStageInUseAsString() const
 {
-  return strata::ComputeStage::StageName(this->Internals->StageInUse);
+  return strata::ComputeStage::StageName(this->Internals->Stage.GetStageInUse());
 }
 
 double vtkStackedHeightFieldMapper::GetStageProbeRatio() const
 {
-  return this->Internals->StageProbeRatio;
+  return this->Internals->Stage.GetProbeRatio();
 }
 
 void vtkStackedHeightFieldMapper::vtkInternals::ChooseStage(Self* self,
@@ -47,20 +47,8 @@ void vtkStackedHeightFieldMapper::vtkInternals::ChooseStage(Self* self,
   const strata::ComputeStage::Outputs outputs =
     strata::HeightFieldShaderComposer::GetComputeOutputs(key);
   const int images = strata::ComputeStage::DepthImageUnit(outputs) + 1;
-  const int requested = static_cast<int>(self->Stage);
-  const int stage = strata::ComputeStage::Choose(renWin, requested, images);
-  if (requested == strata::ComputeStage::Compute && stage != requested && !this->StageWarned)
-  {
-    vtkWarningWithObjectMacro(self,
-      "The compute stage needs OpenGL 4.3 and " << images
-                                                << " image units here: ray casting in fragment "
-                                                   "shaders.");
-    this->StageWarned = true;
-  }
-  if (requested == strata::ComputeStage::Auto)
-    this->StageProbeRatio = strata::ComputeStage::Probe(renWin).Ratio();
-  frame.Compute = stage == strata::ComputeStage::Compute;
-  this->StageInUse = stage;
+  frame.Compute = this->Stage.Choose(self, renWin, static_cast<int>(self->Stage), images) ==
+                  strata::ComputeStage::Compute;
 }
 
 void vtkStackedHeightFieldMapper::vtkInternals::DrawCompute(vtkOpenGLRenderWindow* renWin,
