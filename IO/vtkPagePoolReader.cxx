@@ -273,10 +273,14 @@ int vtkPagePoolReader::RequestInformation(vtkInformation*,
   this->NumberOfLevels = set->GetFile().GetNumberOfLevels();
   this->IsTilePool = set->IsTilePool();
   this->NumberOfLayers = this->IsTilePool ? h.Dimensions[2] : 1;
-  const int nz = this->IsTilePool ? 1 : h.Dimensions[2];
-  const int extent[6] = { 0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, nz - 1 };
+  // The geometry of the level Resolution selects: what a request without UPDATE_RESOLUTION
+  // gets, so that every filter (an outline, a surface, a slice) sees the data it is given.
+  int extent[6];
+  double spacing[3];
+  set->GetLevelGeometry(
+    Protocol::ResolutionToLevel(this->Resolution, this->NumberOfLevels), extent, spacing);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::SPACING(), h.Spacing, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), h.Origin, 3);
   outInfo->Set(vtkDataObject::DIRECTION(), h.Direction, 9);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
@@ -356,10 +360,11 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   const strata::PagePoolSet* set = this->Internals->Open(name, error);
   if (!set)
     return fail(error);
-  const Format::Header& h = set->GetFile().GetHeader();
-  int updateExtent[6] = {
-    0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, set->IsTilePool() ? 0 : h.Dimensions[2] - 1
-  };
+  // The update extent is in the indices of the declared level (RequestInformation's).
+  const int declared = Protocol::ResolutionToLevel(this->Resolution, this->NumberOfLevels);
+  int updateExtent[6];
+  double spacing[3];
+  set->GetLevelGeometry(declared, updateExtent, spacing);
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), updateExtent);
   strata::PagePoolSet::Read read;
@@ -370,7 +375,17 @@ int vtkPagePoolReader::RequestData(vtkInformation*,
   read.LimitAdvice = std::string(this->MemoryLimit > 0.0 ? "" : " (the physical memory)") +
                      ": ask for a lower Resolution or a smaller update extent";
   read.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
-  vtkSmartPointer<vtkImageData> image = set->ReadImage(level, updateExtent, read, error);
+  // Another level asked for (UPDATE_RESOLUTION: a consumer paging the pool itself): the level
+  // covering the same region, with that level's extent and spacing.
+  vtkSmartPointer<vtkImageData> image;
+  if (level == declared)
+    image = set->ReadLevelImage(level, updateExtent, read, error);
+  else
+  {
+    int finest[6];
+    set->LevelToFinest(declared, updateExtent, finest);
+    image = set->ReadImage(level, finest, read, error);
+  }
   this->NumberOfPagesRead = read.PagesRead;
   if (!image)
     return fail(error);

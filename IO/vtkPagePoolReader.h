@@ -5,10 +5,12 @@
  *
  * The VTK face of the out-of-core format (strata::PagePoolFormat): RequestInformation opens the
  * file (header and page table only) and reports the whole extent, spacing, origin, direction and
- * scalar type of level 0, and CAN_PRODUCE_SUB_EXTENT; RequestData reads only the pages that
- * overlap the requested update extent, at the level chosen by the requested resolution, so a
- * downstream filter gets a correct, possibly coarse, image without the data set ever being read
- * as a whole. One class serves both kinds:
+ * scalar type of the level Resolution selects (level 0 by default), and CAN_PRODUCE_SUB_EXTENT;
+ * RequestData reads only the pages that overlap the requested update extent (in that level's
+ * indices), so a downstream filter gets a correct, possibly coarse, image whose extent and
+ * spacing are the ones declared, without the data set ever being read as a whole (an outline
+ * or a surface of a coarse level is the box of the data, not of level 0). One class serves both
+ * kinds:
  * - BrickPool (nx, ny, nz): an nx x ny x nz image.
  * - TilePool (nx, ny, L): an nx x ny x 1 image of the layer selected by Layer.
  *
@@ -16,13 +18,17 @@
  * defines one, vtkPagePoolProtocol::UPDATE_RESOLUTION() (also UPDATE_RESOLUTION() here), which a
  * downstream filter sets on its input information in RequestUpdateExtent (it is copied
  * upstream through intermediate filters like UPDATE_EXTENT) or a caller sets on the reader's
- * output information; without it the Resolution member is used. A resolution r in (0, 1]
+ * output information; without it the Resolution member is used. A consumer that asks for
+ * another level than Resolution's (the Strata mappers ask for the coarsest: they page the rest)
+ * gets that level's image of the requested region, with that level's extent and spacing: only
+ * consumers that page the pool themselves should ask. A resolution r in (0, 1]
  * selects level l = floor(log2(1 / r)) clamped to the pool's levels: 1 is level 0 (full
  * resolution), 0.5 level 1, 0.25 level 2, and r <= 0 the coarsest level.
  *
  * Geometry of a coarse level: strata::PagePoolSet (the output keeps the origin and the
  * direction, its spacing grows so that the coarse image covers exactly the full one's region;
- * the update extent, in level-0 indices, maps to the smallest level extent covering it).
+ * an update extent in the declared level's indices maps to the smallest extent of the level
+ * asked for that covers the same region).
  *
  * Pools and their consumers (vtkPagePoolProtocol). RequestInformation marks the output
  * information PAGE_POOL, so that a mapper paging the pool itself asks for the coarsest level
@@ -91,8 +97,9 @@ public:
   ///@}
 
   ///@{
-  /// Resolution used when the request carries no UPDATE_RESOLUTION; see the class
-  /// documentation for the mapping to levels. Default 1 (full resolution).
+  /// The level declared (whole extent, spacing) and read when the request carries no
+  /// UPDATE_RESOLUTION; see the class documentation for the mapping to levels. Default 1 (full
+  /// resolution).
   vtkSetClampMacro(Resolution, double, 0.0, 1.0);
   vtkGetMacro(Resolution, double);
   ///@}
@@ -192,7 +199,7 @@ protected:
   std::vector<std::string> StepFiles;
   std::vector<double> StepTimes;
   // The last output and the request it answered: the executive asks again for every update of
-  // a coarse level (its extent is in level indices, never "inside" the level-0 request), and
+  // a level other than the declared one (its extent is never "inside" the request), and
   // the answer must not cost I/O again, nor fail if the file changed on disk since.
   vtkSmartPointer<vtkImageData> LastOutput;
   std::string LastRequest;

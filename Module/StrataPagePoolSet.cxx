@@ -171,6 +171,48 @@ vtkSmartPointer<vtkImageData> PagePoolSet::ReadImage(int level,
   std::string& error) const
 {
   read.PagesRead = 0;
+  int extent[6];
+  double spacing[3];
+  if (!this->LevelExtent(level, updateExtent, extent, spacing))
+    return vtkSmartPointer<vtkImageData>::New(); // an empty request: an empty image, no error
+  return this->ReadLevelImage(level, extent, read, error);
+}
+
+//------------------------------------------------------------------------------
+void PagePoolSet::GetLevelGeometry(int level, int extent[6], double spacing[3]) const
+{
+  const Format::Header& h = this->GetFile().GetHeader();
+  const int whole[6] = {
+    0, h.Dimensions[0] - 1, 0, h.Dimensions[1] - 1, 0, this->IsTilePool() ? 0 : h.Dimensions[2] - 1
+  };
+  this->LevelExtent(level, whole, extent, spacing);
+}
+
+//------------------------------------------------------------------------------
+void PagePoolSet::LevelToFinest(int level, const int extent[6], int finest[6]) const
+{
+  const Format::Header& h = this->GetFile().GetHeader();
+  const Format::Level& lv = this->GetFile().GetLevel(level);
+  const int axes = this->IsTilePool() ? 2 : 3;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n0 = a < axes ? h.Dimensions[a] : 1;
+    const int nl = a < axes ? lv.Dimensions[a] : 1;
+    const double ratio = nl > 1 ? static_cast<double>(n0 - 1) / (nl - 1) : 1.0;
+    // The 1e-9 guards floor/ceil of exact products against rounding.
+    finest[2 * a] = std::max(0, static_cast<int>(std::floor(extent[2 * a] * ratio + 1e-9)));
+    finest[2 * a + 1] =
+      std::min(n0 - 1, static_cast<int>(std::ceil(extent[2 * a + 1] * ratio - 1e-9)));
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> PagePoolSet::ReadLevelImage(int level,
+  const int levelExtent[6],
+  Read& read,
+  std::string& error) const
+{
+  read.PagesRead = 0;
   const Format::Header& h = this->GetFile().GetHeader();
   const int layers = this->IsTilePool() ? h.Dimensions[2] : 1;
   if (this->IsTilePool() && (read.Layer < 0 || read.Layer >= layers))
@@ -180,10 +222,16 @@ vtkSmartPointer<vtkImageData> PagePoolSet::ReadImage(int level,
     return nullptr;
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
-  int extent[6];
+  int whole[6], extent[6];
   double spacing[3];
-  if (!this->LevelExtent(level, updateExtent, extent, spacing))
-    return image; // an empty request: an empty image, and no error
+  this->GetLevelGeometry(level, whole, spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[2 * a] = std::max(levelExtent[2 * a], whole[2 * a]);
+    extent[2 * a + 1] = std::min(levelExtent[2 * a + 1], whole[2 * a + 1]);
+    if (extent[2 * a] > extent[2 * a + 1])
+      return image; // an empty request: an empty image, and no error
+  }
   const int nc = this->GetNumberOfComponents();
   double megabytes = double(nc) * Format::GetScalarSize(h.Type) / 1048576.0;
   for (int a = 0; a < 3; ++a)

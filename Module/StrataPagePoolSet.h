@@ -80,6 +80,18 @@ public:
     const int updateExtent[6],
     Read& read,
     std::string& error) const;
+  /// As ReadImage, for `extent` given in level `level`'s own indices (clamped to the level).
+  vtkSmartPointer<vtkImageData> ReadLevelImage(int level,
+    const int extent[6],
+    Read& read,
+    std::string& error) const;
+  /// Level `level`'s whole extent (a tile pool's: one layer) and spacing.
+  void GetLevelGeometry(int level, int extent[6], double spacing[3]) const;
+  /**
+   * The level-0 extent under level `level`'s `extent` (its own indices): the level-0 points
+   * from the first to the last one it covers, widened to whole points.
+   */
+  void LevelToFinest(int level, const int extent[6], int finest[6]) const;
 
 private:
   bool ReadPages(int level, const int extent[6], Read& read, void* dst, std::string& error) const;

@@ -268,6 +268,59 @@ void CoarseReads(vtkImageData* vol, const std::string& volPath)
     "an image not read from a pool names none");
 }
 
+/// The reader declares the level Resolution selects (whole extent, spacing), outputs exactly
+/// that, and reads a sub-extent given in that level's indices: what ParaView's filters see.
+void DeclaredLevel(const std::string& volPath)
+{
+  for (double r : { 0.5, 0.0 })
+  {
+    vtkNew<vtkPagePoolReader> reader;
+    reader->SetFileName(volPath.c_str());
+    reader->SetResolution(r);
+    reader->UpdateInformation();
+    vtkInformation* info = reader->GetOutputInformation(0);
+    int whole[6];
+    double spacing[3];
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    info->Get(vtkDataObject::SPACING(), spacing);
+    reader->Update();
+    vtkNew<vtkImageData> level;
+    level->DeepCopy(reader->GetOutput());
+    int e[6];
+    level->GetExtent(e);
+    std::cout << "resolution " << r << " declares " << whole[1] << " x " << whole[3] << " x "
+              << whole[5] << " spacing " << spacing[0] << ", outputs " << e[1] << " x " << e[3]
+              << " x " << e[5] << " spacing " << level->GetSpacing()[0] << "\n";
+    bool same = true;
+    for (int i = 0; i < 6; ++i)
+    {
+      same = same && whole[i] == e[i];
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      same = same && spacing[a] == level->GetSpacing()[a];
+    }
+    Check(same, "the declared whole extent and spacing are the output's");
+    Check(r != 0.5 || (whole[1] == 35 && whole[3] == 25 && whole[5] == 20),
+      "resolution 0.5 declares level 1 (n/2 + 1 points)");
+    Check(r != 0.0 || reader->GetLevelRead() == reader->GetNumberOfLevels() - 1,
+      "resolution 0 declares and reads the coarsest level");
+    // A sub-extent in the declared level's indices: those points, those values.
+    int sub[6] = { whole[1] / 4, whole[1] / 2, 1, whole[3] - 1, whole[5] / 3, whole[5] };
+    reader->UpdateExtent(sub);
+    vtkImageData* part = reader->GetOutput();
+    part->GetExtent(e);
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      inside = inside && e[2 * a] <= sub[2 * a] && e[2 * a + 1] >= sub[2 * a + 1] &&
+               e[2 * a] >= whole[2 * a] && e[2 * a + 1] <= whole[2 * a + 1];
+    }
+    Check(inside && SameValues(level, part, true),
+      "a sub-extent in level indices reads that level's points");
+  }
+}
+
 void FloatGrid(const std::string& out)
 {
   // ---- Generated 2-D float grid with NaN holes -> tile pool. ----
@@ -569,6 +622,7 @@ int TestPagePoolReader(int argc, char* argv[])
       { "VolumeRoundTrip", [&] { VolumeRoundTrip(vol, volPath); } },
       { "SubExtent", [&] { SubExtent(vol, volPath); } },
       { "CoarseReads", [&] { CoarseReads(vol, volPath); } },
+      { "DeclaredLevel", [&] { DeclaredLevel(volPath); } },
       { "FloatGrid", [&] { FloatGrid(out); } },
       { "Bucky", [&] { Bucky(out, paths); } },
       { "Reek", [&] { Reek(out, paths); } },
