@@ -3,6 +3,7 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkArrayDispatch.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
@@ -398,7 +399,7 @@ void vtkStrataVolumeRepresentation::MapComponents()
   const bool independent = this->MapScalars && !this->MultiComponentsMapping;
   vtkVolumeProperty* property = this->Property;
   property->SetIndependentComponents(independent ? 1 : 0);
-  auto* image = vtkImageData::SafeDownCast(this->Cache);
+  vtkImageData* image = this->ColoredImage();
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   const int components = scalars ? std::min(4, scalars->GetNumberOfComponents()) : 1;
   vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
@@ -426,16 +427,67 @@ void vtkStrataVolumeRepresentation::MapComponents()
     }
     property->SetComponentWeight(c, !independent || magnitude || c == chosen ? 1.0 : 0.0);
   }
-  vtkDataObject* shown = this->Cache;
+  vtkDataObject* shown = image ? image : this->Cache.GetPointer();
   if (magnitude)
   {
-    // (Made after the Cache it is of: older than the Cache, it is of another.)
-    if (!this->Magnitude || this->Magnitude->GetMTime() < this->Cache->GetMTime())
+    // (Made after the image it is of: older than the image, it is of another.)
+    if (!this->Magnitude || this->Magnitude->GetMTime() < image->GetMTime())
       this->Magnitude = MakeMagnitude(image, scalars);
     shown = this->Magnitude;
   }
   if (this->Producer->GetOutputDataObject(0) != shown)
     this->Producer->SetOutput(shown);
+}
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkStrataVolumeRepresentation::ColoredImage()
+{
+  auto* image = vtkImageData::SafeDownCast(this->Cache);
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  const char* name =
+    info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  if (!image || !name || !*name)
+    return image;
+  const bool cells =
+    info->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    info->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  vtkDataArray* array =
+    cells ? image->GetCellData()->GetArray(name) : image->GetPointData()->GetArray(name);
+  if (!array || (!cells && array == image->GetPointData()->GetScalars()))
+    return image; // (ParaView's domain offers only the input's arrays: a stale name.)
+  const std::string key = (cells ? "cells:" : "points:") + std::string(name);
+  if (this->Colored && this->ColoredKey == key && this->Colored->GetMTime() > image->GetMTime())
+    return this->Colored;
+  auto colored = vtkSmartPointer<vtkImageData>::New();
+  if (cells)
+  {
+    // The cell centres: an axis of n points has n - 1 cells (a flat axis keeps its one point).
+    int extent[6];
+    image->GetExtent(extent);
+    double half[3] = { 0.0, 0.0, 0.0 };
+    for (int a = 0; a < 3; ++a)
+    {
+      if (extent[2 * a + 1] > extent[2 * a])
+      {
+        --extent[2 * a + 1];
+        half[a] = 0.5;
+      }
+    }
+    double origin[3];
+    image->TransformContinuousIndexToPhysicalPoint(half, origin);
+    colored->SetExtent(extent);
+    colored->SetSpacing(image->GetSpacing());
+    colored->SetDirectionMatrix(image->GetDirectionMatrix());
+    colored->SetOrigin(origin);
+  }
+  else
+  {
+    colored->CopyStructure(image);
+  }
+  colored->GetPointData()->SetScalars(array);
+  this->Colored = colored;
+  this->ColoredKey = key;
+  return colored;
 }
 
 //------------------------------------------------------------------------------

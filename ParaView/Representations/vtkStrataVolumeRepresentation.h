@@ -178,12 +178,22 @@ private:
   /// The property's component mapping and the image the mapper reads, from Map Scalars, Multi
   /// Components Mapping and the colour map's vector mode (see the class comment).
   void MapComponents();
+  /**
+   * The image whose point scalars the mapper maps, as ParaView's Coloring (ColorArrayName)
+   * chooses: the input itself when it names the active point scalars or nothing (so that a
+   * pool stays paged), else an image of the chosen array alone: a point array as the scalars
+   * of the same points, a cell array as the scalars of the cell centres (one point fewer per
+   * axis, shifted half a cell), the values exactly as they are.
+   */
+  vtkImageData* ColoredImage();
 
   Settings Options;
   vtkNew<vtkVolume> Member;
   vtkNew<vtkStrataPooledProducer> Producer;
   vtkSmartPointer<vtkDataObject> Cache;
   vtkSmartPointer<vtkImageData> Magnitude; // the norm of Cache's components, made on demand
+  vtkSmartPointer<vtkImageData> Colored;   // ColoredImage's image of another array than Cache's
+  std::string ColoredKey;                  // its array: association and name
   bool MagnitudeWarned = false;
   bool HasData = false;
   std::string StatisticsFile;

@@ -1,13 +1,29 @@
 # Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
-"""Run by the ParaView GUI (paraview --script=TestGUI.py --exit, see RunGUI.cmake): loads the
-plugin as a GUI user's Python shell would, shows a page pool with the Strata Volume
-representation and writes what it found to $STRATA_GUI_RESULT (the driver asserts it)."""
+"""Run by the ParaView GUI (see RunGUI.cmake), as a GUI user's Python shell would.
+
+STRATA_GUI_MODE=load (paraview --script=TestGUI.py --exit): loads the plugin, shows a page
+pool with the Strata Volume representation and writes what it found to $STRATA_GUI_RESULT
+(the driver asserts it).
+
+STRATA_GUI_MODE=refine or refine-cs (no --exit: the GUI's event loop runs; refine-cs: the GUI
+is the client of a pvserver, where the plugin is loaded too): the paged_volume scene of
+TestPlugin.py (its pool, view and transfer functions) in the GUI's own view, rendered once by
+the script; then nobody touches anything. A timer of the view's interactor watches (never
+rendering) until the view has stopped rendering for a second, then takes the view's image and
+writes how many renders the view made after the first, how long the refinement took, whether
+PagingConverged says so (builtin), and the image's largest difference from the standalone C++
+rendering (the converged image); then it leaves the GUI."""
+import json
 import os
+import sys
+import time
 
 from paraview.simple import *  # noqa: F401,F403
 
 lines = []
-try:
+
+
+def load():
     LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=globals())
     reader = StrataPagePool(FileName=os.environ["STRATA_POOL"])
     display = Show(reader)
@@ -16,9 +32,85 @@ try:
     display.SetRepresentationType("Strata Volume")
     Render()
     display.UpdatePropertyInformation()
-    lines.append("volumes in scene: %d" % display.GetPropertyValue("StrataVolumeNumberOfVolumesInScene"))
+    lines.append("volumes in scene: %d" % display.GetPropertyValue(
+        "StrataVolumeNumberOfVolumesInScene"))
     lines.append("paged: %d" % display.GetPropertyValue("StrataVolumePaged"))
+
+
+def finish():
+    with open(os.environ["STRATA_GUI_RESULT"], "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def refine():
+    sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
+    import TestPlugin
+    from strata_png import load_png
+    import numpy
+    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
+    from paraview import servermanager
+    remote = servermanager.ActiveConnection.IsRemote()
+    if remote:
+        LoadPlugin(os.environ["STRATA_PLUGIN"], remote=True, ns=vars(TestPlugin))
+    lines.append("session: %s" % ("client-server" if remote else "builtin"))
+    work = os.path.dirname(os.environ["STRATA_POOL"])
+    with open(os.path.join(work, "paged_volume.json")) as f:
+        camera = json.load(f)
+    view = GetActiveViewOrCreate("RenderView")
+    GetLayout(view).PreviewMode = [int(v) for v in camera["size"]]
+    TestPlugin.configure_view(view, camera)
+    reader = TestPlugin.StrataPagePool(FileName=os.environ["STRATA_POOL"])
+    display = TestPlugin.show_paged_tooth(reader, view)
+    # The C++ view's camera, not the one the GUI's first render would reset to.
+    import paraview.simple
+    paraview.simple._DisableFirstRenderCameraReset()
+    TestPlugin.configure_view(view, camera)
+    renders = []
+    view.SMProxy.AddObserver("EndEvent", lambda *unused: renders.append(time.time()))
+    start = time.time()
+    Render(view)
+    interactor = view.GetInteractor()
+    state = {"polls": 0}
+
+    def poll(caller, event):
+        # Settled: the view stopped rendering by itself (the plugin renders again only while
+        # the render server's PagingConverged says 0), a second after its last render.
+        now = time.time()
+        settled = len(renders) > 1 and now - renders[-1] > 1.0
+        if not settled and now - start < 120.0:
+            return
+        made = len(renders) - 1
+        took = renders[-1] - start
+        lines.append("settled without interaction: %d" % settled)
+        if not remote:
+            # (In a builtin session the information property is this process's, the one that
+            # renders; in client-server it is the client's copy.)
+            display.UpdatePropertyInformation()
+            lines.append("paging converged: %d" % display.GetPropertyValue(
+                "StrataVolumePagingConverged"))
+        path = os.path.join(work, "gui_refined.png")
+        SaveScreenshot(path, view, ImageResolution=[int(v) for v in camera["size"]],
+                       TransparentBackground=0)
+        image = load_png(path)[1].astype(int)
+        reference = load_png(os.path.join(work, "cxx.png"))[1].astype(int)
+        worst = int(numpy.abs(image - reference).max()) if image.shape == reference.shape else -1
+        lines.append("renders after the first: %d in %.2f s" % (made, took))
+        lines.append("against the C++ image: max %d of 255" % worst)
+        finish()
+        os._exit(0)
+
+    interactor.AddObserver("TimerEvent", poll)
+    interactor.CreateRepeatingTimer(250)
+
+
+try:
+    if os.environ.get("STRATA_GUI_MODE", "load").startswith("refine"):
+        refine()
+    else:
+        load()
+        finish()
 except Exception as error:  # the GUI swallows exceptions: report them to the driver
     lines.append("error: %s" % error)
-with open(os.environ["STRATA_GUI_RESULT"], "w") as f:
-    f.write("\n".join(lines) + "\n")
+    finish()
+    if os.environ.get("STRATA_GUI_MODE", "").startswith("refine"):
+        os._exit(1)

@@ -67,6 +67,13 @@ def list_proxies():
 
 def setup_view(camera):
     view = CreateView("RenderView")
+    configure_view(view, camera)
+    paraview.simple._DisableFirstRenderCameraReset()
+    return view
+
+
+def configure_view(view, camera):
+    """`view` as the standalone scene's: size, background, VTK's default headlight, camera."""
     view.ViewSize = [int(v) for v in camera["size"]]
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
@@ -83,8 +90,6 @@ def setup_view(camera):
     view.CameraViewUp = camera["view_up"]
     view.CameraViewAngle = camera["view_angle"][0]
     view.CameraParallelProjection = 0
-    paraview.simple._DisableFirstRenderCameraReset()
-    return view
 
 
 def render_until_converged(view, display, prefix, frames=500):
@@ -152,13 +157,19 @@ def check_pool_reads(reader, what):
           "%s: ParaView's pipeline read only the coarsest level (one page)" % what)
 
 
-def paged_volume(args, camera):
-    reader = StrataPagePool(FileName=os.path.join(args.work, "tooth.spp"))
-    view = setup_view(camera)
+def show_paged_tooth(reader, view):
+    """The paged_volume scene's display (a small atlas, few pages a frame: many frames)."""
     display = show_volume(reader, view, TOOTH_COLORS, TOOTH_OPACITIES)
     display.StrataVolumeSampleDistance = 0.5
     display.StrataVolumeAtlasBudget = 16
     display.StrataVolumePagesPerFrame = 8
+    return display
+
+
+def paged_volume(args, camera):
+    reader = StrataPagePool(FileName=os.path.join(args.work, "tooth.spp"))
+    view = setup_view(camera)
+    display = show_paged_tooth(reader, view)
     check(display.StrataVolumeScalarStorage == "16-bit",
           "the default storage is 16-bit (the tooth in R16, as the C++ mapper's default)")
     frames = render_until_converged(view, display, "StrataVolume")
@@ -614,4 +625,5 @@ def main():
         raise RuntimeError("%d check(s) failed: %s" % (len(failures), "; ".join(failures)))
 
 
-main()
+if __name__ == "__main__":
+    main()

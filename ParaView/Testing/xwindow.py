@@ -4,6 +4,7 @@ run on a bare Xvfb, without a window manager or xdotool): find a top-level windo
 resize it, and read back what the X server shows (the pixels a user sees, not a re-render).
 
     python3 xwindow.py find <title part>                 prints the window id or exits 1
+    python3 xwindow.py list                              the viewable top-level windows
     python3 xwindow.py resize <id> <width> <height>
     python3 xwindow.py drag <x0> <y0> <x1> <y1>          a left-button drag, screen pixels
     python3 xwindow.py capture <id> <file.npy>           RGB, rows top to bottom
@@ -151,6 +152,10 @@ def main(argv):
             if window is None:
                 return 1
             print(window)
+        elif argv[0] == "list":
+            for window in display._children(_x11.XDefaultRootWindow(display.handle)):
+                if display.size(window)[2]:
+                    print(window, display.size(window), repr(display.name(window)))
         elif argv[0] == "resize":
             display.resize(int(argv[1]), int(argv[2]), int(argv[3]))
         elif argv[0] == "drag":
