@@ -12,7 +12,12 @@ the script; then nobody touches anything. A timer of the view's interactor watch
 rendering) until the view has stopped rendering for a second, then takes the view's image and
 writes how many renders the view made after the first, how long the refinement took, whether
 PagingConverged says so (builtin), and the image's largest difference from the standalone C++
-rendering (the converged image); then it leaves the GUI."""
+rendering (the converged image); then it leaves the GUI.
+
+STRATA_GUI_MODE=resize (no --exit): the pool as Strata Volume in the GUI's view, the main window
+resized three times as a user would (X requests: xwindow.py); after each resize has settled,
+the window's pixels (what the X server shows, not a re-render) give the volume's size against
+the view's height, which must stay (a Strata Volume once vanished on a resize)."""
 import json
 import os
 import sys
@@ -103,8 +108,77 @@ def refine():
     interactor.CreateRepeatingTimer(250)
 
 
+def volume_measure(image):
+    """Of a capture of the main window (the view's background pure green): the view's height
+    (the rows its green spans), and the volume's pixels (the others inside the green's box)
+    over that height squared, which a resize leaves as it was (the vertical view angle is
+    fixed: the volume's size on screen follows the view's height)."""
+    import numpy
+    green = (image[:, :, 1] > 200) & (image[:, :, 0] < 60) & (image[:, :, 2] < 60)
+    rows = numpy.nonzero(green.any(axis=1))[0]
+    columns = numpy.nonzero(green.any(axis=0))[0]
+    if len(rows) == 0:
+        return 0, 0, 0.0
+    box = green[rows[0]:rows[-1] + 1, columns[0]:columns[-1] + 1]
+    height = rows[-1] - rows[0] + 1
+    volume = int(box.size - numpy.count_nonzero(box))
+    return int(height), volume, volume / float(height * height)
+
+
+def resize():
+    """The window resized (as a user drags its corner) between settled renders: the volume
+    stays, as large against the view's height as before."""
+    sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
+    import TestPlugin
+    import xwindow
+    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
+    view = GetActiveViewOrCreate("RenderView")
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 1.0, 0.0]
+    reader = TestPlugin.StrataPagePool(FileName=os.environ["STRATA_POOL"])
+    TestPlugin.show_paged_tooth(reader, view)
+    renders = []
+    view.SMProxy.AddObserver("EndEvent", lambda *unused: renders.append(time.time()))
+    Render(view)
+    display = xwindow.Display()
+    window = display.find("ParaView")
+    sizes = [None, (900, 600), (1400, 900), (700, 460)]
+    state = {"step": 0, "since": time.time(), "ratios": []}
+
+    def poll(caller, event):
+        now = time.time()
+        quiet = not renders or now - renders[-1] > 1.0
+        if now - state["since"] < 2.0 or not quiet:
+            if now - state["since"] < 60.0:
+                return
+        height, volume, ratio = volume_measure(display.capture(window))
+        width_height = display.size(window)[:2]
+        lines.append("window %d x %d: view %d px high, volume %d px, %.4f of the height squared "
+                     "(%d renders so far)" % (width_height[0], width_height[1], height, volume,
+                                              ratio, len(renders)))
+        state["ratios"].append(ratio)
+        state["step"] += 1
+        if state["step"] < len(sizes):
+            display.resize(window, *sizes[state["step"]])
+            state["since"] = time.time()
+            return
+        first = state["ratios"][0]
+        kept = first > 0.02 and all(0.8 * first <= r <= 1.25 * first for r in state["ratios"])
+        lines.append("the volume kept its size through the resizes: %d" % kept)
+        display.close()
+        finish()
+        os._exit(0)
+
+    interactor = view.GetInteractor()
+    interactor.AddObserver("TimerEvent", poll)
+    interactor.CreateRepeatingTimer(250)
+
+
 try:
-    if os.environ.get("STRATA_GUI_MODE", "load").startswith("refine"):
+    if os.environ.get("STRATA_GUI_MODE") == "resize":
+        resize()
+    elif os.environ.get("STRATA_GUI_MODE", "load").startswith("refine"):
         refine()
     else:
         load()
@@ -112,5 +186,5 @@ try:
 except Exception as error:  # the GUI swallows exceptions: report them to the driver
     lines.append("error: %s" % error)
     finish()
-    if os.environ.get("STRATA_GUI_MODE", "").startswith("refine"):
+    if os.environ.get("STRATA_GUI_MODE", "load") != "load":
         os._exit(1)
