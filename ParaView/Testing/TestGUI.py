@@ -175,8 +175,56 @@ def resize():
     interactor.CreateRepeatingTimer(250)
 
 
+def screenshot():
+    """Not a test: the README's picture of the GUI ($STRATA_GUI_SCREENSHOT), a paged pool
+    switched to Strata Volume (coloured by its scalars by default), once it has settled."""
+    sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
+    import TestPlugin
+    import xwindow
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
+    view = GetActiveViewOrCreate("RenderView")
+    reader = TestPlugin.StrataPagePool(FileName=os.environ["STRATA_POOL"])
+    SetActiveSource(reader)
+    display = Show(reader, view)
+    display.SetRepresentationType("Strata Volume")
+    opacity = GetOpacityTransferFunction(reader.PointData.keys()[0])
+    opacity.Points = [v for o in TestPlugin.TOOTH_OPACITIES for v in (o[0], o[1], 0.5, 0.0)]
+    view.CameraPosition = [285.1, -282.8, 138.1]
+    view.CameraFocalPoint = [51.0, 46.5, 80.0]
+    view.CameraViewUp = [0.0, 0.17, 0.98]
+    ResetCamera(view)
+    Render(view)
+    started = time.time()
+
+    def poll(caller, event):
+        if time.time() - started < 8.0:
+            return
+        x = xwindow.Display()
+        pixels = x.capture(x.find("ParaView"))
+        x.close()
+        image = vtkImageData()
+        image.SetDimensions(pixels.shape[1], pixels.shape[0], 1)
+        image.GetPointData().SetScalars(numpy_to_vtk(pixels[::-1].reshape(-1, 3).copy(), deep=1))
+        writer = vtkPNGWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(os.environ["STRATA_GUI_SCREENSHOT"])
+        writer.Write()
+        lines.append("screenshot: " + os.environ["STRATA_GUI_SCREENSHOT"])
+        finish()
+        os._exit(0)
+
+    interactor = view.GetInteractor()
+    interactor.AddObserver("TimerEvent", poll)
+    interactor.CreateRepeatingTimer(250)
+
+
 try:
-    if os.environ.get("STRATA_GUI_MODE") == "resize":
+    if os.environ.get("STRATA_GUI_MODE") == "screenshot":
+        screenshot()
+    elif os.environ.get("STRATA_GUI_MODE") == "resize":
         resize()
     elif os.environ.get("STRATA_GUI_MODE", "load").startswith("refine"):
         refine()
