@@ -5,6 +5,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleKey.h"
@@ -15,8 +16,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPagePoolReader.h"
+#include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
 #include "vtkStackedHeightFieldMapper.h"
 #include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
@@ -141,10 +144,43 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
+    this->UpdateColoring();
     // In parallel: this process's box of the scene (all volumes and horizons of the view).
     vtkStrataParaViewUtilities::UseProcessBox(this->GetView(), this->Mapper.GetPointer());
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataHorizonsRepresentation::UpdateColoring()
+{
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  const std::string name =
+    info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+  vtkScalarsToColors* lut = name.empty() ? nullptr : this->LookupTable.GetPointer();
+  const size_t horizons = this->Producers.size();
+  if (name == this->ColoredBy && lut == this->ColoredWith && horizons == this->ColoredHorizons)
+    return;
+  // The heights: the horizons' active point scalars (a pool's, a reader's array).
+  bool heights = false;
+  if (!name.empty() && horizons > 0)
+  {
+    auto* first = vtkImageData::SafeDownCast(this->Producers[0]->GetOutputDataObject(0));
+    vtkDataArray* scalars = first ? first->GetPointData()->GetScalars() : nullptr;
+    heights = scalars && scalars->GetName() && name == scalars->GetName();
+  }
+  using Modes = vtkStackedHeightFieldMapper::ColorModes;
+  this->Mapper->SetColorMode(name.empty() ? Modes::Solid : Modes::LookupTable);
+  this->Mapper->SetHeightLookupTable(heights ? lut : nullptr);
+  for (size_t i = 0; i < std::max(horizons, this->ColoredHorizons); ++i)
+  {
+    const bool attribute = !name.empty() && !heights && i < horizons;
+    this->Mapper->SetHorizonColorArray(static_cast<int>(i), attribute ? name.c_str() : nullptr);
+    this->Mapper->SetHorizonLookupTable(static_cast<int>(i), attribute ? lut : nullptr);
+  }
+  this->ColoredBy = name;
+  this->ColoredWith = lut;
+  this->ColoredHorizons = horizons;
 }
 
 //------------------------------------------------------------------------------
@@ -219,14 +255,13 @@ void vtkStrataHorizonsRepresentation::SetHeightScale(double scale)
 {
   this->Mapper->SetHeightScale(scale);
 }
-void vtkStrataHorizonsRepresentation::SetColorMode(int mode)
-{
-  this->Mapper->SetColorMode(mode == 0 ? vtkStackedHeightFieldMapper::ColorModes::Solid
-                                       : vtkStackedHeightFieldMapper::ColorModes::LookupTable);
-}
 void vtkStrataHorizonsRepresentation::SetLookupTable(vtkScalarsToColors* lut)
 {
-  this->Mapper->SetHeightLookupTable(lut);
+  if (this->LookupTable != lut)
+  {
+    this->LookupTable = lut;
+    this->Modified();
+  }
 }
 void vtkStrataHorizonsRepresentation::SetNullValue(double value)
 {

@@ -21,6 +21,7 @@
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
+#include <string> // For std::string
 #include <vector> // For std::vector
 
 class vtkActor;
@@ -54,7 +55,14 @@ public:
   ///@{
   /// vtkStackedHeightFieldMapper's options (its documentation says what each does).
   void SetHeightScale(double scale);
-  void SetColorMode(int mode); ///< 0 one colour per horizon, 1 lookup table over the height
+  /**
+   * ParaView's Coloring drives the colours (one control: ColorArrayName, shared with the
+   * surface representation, and its colour map, LookupTable): no array, one colour per horizon
+   * (the mapper's palette); the horizons' heights (their active point scalars), the colour map
+   * over the height; another point array of the horizons (a thickness, an amplitude along them),
+   * each horizon coloured by it through the colour map (in core only: the mapper warns and colours
+   * a paged horizon by its height). A preset of the colour map editor picks the depth colouring.
+   */
   void SetLookupTable(vtkScalarsToColors* lut);
   void SetNullValue(double value);
   void SetUseNullValue(bool use);
@@ -106,7 +114,15 @@ private:
   vtkStrataHorizonsRepresentation(const vtkStrataHorizonsRepresentation&) = delete;
   void operator=(const vtkStrataHorizonsRepresentation&) = delete;
 
+  /// The mapper's colours from ColorArrayName and LookupTable (see SetLookupTable), set only
+  /// when they change (a new table or array rebuilds the mapper's colours).
+  void UpdateColoring();
+
   vtkNew<vtkStackedHeightFieldMapper> Mapper;
+  vtkSmartPointer<vtkScalarsToColors> LookupTable;
+  std::string ColoredBy; // the array the mapper colours by ("" solid), as last set
+  vtkScalarsToColors* ColoredWith = nullptr; // the table it was set with
+  size_t ColoredHorizons = 0;                // horizons it was set for
   vtkNew<vtkActor> Actor;
   std::vector<vtkSmartPointer<vtkStrataPooledProducer>> Producers;
   vtkSmartPointer<vtkDataObject> Cache;

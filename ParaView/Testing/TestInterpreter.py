@@ -8,6 +8,8 @@ see of a pool and of the Strata representations, apart from the images of the sc
 
 extent: a pool's reader declares the level it outputs: ParaView's Outline is the data's box,
   its Surface has every face, at Resolution 0 and 0.5.
+horizon_coloring: Strata Horizons coloured by Coloring (one control): one colour per horizon, the
+  heights, another point array of the horizons: three different images.
 coloring: a pool switched to Strata Volume colours by its scalars (Coloring shows the array,
   the colour map spans its range), as ParaView's Volume does; Strata Volume draws the array
   Coloring names (a point array, another point array, a cell array) and the chosen array as
@@ -220,6 +222,64 @@ def coloring(args):
               "Strata Volume draws %s as ParaView's Volume does (RMS %g)" % (name, bound))
 
 
+def write_horizons(work):
+    """top.vti and base.vti: 40 x 30 grids, `depth` (the active scalars, planes) and
+    `thickness` (a bump), as two horizons of a stack."""
+    import numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    j, i = numpy.mgrid[0:30, 0:40].astype(numpy.float32)
+    paths = []
+    for name, depth in (("top", 10.0 + 0.1 * i), ("base", 20.0 + 0.2 * j)):
+        image = vtkImageData()
+        image.SetDimensions(40, 30, 1)
+        for array_name, values in (("depth", depth),
+                                   ("thickness", numpy.exp(-((i - 20) ** 2 + (j - 15) ** 2) / 60.0))):
+            array = numpy_to_vtk(values.ravel(), deep=1)
+            array.SetName(array_name)
+            image.GetPointData().AddArray(array)
+        image.GetPointData().SetActiveScalars("depth")
+        paths.append(os.path.join(work, name + ".vti"))
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputData(image)
+        writer.SetFileName(paths[-1])
+        writer.Write()
+    return paths
+
+
+def horizon_coloring(args):
+    """Strata Horizons coloured by ParaView's Coloring, one control: nothing (one colour per
+    horizon), the heights, another point array of the horizons."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from strata_colors import color_by_depth
+    view = make_view()
+    view.CameraPosition = [20.0, -45.0, 75.0]
+    view.CameraFocalPoint = [20.0, 15.0, 15.0]
+    stack = StackHorizons(Input=[XMLImageDataReader(FileName=[p])
+                                 for p in write_horizons(args.work)])
+    display = Show(stack, view)
+    display.SetRepresentationType("Strata Horizons")
+    images = {}
+    ColorBy(display, None)
+    Render(view)
+    images["solid"] = screenshot(view, os.path.join(args.work, "horizons_solid.png"))
+    color_by_depth(display, stack)
+    Render(view)
+    images["depth"] = screenshot(view, os.path.join(args.work, "horizons_depth.png"))
+    ColorBy(display, ("POINTS", "thickness"))
+    GetColorTransferFunction("thickness").ApplyPreset("Cool to Warm", True)
+    Render(view)
+    images["thickness"] = screenshot(view, os.path.join(args.work, "horizons_thickness.png"))
+    for one, two in (("solid", "depth"), ("solid", "thickness"), ("depth", "thickness")):
+        apart = rms(images[one], images[two])
+        print("horizons coloured by %s / by %s: RMS %.2f apart" % (one, two, apart))
+        check(apart > 5.0, "Coloring %s and %s draw different horizons" % (one, two))
+    check(min(covered(image) for image in images.values()) > 2000, "the horizons are drawn")
+    print("Coloring shows %s" % list(display.ColorArrayName))
+    check(display.ColorArrayName[1] == "thickness", "the Coloring box names what is drawn")
+
+
 def decorator_value(prop):
     """The representation a property's visibility decorator shows it under (None: always)."""
     hints = prop.GetHints()
@@ -372,7 +432,8 @@ def main():
     parser.add_argument("--work", default=".")
     parser.add_argument("--convert", default="")
     parser.add_argument("--check", required=True,
-                        choices=["extent", "coloring", "panels", "state", "trace"])
+                        choices=["extent", "coloring", "horizon_coloring", "panels", "state",
+                                 "trace"])
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     LoadPlugin(args.plugin, remote=False, ns=globals())

@@ -29,6 +29,7 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from strata_png import load_png  # noqa: E402 (beside this script)
+from strata_colors import color_by_depth  # noqa: E402
 
 SIZE = [160, 160]
 VIEWS = {
@@ -129,7 +130,7 @@ def build_scene(work, view):
     stack = StackHorizons(Input=horizons)
     shown = Show(stack, view)
     shown.SetRepresentationType("Strata Horizons")
-    shown.StrataHorizonsColorMode = "Height"
+    color_by_depth(shown, stack)
     return first
 
 

@@ -31,6 +31,7 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting interface
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from strata_png import load_png  # noqa: E402 (beside this script)
+from strata_colors import color_by_depth  # noqa: E402
 
 STRATA_PROXIES = {
     "sources": ["StrataPagePoolReader", "StrataIrapGridReader", "StrataNumpyGridReader",
@@ -360,11 +361,11 @@ def hybrid(args, camera):
     compare(view, camera, args.work, "hybrid", args.tolerance)
 
 
-def show_reek(stack, view, paged):
+def show_reek(stack, view, paged, value_range=None):
     display = Show(stack, view)
     display.SetRepresentationType("Strata Horizons")
     display.StrataHorizonsHeightScale = -1.0
-    display.StrataHorizonsColorMode = "Height"
+    color_by_depth(display, stack, value_range)
     display.StrataHorizonsScale = [1, 1, 8]
     display.StrataHorizonsSpecular = 0.2
     if paged:
@@ -390,7 +391,12 @@ def horizons(args, camera):
 def paged_horizons(args, camera):
     readers = [StrataPagePool(FileName=os.path.join(args.work, name + ".spp")) for name in REEK]
     view = setup_view(camera)
-    display = show_reek(StackHorizons(Input=readers), view, True)
+    # The colour map over the horizons' full range, the grids' the pools were made from.
+    grids = StackHorizons(Input=[StrataIrapBinaryGrid(
+        FileName=os.path.join(args.data, "horizons", name + ".gri")) for name in REEK])
+    grids.UpdatePipeline()
+    full = grids.PointData[grids.PointData.keys()[0]].GetRange()
+    display = show_reek(StackHorizons(Input=readers), view, True, full)
     frames = render_until_converged(view, display, "StrataHorizons")
     print("paged horizons settled after %d renders" % frames)
     check(frames <= 500, "the paged stack settles")
