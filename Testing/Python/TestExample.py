@@ -4,7 +4,10 @@ llvmpipe; the bound is `--max-difference`), and not empty (at least `--min-cover
 pixels differ from the background).
 
     TestExample.py --example NAME --cxx StrataExamples --examples DIR --out DIR [--data DIR]
-                   [--steps N]
+                   [--steps N] [--python INTERPRETER]
+
+The ParaView tests run it with ParaView's pvpython and the example under pvpython or pvbatch
+(`strata` wrapped against ParaView's VTK).
 """
 import argparse
 import os
@@ -23,6 +26,8 @@ parser.add_argument("--out", required=True)
 parser.add_argument("--data")
 parser.add_argument("--max-difference", type=int, default=0)
 parser.add_argument("--min-covered", type=float, default=0.15)
+parser.add_argument("--python", default=sys.executable,
+                    help="the interpreter of the example (ParaView's pvpython or pvbatch too)")
 parser.add_argument("--steps", type=int, default=0,
                     help="a time series: compare OUT_k.png for k < STEPS instead of OUT.png")
 args = parser.parse_args()
@@ -40,8 +45,8 @@ def read_png(path):
     return pixels.reshape(height, width, -1)[:, :, :3]
 
 
-def run(command):
-    done = subprocess.run(command, capture_output=True, text=True)
+def run(command, env=None):
+    done = subprocess.run(command, capture_output=True, text=True, env=env)
     sys.stdout.write(done.stdout)
     sys.stdout.write(done.stderr)
     if done.returncode != 0:
@@ -54,8 +59,11 @@ python_png = os.path.join(args.out, f"python-{args.example}.png")
 cxx_png = os.path.join(args.out, f"cxx-{args.example}.png")
 work = os.path.join(args.out, f"work-{args.example}")
 os.makedirs(work, exist_ok=True)
-run([sys.executable, os.path.join(args.examples, f"{args.example}.py"), python_png] + data)
-run([args.cxx, args.example, cxx_png, "--work", work] + data)
+run([args.python, os.path.join(args.examples, f"{args.example}.py"), python_png] + data)
+# The C++ twin renders through Strata's EGL window: no X display for it (ParaView's tests run
+# under Xvfb).
+run([args.cxx, args.example, cxx_png, "--work", work] + data,
+    {k: v for k, v in os.environ.items() if k != "DISPLAY"})
 
 
 
