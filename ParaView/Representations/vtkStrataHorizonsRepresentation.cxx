@@ -152,6 +152,39 @@ int vtkStrataHorizonsRepresentation::ProcessViewRequest(vtkInformationRequestKey
 }
 
 //------------------------------------------------------------------------------
+void vtkStrataHorizonsRepresentation::SetHorizonOpacity(int index, double opacity)
+{
+  opacity = std::min(1.0, std::max(0.0, opacity));
+  if (opacity < 1.0)
+    this->Opacities[index] = opacity;
+  else
+    this->Opacities.erase(index);
+  this->Mapper->SetHorizonOpacity(index, opacity);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataHorizonsRepresentation::RemoveAllHorizonOpacities()
+{
+  for (const auto& entry : this->Opacities)
+    this->Mapper->SetHorizonOpacity(entry.first, 1.0);
+  this->Opacities.clear();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+bool vtkStrataHorizonsRepresentation::HasTranslucentHorizons() const
+{
+  const int horizons = static_cast<int>(this->Producers.size());
+  for (const auto& entry : this->Opacities)
+  {
+    if (entry.first < horizons)
+      return true;
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
 void vtkStrataHorizonsRepresentation::UpdateColoring()
 {
   vtkInformation* info = this->GetInputArrayInformation(0);

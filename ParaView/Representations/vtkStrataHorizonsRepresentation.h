@@ -21,6 +21,7 @@
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
+#include <map>    // For std::map
 #include <string> // For std::string
 #include <vector> // For std::vector
 
@@ -64,6 +65,18 @@ public:
    * a paged horizon by its height). A preset of the colour map editor picks the depth colouring.
    */
   void SetLookupTable(vtkScalarsToColors* lut);
+
+  /**
+   * Opacity of horizon `index` of the stack (default 1). A translucent horizon is composited by
+   * the view's Strata Volume ray cast where rays cross it, in order with the volume samples
+   * (vtkMultiVolumeRayCastMapper::AddTranslucentActor): it shows inside the view's Strata
+   * Volumes (a view without one draws its opaque horizons only, as the mapper does).
+   * RemoveAllHorizonOpacities makes every horizon opaque again.
+   */
+  void SetHorizonOpacity(int index, double opacity);
+  void RemoveAllHorizonOpacities();
+  /// Whether a horizon of the stack is translucent.
+  bool HasTranslucentHorizons() const;
   void SetNullValue(double value);
   void SetUseNullValue(bool use);
   void SetTileSize(int size);
@@ -123,6 +136,7 @@ private:
   std::string ColoredBy; // the array the mapper colours by ("" solid), as last set
   vtkScalarsToColors* ColoredWith = nullptr; // the table it was set with
   size_t ColoredHorizons = 0;                // horizons it was set for
+  std::map<int, double> Opacities;           // the horizons set translucent
   vtkNew<vtkActor> Actor;
   std::vector<vtkSmartPointer<vtkStrataPooledProducer>> Producers;
   vtkSmartPointer<vtkDataObject> Cache;

@@ -1,6 +1,7 @@
 // Strata: ray casting for very large subsurface data. BSD-3-Clause, see LICENSE.
 #include "vtkStrataVolumeRepresentation.h"
 
+#include "vtkActor.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkArrayDispatch.h"
 #include "vtkCellData.h"
@@ -24,8 +25,10 @@
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
+#include "vtkStrataHorizonsRepresentation.h"
 #include "vtkStrataParaViewUtilities.h"
 #include "vtkStrataPooledProducer.h"
+#include "vtkView.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -56,6 +59,10 @@ public:
   std::vector<vtkStrataVolumeRepresentation*> Visible() const;
   void Show(vtkProp3D* prop);
   void Apply(const Settings& s);
+  /// The actors of the view's Strata Horizons with translucent horizons, to the ray cast.
+  void GatherTranslucentHorizons(vtkView* view);
+  /// The renderer's UseDepthPeelingForVolumes off while Strata Volumes are shown (restored).
+  void KeepVolumesOutOfDepthPeeling(bool shown);
 
   vtkSmartPointer<vtkRenderer>
     Renderer; // kept: the view may drop its renderer before its representations
@@ -63,6 +70,10 @@ public:
   vtkNew<vtkMultiVolume> Multi;
   std::vector<vtkStrataVolumeRepresentation*> Members;
   vtkProp3D* Shown = nullptr;
+  // The view's stacks with translucent horizons given to the ray cast (the mapper holds them).
+  std::vector<vtkActor*> Translucent;
+  bool PeelingVolumes = false; // the renderer's UseDepthPeelingForVolumes before the scene's
+  bool PeelingVolumesSaved = false;
   int Ports = 0;      // input ports connected, 0 .. Ports - 1
   int MultiPorts = 0; // volumes set on Multi
 };
@@ -186,10 +197,56 @@ void vtkStrataVolumeRepresentation::vtkScene::Sync()
     this->Show(nullptr);
   }
   if (n > 0)
+  {
     this->Apply(shown[0]->Options);
+    this->GatherTranslucentHorizons(shown[0]->GetView());
+  }
+  this->KeepVolumesOutOfDepthPeeling(n > 0);
   // In parallel: this process's box of the scene (all volumes and horizons of the view).
   vtkStrataParaViewUtilities::UseProcessBox(
     n > 0 ? shown[0]->GetView() : nullptr, this->Mapper.GetPointer());
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::vtkScene::KeepVolumesOutOfDepthPeeling(bool shown)
+{
+  // ParaView peels translucent geometry with VTK's dual depth peeling and, by default
+  // (DepthPeelingForVolumes), the volumes with it: a pass that injects code written for VTK's
+  // own GPU ray caster into the volume mappers' shaders (see
+  // vtkMultiVolumeRayCastMapper::AddTranslucentActor), which garbles a Strata ray cast as soon as
+  // the view holds translucent geometry. While Strata Volumes are shown the renderer keeps its
+  // volumes out of the peeling; the translucent horizons are composited by the ray cast itself.
+  vtkRenderer* renderer = this->Renderer;
+  if (shown && !this->PeelingVolumesSaved)
+  {
+    this->PeelingVolumes = renderer->GetUseDepthPeelingForVolumes();
+    this->PeelingVolumesSaved = true;
+  }
+  if (shown)
+    renderer->SetUseDepthPeelingForVolumes(false);
+  else if (this->PeelingVolumesSaved)
+  {
+    renderer->SetUseDepthPeelingForVolumes(this->PeelingVolumes);
+    this->PeelingVolumesSaved = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkStrataVolumeRepresentation::vtkScene::GatherTranslucentHorizons(vtkView* view)
+{
+  std::vector<vtkActor*> actors;
+  for (int i = 0; view && i < view->GetNumberOfRepresentations(); ++i)
+  {
+    auto* horizons = vtkStrataHorizonsRepresentation::SafeDownCast(view->GetRepresentation(i));
+    if (horizons && horizons->GetVisibility() && horizons->HasTranslucentHorizons())
+      actors.push_back(horizons->GetActor());
+  }
+  if (actors == this->Translucent)
+    return;
+  this->Mapper->RemoveAllTranslucentActors();
+  for (vtkActor* actor : actors)
+    this->Mapper->AddTranslucentActor(actor);
+  this->Translucent = actors;
 }
 
 //------------------------------------------------------------------------------

@@ -8,6 +8,8 @@ see of a pool and of the Strata representations, apart from the images of the sc
 
 extent: a pool's reader declares the level it outputs: ParaView's Outline is the data's box,
   its Surface has every face, at Resolution 0 and 0.5.
+translucent_horizons: a stack's top horizon at opacity 0.45 inside a Strata Volume of the view,
+  against the same scene drawn by the C++ mappers (the strata package in ParaView's Python).
 horizon_coloring: Strata Horizons coloured by Coloring (one control): one colour per horizon, the
   heights, another point array of the horizons: three different images.
 coloring: a pool switched to Strata Volume colours by its scalars (Coloring shows the array,
@@ -280,6 +282,156 @@ def horizon_coloring(args):
     check(display.ColorArrayName[1] == "thickness", "the Coloring box names what is drawn")
 
 
+def write_blob(work):
+    """blob.vti: 40 x 30 x 40 points (spacing 1, origin 0), `density` a smooth ball around the
+    write_horizons stack."""
+    import numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    k, j, i = numpy.mgrid[0:40, 0:30, 0:40].astype(numpy.float32)
+    values = 255.0 * numpy.exp(-((i - 20) ** 2 + (j - 15) ** 2 + (k - 18) ** 2) / 150.0)
+    image = vtkImageData()
+    image.SetDimensions(40, 30, 40)
+    array = numpy_to_vtk(values.ravel(), deep=1)
+    array.SetName("density")
+    image.GetPointData().SetScalars(array)
+    path = os.path.join(work, "blob.vti")
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    writer.Write()
+    return path
+
+
+BLOB_COLORS = [0.0, 0.2, 0.3, 0.8, 255.0, 1.0, 0.6, 0.2]
+BLOB_OPACITIES = [0.0, 0.0, 0.5, 0.0, 255.0, 0.35, 0.5, 0.0]
+BLOB_CAMERA = {"position": [20.0, -70.0, 60.0], "focal_point": [20.0, 15.0, 18.0],
+               "view_up": [0.0, 0.0, 1.0], "view_angle": 30.0}
+
+
+def reference_translucent(blob, horizons, opacity):
+    """The scene drawn by Strata's C++ mappers directly (the strata package in ParaView's
+    Python), in a VTK window of the view's size: a Strata volume ray cast with the stack given
+    to it as a translucent actor (vtkMultiVolumeRayCastMapper::AddTranslucentActor)."""
+    import strata
+    from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+    from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkRenderer,
+                                             vtkRenderWindow, vtkVolume, vtkVolumeProperty,
+                                             vtkWindowToImageFilter)
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(blob)
+    colors, opacities = vtkColorTransferFunction(), vtkPiecewiseFunction()
+    for n in range(0, len(BLOB_COLORS), 4):
+        colors.AddRGBPoint(*BLOB_COLORS[n:n + 4])
+    for n in range(0, len(BLOB_OPACITIES), 4):
+        opacities.AddPoint(*BLOB_OPACITIES[n:n + 4])
+    prop = vtkVolumeProperty()
+    prop.SetColor(colors)
+    prop.SetScalarOpacity(opacities)
+    prop.SetInterpolationTypeToLinear()
+    prop.SetScalarOpacityUnitDistance(1.0)
+    volume_mapper = strata.vtkMultiVolumeRayCastMapper()
+    volume_mapper.SetInputConnection(reader.GetOutputPort())
+    volume_mapper.SetSampleDistance(0.5)
+    volume = vtkVolume()
+    volume.SetMapper(volume_mapper)
+    volume.SetProperty(prop)
+    horizon_mapper = strata.vtkStackedHeightFieldMapper()
+    for path in horizons:
+        grid = vtkXMLImageDataReader()
+        grid.SetFileName(path)
+        horizon_mapper.AddInputConnection(grid.GetOutputPort())
+    horizon_mapper.SetHorizonOpacity(0, opacity)
+    actor = vtkActor()
+    actor.SetMapper(horizon_mapper)
+    volume_mapper.AddTranslucentActor(actor)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.5, 0.5, 0.5)
+    renderer.AddActor(actor)
+    renderer.AddVolume(volume)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(*SIZE)
+    window.AddRenderer(renderer)
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(BLOB_CAMERA["position"])
+    camera.SetFocalPoint(BLOB_CAMERA["focal_point"])
+    camera.SetViewUp(BLOB_CAMERA["view_up"])
+    camera.SetViewAngle(BLOB_CAMERA["view_angle"])
+    renderer.ResetCameraClippingRange()
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+    # Rows bottom to top, as load_png gives them.
+    return pixels
+
+
+def translucent_horizons(args):
+    """A stack's top horizon at opacity 0.45 inside a Strata Volume of the same view: the image
+    of the C++ mappers composing the same scene, and not the opaque one."""
+    blob = write_blob(args.work)
+    horizons = write_horizons(args.work)
+    view = make_view()
+    view.UseFXAA = 0
+    view.UseToneMapping = 0
+    view.UseLight = 0
+    light = AddLight(view=view)
+    light.Coords = "Headlight"
+    light.Intensity = 1.0
+    view.CameraPosition = BLOB_CAMERA["position"]
+    view.CameraFocalPoint = BLOB_CAMERA["focal_point"]
+    view.CameraViewUp = BLOB_CAMERA["view_up"]
+    view.CameraViewAngle = BLOB_CAMERA["view_angle"]
+    volume = XMLImageDataReader(FileName=[blob])
+    shown = Show(volume, view)
+    shown.SetRepresentationType("Strata Volume")
+    ColorBy(shown, ("POINTS", "density"))
+    lut = GetColorTransferFunction("density")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = BLOB_COLORS
+    GetOpacityTransferFunction("density").Points = BLOB_OPACITIES
+    shown.InterpolationType = "Linear"
+    shown.ScalarOpacityUnitDistance = 1.0
+    shown.StrataVolumeSampleDistance = 0.5
+    stack = StackHorizons(Input=[XMLImageDataReader(FileName=[p]) for p in horizons])
+    display = Show(stack, view)
+    display.SetRepresentationType("Strata Horizons")
+    ColorBy(display, None)
+    import numpy
+    images = {}
+    for opacity in (1.0, 0.45):
+        display.StrataHorizonsHorizonOpacities = [opacity, 1.0]
+        Render(view)
+        images[opacity] = screenshot(view, os.path.join(args.work, "translucent_%g.png" % opacity))
+    reference = reference_translucent(blob, horizons, 0.45)
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    picture = vtkImageData()
+    picture.SetDimensions(SIZE[0], SIZE[1], 1)
+    picture.GetPointData().SetScalars(numpy_to_vtk(reference.astype(numpy.uint8), deep=1))
+    writer = vtkPNGWriter()
+    writer.SetInputData(picture)
+    writer.SetFileName(os.path.join(args.work, "translucent_reference.png"))
+    writer.Write()
+    worst = int(numpy.abs(images[0.45].astype(int) - reference).max())
+    print("top horizon at 0.45 inside the volume: ParaView against the C++ mappers: RMS %.2f, "
+          "max %d of 255; against the opaque horizon RMS %.2f" % (
+              rms(images[0.45], reference), worst, rms(images[0.45], images[1.0])))
+    check(rms(images[0.45], images[1.0]) > 5.0, "the translucent horizon is not the opaque one")
+    check(worst <= 2, "ParaView composites the translucent horizon as the C++ mappers do")
+
+
 def decorator_value(prop):
     """The representation a property's visibility decorator shows it under (None: always)."""
     hints = prop.GetHints()
@@ -432,8 +584,8 @@ def main():
     parser.add_argument("--work", default=".")
     parser.add_argument("--convert", default="")
     parser.add_argument("--check", required=True,
-                        choices=["extent", "coloring", "horizon_coloring", "panels", "state",
-                                 "trace"])
+                        choices=["extent", "coloring", "horizon_coloring",
+                                 "translucent_horizons", "panels", "state", "trace"])
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     LoadPlugin(args.plugin, remote=False, ns=globals())
