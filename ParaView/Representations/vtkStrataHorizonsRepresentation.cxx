@@ -112,6 +112,7 @@ int vtkStrataHorizonsRepresentation::RequestData(vtkInformation* request,
     this->DataSize += copy->GetActualMemorySize();
   }
   this->Cache = input;
+  this->ColoringCurrent = false; // the horizons' arrays may have changed
   vtkMath::UninitializeBounds(this->DataBounds);
   if (!horizons.empty())
   {
@@ -192,7 +193,8 @@ void vtkStrataHorizonsRepresentation::UpdateColoring()
     info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
   vtkScalarsToColors* lut = name.empty() ? nullptr : this->LookupTable.GetPointer();
   const size_t horizons = this->Producers.size();
-  if (name == this->ColoredBy && lut == this->ColoredWith && horizons == this->ColoredHorizons)
+  if (this->ColoringCurrent && name == this->ColoredBy && lut == this->ColoredWith &&
+      horizons == this->ColoredHorizons)
     return;
   // The heights: the horizons' active point scalars (a pool's, a reader's array).
   bool heights = false;
@@ -202,18 +204,25 @@ void vtkStrataHorizonsRepresentation::UpdateColoring()
     vtkDataArray* scalars = first ? first->GetPointData()->GetScalars() : nullptr;
     heights = scalars && scalars->GetName() && name == scalars->GetName();
   }
+  // Heights: the colour map over the height for every horizon. Another array: each horizon
+  // that has it through the colour map, the others in their palette colour.
   using Modes = vtkStackedHeightFieldMapper::ColorModes;
-  this->Mapper->SetColorMode(name.empty() ? Modes::Solid : Modes::LookupTable);
+  this->Mapper->SetColorMode(heights ? Modes::LookupTable : Modes::Solid);
   this->Mapper->SetHeightLookupTable(heights ? lut : nullptr);
   for (size_t i = 0; i < std::max(horizons, this->ColoredHorizons); ++i)
   {
-    const bool attribute = !name.empty() && !heights && i < horizons;
+    auto* horizon = i < horizons
+                      ? vtkImageData::SafeDownCast(this->Producers[i]->GetOutputDataObject(0))
+                      : nullptr;
+    const bool attribute = !name.empty() && !heights && horizon &&
+                           horizon->GetPointData()->GetArray(name.c_str()) != nullptr;
     this->Mapper->SetHorizonColorArray(static_cast<int>(i), attribute ? name.c_str() : nullptr);
     this->Mapper->SetHorizonLookupTable(static_cast<int>(i), attribute ? lut : nullptr);
   }
   this->ColoredBy = name;
   this->ColoredWith = lut;
   this->ColoredHorizons = horizons;
+  this->ColoringCurrent = true;
 }
 
 //------------------------------------------------------------------------------

@@ -136,6 +136,7 @@ private:
   std::string ColoredBy; // the array the mapper colours by ("" solid), as last set
   vtkScalarsToColors* ColoredWith = nullptr; // the table it was set with
   size_t ColoredHorizons = 0;                // horizons it was set for
+  bool ColoringCurrent = false;              // false after new data
   std::map<int, double> Opacities;           // the horizons set translucent
   vtkNew<vtkActor> Actor;
   std::vector<vtkSmartPointer<vtkStrataPooledProducer>> Producers;

@@ -10,6 +10,8 @@ extent: a pool's reader declares the level it outputs: ParaView's Outline is the
   its Surface has every face, at Resolution 0 and 0.5.
 translucent_horizons: a stack's top horizon at opacity 0.45 inside a Strata Volume of the view,
   against the same scene drawn by the C++ mappers (the strata package in ParaView's Python).
+drape: a horizon sampled in a volume (Sample Volume Along Horizon), stacked with another and
+  coloured by the sampled array through Coloring, against the C++ classes' image.
 horizon_coloring: Strata Horizons coloured by Coloring (one control): one colour per horizon, the
   heights, another point array of the horizons: three different images.
 coloring: a pool switched to Strata Volume colours by its scalars (Coloring shows the array,
@@ -432,6 +434,102 @@ def translucent_horizons(args):
     check(worst <= 2, "ParaView composites the translucent horizon as the C++ mappers do")
 
 
+DRAPE_COLORS = [0.0, 0.1, 0.1, 0.4, 128.0, 0.9, 0.9, 0.9, 255.0, 0.8, 0.1, 0.1]
+
+
+def reference_drape(blob, horizons):
+    """The drape drawn by Strata's C++ classes directly (strata package): the top horizon
+    sampled in the volume (vtkHorizonVolumeSampler), coloured by it through a colour map, the
+    base in its palette colour."""
+    import strata
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+    from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkRenderer,
+                                             vtkRenderWindow, vtkWindowToImageFilter)
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
+    readers = []
+    for path in [blob] + horizons:
+        reader = vtkXMLImageDataReader()
+        reader.SetFileName(path)
+        readers.append(reader)
+    drape = strata.vtkHorizonVolumeSampler()
+    drape.SetInputConnection(readers[1].GetOutputPort())
+    drape.SetVolumeConnection(readers[0].GetOutputPort())
+    colors = vtkColorTransferFunction()
+    for n in range(0, len(DRAPE_COLORS), 4):
+        colors.AddRGBPoint(*DRAPE_COLORS[n:n + 4])
+    mapper = strata.vtkStackedHeightFieldMapper()
+    mapper.AddInputConnection(drape.GetOutputPort())
+    mapper.AddInputConnection(readers[2].GetOutputPort())
+    mapper.SetHorizonColorArray(0, "amplitude")
+    mapper.SetHorizonLookupTable(0, colors)
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.5, 0.5, 0.5)
+    renderer.AddActor(actor)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(*SIZE)
+    window.AddRenderer(renderer)
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(BLOB_CAMERA["position"])
+    camera.SetFocalPoint(BLOB_CAMERA["focal_point"])
+    camera.SetViewUp(BLOB_CAMERA["view_up"])
+    camera.SetViewAngle(BLOB_CAMERA["view_angle"])
+    renderer.ResetCameraClippingRange()
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+
+def drape(args):
+    """A horizon draped with a volume (Sample Volume Along Horizon), coloured by the sampled
+    array through Coloring, in a stack with a plain horizon: the C++ classes' image."""
+    blob = write_blob(args.work)
+    horizons = write_horizons(args.work)
+    view = make_view()
+    view.UseFXAA = 0
+    view.UseToneMapping = 0
+    view.UseLight = 0
+    light = AddLight(view=view)
+    light.Coords = "Headlight"
+    light.Intensity = 1.0
+    view.CameraPosition = BLOB_CAMERA["position"]
+    view.CameraFocalPoint = BLOB_CAMERA["focal_point"]
+    view.CameraViewUp = BLOB_CAMERA["view_up"]
+    view.CameraViewAngle = BLOB_CAMERA["view_angle"]
+    volume = XMLImageDataReader(FileName=[blob])
+    top, base = [XMLImageDataReader(FileName=[p]) for p in horizons]
+    draped = SampleVolumeAlongHorizon(Input=top, Volume=volume)
+    stack = StackHorizons(Input=[draped, base])
+    display = Show(stack, view)
+    display.SetRepresentationType("Strata Horizons")
+    ColorBy(display, None)
+    Render(view)
+    solid = screenshot(view, os.path.join(args.work, "drape_solid.png"))
+    ColorBy(display, ("POINTS", "amplitude"))
+    lut = GetColorTransferFunction("amplitude")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = DRAPE_COLORS
+    Render(view)
+    image = screenshot(view, os.path.join(args.work, "drape.png"))
+    reference = reference_drape(blob, horizons)
+    import numpy
+    worst = int(numpy.abs(image.astype(int) - reference).max())
+    print("top horizon draped with the volume: ParaView against the C++ classes: RMS %.2f, max %d "
+          "of 255; against the undraped stack RMS %.2f" % (rms(image, reference), worst,
+                                                            rms(image, solid)))
+    check(rms(image, solid) > 5.0, "the draped horizon is coloured by the volume")
+    check(worst <= 1, "ParaView drapes the horizon as the C++ classes do")
+
+
 def decorator_value(prop):
     """The representation a property's visibility decorator shows it under (None: always)."""
     hints = prop.GetHints()
@@ -585,7 +683,7 @@ def main():
     parser.add_argument("--convert", default="")
     parser.add_argument("--check", required=True,
                         choices=["extent", "coloring", "horizon_coloring",
-                                 "translucent_horizons", "panels", "state", "trace"])
+                                 "translucent_horizons", "drape", "panels", "state", "trace"])
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     LoadPlugin(args.plugin, remote=False, ns=globals())

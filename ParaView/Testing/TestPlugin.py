@@ -37,7 +37,7 @@ STRATA_PROXIES = {
     "sources": ["StrataPagePoolReader", "StrataIrapGridReader", "StrataNumpyGridReader",
                 "StrataHorizonColumnReader", "StrataAsciiGridReader", "StrataSegyVolumeReader",
                 "StrataStreamingMetaImageReader", "StrataHybridVolumeReader"],
-    "filters": ["StrataStackHorizons"],
+    "filters": ["StrataStackHorizons", "StrataHorizonVolumeSampler"],
     "representations": ["StrataVolumeRepresentation", "StrataHorizonsRepresentation",
                         "StrataHybridRepresentation"],
 }
@@ -62,7 +62,7 @@ def list_proxies():
     # The Python names of the readers and the filter, from their labels.
     for name in ["StrataPagePool", "StrataIrapBinaryGrid", "StrataNumPyHorizon",
                  "StrataHorizonColumns", "StrataTextHorizonGrid", "StrataSEGYVolume",
-                 "StrataHybridVolume", "StackHorizons"]:
+                 "StrataHybridVolume", "StackHorizons", "SampleVolumeAlongHorizon"]:
         check(name in globals(), "paraview.simple has %s()" % name)
 
 
