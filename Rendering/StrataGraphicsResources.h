@@ -20,6 +20,7 @@
 
 #include "vtkCommand.h"            // For DeleteEvent
 #include "vtkOpenGLRenderWindow.h" // For PushContext, PopContext
+#include "vtkTextureUnitManager.h" // For the window's texture units
 #include "vtkWeakPointer.h"        // For the window
 
 namespace strata
@@ -37,9 +38,18 @@ public:
   GraphicsResources(const GraphicsResources&) = delete;
   GraphicsResources& operator=(const GraphicsResources&) = delete;
 
-  /// The window the owner renders into now; resources in another one are released first.
+  /**
+   * The window the owner renders into now; resources in another one are released first. Also
+   * counts the window's texture units again when it counts none: a window whose graphics
+   * resources were released keeps its context but has no units until it is initialised again
+   * (ParaView's windows after ReleaseGraphicsResources: every unit asked for was -1, and
+   * freeing -1 aborts), so before the owner draws.
+   */
   void Register(vtkOpenGLRenderWindow* window)
   {
+    vtkTextureUnitManager* units = window ? window->GetTextureUnitManager() : nullptr;
+    if (units && units->GetNumberOfTextureUnits() == 0)
+      units->Initialize();
     if (this->Window.GetPointer() == window)
       return;
     this->Release();

@@ -1,6 +1,6 @@
 # The parallel test (see CMakeLists.txt and TestParallel.py): the scene's data, its brick pool
 # (the standalone build's strata-convert), pvbatch over MPI with 1, 2 and 4 ranks, a 2-rank
-# pvserver with a pvpython client, the comparison with the 1-rank images.
+# pvserver with a pvpython client (1 and 2 ranks), the comparison with the 1-rank images.
 if (NOT EXISTS "${CONVERT}")
   message(FATAL_ERROR "${CONVERT} is missing: build the standalone tree first (scripts/test does)")
 endif ()
@@ -43,12 +43,16 @@ foreach (ranks IN ITEMS 1 2 4)
     message(FATAL_ERROR "pvbatch with ${ranks} rank(s) failed (${result})")
   endif ()
 endforeach ()
-# ParaView's client-server mode: a 2-rank pvserver renders the scene for a pvpython client
-# (run-client-server), whose images must equal the 1-rank ones as the 2-rank pvbatch images do.
+# ParaView's client-server mode: a 1-rank and a 2-rank pvserver render the scene for a pvpython
+# client (run-client-server), whose images must equal the 1-rank pvbatch ones as the pvbatch
+# images of as many ranks do.
 run("pvserver + pvpython" "${WITH_XVFB}" "${CLIENT_SERVER}" 2 "${MPIEXEC}" "${PVSERVER}"
   "${TIMEOUT}" "${PVPYTHON}" "${SCRIPT}" --plugin "${PLUGIN}" --work "${WORK}" --render
   --label _server)
+run("pvserver (1 rank) + pvpython" "${WITH_XVFB}" "${CLIENT_SERVER}" 1 "${MPIEXEC}"
+  "${PVSERVER}" "${TIMEOUT}" "${PVPYTHON}" "${SCRIPT}" --plugin "${PLUGIN}" --work "${WORK}"
+  --render --label _server)
 run("the comparison" "${WITH_XVFB}" "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}" --work "${WORK}"
   --compare 2 4)
 run("the client-server comparison" "${WITH_XVFB}" "${PVBATCH}" "${SCRIPT}" --plugin "${PLUGIN}"
-  --work "${WORK}" --compare 2 --label _server)
+  --work "${WORK}" --compare 1 2 --label _server)
