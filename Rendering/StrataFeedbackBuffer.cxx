@@ -13,23 +13,13 @@ namespace strata
 namespace
 {
 // Runs `use` with a texture unit of the window's manager active, so that the binds made in it
-// disturb no unit someone else holds. A manager with no unit to give (a window whose graphics
-// resources were released and that has not counted its units again: ParaView's, after
-// ReleaseGraphicsResources) gets -1, which Free aborts on: then the unit already active, its
-// binding restored after.
+// disturb no unit someone else holds. (A window that counts no units, its resources released,
+// counts them again in strata::GraphicsResources::Register, before any mapper draws.)
 template<typename Use>
 void OnFreeUnit(vtkOpenGLRenderWindow* window, Use&& use)
 {
   vtkTextureUnitManager* units = window->GetTextureUnitManager();
   const int unit = units->Allocate();
-  if (unit < 0)
-  {
-    GLint bound = 0;
-    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-    use();
-    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
-    return;
-  }
   window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
   use();
   glBindTexture(GL_TEXTURE_2D, 0);

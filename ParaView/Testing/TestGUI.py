@@ -47,12 +47,19 @@ def finish():
         f.write("\n".join(lines) + "\n")
 
 
-def refine():
+def plugin_scenes():
+    """TestPlugin.py (its scenes' views and displays, beside this script) with the plugin's
+    proxies loaded into it, as the GUI's Python shell would load them."""
     sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
     import TestPlugin
+    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
+    return TestPlugin
+
+
+def refine():
+    TestPlugin = plugin_scenes()
     from strata_png import load_png
     import numpy
-    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
     from paraview import servermanager
     remote = servermanager.ActiveConnection.IsRemote()
     if remote:
@@ -128,10 +135,8 @@ def volume_measure(image):
 def resize():
     """The window resized (as a user drags its corner) between settled renders: the volume
     stays, as large against the view's height as before."""
-    sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
-    import TestPlugin
+    TestPlugin = plugin_scenes()
     import xwindow
-    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
     view = GetActiveViewOrCreate("RenderView")
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
@@ -178,13 +183,11 @@ def resize():
 def screenshot():
     """Not a test: the README's picture of the GUI ($STRATA_GUI_SCREENSHOT), a paged pool
     switched to Strata Volume (coloured by its scalars by default), once it has settled."""
-    sys.path.insert(0, os.path.dirname(os.environ["STRATA_GUI_SCRIPT"]))
-    import TestPlugin
+    TestPlugin = plugin_scenes()
     import xwindow
     from vtkmodules.vtkIOImage import vtkPNGWriter
     from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.util.numpy_support import numpy_to_vtk
-    LoadPlugin(os.environ["STRATA_PLUGIN"], remote=False, ns=vars(TestPlugin))
     view = GetActiveViewOrCreate("RenderView")
     reader = TestPlugin.StrataPagePool(FileName=os.environ["STRATA_POOL"])
     SetActiveSource(reader)

@@ -48,13 +48,22 @@ def check(ok, what):
         failures.append(what)
 
 
+def save_vti(image, path):
+    """Writes `image` to `path` (.vti) and returns the path."""
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    writer.Write()
+    return path
+
+
 def write_volume(work):
     """arrays.vti: 33 x 25 x 17 points, spacing 0.5 0.75 1, origin (3, -2, 5), three arrays:
     `a` (point scalars, a ramp along x), `b` (point, a ramp along y) and `c` (cell, the ramp
     of `a` at the cell centres). Returns its path."""
     import numpy
     from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
     from vtkmodules.util.numpy_support import numpy_to_vtk
     dims = (33, 25, 17)
     image = vtkImageData()
@@ -72,12 +81,7 @@ def write_volume(work):
     cells = numpy_to_vtk((255.0 * (ic + 0.5) / (dims[0] - 1)).ravel(), deep=1)
     cells.SetName("c")
     image.GetCellData().AddArray(cells)
-    path = os.path.join(work, "arrays.vti")
-    writer = vtkXMLImageDataWriter()
-    writer.SetInputData(image)
-    writer.SetFileName(path)
-    writer.Write()
-    return path
+    return save_vti(image, os.path.join(work, "arrays.vti"))
 
 
 def make_pool(args):
@@ -231,7 +235,6 @@ def write_horizons(work):
     `thickness` (a bump), as two horizons of a stack."""
     import numpy
     from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
     from vtkmodules.util.numpy_support import numpy_to_vtk
     j, i = numpy.mgrid[0:30, 0:40].astype(numpy.float32)
     paths = []
@@ -244,18 +247,13 @@ def write_horizons(work):
             array.SetName(array_name)
             image.GetPointData().AddArray(array)
         image.GetPointData().SetActiveScalars("depth")
-        paths.append(os.path.join(work, name + ".vti"))
-        writer = vtkXMLImageDataWriter()
-        writer.SetInputData(image)
-        writer.SetFileName(paths[-1])
-        writer.Write()
+        paths.append(save_vti(image, os.path.join(work, name + ".vti")))
     return paths
 
 
 def horizon_coloring(args):
     """Strata Horizons coloured by ParaView's Coloring, one control: nothing (one colour per
     horizon), the heights, another point array of the horizons."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from strata_colors import color_by_depth
     view = make_view()
     view.CameraPosition = [20.0, -45.0, 75.0]
@@ -289,7 +287,6 @@ def write_blob(work):
     write_horizons stack."""
     import numpy
     from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
     from vtkmodules.util.numpy_support import numpy_to_vtk
     k, j, i = numpy.mgrid[0:40, 0:30, 0:40].astype(numpy.float32)
     values = 255.0 * numpy.exp(-((i - 20) ** 2 + (j - 15) ** 2 + (k - 18) ** 2) / 150.0)
@@ -298,18 +295,51 @@ def write_blob(work):
     array = numpy_to_vtk(values.ravel(), deep=1)
     array.SetName("density")
     image.GetPointData().SetScalars(array)
-    path = os.path.join(work, "blob.vti")
-    writer = vtkXMLImageDataWriter()
-    writer.SetInputData(image)
-    writer.SetFileName(path)
-    writer.Write()
-    return path
+    return save_vti(image, os.path.join(work, "blob.vti"))
 
 
 BLOB_COLORS = [0.0, 0.2, 0.3, 0.8, 255.0, 1.0, 0.6, 0.2]
 BLOB_OPACITIES = [0.0, 0.0, 0.5, 0.0, 255.0, 0.35, 0.5, 0.0]
-BLOB_CAMERA = {"position": [20.0, -70.0, 60.0], "focal_point": [20.0, 15.0, 18.0],
-               "view_up": [0.0, 0.0, 1.0], "view_angle": 30.0}
+BLOB_CAMERA = {"size": SIZE, "background": [0.5, 0.5, 0.5], "position": [20.0, -70.0, 60.0],
+               "focal_point": [20.0, 15.0, 18.0], "view_up": [0.0, 0.0, 1.0],
+               "view_angle": [30.0]}
+
+
+def blob_view():
+    """A view of the blob scenes as the standalone scenes' (TestPlugin.configure_view: VTK's
+    default headlight, no FXAA), so that the C++ classes' window draws the same."""
+    import TestPlugin
+    view = CreateView("RenderView")
+    TestPlugin.configure_view(view, BLOB_CAMERA)
+    paraview.simple._DisableFirstRenderCameraReset()
+    return view
+
+
+def render_reference(renderer):
+    """`renderer` in an offscreen VTK window of the views' size and BLOB_CAMERA (no
+    multisampling: the translucent surfaces need texture barriers); its RGB pixels, rows bottom
+    to top as load_png gives them."""
+    from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkWindowToImageFilter
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
+    renderer.SetBackground(*BLOB_CAMERA["background"])
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(*SIZE)
+    window.AddRenderer(renderer)
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(BLOB_CAMERA["position"])
+    camera.SetFocalPoint(BLOB_CAMERA["focal_point"])
+    camera.SetViewUp(BLOB_CAMERA["view_up"])
+    camera.SetViewAngle(BLOB_CAMERA["view_angle"][0])
+    renderer.ResetCameraClippingRange()
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
 def reference_translucent(blob, horizons, opacity):
@@ -320,10 +350,7 @@ def reference_translucent(blob, horizons, opacity):
     from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
     from vtkmodules.vtkIOXML import vtkXMLImageDataReader
     from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkRenderer,
-                                             vtkRenderWindow, vtkVolume, vtkVolumeProperty,
-                                             vtkWindowToImageFilter)
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
+                                             vtkVolume, vtkVolumeProperty)
     reader = vtkXMLImageDataReader()
     reader.SetFileName(blob)
     colors, opacities = vtkColorTransferFunction(), vtkPiecewiseFunction()
@@ -352,28 +379,9 @@ def reference_translucent(blob, horizons, opacity):
     actor.SetMapper(horizon_mapper)
     volume_mapper.AddTranslucentActor(actor)
     renderer = vtkRenderer()
-    renderer.SetBackground(0.5, 0.5, 0.5)
     renderer.AddActor(actor)
     renderer.AddVolume(volume)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(*SIZE)
-    window.AddRenderer(renderer)
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition(BLOB_CAMERA["position"])
-    camera.SetFocalPoint(BLOB_CAMERA["focal_point"])
-    camera.SetViewUp(BLOB_CAMERA["view_up"])
-    camera.SetViewAngle(BLOB_CAMERA["view_angle"])
-    renderer.ResetCameraClippingRange()
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
-    # Rows bottom to top, as load_png gives them.
-    return pixels
+    return render_reference(renderer)
 
 
 def translucent_horizons(args):
@@ -381,17 +389,7 @@ def translucent_horizons(args):
     of the C++ mappers composing the same scene, and not the opaque one."""
     blob = write_blob(args.work)
     horizons = write_horizons(args.work)
-    view = make_view()
-    view.UseFXAA = 0
-    view.UseToneMapping = 0
-    view.UseLight = 0
-    light = AddLight(view=view)
-    light.Coords = "Headlight"
-    light.Intensity = 1.0
-    view.CameraPosition = BLOB_CAMERA["position"]
-    view.CameraFocalPoint = BLOB_CAMERA["focal_point"]
-    view.CameraViewUp = BLOB_CAMERA["view_up"]
-    view.CameraViewAngle = BLOB_CAMERA["view_angle"]
+    view = blob_view()
     volume = XMLImageDataReader(FileName=[blob])
     shown = Show(volume, view)
     shown.SetRepresentationType("Strata Volume")
@@ -416,16 +414,6 @@ def translucent_horizons(args):
         Render(view)
         images[opacity] = screenshot(view, os.path.join(args.work, "translucent_%g.png" % opacity))
     reference = reference_translucent(blob, horizons, 0.45)
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    picture = vtkImageData()
-    picture.SetDimensions(SIZE[0], SIZE[1], 1)
-    picture.GetPointData().SetScalars(numpy_to_vtk(reference.astype(numpy.uint8), deep=1))
-    writer = vtkPNGWriter()
-    writer.SetInputData(picture)
-    writer.SetFileName(os.path.join(args.work, "translucent_reference.png"))
-    writer.Write()
     worst = int(numpy.abs(images[0.45].astype(int) - reference).max())
     print("top horizon at 0.45 inside the volume: ParaView against the C++ mappers: RMS %.2f, "
           "max %d of 255; against the opaque horizon RMS %.2f" % (
@@ -443,10 +431,7 @@ def reference_drape(blob, horizons):
     base in its palette colour."""
     import strata
     from vtkmodules.vtkIOXML import vtkXMLImageDataReader
-    from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkRenderer,
-                                             vtkRenderWindow, vtkWindowToImageFilter)
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkColorTransferFunction, vtkRenderer
     readers = []
     for path in [blob] + horizons:
         reader = vtkXMLImageDataReader()
@@ -466,25 +451,8 @@ def reference_drape(blob, horizons):
     actor = vtkActor()
     actor.SetMapper(mapper)
     renderer = vtkRenderer()
-    renderer.SetBackground(0.5, 0.5, 0.5)
     renderer.AddActor(actor)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(*SIZE)
-    window.AddRenderer(renderer)
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition(BLOB_CAMERA["position"])
-    camera.SetFocalPoint(BLOB_CAMERA["focal_point"])
-    camera.SetViewUp(BLOB_CAMERA["view_up"])
-    camera.SetViewAngle(BLOB_CAMERA["view_angle"])
-    renderer.ResetCameraClippingRange()
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+    return render_reference(renderer)
 
 
 def drape(args):
@@ -492,17 +460,7 @@ def drape(args):
     array through Coloring, in a stack with a plain horizon: the C++ classes' image."""
     blob = write_blob(args.work)
     horizons = write_horizons(args.work)
-    view = make_view()
-    view.UseFXAA = 0
-    view.UseToneMapping = 0
-    view.UseLight = 0
-    light = AddLight(view=view)
-    light.Coords = "Headlight"
-    light.Intensity = 1.0
-    view.CameraPosition = BLOB_CAMERA["position"]
-    view.CameraFocalPoint = BLOB_CAMERA["focal_point"]
-    view.CameraViewUp = BLOB_CAMERA["view_up"]
-    view.CameraViewAngle = BLOB_CAMERA["view_angle"]
+    view = blob_view()
     volume = XMLImageDataReader(FileName=[blob])
     top, base = [XMLImageDataReader(FileName=[p]) for p in horizons]
     draped = SampleVolumeAlongHorizon(Input=top, Volume=volume)
